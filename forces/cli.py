@@ -1,0 +1,220 @@
+"""The ``sunwind`` command line: parse arguments, make one API call, print text or ``--json``."""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+import click
+import numpy as np
+
+from geometry.errors import InputError, SunwindError
+from geometry.materials import Material
+from geometry.spacecraft import Spacecraft, load_spacecraft
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.version_option(package_name="sunwind", message="%(prog)s %(version)s")
+def app() -> None:
+    """Solar-radiation-pressure forces and torques on a spacecraft mesh, with ray-cast shadowing.
+
+    Body frame of the mesh, SI units. Run `sunwind COMMAND --help` for each command.
+    """
+
+
+def model_options(command: Callable) -> Callable:
+    """The options that say how to load a mesh and give it materials."""
+    options = [
+        click.argument("mesh", type=click.Path(path_type=Path)),
+        click.option("--materials", "-m", type=click.Path(path_type=Path), help="Materials TOML file."),
+        click.option(
+            "--reflectivity", type=float, help="Uniform material for parts without one: reflectivity rho."
+        ),
+        click.option("--specular-fraction", type=float, help="Uniform material: specular share beta."),
+        click.option(
+            "--transmissivity", type=float, help="Uniform material: transmissivity sigma [default 0]."
+        ),
+        click.option(
+            "--two-sided", multiple=True, metavar="GLOB", help="Treat matching parts as two-sided sheets."
+        ),
+        click.option("--unit", help="Mesh length unit: m, mm, cm, in [default: the file's own, else m]."),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def uniform_material(rho: float | None, beta: float | None, sigma: float | None) -> Material | None:
+    """The command-line uniform material, or None when no flag is given."""
+    if rho is None and beta is None and sigma is None:
+        return None
+    if rho is None or beta is None:
+        raise InputError(
+            "a uniform material needs --reflectivity and --specular-fraction",
+            hint="e.g. --reflectivity 0.3 --specular-fraction 0.5 [--transmissivity 0]",
+        )
+    values = {"reflectivity": rho, "specular_fraction": beta, "transmissivity": sigma or 0.0}
+    return Material.checked("uniform", values, source="command line")
+
+
+def load_model(options: dict) -> Spacecraft:
+    """Load the mesh named by :func:`model_options`; print repairs made as notices on stderr."""
+    craft = load_spacecraft(
+        options.pop("mesh"),
+        options.pop("materials"),
+        unit=options.pop("unit"),
+        uniform=uniform_material(
+            options.pop("reflectivity"), options.pop("specular_fraction"), options.pop("transmissivity")
+        ),
+        two_sided=options.pop("two_sided"),
+    )
+    for notice in craft.notices:
+        print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
+    return craft
+
+
+def _vec(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
+    return "[" + "  ".join(fmt.format(x) for x in v) + "]"
+
+
+@app.command()
+@model_options
+@click.option(
+    "--sun",
+    nargs=3,
+    type=float,
+    default=None,
+    metavar="X Y Z",
+    help="Sun direction in the body frame, spacecraft to Sun.",
+)
+@click.option(
+    "--sun-azel",
+    nargs=2,
+    type=float,
+    default=None,
+    metavar="AZ EL",
+    help="Sun azimuth and elevation [deg]: az = atan2(y, x), el = asin(z).",
+)
+@click.option("--flux", type=float, help="Solar flux [W/m^2] [default 1361, i.e. 1 au].")
+@click.option("--distance-au", type=float, help="Distance from the Sun [au]: flux = 1361 / r^2.")
+@click.option(
+    "--ref-point",
+    nargs=3,
+    type=float,
+    default=None,
+    metavar="X Y Z",
+    help="Torque reference point [m] [default: volume centroid if closed, else area centroid].",
+)
+@click.option(
+    "--samples",
+    type=int,
+    help="Shadow-ray points per facet side, rounded up to a square [default: adaptive].",
+)
+@click.option(
+    "--tolerance",
+    type=float,
+    default=1e-3,
+    show_default=True,
+    help="Adaptive sampling: convergence threshold on a side's lit share.",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def srp(sun, sun_azel, flux, distance_au, ref_point, samples, tolerance, as_json, **model) -> None:
+    """Direct solar-radiation force and torque for one Sun direction, with self-shadowing."""
+    from forces.evaluate import srp as evaluate_srp
+    from geometry.directions import azel_to_vector
+
+    if (sun is None) == (sun_azel is None):
+        raise InputError("give the Sun direction with --sun X Y Z or --sun-azel AZ EL (one of them)")
+    if not 0 < tolerance < 1:
+        raise InputError(f"--tolerance {tolerance} must lie in (0, 1)")
+    sun_vector = sun if sun is not None else azel_to_vector(*sun_azel, name="--sun-azel")
+    craft = load_model(model)
+    result = evaluate_srp(
+        craft,
+        sun_vector,
+        flux_W_m2=flux,
+        distance_au=distance_au,
+        reference_point_m=ref_point,
+        samples=samples,
+        tolerance=tolerance,
+    )
+    if as_json:
+        header = {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
+        print(json.dumps({**header, **result.to_json(), "notices": list(craft.notices)}, indent=2))
+        return
+    az, el = result.sun_azel_deg
+    parts = f"{craft.n_facets} triangles, {len(craft.part_names)} parts, unit {craft.unit}"
+    print(f"sunwind srp: {craft.source} ({parts})")
+    print("  frame            body frame of the mesh; SI units")
+    print(f"  sun vector       {_vec(result.sun_vector, '{:+.6f}')}  az {az:.3f} deg  el {el:.3f} deg")
+    print(f"  flux             {result.flux_W_m2:.6g} W/m^2   pressure P = {result.pressure_Pa:.6e} Pa")
+    print(f"  force   [N]      {_vec(result.force_N)}  |F| = {np.linalg.norm(result.force_N):.6e}")
+    print(f"  torque  [N m]    {_vec(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
+    print(f"  about   [m]      {_vec(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
+    print(f"  lit area         {result.lit_area_m2:.6f} m^2")
+    print(f"  projected area   {result.projected_area_m2:.6f} m^2")
+    print(f"  shadow rays      {result.rays} ({result.sampling})")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point: run the app; report a bad input as one line on stderr with a non-zero exit."""
+    try:
+        app.main(args=argv, prog_name="sunwind", standalone_mode=False)
+    except SunwindError as error:
+        print(f"sunwind: error: {error}", file=sys.stderr)
+        sys.exit(1)
+    except click.UsageError as error:
+        if isinstance(error, getattr(click.exceptions, "NoArgsIsHelpError", ())):
+            print(error.format_message())  # click >= 8.2 raises this for a bare `sunwind`
+            return
+        command = error.ctx.command_path if error.ctx else "sunwind"
+        print(f"{command}: error: {error.format_message()} (see --help)", file=sys.stderr)
+        sys.exit(2)
+    except click.exceptions.Abort:
+        print("sunwind: aborted", file=sys.stderr)
+        sys.exit(130)
+    except KeyboardInterrupt:
+        print("sunwind: interrupted", file=sys.stderr)
+        sys.exit(130)
+
+
+@app.command()
+@model_options
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def info(as_json, **model) -> None:
+    """Describe a mesh: triangles, parts, materials, area, bounds, closed or not, and the checks."""
+    from geometry.summary import describe
+
+    report = describe(
+        model["mesh"],
+        model["materials"],
+        model["unit"],
+        uniform_material(model["reflectivity"], model["specular_fraction"], model["transmissivity"]),
+        model["two_sided"],
+    )
+    if as_json:
+        print(json.dumps(report, indent=2))
+        return
+    print(f"sunwind info: {report['mesh']}")
+    for key in ("unit", "triangles", "area_m2", "volume_m3", "closed", "reference_point"):
+        print(f"  {key:<17}{report[key]}")
+    low, high = report["bounds_m"]
+    print(f"  {'bounds_m':<17}min {np.round(low, 6).tolist()}  max {np.round(high, 6).tolist()}")
+    print("  checks:")
+    for line in report["checks"]:
+        print(f"    {line}")
+    print("  parts:")
+    for part in report["parts"]:
+        print(
+            f"    {part['name']:<28} {part['triangles']:>7} tri {part['area_m2']:>10.4f} m^2  "
+            f"{part['surface']:<16}  {part['materials']}"
+        )
+    if report["materials"]:
+        print(f"  materials:{'':<18}rho    beta   sigma  alpha")
+        for m in report["materials"]:
+            print(
+                f"    {m['name']:<24}{m['reflectivity']:.3f}  {m['specular_fraction']:.3f}  "
+                f"{m['transmissivity']:.3f}  {m['absorptivity']:.3f}"
+            )

@@ -1,0 +1,239 @@
+"""Optical materials and the TOML file that assigns them to mesh parts (METHOD.md "Surfaces")."""
+
+from __future__ import annotations
+
+import fnmatch
+import math
+import os
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .errors import MaterialError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+#: Keys of a ``[materials.NAME]`` table, with the symbol METHOD.md uses.
+MATERIAL_KEYS = {
+    "reflectivity": "rho",
+    "specular_fraction": "beta",
+    "transmissivity": "sigma",
+}
+
+
+@dataclass(frozen=True)
+class Material:
+    """Optical properties of one surface finish.
+
+    Attributes
+    ----------
+    name : str
+    reflectivity : float
+        ``rho`` [-], share of incident power reflected, in [0, 1].
+    specular_fraction : float
+        ``beta`` [-], specular share of the reflected power, in [0, 1].
+    transmissivity : float
+        ``sigma`` [-], share transmitted, in [0, 1]; absorptivity is ``1 - rho - sigma``.
+    """
+
+    name: str
+    reflectivity: float
+    specular_fraction: float
+    transmissivity: float = 0.0
+
+    @classmethod
+    def checked(cls, name: str, values: Mapping[str, object], source: str | None = None) -> Material:
+        """Build a material from a key -> value mapping, rejecting unknown keys and bad values."""
+        where = f"material '{name}'"
+        unknown = sorted(set(values) - set(MATERIAL_KEYS))
+        if unknown:
+            raise MaterialError(
+                f"{where} has unknown key '{unknown[0]}'",
+                path=source,
+                hint=f"the keys are {', '.join(MATERIAL_KEYS)}",
+            )
+        missing = [k for k in ("reflectivity", "specular_fraction") if k not in values]
+        if missing:
+            raise MaterialError(
+                f"{where} lacks '{missing[0]}'",
+                path=source,
+                hint="give reflectivity, specular_fraction and (optionally) transmissivity",
+            )
+        numbers = {}
+        for key, value in values.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise MaterialError(
+                    f"{where}: {key} = {value!r} is not a number", path=source, hint="use a number in [0, 1]"
+                )
+            if not math.isfinite(value) or not 0.0 <= value <= 1.0:
+                raise MaterialError(
+                    f"{where}: {key} = {value} is outside [0, 1]", path=source, hint="use a number in [0, 1]"
+                )
+            numbers[key] = float(value)
+        material = cls(name=name, **numbers)
+        if material.reflectivity + material.transmissivity > 1.0 + 1e-12:
+            raise MaterialError(
+                f"{where}: reflectivity + transmissivity = "
+                f"{material.reflectivity + material.transmissivity:g} exceeds 1",
+                path=source,
+                hint="absorptivity 1 - rho - sigma cannot be negative; lower one of them",
+            )
+        return material
+
+    @property
+    def absorptivity(self) -> float:
+        """``alpha = 1 - rho - sigma`` [-]."""
+        return 1.0 - self.reflectivity - self.transmissivity
+
+
+@dataclass(frozen=True, eq=False)
+class MaterialTable:
+    """Materials as columns, so a kernel gathers ``rho[side_material]`` in one step."""
+
+    names: tuple[str, ...]
+    rho: NDArray[np.float64]
+    beta: NDArray[np.float64]
+    sigma: NDArray[np.float64]
+
+    @classmethod
+    def from_materials(cls, materials: list[Material]) -> MaterialTable:
+        """Stack materials into columns."""
+
+        def column(attr: str) -> NDArray[np.float64]:
+            values = np.array([getattr(m, attr) for m in materials], dtype=np.float64)
+            values.flags.writeable = False
+            return values
+
+        return cls(
+            names=tuple(m.name for m in materials),
+            rho=column("reflectivity"),
+            beta=column("specular_fraction"),
+            sigma=column("transmissivity"),
+        )
+
+    def __getitem__(self, index: int) -> Material:
+        return Material(
+            self.names[index], float(self.rho[index]), float(self.beta[index]), float(self.sigma[index])
+        )
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+
+def part_matches(part: str, pattern: str) -> bool:
+    """Match a glob against the full part name or, for a path such as a USD prim path, its leaf."""
+    leaf = part.rstrip("/").rsplit("/", 1)[-1]
+    return fnmatch.fnmatchcase(part, pattern) or fnmatch.fnmatchcase(leaf, pattern)
+
+
+@dataclass(frozen=True)
+class PartRule:
+    """One ``[parts]`` entry: a glob and the material(s) of the parts it matches.
+
+    ``"pat" = "m"`` gives material ``m`` (a closed body, or both sides of a sheet the mesh file declares
+    two-sided); ``{ front = "a", back = "b" }`` makes a two-sided sheet; ``{ front = "a" }`` makes a
+    one-sided sheet whose back is inert (an open surface that light reaches from the front only).
+    """
+
+    pattern: str
+    front: str
+    back: str | None
+    sheet: bool
+
+    def matches(self, part: str) -> bool:
+        """Whether this rule applies to ``part`` (see :func:`part_matches`)."""
+        return part_matches(part, self.pattern)
+
+
+@dataclass(frozen=True)
+class MaterialSpec:
+    """A parsed materials file: named materials and the ordered part rules."""
+
+    materials: Mapping[str, Material]
+    rules: tuple[PartRule, ...]
+    source: str | None = None
+
+    def rule_for(self, part: str) -> PartRule | None:
+        """The first rule matching ``part``, or None."""
+        return next((rule for rule in self.rules if rule.matches(part)), None)
+
+
+def load_materials(path: str | os.PathLike) -> MaterialSpec:
+    """Read a materials TOML file (format in README "Materials"), checking every value.
+
+    Raises
+    ------
+    MaterialError
+        Missing or unparsable file, unknown keys, values outside [0, 1], ``rho + sigma > 1``,
+        or a part rule naming a material that is not defined.
+    """
+    source = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise MaterialError("no such file", path=source, hint="check the --materials path") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MaterialError(f"cannot read the file ({exc.__class__.__name__})", path=source) from None
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise MaterialError(f"not valid TOML: {exc}", path=source) from None
+    return parse_materials(document, source)
+
+
+def parse_materials(document: Mapping[str, object], source: str | None = None) -> MaterialSpec:
+    """Check and convert a materials document already parsed from TOML."""
+    unknown = sorted(set(document) - {"materials", "parts"})
+    if unknown:
+        raise MaterialError(
+            f"unknown top-level table '{unknown[0]}'",
+            path=source,
+            hint="a materials file has [materials.NAME] tables and a [parts] table",
+        )
+    tables = document.get("materials", {})
+    if not isinstance(tables, Mapping) or not all(isinstance(t, Mapping) for t in tables.values()):
+        raise MaterialError(
+            "[materials] must hold one table per material",
+            path=source,
+            hint="write [materials.white_paint] followed by its keys",
+        )
+    materials = {name: Material.checked(name, values, source) for name, values in tables.items()}
+    rules_table = document.get("parts", {})
+    if not isinstance(rules_table, Mapping):
+        raise MaterialError("[parts] must be a table of glob = material", path=source)
+    rules = tuple(_parse_rule(pattern, value, materials, source) for pattern, value in rules_table.items())
+    return MaterialSpec(materials=materials, rules=rules, source=source)
+
+
+def _parse_rule(
+    pattern: str, value: object, materials: Mapping[str, Material], source: str | None
+) -> PartRule:
+    """Convert one ``[parts]`` entry, checking that the materials it names exist."""
+    if isinstance(value, str):
+        front, back, sheet = value, None, False
+    elif isinstance(value, Mapping):
+        unknown = sorted(set(value) - {"front", "back"})
+        if unknown or "front" not in value:
+            raise MaterialError(
+                f'[parts] "{pattern}" must be a material name or {{ front = ..., back = ... }}',
+                path=source,
+                hint=f"unknown key '{unknown[0]}'" if unknown else "give at least 'front'",
+            )
+        front, back, sheet = value["front"], value.get("back"), True
+    else:
+        raise MaterialError(f'[parts] "{pattern}" = {value!r} is not a material name', path=source)
+    for name in (front, back):
+        if name is not None and name not in materials:
+            raise MaterialError(
+                f"[parts] \"{pattern}\" names material '{name}', which is not defined",
+                path=source,
+                hint=f"add a [materials.{name}] table",
+            )
+    return PartRule(pattern=pattern, front=front, back=back, sheet=sheet)

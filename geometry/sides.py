@@ -1,0 +1,152 @@
+"""Which sides of each facet meet light, and with which material: the material assignment rules."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .errors import MaterialError
+from .materials import Material, MaterialSpec, MaterialTable, part_matches
+from .mesh_data import MeshData
+
+#: Facet kinds: a facet of a closed body (front side only), an open sheet lit from the front only,
+#: and a zero-thickness sheet whose two sides are both lit, each with its own material.
+SOLID, ONE_SIDED, TWO_SIDED = 0, 1, 2
+
+UNIFORM_NAME = "uniform"
+
+_NO_MATERIAL_HINT = (
+    "add a [parts] entry or a [materials.{key}] table to the materials file, "
+    "or give a uniform material with --reflectivity/--specular-fraction/--transmissivity"
+)
+
+
+@dataclass(frozen=True, eq=False)
+class SideAssignment:
+    """Per-face kind and materials.
+
+    Attributes
+    ----------
+    face_kind : (n_faces,) int8
+        ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED``.
+    front_material, back_material : (n_faces,) int32
+        Indices into ``table``; ``back_material`` is -1 where the back side is not lit.
+    table : MaterialTable
+    part_summary : dict
+        Part name -> human description of its materials and where they came from.
+    """
+
+    face_kind: NDArray[np.int8]
+    front_material: NDArray[np.int32]
+    back_material: NDArray[np.int32]
+    table: MaterialTable
+    part_summary: dict[str, str]
+
+
+class _Catalogue:
+    """The materials in use, each given one index, resolved from the user's file, the mesh file or
+    the command line, in that order."""
+
+    def __init__(self, mesh: MeshData, spec: MaterialSpec | None, uniform: Material | None) -> None:
+        self.mesh, self.spec, self.uniform = mesh, spec, uniform
+        self.used: list[Material] = []
+        self.origin: list[str] = []
+
+    def index(self, material: Material, origin: str) -> int:
+        for i, known in enumerate(self.used):
+            if known.name == material.name and self.origin[i] == origin:
+                return i
+        self.used.append(material)
+        self.origin.append(origin)
+        return len(self.used) - 1
+
+    def resolve(self, key: str | None, part: str) -> tuple[int, str]:
+        """Index and description of the material for mesh material ``key`` on ``part``."""
+        if key is not None and self.spec is not None and key in self.spec.materials:
+            return self.index(self.spec.materials[key], "materials file"), f"{key} (materials file)"
+        if key is not None and key in self.mesh.file_optics:
+            material = Material.checked(key, self.mesh.file_optics[key], self.mesh.source)
+            return self.index(material, "mesh file"), f"{key} (mesh file)"
+        if self.uniform is not None:
+            return self.index(self.uniform, "command line"), f"{UNIFORM_NAME} (command line)"
+        detail = f"has material key '{key}', which is not defined" if key else "has no material"
+        raise MaterialError(
+            detail,
+            path=self.spec.source if self.spec and self.spec.source else self.mesh.source,
+            part=part,
+            hint=_NO_MATERIAL_HINT.format(key=key or "NAME"),
+        )
+
+    def table(self) -> MaterialTable:
+        return MaterialTable.from_materials(self.used)
+
+
+def assign_sides(
+    mesh: MeshData,
+    spec: MaterialSpec | None = None,
+    uniform: Material | None = None,
+    two_sided: Sequence[str] = (),
+) -> SideAssignment:
+    """Give every face its kind and front/back materials.
+
+    Per part, the first matching ``[parts]`` rule of ``spec`` wins. A part no rule matches uses the
+    mesh file's material key per face, looked up in ``spec``'s ``[materials]``, then in optics the
+    mesh file carries; ``uniform`` (the command-line material) fills whatever is still unassigned.
+    A part is two-sided when its rule is a ``{front, back}`` table, when the mesh file declares it
+    (USD ``doubleSided``) or when it matches a ``two_sided`` glob.
+
+    Raises
+    ------
+    MaterialError
+        A part (or some of its faces) has no material.
+    """
+    catalogue = _Catalogue(mesh, spec, uniform)
+    n = mesh.n_faces
+    kind = np.full(n, SOLID, dtype=np.int8)
+    front = np.full(n, -1, dtype=np.int32)
+    back = np.full(n, -1, dtype=np.int32)
+    summary: dict[str, str] = {}
+    keys = np.asarray((*mesh.material_names, None), dtype=object)
+    for part_index, part in enumerate(mesh.part_names):
+        faces = np.flatnonzero(mesh.face_part == part_index)
+        if len(faces) == 0:
+            continue
+        rule = spec.rule_for(part) if spec is not None else None
+        declared_two_sided = part in mesh.two_sided_parts or any(part_matches(part, g) for g in two_sided)
+        if rule is not None:
+            f_index = catalogue.index(spec.materials[rule.front], "materials file")
+            front[faces] = f_index
+            if rule.sheet:
+                kind[faces] = TWO_SIDED if rule.back is not None else ONE_SIDED
+                if rule.back is not None:
+                    back[faces] = catalogue.index(spec.materials[rule.back], "materials file")
+                    summary[part] = f'front {rule.front}, back {rule.back} ([parts] "{rule.pattern}")'
+                else:
+                    summary[part] = f'{rule.front}, front side only ([parts] "{rule.pattern}")'
+            else:
+                summary[part] = f'{rule.front} ([parts] "{rule.pattern}")'
+                if declared_two_sided:
+                    kind[faces] = TWO_SIDED
+                    back[faces] = f_index
+                    summary[part] += ", both sides"
+            continue
+        descriptions = []
+        face_keys = keys[mesh.face_material[faces]]
+        for key in dict.fromkeys(face_keys.tolist()):
+            index, text = catalogue.resolve(key, part)
+            front[faces[face_keys == key]] = index
+            descriptions.append(text)
+        summary[part] = ", ".join(descriptions)
+        if declared_two_sided:
+            kind[faces] = TWO_SIDED
+            back_key = mesh.part_back_material.get(part)
+            if back_key is None:
+                back[faces] = front[faces]
+                summary[part] += ", both sides"
+            else:
+                back[faces], text = catalogue.resolve(back_key, part)
+                summary[part] = f"front {summary[part]}, back {text}"
+    return SideAssignment(kind, front, back, catalogue.table(), summary)

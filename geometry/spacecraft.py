@@ -1,0 +1,307 @@
+"""The spacecraft model: checked triangles in the body frame, with parts, sides and their materials."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from .illumination import SideSampler
+
+from . import triangles as tri
+from .checks import MeshCheck, check_mesh
+from .errors import MeshError
+from .materials import Material, MaterialSpec, MaterialTable, load_materials
+from .mesh_data import MeshData
+from .raycast import RayScene
+from .sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
+
+
+def _frozen(array: NDArray) -> NDArray:
+    array.flags.writeable = False
+    return array
+
+
+@dataclass(frozen=True, eq=False)
+class Spacecraft:
+    """Triangulated spacecraft in its body frame, SI units (METHOD.md "Frames", "Surfaces").
+
+    A facet has one or two *sides*. A facet of a closed body, or of a one-sided sheet, has one side
+    facing along its outward normal; a two-sided sheet (a solar-array wing of zero thickness) has a
+    front side along the facet normal and a back side opposite, each with its own material. Physics
+    works on sides; ray casting on facets.
+
+    Attributes
+    ----------
+    vertices : (n_vertices, 3) float64
+        Vertex positions [m].
+    faces : (n_facets, 3) int64
+        Vertex indices, counter-clockwise seen from the front.
+    facet_part : (n_facets,) int32
+        Index into ``part_names``.
+    part_names : tuple of str
+    facet_kind : (n_facets,) int8
+        ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` (see :mod:`geometry.sides`).
+    side_facet : (n_sides,) int64
+        Facet of each side.
+    side_sign : (n_sides,) float64
+        +1 for a front side, -1 for a back side.
+    side_material : (n_sides,) int32
+        Index into ``materials``.
+    materials : MaterialTable
+    part_materials : dict of str -> str
+        Part name -> its material assignment, in words (for ``sunwind info``).
+    source : str
+        File the model came from.
+    unit : str
+        Length unit of the file and how it was chosen, e.g. "mm (--unit)".
+    notices : tuple of str
+        Repairs made on loading (degenerate triangles dropped, winding fixed).
+    """
+
+    vertices: NDArray[np.float64]
+    faces: NDArray[np.int64]
+    facet_part: NDArray[np.int32]
+    part_names: tuple[str, ...]
+    facet_kind: NDArray[np.int8]
+    side_facet: NDArray[np.int64]
+    side_sign: NDArray[np.float64]
+    side_material: NDArray[np.int32]
+    materials: MaterialTable
+    part_materials: dict[str, str]
+    source: str = "<memory>"
+    unit: str = "m"
+    notices: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        for array in (self.vertices, self.faces, self.facet_part, self.facet_kind):
+            _frozen(array)
+        for array in (self.side_facet, self.side_sign, self.side_material):
+            _frozen(array)
+
+    # --- facets -------------------------------------------------------------------------------------
+    @property
+    def n_facets(self) -> int:
+        return len(self.faces)
+
+    @property
+    def n_sides(self) -> int:
+        return len(self.side_facet)
+
+    @cached_property
+    def triangles(self) -> NDArray[np.float64]:
+        """Facet corners [m], (n_facets, 3, 3)."""
+        return _frozen(self.vertices[self.faces])
+
+    @cached_property
+    def facet_normals(self) -> NDArray[np.float64]:
+        """Unit normals of the facets' front sides, (n_facets, 3)."""
+        return _frozen(tri.normals(self.triangles))
+
+    @cached_property
+    def facet_areas(self) -> NDArray[np.float64]:
+        """Facet areas [m^2], (n_facets,)."""
+        return _frozen(tri.areas(self.triangles))
+
+    @cached_property
+    def facet_centroids(self) -> NDArray[np.float64]:
+        """Facet centroids [m], (n_facets, 3)."""
+        return _frozen(tri.centroids(self.triangles))
+
+    # --- sides --------------------------------------------------------------------------------------
+    @cached_property
+    def side_normals(self) -> NDArray[np.float64]:
+        """Outward unit normal of each side, ``n_out`` of METHOD.md, (n_sides, 3)."""
+        return _frozen(self.facet_normals[self.side_facet] * self.side_sign[:, None])
+
+    @cached_property
+    def side_areas(self) -> NDArray[np.float64]:
+        """Area of each side [m^2], (n_sides,)."""
+        return _frozen(self.facet_areas[self.side_facet])
+
+    @cached_property
+    def side_centroids(self) -> NDArray[np.float64]:
+        """Centroid of each side [m], (n_sides, 3)."""
+        return _frozen(self.facet_centroids[self.side_facet])
+
+    @cached_property
+    def side_neighbours(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        """Pairs of sides ``(a, b)`` whose facets share an edge and which face the same way, a < b."""
+        edges = self.faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+        keys = edges.min(axis=1) * len(self.vertices) + edges.max(axis=1)
+        owner = np.repeat(np.arange(self.n_facets), 3)
+        order = np.argsort(keys, kind="stable")
+        keys, owner = keys[order], owner[order]
+        runs = np.flatnonzero(np.r_[True, keys[1:] != keys[:-1], True])
+        starts, lengths = runs[:-1], np.diff(runs)
+        longest = int(lengths.max()) if len(lengths) else 0
+        # every pair of facets within a run of equal edge keys (two on a manifold edge)
+        pairs = [np.zeros((0, 2), dtype=np.int64)] + [
+            np.column_stack([owner[starts[lengths > j] + i], owner[starts[lengths > j] + j]])
+            for i in range(longest)
+            for j in range(i + 1, longest)
+        ]
+        facet_pairs = np.unique(np.sort(np.concatenate(pairs), axis=1), axis=0)
+        side_of = {sign: np.full(self.n_facets, -1) for sign in (1.0, -1.0)}
+        for sign in side_of:
+            mask = self.side_sign == sign
+            side_of[sign][self.side_facet[mask]] = np.flatnonzero(mask)
+        a = np.concatenate([side_of[s][facet_pairs[:, 0]] for s in side_of])
+        b = np.concatenate([side_of[s][facet_pairs[:, 1]] for s in side_of])
+        keep = (a >= 0) & (b >= 0)
+        return _frozen(a[keep]), _frozen(b[keep])
+
+    # --- whole body ---------------------------------------------------------------------------------
+    @property
+    def is_closed(self) -> bool:
+        """True when every facet belongs to a closed body (no sheets)."""
+        return bool(np.all(self.facet_kind == SOLID))
+
+    @cached_property
+    def total_area(self) -> float:
+        """Area of all facets, each counted once [m^2]."""
+        return float(self.facet_areas.sum())
+
+    @cached_property
+    def volume(self) -> float | None:
+        """Enclosed volume [m^3] of a closed model, else None."""
+        return tri.signed_volume(self.triangles) if self.is_closed else None
+
+    @cached_property
+    def area_centroid(self) -> NDArray[np.float64]:
+        """Area-weighted centroid of all facets [m], (3,)."""
+        return self.facet_areas @ self.facet_centroids / self.total_area
+
+    @cached_property
+    def default_reference(self) -> tuple[NDArray[np.float64], str]:
+        """Default torque reference point [m] and its name (METHOD.md "Frames").
+
+        The volume centroid of a closed model, else the area centroid of its facets.
+        """
+        if self.is_closed:
+            return tri.volume_centroid(self.triangles), "volume centroid"
+        return self.area_centroid, "area centroid"
+
+    @cached_property
+    def bounds(self) -> NDArray[np.float64]:
+        """Axis-aligned bounding box [m], (2, 3): min and max corner."""
+        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+
+    @cached_property
+    def scene(self) -> RayScene:
+        """The Embree scene of the facets, built on first use and kept."""
+        return RayScene(self.triangles)
+
+    @cached_property
+    def sampler(self) -> SideSampler:
+        """Shadow-ray sampler of the sides, keeping its ray origins across attitudes."""
+        from .illumination import SideSampler
+
+        return SideSampler(self)
+
+    def part_area(self) -> dict[str, float]:
+        """Area of each part [m^2]."""
+        sums = np.bincount(self.facet_part, weights=self.facet_areas, minlength=len(self.part_names))
+        return {name: float(a) for name, a in zip(self.part_names, sums, strict=True)}
+
+
+def build_spacecraft(
+    mesh: MeshData,
+    materials: MaterialSpec | str | os.PathLike | None = None,
+    uniform: Material | None = None,
+    two_sided: Sequence[str] = (),
+) -> Spacecraft:
+    """Check a mesh, give its sides their materials, and build the model.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        Triangles with parts and material keys [m].
+    materials : MaterialSpec or path, optional
+        Materials file (see :func:`geometry.materials.load_materials`).
+    uniform : Material, optional
+        Material for every part the materials file and the mesh file leave without one.
+    two_sided : sequence of str
+        Part-name globs to treat as two-sided sheets, both sides with the part's material.
+
+    Raises
+    ------
+    MaterialError
+        A part has no material, or the materials file is invalid.
+    MeshError
+        Non-finite coordinates; an open or non-manifold surface that is not declared a sheet.
+    """
+    spec = load_materials(materials) if isinstance(materials, (str, os.PathLike)) else materials
+    sides = assign_sides(mesh, spec, uniform, two_sided)
+    check = check_mesh(
+        mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, sides.face_kind, mesh.source
+    )
+    if not check.closed:
+        raise _undeclared_sheet(check, mesh.source)
+    kind = sides.face_kind[check.kept]
+    facets = np.arange(len(check.kept))
+    back = kind == TWO_SIDED
+    side_facet = np.concatenate([facets, facets[back]])
+    side_sign = np.concatenate([np.ones(len(facets)), -np.ones(int(back.sum()))])
+    side_material = np.concatenate([sides.front_material[check.kept], sides.back_material[check.kept][back]])
+    return Spacecraft(
+        vertices=check.vertices,
+        faces=check.faces,
+        facet_part=mesh.face_part[check.kept],
+        part_names=mesh.part_names,
+        facet_kind=kind,
+        side_facet=side_facet,
+        side_sign=side_sign,
+        side_material=side_material.astype(np.int32),
+        materials=sides.table,
+        part_materials=sides.part_summary,
+        source=mesh.source,
+        unit=str(mesh.metadata.get("unit", "m")),
+        notices=check.notices,
+    )
+
+
+def _undeclared_sheet(check: MeshCheck, source: str) -> MeshError:
+    """The error for a part with open or non-manifold edges that is not declared a sheet."""
+    if check.open_edges:
+        part, count = next(iter(check.open_edges.items()))
+        detail = f"is an open surface ({count} boundary edges)"
+    else:
+        part, count = next(iter(check.nonmanifold_edges.items()))
+        detail = f"has {count} edges shared by more than two triangles (non-manifold)"
+    leaf = part.rstrip("/").rsplit("/", 1)[-1]
+    return MeshError(
+        detail,
+        path=source,
+        part=part,
+        hint=(
+            f'declare it a sheet in the materials file ([parts] "{leaf}" = '
+            f'{{ front = "...", back = "..." }}) or with --two-sided "{leaf}"'
+        ),
+    )
+
+
+def load_spacecraft(
+    path: str | os.PathLike,
+    materials: MaterialSpec | str | os.PathLike | None = None,
+    *,
+    unit: str | None = None,
+    uniform: Material | None = None,
+    two_sided: Sequence[str] = (),
+) -> Spacecraft:
+    """Load a mesh file (STL, OBJ, PLY, glTF/GLB, USD) and build the model; see :func:`build_spacecraft`.
+
+    ``unit`` is the file's length unit (m, mm, cm, in); by default the unit the file declares, else m.
+    """
+    from .io import load_mesh
+
+    return build_spacecraft(load_mesh(path, unit=unit), materials, uniform, two_sided)
+
+
+__all__ = ["ONE_SIDED", "SOLID", "TWO_SIDED", "Spacecraft", "build_spacecraft", "load_spacecraft"]
