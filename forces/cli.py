@@ -123,13 +123,21 @@ def _vec(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
 def srp(sun, sun_azel, flux, distance_au, ref_point, samples, tolerance, as_json, **model) -> None:
     """Direct solar-radiation force and torque for one Sun direction, with self-shadowing."""
     from forces.evaluate import srp as evaluate_srp
-    from geometry.directions import azel_to_vector
+    from forces.radiation import solar_flux
+    from geometry.directions import azel_to_vector, finite_point, unit_vector
+    from geometry.illumination import level_for_samples
 
+    # arguments are checked before the mesh is loaded, so a typo costs no wait
     if (sun is None) == (sun_azel is None):
         raise InputError("give the Sun direction with --sun X Y Z or --sun-azel AZ EL (one of them)")
+    sun_vector = unit_vector(sun, "--sun") if sun is not None else azel_to_vector(*sun_azel, "--sun-azel")
+    solar_flux(flux, distance_au)
+    if ref_point is not None:
+        finite_point(ref_point, "--ref-point")
+    if samples is not None:
+        level_for_samples(samples)
     if not 0 < tolerance < 1:
         raise InputError(f"--tolerance {tolerance} must lie in (0, 1)")
-    sun_vector = sun if sun is not None else azel_to_vector(*sun_azel, name="--sun-azel")
     craft = load_model(model)
     result = evaluate_srp(
         craft,
@@ -218,3 +226,173 @@ def info(as_json, **model) -> None:
                 f"    {m['name']:<24}{m['reflectivity']:.3f}  {m['specular_fraction']:.3f}  "
                 f"{m['transmissivity']:.3f}  {m['absorptivity']:.3f}"
             )
+
+
+@app.command()
+@click.option(
+    "--mesh",
+    "mesh_path",
+    type=click.Path(path_type=Path),
+    help="Benchmark this mesh instead of the generated sample (give its materials too).",
+)
+@click.option("--materials", "-m", type=click.Path(path_type=Path), help="Materials file for --mesh.")
+@click.option(
+    "--triangles",
+    type=int,
+    default=100_000,
+    show_default=True,
+    help="Size of the generated sample spacecraft.",
+)
+@click.option("--attitudes", type=int, default=50, show_default=True, help="Sun directions timed.")
+@click.option("--samples", type=int, default=1, show_default=True, help="Shadow-ray points per side.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
+    """Time direct SRP with shadowing per attitude, against raw Embree on the same rays."""
+    import time
+
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from forces.bench import benchmark
+    from geometry.spacecraft import build_spacecraft
+
+    if attitudes < 1:
+        raise InputError(f"--attitudes {attitudes} must be at least 1")
+    start = time.perf_counter()
+    if mesh_path is not None:
+        craft = load_spacecraft(mesh_path, materials)
+    else:
+        from meshes.samples import sample_spacecraft
+
+        craft = build_spacecraft(sample_spacecraft(triangles))
+    load_s = time.perf_counter() - start
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, transient=True, disable=as_json) as bar:
+        task = bar.add_task("timing attitudes", total=attitudes)
+        report = benchmark(
+            craft, attitudes, samples, load_s=load_s, progress=lambda done: bar.update(task, completed=done)
+        )
+    if as_json:
+        print(json.dumps({"mesh": craft.source, **report.to_json()}, indent=2))
+        return
+    print(f"sunwind bench: {craft.source} ({report.triangles} triangles, {report.sides} sides)")
+    print(f"  machine                 {report.machine}; Embree on {report.threads} threads")
+    print(f"  load / scene build      {report.load_s:.2f} s / {report.scene_build_s:.3f} s")
+    print(f"  first call (compile)    {report.first_call_s:.2f} s")
+    print(
+        f"  direct SRP, {report.samples_per_side} pt/side   {report.per_attitude_ms:.2f} ms per attitude "
+        f"(median {report.per_attitude_median_ms:.2f}), {report.attitudes} attitudes"
+    )
+    print(
+        f"  rays                    {report.rays_per_attitude:.0f} per attitude, "
+        f"{report.rays_per_s / 1e6:.2f} M rays/s"
+    )
+    print(
+        f"  raw Embree, same rays   {report.raw_embree_ms:.2f} ms per attitude, "
+        f"{report.raw_embree_rays_per_s / 1e6:.2f} M rays/s"
+    )
+    print(f"  overhead                {report.overhead:.2f}x raw Embree")
+    print(
+        f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "
+        f"{report.adaptive_rays_per_attitude:.0f} rays"
+    )
+    print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
+
+
+def _builder_params(kind: str, builder, words: list[str]) -> dict:
+    """``--name value`` words after ``sunwind mesh KIND`` as keyword arguments of ``builder``.
+
+    Types follow the builder's defaults: numbers, ``--flag/--no-flag`` for booleans, and several
+    numbers for a sequence (``--size 1 2 3``).
+    """
+    import inspect
+
+    signature = inspect.signature(builder).parameters
+    params: dict = {}
+    i = 0
+    while i < len(words):
+        word = words[i]
+        if not word.startswith("--"):
+            raise InputError(f"unexpected '{word}' for mesh {kind}", hint="give parameters as --name value")
+        name = word[2:].replace("-", "_")
+        negated = name.startswith("no_") and name[3:] in signature
+        key = name[3:] if negated else name
+        if key not in signature:
+            valid = ", ".join("--" + p.replace("_", "-") for p in signature)
+            raise InputError(f"mesh {kind} has no parameter --{name.replace('_', '-')}", hint=f"use {valid}")
+        values = []
+        i += 1
+        while i < len(words) and not words[i].startswith("--"):
+            values.append(words[i])
+            i += 1
+        default = signature[key].default
+        try:
+            if isinstance(default, bool):
+                if values:
+                    raise ValueError
+                params[key] = not negated
+            elif isinstance(default, (tuple, list)) or (len(values) > 1):
+                params[key] = tuple(float(v) if "." in v or "e" in v.lower() else int(v) for v in values)
+            elif len(values) == 1:
+                params[key] = int(values[0]) if isinstance(default, int) else float(values[0])
+            else:
+                raise ValueError
+        except ValueError:
+            raise InputError(
+                f"mesh {kind}: bad value for --{key.replace('_', '-')}: {' '.join(values)!r}",
+                hint="give a number (or several for a size)",
+            ) from None
+    return params
+
+
+@app.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True})
+@click.argument("kind")
+@click.option(
+    "--output",
+    "-o",
+    type=click.Path(path_type=Path),
+    required=True,
+    help="File to write: .obj .stl .ply .glb .gltf .usda .usdc",
+)
+@click.pass_context
+def mesh(ctx: click.Context, kind: str, output: Path) -> None:
+    """Write a parametric mesh: plate, sphere, cylinder, cone, dish, box, box_wing, or sample.
+
+    Parameters follow the kind, e.g. `sunwind mesh cylinder --radius 0.5 --length 2 --no-caps -o c.obj`,
+    `sunwind mesh sample --triangles 100000 -o big.usda`. Frames: METHOD.md and README.
+    """
+    from geometry.io import save_mesh
+    from meshes import primitives
+
+    if kind == "sample":
+        from meshes.samples import materials_toml, sample_spacecraft
+
+        built = sample_spacecraft(**_builder_params(kind, sample_spacecraft, ctx.args))
+    elif kind in primitives.PRIMITIVES:
+        built = primitives.build(kind, **_builder_params(kind, primitives.PRIMITIVES[kind], ctx.args))
+    else:
+        kinds = ", ".join([*primitives.PRIMITIVES, "sample"])
+        raise InputError(f"unknown mesh kind '{kind}'", hint=f"choose one of {kinds}")
+    save_mesh(built, output)
+    print(f"wrote {output}: {built.n_faces} triangles, parts {', '.join(built.part_names)}")
+    if kind == "sample" and not output.suffix.lower().startswith(".usd"):
+        materials = output.with_suffix(".toml")
+        materials.write_text(materials_toml(built))
+        print(f"wrote {materials}: its materials and two-sided sheets (use with --materials)")
+    elif built.two_sided_parts:
+        print(
+            f"two-sided sheets: {', '.join(sorted(built.two_sided_parts))} (declare them, e.g. --two-sided)"
+        )
+
+
+@app.command()
+def validate() -> None:
+    """Run the validation cases against closed forms and print case, reference, computed, error."""
+    from validation.runner import main as run_validation
+
+    if run_validation():
+        raise SystemExit(1)

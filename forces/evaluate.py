@@ -7,13 +7,12 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from geometry.directions import unit_vector
-from geometry.errors import InputError
+from geometry.directions import finite_point, unit_vector
 from geometry.illumination import DEFAULT_TOLERANCE
 from geometry.spacecraft import Spacecraft
 
+from .radiation import TOTALS, accumulate_forces, radiation_pressure, solar_flux
 from .result import SrpResult
-from .srp import accumulate_forces, radiation_pressure, solar_flux
 
 
 def reference_point(
@@ -22,10 +21,7 @@ def reference_point(
     """The torque reference point [m] and its name: the user's, else the model default."""
     if point_m is None:
         return craft.default_reference
-    point = np.asarray(point_m, dtype=np.float64).reshape(-1)
-    if point.shape != (3,) or not np.isfinite(point).all():
-        raise InputError("--ref-point must be three finite numbers [m]", hint="e.g. --ref-point 0 0 0.1")
-    return point, "user"
+    return finite_point(point_m, "--ref-point"), "user"
 
 
 def srp(
@@ -59,26 +55,20 @@ def srp(
     -------
     SrpResult
     """
-    u_sun = unit_vector(sun_vector, "sun")
+    u_sun = unit_vector(sun_vector, "sun_vector")
     flux = solar_flux(flux_W_m2, distance_au)
     pressure = radiation_pressure(flux)
     ref, ref_name = reference_point(craft, reference_point_m)
-    light = craft.sampler.illuminate(u_sun, samples, tolerance)
-    materials = craft.materials
-    totals = accumulate_forces(
-        light.facing,
-        light.lit_fraction,
-        light.lit_centroid,
-        craft.side_normals,
-        craft.side_areas,
-        craft.side_material,
-        materials.rho,
-        materials.beta,
-        materials.sigma,
-        u_sun,
-        pressure,
-        ref,
-    )
+    args = (craft.side_normals, craft.side_areas, craft.side_optics, u_sun, pressure, ref)
+    side_block = craft.sampler.side_block
+    partials = np.zeros((craft.sampler.n_blocks, TOTALS))
+
+    def force_sum(sides: NDArray[np.int64], fraction: NDArray, centroid: NDArray) -> None:
+        accumulate_forces(sides, fraction, centroid, *args, side_block, partials)
+
+    light = craft.sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
+    # block sums added in block order: the same bits whatever the threads did
+    totals = partials.sum(axis=0)
     return SrpResult(
         sun_vector=u_sun,
         flux_W_m2=flux,

@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 from geometry.illumination import Illumination
 from geometry.spacecraft import Spacecraft
 
-from .srp import surface_forces
+from .radiation import surface_forces
 
 FRAME = "body frame of the mesh"
 
@@ -76,15 +76,15 @@ class SrpResult:
         """Force on each side [N], (n_sides, 3), by eq. (4) on its lit area."""
         craft, light = self.craft, self.illumination
         lit = np.flatnonzero(light.lit_fraction > 0)
-        material = craft.side_material[lit]
+        rho, beta, sigma = craft.side_optics[lit].T
         forces = np.zeros((craft.n_sides, 3))
         forces[lit] = surface_forces(
             craft.side_normals[lit],
             craft.side_areas[lit] * light.lit_fraction[lit],
             light.cos_incidence[lit],
-            craft.materials.rho[material],
-            craft.materials.beta[material],
-            craft.materials.sigma[material],
+            rho,
+            beta,
+            sigma,
             self.sun_vector,
             self.pressure_Pa,
         )

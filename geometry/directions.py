@@ -25,11 +25,25 @@ def unit_vector(vector: Sequence[float] | NDArray, name: str = "vector") -> NDAr
     """
     v = np.asarray(vector, dtype=np.float64).reshape(-1)
     if v.shape != (3,) or not np.isfinite(v).all():
-        raise InputError(f"{name} {_fmt(v)} must be three finite numbers", hint=f"e.g. --{name} 1 0 0")
+        raise InputError(f"{name} {_fmt(v)} must be three finite numbers", hint="e.g. 1 0 0")
     norm = float(np.linalg.norm(v))
     if norm == 0.0 or not math.isfinite(norm):
         raise InputError(f"{name} {_fmt(v)} has zero length", hint="give a direction, e.g. 1 0 0")
     return v / norm
+
+
+def finite_point(point: Sequence[float] | NDArray, name: str) -> NDArray[np.float64]:
+    """A point as three finite float64 coordinates [m].
+
+    Raises
+    ------
+    InputError
+        Not three finite numbers.
+    """
+    p = np.asarray(point, dtype=np.float64).reshape(-1)
+    if p.shape != (3,) or not np.isfinite(p).all():
+        raise InputError(f"{name} {_fmt(p)} must be three finite numbers [m]", hint=f"e.g. {name} 0 0 0.1")
+    return p
 
 
 def azel_to_vector(azimuth_deg: float, elevation_deg: float, name: str = "direction") -> NDArray[np.float64]:

@@ -7,17 +7,22 @@ A side's sample points are the centroids of its ``level**2`` congruent sub-trian
 source leaves the model. On a flat side under a uniform beam the force per unit lit area is the same
 everywhere, so the lit share and the centroid of the lit points carry all that force and torque need.
 
-Sampling is fixed (``level**2`` points on every side facing the source) or adaptive: every facing side
-starts at ``BASE_LEVEL``; a side whose points disagree, or whose lit state differs from a neighbour
-facing the same way, is refined by doubling ``level`` until it is either uniformly lit or dark at two
-successive levels, or its lit share has changed by at most ``tolerance`` between levels while one
-sub-triangle's share ``1 / level**2`` is also within ``tolerance`` (lit shares are quantised in steps
-of ``1 / level**2``, so two coarse levels can agree by chance); ``MAX_LEVEL`` caps it.
+Sampling is fixed (``level**2`` points on every side facing the source) or adaptive: every facing
+side starts at ``BASE_LEVEL``. Sides whose points disagree, the sides sharing a vertex with them, and
+edge neighbours with different uniform states are refined by doubling ``level``; a side found mixed
+brings its vertex neighbours in. A side stops when it is uniformly lit or dark at two successive
+levels, the finer with at least ``UNIFORM_LEVEL**2`` points, or when its lit share has changed by at
+most ``tolerance`` between levels while one sub-triangle's share ``1 / level**2`` is also within
+``tolerance`` (lit shares move in steps of ``1 / level**2``, so coarse levels can agree by chance);
+``MAX_LEVEL`` caps it. Fine meshes make shadow edges cross small sides, where this converges fast.
+
+Transmissive sheets cast full shadows here: light they transmit is not traced onward.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -28,16 +33,30 @@ from numpy.typing import NDArray
 
 from . import triangles as tri
 from .errors import InputError
+from .parallel import map_ranges
 from .spacecraft import Spacecraft
+from .triangles import STRATIFIED_SEED
 
 #: Level of the first pass of adaptive sampling: 4 points per side.
 BASE_LEVEL = 2
 #: Finest level of adaptive sampling: 4096 points per side.
 MAX_LEVEL = 64
+#: Level at which a side near a shadow edge, lit or dark at every point of two successive levels, is
+#: accepted as uniform: 64 points, so a shadow nicking ~2 % of it or more is not missed.
+UNIFORM_LEVEL = 8
 #: Default convergence threshold on a refined side's lit share between successive levels.
 DEFAULT_TOLERANCE = 1e-3
 #: Rays cast per batch when origins are made on the fly, to bound memory.
 _BATCH_RAYS = 1 << 21
+
+#: Something summed over facing sides once their lit shares are final:
+#: ``reduce(sides, lit_fraction, lit_centroid)``. It may be called from several threads at once,
+#: each time on whole blocks of :attr:`SideSampler.side_block`, each block's sides in a fixed order.
+Reduction = Callable[[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]], None]
+#: Sides per block of the balanced order.
+BLOCK = 512
+#: Fewest blocks in a chunk of an attitude's parallel work.
+_MIN_BLOCKS_PER_CHUNK = 16
 #: Largest origin array (points) kept per level for reuse across attitudes.
 _KEEP_POINTS = 1 << 22
 
@@ -50,8 +69,8 @@ class Illumination:
     ----------
     direction : (3,) float64
         Unit vector toward the source, body frame (``u_sun``).
-    cos_incidence : (n_sides,) float64
-        ``n_out . direction`` of each side.
+    side_normals : (n_sides, 3) float64
+        Outward normal of each side (the model's array, not a copy).
     facing : (n_facing,) int64
         Sides with ``cos_incidence > 0``; only these can be lit.
     lit_fraction : (n_sides,) float64
@@ -65,12 +84,17 @@ class Illumination:
     """
 
     direction: NDArray[np.float64]
-    cos_incidence: NDArray[np.float64]
+    side_normals: NDArray[np.float64]
     facing: NDArray[np.int64]
     lit_fraction: NDArray[np.float64]
     lit_centroid: NDArray[np.float64]
     rays: int
     sampling: str
+
+    @cached_property
+    def cos_incidence(self) -> NDArray[np.float64]:
+        """``n_out . direction`` of each side, (n_sides,); computed on first use."""
+        return self.side_normals @ self.direction
 
 
 def level_for_samples(samples: int) -> int:
@@ -111,45 +135,126 @@ class SideSampler:
         directions = np.broadcast_to(direction.astype(np.float32), flat.shape)
         return ~self.scene.occluded(flat, directions).reshape(origins.shape[:-1])
 
-    def _facing(
+    def facing_rays(
         self, direction: NDArray[np.float64], level: int
-    ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float32] | None]:
-        """Incidence cosine of every side, the sides facing ``direction`` and their kept ray origins."""
-        if self._keeps(level):
-            cos, facing, origins = _select_facing(self.craft.side_normals, direction, self.origins(level))
-            return cos, facing, origins
-        cos = self.craft.side_normals @ direction
-        return cos, np.flatnonzero(cos > 0), None
+    ) -> tuple[NDArray[np.int64], NDArray[np.float32] | None]:
+        """The sides facing ``direction`` and their ray origins at ``level`` (n_facing, level**2, 3)
+        when kept for reuse, else None."""
+        if not self._keeps(level):
+            return np.flatnonzero(self.craft.side_normals @ direction > 0), None
+        return self._facing_origins(direction, level, 0, self.n_blocks)
+
+    def _facing_origins(
+        self, direction: NDArray[np.float64], level: int, first: int, last: int
+    ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
+        """Sides of blocks ``first`` to ``last - 1`` facing ``direction``, and their kept origins."""
+        low, high = self._block_normal_bounds
+        return _facing_origins(
+            self.craft.side_normals,
+            direction,
+            self.origins(level),
+            self._balanced_order,
+            low,
+            high,
+            first,
+            last,
+        )
+
+    @cached_property
+    def _balanced_order(self) -> NDArray[np.int64]:
+        """All sides, in blocks of ``BLOCK`` consecutive sides taken in a seeded random order:
+        equal runs of blocks hold about as many sides facing any direction, so threads given equal
+        runs finish together. Block ``k`` of the order is ``order[k * BLOCK:(k + 1) * BLOCK]``."""
+        n = self.craft.n_sides
+        blocks = np.random.default_rng(STRATIFIED_SEED).permutation(-(-n // BLOCK))
+        order = (blocks[:, None] * BLOCK + np.arange(BLOCK)).reshape(-1)
+        return order[order < n]
+
+    @cached_property
+    def _block_normal_bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Smallest and largest normal components over each block, (n_blocks, 3) each: a block
+        whose bound on ``n . u`` is not positive has no side facing ``u`` and is skipped whole."""
+        normals = self.craft.side_normals[self._balanced_order]
+        padded = np.concatenate([normals, np.repeat(normals[-1:], self.n_blocks * BLOCK - len(normals), 0)])
+        blocks = padded.reshape(self.n_blocks, BLOCK, 3)
+        return blocks.min(axis=1), blocks.max(axis=1)
+
+    @property
+    def n_blocks(self) -> int:
+        """Number of blocks in :attr:`side_block`."""
+        return -(-self.craft.n_sides // BLOCK)
+
+    @cached_property
+    def side_block(self) -> NDArray[np.int64]:
+        """The block of the balanced order each side belongs to, (n_sides,): a fixed grouping for
+        sums whose result must not depend on how work was split over threads."""
+        block = np.empty(self.craft.n_sides, dtype=np.int64)
+        block[self._balanced_order] = np.arange(self.craft.n_sides) // BLOCK
+        block.flags.writeable = False
+        return block
+
+    def _cast_kept(
+        self,
+        direction: NDArray[np.float64],
+        level: int,
+        fraction: NDArray[np.float64],
+        centroid: NDArray[np.float64],
+        reduce: Reduction | None,
+    ) -> tuple[NDArray[np.int64], NDArray[np.bool_] | None]:
+        """Cast every facing side's kept rays at ``level``; write lit shares (and lit centroids).
+
+        Threads take runs of whole blocks of :attr:`_balanced_order` through the facing test, Embree,
+        the lit counts and ``reduce``, in one dispatch. Returns the facing sides and their lit flags
+        (n_facing, level**2), the flags only when ``reduce`` is None.
+        """
+        d32 = direction.astype(np.float32)
+
+        def work(first: int, last: int) -> tuple:
+            facing, mine = self._facing_origins(direction, level, first, last)
+            flat = mine.reshape(-1, 3)
+            lit = ~self.scene.occluded(flat, np.broadcast_to(d32, flat.shape)).reshape(mine.shape[:-1])
+            self._store(facing, lit, level, fraction, centroid)
+            if reduce is not None:
+                reduce(facing, fraction, centroid)
+            return facing, lit
+
+        parts = map_ranges(work, self.n_blocks, _MIN_BLOCKS_PER_CHUNK)
+        facing = np.concatenate([p[0] for p in parts])
+        return facing, np.concatenate([p[1] for p in parts]) if reduce is None else None
 
     def illuminate(
-        self, direction: NDArray[np.float64], samples: int | None = None, tolerance: float = DEFAULT_TOLERANCE
+        self,
+        direction: NDArray[np.float64],
+        samples: int | None = None,
+        tolerance: float = DEFAULT_TOLERANCE,
+        reduce: Reduction | None = None,
     ) -> Illumination:
         """Lit share and lit centroid of every side for a source along unit vector ``direction``.
 
         ``samples`` fixes the points per side (rounded up to a square, ``level**2``); None samples
-        adaptively to ``tolerance`` on each refined side's lit share.
+        adaptively to ``tolerance`` on each refined side's lit share. ``reduce``, if given, is called
+        on the facing sides once their lit shares are final (see ``Reduction``), in the worker
+        threads where possible.
         """
         craft = self.craft
-        cos = craft.side_normals @ direction
-        facing = np.flatnonzero(cos > 0)
-        fraction = np.zeros(craft.n_sides)
         level = BASE_LEVEL if samples is None else level_for_samples(samples)
+        fraction = np.zeros(craft.n_sides)
         # the lit centroid differs from the side centroid only on partly lit sides, which level 1 has not
         centroid = craft.side_centroids if level == 1 else craft.side_centroids.copy()
+        sampling = f"{level**2} points per side"
         if not self._keeps(level):
+            facing, _ = self.facing_rays(direction, level)
             rays = self._sample(facing, level, direction, fraction, centroid)
-            return Illumination(
-                direction, cos, facing, fraction, centroid, rays, f"{level**2} points per side"
-            )
-        lit = self._lit(self.origins(level)[facing], direction)
-        rays = lit.size
-        self._store(facing, lit, level, fraction, centroid)
-        if samples is None:
-            rays += self._refine(direction, facing, lit, fraction, centroid, tolerance)
-            sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
+        elif samples is not None:
+            facing, _ = self._cast_kept(direction, level, fraction, centroid, reduce)
+            rays, reduce = len(facing) * level**2, None  # reduced already, chunk by chunk
         else:
-            sampling = f"{level**2} points per side"
-        return Illumination(direction, cos, facing, fraction, centroid, rays, sampling)
+            facing, lit = self._cast_kept(direction, level, fraction, centroid, None)
+            rays = lit.size + self._refine(direction, facing, lit, fraction, centroid, tolerance)
+            sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
+        if reduce is not None:
+            reduce(facing, fraction, centroid)
+        return Illumination(direction, craft.side_normals, facing, fraction, centroid, rays, sampling)
 
     def _store(
         self,
@@ -163,8 +268,7 @@ class SideSampler:
 
         ``centroid`` must hold the facet centroid of sides not sampled before at a finer level.
         """
-        count = lit.sum(axis=1)
-        fraction[sides] = count / lit.shape[1]
+        count = _lit_counts(sides, lit, fraction)
         if level == 1:
             return
         partial = np.flatnonzero((count > 0) & (count < lit.shape[1]))
@@ -174,12 +278,17 @@ class SideSampler:
 
     @cached_property
     def _adjacency(self) -> scipy.sparse.csr_matrix:
-        """Side adjacency (sides sharing an edge and facing the same way) as a sparse matrix."""
-        a, b = self.craft.side_neighbours
-        n = self.craft.n_sides
-        return scipy.sparse.coo_matrix(
-            (np.ones(2 * len(a)), (np.r_[a, b], np.r_[b, a])), shape=(n, n)
-        ).tocsr()
+        """Sides sharing a vertex and facing the same way, as a sparse matrix (a shadow edge can
+        leave a side through a corner)."""
+        craft = self.craft
+        n_vertices = len(craft.vertices)
+        # a back side's vertices are numbered apart, so front and back sides never neighbour
+        corner = craft.faces[craft.side_facet] + n_vertices * (craft.side_sign < 0)[:, None]
+        rows = np.repeat(np.arange(craft.n_sides), 3)
+        incidence = scipy.sparse.csr_matrix(
+            (np.ones(len(rows)), (rows, corner.reshape(-1))), shape=(craft.n_sides, 2 * n_vertices)
+        )
+        return (incidence @ incidence.T).tocsr()
 
     def _neighbours(self, sides: NDArray[np.int64]) -> NDArray[np.int64]:
         """Sides adjacent to any of ``sides``."""
@@ -224,7 +333,7 @@ class SideSampler:
             joining = self._neighbours(active[partly])
             joining = joining[is_facing[joining] & ~examined[joining]]
             examined[joining] = True
-            uniform = ~partly & (now == previous)
+            uniform = ~partly & (now == previous) & (level >= UNIFORM_LEVEL)
             converged = (np.abs(now - previous) <= tolerance) & (level**-2 <= tolerance)
             active = np.r_[active[~(uniform | converged)], joining]
         return rays
@@ -248,20 +357,55 @@ class SideSampler:
 
 
 @numba.njit(cache=True, nogil=True)
-def _select_facing(
-    normals: NDArray[np.float64], direction: NDArray[np.float64], origins: NDArray[np.float32]
-) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float32]]:
-    """``cos = normals . direction``, the sides with ``cos > 0`` and their ``origins``, in one pass."""
-    n = normals.shape[0]
-    cos = normals @ direction
-    facing = np.empty(n, dtype=np.int64)
+def _facing_origins(
+    normals: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    origins: NDArray[np.float32],
+    order: NDArray[np.int64],
+    block_low: NDArray[np.float64],
+    block_high: NDArray[np.float64],
+    first: int,
+    last: int,
+) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
+    """Sides of ``order[first * BLOCK:last * BLOCK]`` with ``normals . direction > 0``, and their
+    ``origins``; blocks whose normal bounds rule out any facing side are skipped unread."""
+    d0, d1, d2 = direction[0], direction[1], direction[2]
+    points = origins.shape[1]
+    start, stop = first * BLOCK, min(last * BLOCK, order.shape[0])
+    facing = np.empty(stop - start, dtype=np.int64)
+    out = np.empty((stop - start, points, 3), dtype=np.float32)
     count = 0
-    for s in range(n):
-        if cos[s] > 0.0:
-            facing[count] = s
-            count += 1
-    facing = facing[:count]
-    gathered = np.empty((count, origins.shape[1], 3), dtype=np.float32)
-    for k in range(count):
-        gathered[k] = origins[facing[k]]
-    return cos, facing, gathered
+    for b in range(first, last):
+        bound = (
+            max(block_low[b, 0] * d0, block_high[b, 0] * d0)
+            + max(block_low[b, 1] * d1, block_high[b, 1] * d1)
+            + max(block_low[b, 2] * d2, block_high[b, 2] * d2)
+        )
+        if bound <= 0.0:
+            continue
+        for k in range(b * BLOCK, min((b + 1) * BLOCK, stop)):
+            s = order[k]
+            if normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
+                facing[count] = s
+                for p in range(points):
+                    out[count, p, 0] = origins[s, p, 0]
+                    out[count, p, 1] = origins[s, p, 1]
+                    out[count, p, 2] = origins[s, p, 2]
+                count += 1
+    return facing[:count], out[:count]
+
+
+@numba.njit(cache=True, nogil=True)
+def _lit_counts(
+    sides: NDArray[np.int64], lit: NDArray[np.bool_], fraction: NDArray[np.float64]
+) -> NDArray[np.int64]:
+    """Lit points per side from flags (n, points); writes ``fraction[sides]``, returns the counts."""
+    n, points = lit.shape
+    counts = np.zeros(n, dtype=np.int64)
+    for k in range(n):
+        c = 0
+        for p in range(points):
+            c += lit[k, p]
+        counts[k] = c
+        fraction[sides[k]] = c / points
+    return counts

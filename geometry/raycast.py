@@ -9,17 +9,15 @@ float32 round-off of the intersection test without stepping over any real featur
 
 from __future__ import annotations
 
-import os
-from concurrent.futures import ThreadPoolExecutor
-from functools import cached_property
-
 import numpy as np
 from numpy.typing import NDArray
 
+from .parallel import map_ranges, thread_count
+
 #: Origin offset along the surface normal, as a share of the model half-size (5 um on a 10 m model).
 ORIGIN_OFFSET = 1e-6
-#: Rays per thread below which a batch is cast on one thread.
-_MIN_RAYS_PER_THREAD = 16_384
+#: Rays per chunk of a batch cast in parallel.
+_RAYS_PER_CHUNK = 16_384
 
 
 class SceneFrame:
@@ -48,37 +46,27 @@ class RayScene(SceneFrame):
     ----------
     triangles : (n, 3, 3) float64
         Triangle corners [m], body frame.
-    threads : int, optional
-        Threads a large batch is split over (default: all cores).
+
+    Large batches are split over the threads of :mod:`geometry.parallel`.
     """
 
-    def __init__(self, triangles: NDArray[np.float64], threads: int | None = None) -> None:
+    def __init__(self, triangles: NDArray[np.float64]) -> None:
         from embreex import rtcore_scene
         from embreex.mesh_construction import TriangleMesh
 
         super().__init__(triangles)
         self._scene = rtcore_scene.EmbreeScene()
         TriangleMesh(self._scene, np.ascontiguousarray(self.to_scene(triangles)))
-        self.threads = max(1, threads or os.cpu_count() or 1)
+        self.threads = thread_count()
         self.n_triangles = len(triangles)
 
-    @cached_property
-    def _pool(self) -> ThreadPoolExecutor:
-        return ThreadPoolExecutor(self.threads, thread_name_prefix="sunwind-embree")
-
     def _run(self, origins: NDArray[np.float32], directions: NDArray[np.float32], query: str) -> NDArray:
-        n = len(origins)
-        chunks = min(self.threads, max(1, n // _MIN_RAYS_PER_THREAD))
-        if chunks == 1:
-            return self._scene.run(origins, directions, query=query)
-        bounds = np.linspace(0, n, chunks + 1).astype(int)
-        parts = self._pool.map(
-            lambda i: self._scene.run(
-                origins[bounds[i] : bounds[i + 1]], directions[bounds[i] : bounds[i + 1]], query=query
-            ),
-            range(chunks),
+        parts = map_ranges(
+            lambda lo, hi: self._scene.run(origins[lo:hi], directions[lo:hi], query=query),
+            len(origins),
+            _RAYS_PER_CHUNK,
         )
-        return np.concatenate(list(parts))
+        return parts[0] if len(parts) == 1 else np.concatenate(parts)
 
     def occluded(self, origins: NDArray[np.float32], directions: NDArray[np.float32]) -> NDArray[np.bool_]:
         """Whether each ray hits any triangle.

@@ -28,7 +28,7 @@ def _frozen(array: NDArray) -> NDArray:
     return array
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Spacecraft:
     """Triangulated spacecraft in its body frame, SI units (METHOD.md "Frames", "Surfaces").
 
@@ -85,6 +85,12 @@ class Spacecraft:
         for array in (self.side_facet, self.side_sign, self.side_material):
             _frozen(array)
 
+    def __repr__(self) -> str:
+        return (
+            f"<Spacecraft {self.source!r}: {self.n_facets} facets, {self.n_sides} sides, "
+            f"{len(self.part_names)} parts, {len(self.materials)} materials>"
+        )
+
     # --- facets -------------------------------------------------------------------------------------
     @property
     def n_facets(self) -> int:
@@ -124,6 +130,15 @@ class Spacecraft:
     def side_areas(self) -> NDArray[np.float64]:
         """Area of each side [m^2], (n_sides,)."""
         return _frozen(self.facet_areas[self.side_facet])
+
+    @cached_property
+    def side_optics(self) -> NDArray[np.float64]:
+        """``(rho, beta, sigma)`` of each side's material, (n_sides, 3), contiguous for kernels."""
+        m = self.materials
+        material = self.side_material
+        return _frozen(
+            np.ascontiguousarray(np.stack([m.rho[material], m.beta[material], m.sigma[material]], 1))
+        )
 
     @cached_property
     def side_centroids(self) -> NDArray[np.float64]:

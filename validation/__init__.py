@@ -1,0 +1,1 @@
+"""Independent references for the solver: closed forms, the validation cases and their runner."""

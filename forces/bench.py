@@ -1,0 +1,116 @@
+"""Benchmark of direct SRP on the sample spacecraft: time per attitude, ray rate, and raw Embree time.
+
+The raw figure casts exactly the rays an attitude casts (same origins, directions, threads) with
+nothing else, so ``overhead = time per attitude / raw Embree time`` is what sunwind adds around Embree.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import resource
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from geometry.illumination import level_for_samples
+from geometry.spacecraft import Spacecraft
+
+from .evaluate import srp
+
+
+@dataclass(frozen=True)
+class BenchReport:
+    """Benchmark figures; times in seconds unless the name says ms."""
+
+    triangles: int
+    sides: int
+    attitudes: int
+    samples_per_side: int
+    threads: int
+    load_s: float
+    scene_build_s: float
+    first_call_s: float
+    per_attitude_ms: float
+    per_attitude_median_ms: float
+    rays_per_attitude: float
+    rays_per_s: float
+    raw_embree_ms: float
+    raw_embree_rays_per_s: float
+    overhead: float
+    adaptive_per_attitude_ms: float
+    adaptive_rays_per_attitude: float
+    peak_memory_MB: float
+    machine: str
+
+    def to_json(self) -> dict:
+        return asdict(self)
+
+
+def sun_directions(count: int, seed: int = 2026) -> np.ndarray:
+    """``count`` seeded random unit vectors, uniform on the sphere, (count, 3)."""
+    v = np.random.default_rng(seed).normal(size=(count, 3))
+    return v / np.linalg.norm(v, axis=1)[:, None]
+
+
+def benchmark(
+    craft: Spacecraft,
+    attitudes: int = 50,
+    samples: int = 1,
+    adaptive_attitudes: int = 10,
+    load_s: float = 0.0,
+    progress: Callable[[int], None] | None = None,
+) -> BenchReport:
+    """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions."""
+    directions = sun_directions(attitudes)
+    level = level_for_samples(samples)
+    start = time.perf_counter()
+    scene = craft.scene
+    scene_build = time.perf_counter() - start
+    start = time.perf_counter()
+    srp(craft, directions[0], samples=samples)  # compiles kernels, keeps the ray origins
+    first_call = time.perf_counter() - start
+    # each attitude is timed and then its rays are cast alone, back to back, so that drifts in
+    # machine speed affect both figures alike
+    times, raw_times, rays = [], [], 0
+    for k, u in enumerate(directions):
+        start = time.perf_counter()
+        result = srp(craft, u, samples=samples)
+        times.append(time.perf_counter() - start)
+        rays += result.rays
+        _, origins = craft.sampler.facing_rays(u, level)
+        flat = origins.reshape(-1, 3)
+        start = time.perf_counter()
+        scene.occluded(flat, np.broadcast_to(u.astype(np.float32), flat.shape))
+        raw_times.append(time.perf_counter() - start)
+        if progress:
+            progress(k + 1)
+    adaptive_times, adaptive_rays = [], 0
+    for u in directions[:adaptive_attitudes]:
+        start = time.perf_counter()
+        adaptive_rays += srp(craft, u).rays
+        adaptive_times.append(time.perf_counter() - start)
+    total, raw = float(np.sum(times)), float(np.sum(raw_times))
+    return BenchReport(
+        triangles=craft.n_facets,
+        sides=craft.n_sides,
+        attitudes=attitudes,
+        samples_per_side=level**2,
+        threads=scene.threads,
+        load_s=load_s,
+        scene_build_s=scene_build,
+        first_call_s=first_call,
+        per_attitude_ms=1e3 * total / attitudes,
+        per_attitude_median_ms=1e3 * float(np.median(times)),
+        rays_per_attitude=rays / attitudes,
+        rays_per_s=rays / total,
+        raw_embree_ms=1e3 * raw / attitudes,
+        raw_embree_rays_per_s=rays / raw,
+        overhead=float(np.median(np.array(times) / np.array(raw_times))),
+        adaptive_per_attitude_ms=1e3 * float(np.mean(adaptive_times)) if adaptive_times else 0.0,
+        adaptive_rays_per_attitude=adaptive_rays / max(1, len(adaptive_times)),
+        peak_memory_MB=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
+    )

@@ -1,0 +1,97 @@
+"""Array bookkeeping shared by the mesh readers and writers, vectorised over faces."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+
+def fan_triangles(counts: ArrayLike, indices: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Split polygons into triangles fanning out from each polygon's first vertex.
+
+    This is exact for convex polygons, which is what OBJ and USD exporters write; the winding
+    of each triangle is that of its polygon.
+
+    Parameters
+    ----------
+    counts : (n_polygons,) int
+        Number of vertices of each polygon, each at least 3 (the caller checks).
+    indices : (sum(counts),) int
+        Vertex indices of all polygons, one after the other.
+
+    Returns
+    -------
+    triangles : (n_triangles, 3) int64
+        Vertex indices of the triangles, ``sum(counts - 2)`` of them, in polygon order.
+    polygon : (n_triangles,) int64
+        Polygon each triangle came from.
+    """
+    counts = np.asarray(counts, dtype=np.int64)
+    indices = np.asarray(indices, dtype=np.int64)
+    if np.all(counts == 3):
+        return indices.reshape(-1, 3), np.arange(len(counts), dtype=np.int64)
+    n_triangles = counts - 2
+    polygon = np.repeat(np.arange(len(counts), dtype=np.int64), n_triangles)
+    first = (np.cumsum(counts) - counts)[polygon]
+    # corner j = 1 .. k-2 of the fan inside each polygon
+    corner = np.arange(len(polygon)) - np.repeat(np.cumsum(n_triangles) - n_triangles, n_triangles)
+    corner += 1
+    triangles = np.stack([indices[first], indices[first + corner], indices[first + corner + 1]], axis=1)
+    return triangles, polygon
+
+
+def groups(labels: ArrayLike) -> list[tuple[int, NDArray[np.int64]]]:
+    """Positions of each distinct label, in increasing label order and original order within.
+
+    Parameters
+    ----------
+    labels : (n,) int
+        A label per item, e.g. ``MeshData.face_part``.
+
+    Returns
+    -------
+    list of (int, (k,) int64)
+        Each label present and the positions holding it.
+    """
+    labels = np.asarray(labels)
+    order = np.argsort(labels, kind="stable")
+    values, starts = np.unique(labels[order], return_index=True)
+    return [(int(value), chunk) for value, chunk in zip(values, np.split(order, starts[1:]), strict=True)]
+
+
+def compact(faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Renumber a subset of faces to use only the vertices they touch.
+
+    Parameters
+    ----------
+    faces : (n_faces, 3) int
+        Indices into a larger vertex array.
+
+    Returns
+    -------
+    used : (n_used,) int64
+        Original indices of the touched vertices, ascending.
+    faces : (n_faces, 3) int64
+        The same faces as indices into ``used``.
+    """
+    used, inverse = np.unique(faces, return_inverse=True)
+    return used, inverse.reshape(faces.shape).astype(np.int64)
+
+
+def bounds(points: NDArray[np.floating]) -> tuple[NDArray[np.floating], NDArray[np.floating]]:
+    """Lowest and highest coordinates of the finite points (zeros if there are none).
+
+    Parameters
+    ----------
+    points : (n, 3) float
+        Vertex positions, possibly with NaN or infinity (the model builder reports those).
+
+    Returns
+    -------
+    low, high : (3,) float
+        Per-axis bounds, in the dtype of ``points``.
+    """
+    finite = points[np.isfinite(points).all(axis=1)]
+    if not len(finite):
+        finite = np.zeros((1, 3), dtype=points.dtype)
+    return finite.min(axis=0), finite.max(axis=0)
