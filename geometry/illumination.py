@@ -2,10 +2,11 @@
 
 METHOD.md "Shadowing".
 
-A side's sample points are the centroids of its ``level**2`` congruent sub-triangles
-(:func:`geometry.triangles.subdivision_barycentric`). A point is lit when a ray from it toward the
-source leaves the model. On a flat side under a uniform beam the force per unit lit area is the same
-everywhere, so the lit share and the centroid of the lit points carry all that force and torque need.
+A side has one sample point in each of its ``level**2`` congruent sub-triangles (the centroid at
+level 1, a seeded stratified point above: :func:`geometry.triangles.subdivision_barycentric`). A
+point is lit when a ray from it toward the source leaves the model. On a flat side under a uniform
+beam the force per unit lit area is the same everywhere, so the lit share and the centroid of the
+lit points carry all that force and torque need.
 
 Sampling is fixed (``level**2`` points on every side facing the source) or adaptive: every facing
 side starts at ``BASE_LEVEL``. Sides whose points disagree, the sides sharing a vertex with them, and
@@ -121,13 +122,19 @@ class SideSampler:
     def _keeps(self, level: int) -> bool:
         return self.craft.n_sides * level**2 <= _KEEP_POINTS
 
-    def points(self, sides: NDArray[np.int64], level: int) -> NDArray[np.float64]:
-        """Sample points [m] of ``sides`` at ``level``, (len(sides), level**2, 3)."""
-        return tri.sample_points(self.craft.triangles[self.craft.side_facet[sides]], level)
-
     def _origins_of(self, sides: NDArray[np.int64], level: int) -> NDArray[np.float32]:
-        normals = self.craft.side_normals[sides][:, None, :]
-        return self.scene.origins(self.points(sides, level), normals)
+        """Ray origins of ``sides`` at ``level`` in scene coordinates, (len(sides), level**2, 3)."""
+        scene = self.scene
+        return _sample_origins(
+            self.craft.triangles,
+            self.craft.side_facet,
+            self.craft.side_normals,
+            sides,
+            tri.subdivision_barycentric(level),
+            scene.centre,
+            scene.half_size,
+            scene.offset_m,
+        )
 
     def _lit(self, origins: NDArray[np.float32], direction: NDArray[np.float64]) -> NDArray[np.bool_]:
         """Lit flag of each origin, same leading shape as ``origins``."""
@@ -207,12 +214,10 @@ class SideSampler:
         the lit counts and ``reduce``, in one dispatch. Returns the facing sides and their lit flags
         (n_facing, level**2), the flags only when ``reduce`` is None.
         """
-        d32 = direction.astype(np.float32)
 
         def work(first: int, last: int) -> tuple:
             facing, mine = self._facing_origins(direction, level, first, last)
-            flat = mine.reshape(-1, 3)
-            lit = ~self.scene.occluded(flat, np.broadcast_to(d32, flat.shape)).reshape(mine.shape[:-1])
+            lit = self._lit(mine, direction)
             self._store(facing, lit, level, fraction, centroid)
             if reduce is not None:
                 reduce(facing, fraction, centroid)
@@ -241,16 +246,18 @@ class SideSampler:
         fraction = np.zeros(craft.n_sides)
         # the lit centroid differs from the side centroid only on partly lit sides, which level 1 has not
         centroid = craft.side_centroids if level == 1 else craft.side_centroids.copy()
-        sampling = f"{level**2} points per side"
-        if not self._keeps(level):
-            facing, _ = self.facing_rays(direction, level)
-            rays = self._sample(facing, level, direction, fraction, centroid)
-        elif samples is not None:
-            facing, _ = self._cast_kept(direction, level, fraction, centroid, reduce)
-            rays, reduce = len(facing) * level**2, None  # reduced already, chunk by chunk
+        if self._keeps(level):
+            fixed = samples is not None
+            facing, lit = self._cast_kept(direction, level, fraction, centroid, reduce if fixed else None)
+            reduce = None if fixed else reduce  # a fixed count reduces chunk by chunk as it goes
         else:
-            facing, lit = self._cast_kept(direction, level, fraction, centroid, None)
-            rays = lit.size + self._refine(direction, facing, lit, fraction, centroid, tolerance)
+            facing, _ = self.facing_rays(direction, level)
+            lit = self._cast(facing, level, direction)
+            self._store(facing, lit, level, fraction, centroid)
+        rays = len(facing) * level**2
+        sampling = f"{level**2} points per side"
+        if samples is None:
+            rays += self._refine(direction, facing, lit, fraction, centroid, tolerance)
             sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
         if reduce is not None:
             reduce(facing, fraction, centroid)
@@ -273,8 +280,12 @@ class SideSampler:
             return
         partial = np.flatnonzero((count > 0) & (count < lit.shape[1]))
         if len(partial):
-            points = self.points(sides[partial], level)
-            centroid[sides[partial]] = np.einsum("ns,nsd->nd", lit[partial], points) / count[partial, None]
+            # the mean of the lit points is the triangle at the mean barycentric of those points
+            weights = (
+                lit[partial].astype(np.float64) @ tri.subdivision_barycentric(level) / count[partial, None]
+            )
+            corners = self.craft.triangles[self.craft.side_facet[sides[partial]]]
+            centroid[sides[partial]] = np.einsum("nk,nkd->nd", weights, corners)
 
     @cached_property
     def _adjacency(self) -> scipy.sparse.csr_matrix:
@@ -327,7 +338,9 @@ class SideSampler:
             level *= 2
             previous = fraction[active].copy()
             centroid[active] = craft.side_centroids[active]
-            rays += self._sample(active, level, direction, fraction, centroid)
+            lit = self._cast(active, level, direction)
+            self._store(active, lit, level, fraction, centroid)
+            rays += lit.size
             now = fraction[active]
             partly = (now > 0) & (now < 1)
             joining = self._neighbours(active[partly])
@@ -338,22 +351,15 @@ class SideSampler:
             active = np.r_[active[~(uniform | converged)], joining]
         return rays
 
-    def _sample(
-        self,
-        sides: NDArray[np.int64],
-        level: int,
-        direction: NDArray[np.float64],
-        fraction: NDArray[np.float64],
-        centroid: NDArray[np.float64],
-    ) -> int:
-        """Sample ``sides`` at ``level`` in batches with origins made on the fly; return rays cast."""
+    def _cast(
+        self, sides: NDArray[np.int64], level: int, direction: NDArray[np.float64]
+    ) -> NDArray[np.bool_]:
+        """Lit flags (len(sides), level**2) of ``sides`` at ``level``, origins made on the fly in batches."""
         per_batch = max(1, _BATCH_RAYS // level**2)
-        for start in range(0, len(sides), per_batch):
-            batch = sides[start : start + per_batch]
-            self._store(
-                batch, self._lit(self._origins_of(batch, level), direction), level, fraction, centroid
-            )
-        return len(sides) * level**2
+        batches = [sides[start : start + per_batch] for start in range(0, len(sides), per_batch)]
+        if not batches:
+            return np.zeros((0, level**2), dtype=bool)
+        return np.concatenate([self._lit(self._origins_of(batch, level), direction) for batch in batches])
 
 
 @numba.njit(cache=True, nogil=True)
@@ -393,6 +399,32 @@ def _facing_origins(
                     out[count, p, 2] = origins[s, p, 2]
                 count += 1
     return facing[:count], out[:count]
+
+
+@numba.njit(cache=True, nogil=True)
+def _sample_origins(
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    sides: NDArray[np.int64],
+    barycentric: NDArray[np.float64],
+    centre: NDArray[np.float64],
+    half_size: float,
+    offset_m: float,
+) -> NDArray[np.float32]:
+    """Sample points of ``sides`` pushed ``offset_m`` along their normals, in float32 scene
+    coordinates ``(p - centre) / half_size``, (len(sides), n_points, 3)."""
+    points = barycentric.shape[0]
+    out = np.empty((sides.shape[0], points, 3), dtype=np.float32)
+    for k in range(sides.shape[0]):
+        s = sides[k]
+        f = side_facet[s]
+        for p in range(points):
+            w0, w1, w2 = barycentric[p, 0], barycentric[p, 1], barycentric[p, 2]
+            for d in range(3):
+                x = w0 * triangles[f, 0, d] + w1 * triangles[f, 1, d] + w2 * triangles[f, 2, d]
+                out[k, p, d] = (x + offset_m * normals[s, d] - centre[d]) / half_size
+    return out
 
 
 @numba.njit(cache=True, nogil=True)

@@ -88,3 +88,31 @@ def test_a_two_sided_sheet_is_lit_on_the_side_facing_the_sun():
     for u, lit_sign in (([0.2, 0.1, 1.0], 1), ([0.2, 0.1, -1.0], -1)):
         light = craft.sampler.illuminate(np.array(u) / np.linalg.norm(u))
         assert np.array_equal(light.lit_fraction, (craft.side_sign == lit_sign).astype(float))
+
+
+@pytest.mark.parametrize("samples", [None, 1, 9])
+def test_models_too_large_to_keep_origins_give_the_same_lit_shares(samples, monkeypatch):
+    """Above ``_KEEP_POINTS`` origins are made on the fly in batches: the rays, and so the answer,
+    are the same."""
+    import geometry.illumination as illumination
+
+    craft, _, _ = shaded_floor(n=6)
+    u = np.array([0.2, 0.3, 1.0]) / np.linalg.norm([0.2, 0.3, 1.0])
+    kept = craft.sampler.illuminate(u, samples)
+    monkeypatch.setattr(illumination, "_KEEP_POINTS", 10)
+    streamed = illumination.SideSampler(craft).illuminate(u, samples)
+    assert np.array_equal(kept.lit_fraction, streamed.lit_fraction)
+    assert np.allclose(kept.lit_centroid, streamed.lit_centroid, rtol=0, atol=1e-15)
+    assert kept.rays == streamed.rays
+
+
+def test_sampler_origins_equal_the_scene_transform_of_the_sample_points():
+    """The numba origin kernel and RayScene.origins are two routes to the same float32 origins."""
+    from geometry import triangles as tri
+
+    craft, _, _ = shaded_floor(n=3)
+    sides = np.arange(craft.n_sides)
+    for level in (1, 2, 5):
+        points = tri.sample_points(craft.triangles[craft.side_facet], level)
+        expected = craft.scene.origins(points, craft.side_normals[:, None, :])
+        assert np.allclose(craft.sampler._origins_of(sides, level), expected, rtol=0, atol=2e-7)
