@@ -173,9 +173,10 @@ class SideSampler:
         equal runs of blocks hold about as many sides facing any direction, so threads given equal
         runs finish together. Block ``k`` of the order is ``order[k * BLOCK:(k + 1) * BLOCK]``."""
         n = self.craft.n_sides
-        blocks = np.random.default_rng(STRATIFIED_SEED).permutation(-(-n // BLOCK))
+        full = n // BLOCK  # the last, shorter block stays last so that every block stays whole
+        blocks = np.random.default_rng(STRATIFIED_SEED).permutation(full)
         order = (blocks[:, None] * BLOCK + np.arange(BLOCK)).reshape(-1)
-        return order[order < n]
+        return np.concatenate([order, np.arange(full * BLOCK, n)])
 
     @cached_property
     def _block_normal_bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -374,7 +375,8 @@ def _facing_origins(
     last: int,
 ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
     """Sides of ``order[first * BLOCK:last * BLOCK]`` with ``normals . direction > 0``, and their
-    ``origins``; blocks whose normal bounds rule out any facing side are skipped unread."""
+    ``origins``. The bounds of each block's normal components bound ``n . direction`` over it: a
+    block that cannot face is skipped unread, one that must face is taken without reading normals."""
     d0, d1, d2 = direction[0], direction[1], direction[2]
     points = origins.shape[1]
     start, stop = first * BLOCK, min(last * BLOCK, order.shape[0])
@@ -382,16 +384,17 @@ def _facing_origins(
     out = np.empty((stop - start, points, 3), dtype=np.float32)
     count = 0
     for b in range(first, last):
-        bound = (
-            max(block_low[b, 0] * d0, block_high[b, 0] * d0)
-            + max(block_low[b, 1] * d1, block_high[b, 1] * d1)
-            + max(block_low[b, 2] * d2, block_high[b, 2] * d2)
-        )
-        if bound <= 0.0:
+        upper = lower = 0.0
+        for d, component in enumerate((d0, d1, d2)):
+            a, c = block_low[b, d] * component, block_high[b, d] * component
+            upper += max(a, c)
+            lower += min(a, c)
+        if upper <= 0.0:
             continue
+        every = lower > 0.0  # every side of the block faces the source: no normal to read
         for k in range(b * BLOCK, min((b + 1) * BLOCK, stop)):
             s = order[k]
-            if normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
+            if every or normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
                 facing[count] = s
                 for p in range(points):
                     out[count, p, 0] = origins[s, p, 0]
