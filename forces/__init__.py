@@ -2,12 +2,16 @@
 
 from .evaluate import srp
 from .radiation import SOLAR_FLUX_1AU, SPEED_OF_LIGHT, radiation_pressure, solar_flux, surface_forces
+from .reflections import PowerBalance, ReflectionSettings, model_view_factors
 from .result import SrpResult
 
 __all__ = [
     "SOLAR_FLUX_1AU",
     "SPEED_OF_LIGHT",
+    "PowerBalance",
+    "ReflectionSettings",
     "SrpResult",
+    "model_view_factors",
     "radiation_pressure",
     "solar_flux",
     "srp",

@@ -1,4 +1,5 @@
-"""Benchmark of direct SRP on the sample spacecraft: time per attitude, ray rate, and raw Embree time.
+"""Benchmark of SRP on the sample spacecraft: time per attitude, ray rate, raw Embree time, and the
+cost of inter-reflection (view-factor precompute once, then time per attitude with full reflections).
 
 The raw figure casts exactly the rays an attitude casts (same origins, directions, threads) with
 nothing else, so ``overhead = time per attitude / raw Embree time`` is what sunwind adds around Embree.
@@ -19,6 +20,8 @@ from geometry.illumination import level_for_samples
 from geometry.spacecraft import Spacecraft
 
 from .evaluate import srp
+from .radiosity import diffuse_exchange
+from .reflections import ReflectionSettings, model_view_factors
 
 
 @dataclass(frozen=True)
@@ -42,11 +45,58 @@ class BenchReport:
     overhead: float
     adaptive_per_attitude_ms: float
     adaptive_rays_per_attitude: float
+    view_factor_s: float
+    view_factor_rays_per_side: int
+    view_factor_MB: float
+    view_factor_peak_MB: float
+    exchange_setup_s: float
+    full_per_attitude_ms: float
+    full_per_attitude_median_ms: float
+    full_over_direct: float
+    beam_rays_per_attitude: float
     peak_memory_MB: float
     machine: str
 
     def to_json(self) -> dict:
         return asdict(self)
+
+
+def _peak_MB() -> float:
+    """Peak resident memory of this process so far [MB]."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def _reflection_figures(
+    craft: Spacecraft, directions: np.ndarray, samples: int, direct_times: list[float]
+) -> dict:
+    """View-factor precompute (never from the disk cache), the diffuse balance's one-off solves, and
+    time per attitude with full reflections on the attitudes timed direct-only."""
+    settings = ReflectionSettings("full", cache_dir=False)
+    start = time.perf_counter()
+    view = model_view_factors(craft, settings)
+    view_s = time.perf_counter() - start
+    view_peak = _peak_MB()
+    start = time.perf_counter()
+    _ = diffuse_exchange(craft, view).responses
+    setup_s = time.perf_counter() - start
+    srp(craft, directions[0], samples=samples, reflections=settings)
+    times, rays = [], 0
+    for u in directions:
+        start = time.perf_counter()
+        result = srp(craft, u, samples=samples, reflections=settings)
+        times.append(time.perf_counter() - start)
+        rays += result.reflected.chains.rays
+    return {
+        "view_factor_s": view_s,
+        "view_factor_rays_per_side": view.rays_per_side,
+        "view_factor_MB": view.nbytes / 1e6,
+        "view_factor_peak_MB": view_peak,
+        "exchange_setup_s": setup_s,
+        "full_per_attitude_ms": 1e3 * float(np.mean(times)),
+        "full_per_attitude_median_ms": 1e3 * float(np.median(times)),
+        "full_over_direct": float(np.median(times) / np.median(direct_times)),
+        "beam_rays_per_attitude": rays / len(directions),
+    }
 
 
 def sun_directions(count: int, seed: int = 2026) -> np.ndarray:
@@ -70,14 +120,14 @@ def benchmark(
     scene = craft.scene
     scene_build = time.perf_counter() - start
     start = time.perf_counter()
-    srp(craft, directions[0], samples=samples)  # compiles kernels, keeps the ray origins
+    srp(craft, directions[0], samples=samples, reflections="none")  # compiles kernels, keeps origins
     first_call = time.perf_counter() - start
     # each attitude is timed and then its rays are cast alone, back to back, so that drifts in
     # machine speed affect both figures alike
     times, raw_times, rays = [], [], 0
     for k, u in enumerate(directions):
         start = time.perf_counter()
-        result = srp(craft, u, samples=samples)
+        result = srp(craft, u, samples=samples, reflections="none")
         times.append(time.perf_counter() - start)
         rays += result.rays
         _, origins = craft.sampler.facing_rays(u, level)
@@ -90,8 +140,9 @@ def benchmark(
     adaptive_times, adaptive_rays = [], 0
     for u in directions[:adaptive_attitudes]:
         start = time.perf_counter()
-        adaptive_rays += srp(craft, u).rays
+        adaptive_rays += srp(craft, u, reflections="none").rays
         adaptive_times.append(time.perf_counter() - start)
+    reflections = _reflection_figures(craft, directions, samples, times)
     total, raw = float(np.sum(times)), float(np.sum(raw_times))
     return BenchReport(
         triangles=craft.n_facets,
@@ -111,6 +162,7 @@ def benchmark(
         overhead=float(np.median(np.array(times) / np.array(raw_times))),
         adaptive_per_attitude_ms=1e3 * float(np.mean(adaptive_times)) if adaptive_times else 0.0,
         adaptive_rays_per_attitude=adaptive_rays / max(1, len(adaptive_times)),
-        peak_memory_MB=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        **reflections,
+        peak_memory_MB=_peak_MB(),
         machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
     )

@@ -46,6 +46,34 @@ def model_options(command: Callable) -> Callable:
     return command
 
 
+def view_factor_options(command: Callable) -> Callable:
+    """The options that say how view factors are sampled and cached."""
+    options = [
+        click.option(
+            "--view-rays",
+            type=int,
+            help="Hemisphere rays per side for view factors [default: more on small models, at least 256].",
+        ),
+        click.option(
+            "--cache-dir",
+            type=click.Path(path_type=Path, file_okay=False),
+            help="Where view factors are kept [default: $SUNWIND_CACHE_DIR, else the user cache].",
+        ),
+        click.option("--no-cache", is_flag=True, help="Neither read nor write the view-factor cache."),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def reflection_settings(mode: str, cutoff: float, depth: int, view_rays, cache_dir, no_cache: bool):
+    """:class:`forces.reflections.ReflectionSettings` from the command line."""
+    from forces.reflections import ReflectionSettings
+
+    cache = False if no_cache else cache_dir
+    return ReflectionSettings(mode, cutoff, depth, view_rays, cache)
+
+
 def uniform_material(rho: float | None, beta: float | None, sigma: float | None) -> Material | None:
     """The command-line uniform material, or None when no flag is given."""
     if rho is None and beta is None and sigma is None:
@@ -119,9 +147,44 @@ def _vec(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
     show_default=True,
     help="Adaptive sampling: convergence threshold on a side's lit share.",
 )
+@click.option(
+    "--reflections",
+    type=click.Choice(["none", "specular", "full", "auto"]),
+    default="auto",
+    show_default=True,
+    help="Inter-reflection: none; specular beams only; full (beams and diffuse balance); "
+    "auto = full when K_IS >= 0.1, else none.",
+)
+@click.option(
+    "--reflection-cutoff",
+    type=float,
+    default=1e-6,
+    show_default=True,
+    help="Drop a reflected beam below this share of the power its chain started with.",
+)
+@click.option(
+    "--reflection-depth", type=int, default=32, show_default=True, help="Most surfaces a beam chain meets."
+)
+@view_factor_options
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def srp(sun, sun_azel, flux, distance_au, ref_point, samples, tolerance, as_json, **model) -> None:
-    """Direct solar-radiation force and torque for one Sun direction, with self-shadowing."""
+def srp(
+    sun,
+    sun_azel,
+    flux,
+    distance_au,
+    ref_point,
+    samples,
+    tolerance,
+    reflections,
+    reflection_cutoff,
+    reflection_depth,
+    view_rays,
+    cache_dir,
+    no_cache,
+    as_json,
+    **model,
+) -> None:
+    """Solar-radiation force and torque for one Sun direction, with self-shadowing and inter-reflection."""
     from forces.evaluate import srp as evaluate_srp
     from forces.radiation import solar_flux
     from geometry.directions import azel_to_vector, finite_point, unit_vector
@@ -138,6 +201,9 @@ def srp(sun, sun_azel, flux, distance_au, ref_point, samples, tolerance, as_json
         level_for_samples(samples)
     if not 0 < tolerance < 1:
         raise InputError(f"--tolerance {tolerance} must lie in (0, 1)")
+    settings = reflection_settings(
+        reflections, reflection_cutoff, reflection_depth, view_rays, cache_dir, no_cache
+    )
     craft = load_model(model)
     result = evaluate_srp(
         craft,
@@ -147,6 +213,7 @@ def srp(sun, sun_azel, flux, distance_au, ref_point, samples, tolerance, as_json
         reference_point_m=ref_point,
         samples=samples,
         tolerance=tolerance,
+        reflections=settings,
     )
     if as_json:
         header = {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
@@ -159,11 +226,56 @@ def srp(sun, sun_azel, flux, distance_au, ref_point, samples, tolerance, as_json
     print(f"  sun vector       {_vec(result.sun_vector, '{:+.6f}')}  az {az:.3f} deg  el {el:.3f} deg")
     print(f"  flux             {result.flux_W_m2:.6g} W/m^2   pressure P = {result.pressure_Pa:.6e} Pa")
     print(f"  force   [N]      {_vec(result.force_N)}  |F| = {np.linalg.norm(result.force_N):.6e}")
+    print(f"    direct         {_vec(result.direct_force_N)}")
+    print(f"    reflected      {_vec(result.reflected_force_N)}")
     print(f"  torque  [N m]    {_vec(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
+    print(f"    direct         {_vec(result.direct_torque_Nm)}")
+    print(f"    reflected      {_vec(result.reflected_torque_Nm)}")
     print(f"  about   [m]      {_vec(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
     print(f"  lit area         {result.lit_area_m2:.6f} m^2")
     print(f"  projected area   {result.projected_area_m2:.6f} m^2")
     print(f"  shadow rays      {result.rays} ({result.sampling})")
+    print(
+        f"  reflections      {result.reflections} (asked: {result.settings.mode}); "
+        f"K_IS = {result.k_is:.4f} (eq. 7; inter-reflection matters from 0.1)"
+    )
+    power = result.power
+    print(
+        f"  power   [W]      incident {power.incident_W:.6g}, absorbed {power.absorbed_W:.6g}, "
+        f"escaped {power.escaped_W:.6g}, cut off {power.truncated_W:.3g} (imbalance {power.imbalance:.1e})"
+    )
+    chains, view = result.reflected.chains, result.reflected.view
+    if chains is not None:
+        print(f"  beam rays        {chains.rays}, chains up to {chains.depth} surfaces")
+    if view is not None and result.reflections == "full":
+        print(f"  view factors     {view.rays_per_side} rays per side, {view.origin}")
+
+
+def _interference_report(model: dict, uniform: Material | None, settings) -> dict:
+    """``k_is`` and view-factor figures of the mesh for ``sunwind info``; a note where it cannot load."""
+    from forces.reflections import interference, model_view_factors
+
+    try:
+        craft = load_spacecraft(
+            model["mesh"],
+            model["materials"],
+            unit=model["unit"],
+            uniform=uniform,
+            two_sided=model["two_sided"],
+        )
+    except SunwindError:
+        return {"k_is": "not available until the checks pass"}
+    view = model_view_factors(craft, settings)
+    return {
+        "k_is": interference(craft, settings),
+        "view_factors": {
+            "rays_per_side": view.rays_per_side,
+            "origin": view.origin,
+            "seconds": view.seconds,
+            "open_sky_share": float(craft.side_areas @ view.escape_fraction / craft.side_areas.sum()),
+            "reciprocity_error": view.reciprocity_error(craft.side_areas),
+        },
+    }
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -190,24 +302,31 @@ def main(argv: list[str] | None = None) -> None:
 
 @app.command()
 @model_options
+@view_factor_options
+@click.option("--no-k-is", is_flag=True, help="Skip the view factors and K_IS (quick look at a large mesh).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def info(as_json, **model) -> None:
-    """Describe a mesh: triangles, parts, materials, area, bounds, closed or not, and the checks."""
+def info(view_rays, cache_dir, no_cache, no_k_is, as_json, **model) -> None:
+    """Describe a mesh: triangles, parts, materials, area, bounds, closed or not, checks, and K_IS."""
     from geometry.summary import describe
 
-    report = describe(
-        model["mesh"],
-        model["materials"],
-        model["unit"],
-        uniform_material(model["reflectivity"], model["specular_fraction"], model["transmissivity"]),
-        model["two_sided"],
-    )
+    uniform = uniform_material(model["reflectivity"], model["specular_fraction"], model["transmissivity"])
+    report = describe(model["mesh"], model["materials"], model["unit"], uniform, model["two_sided"])
+    if not no_k_is:
+        settings = reflection_settings("full", 1e-6, 1, view_rays, cache_dir, no_cache)
+        report.update(_interference_report(model, uniform, settings))
     if as_json:
         print(json.dumps(report, indent=2))
         return
     print(f"sunwind info: {report['mesh']}")
-    for key in ("unit", "triangles", "area_m2", "volume_m3", "closed", "reference_point"):
-        print(f"  {key:<17}{report[key]}")
+    for key in ("unit", "triangles", "area_m2", "volume_m3", "closed", "reference_point", "k_is"):
+        if key in report:
+            print(f"  {key:<17}{report[key]}")
+    if "view_factors" in report:
+        view = report["view_factors"]
+        print(
+            f"  {'open sky':<17}{view['open_sky_share']:.4f} of diffusely reflected light escapes "
+            f"(area-weighted); view factors: {view['rays_per_side']} rays per side, {view['origin']}"
+        )
     low, high = report["bounds_m"]
     print(f"  {'bounds_m':<17}min {np.round(low, 6).tolist()}  max {np.round(high, 6).tolist()}")
     print("  checks:")
@@ -247,7 +366,7 @@ def info(as_json, **model) -> None:
 @click.option("--samples", type=int, default=1, show_default=True, help="Shadow-ray points per side.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
-    """Time direct SRP with shadowing per attitude, against raw Embree on the same rays."""
+    """Time SRP per attitude: direct against raw Embree on the same rays, then with full reflections."""
     import time
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
@@ -296,6 +415,17 @@ def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
         f"{report.raw_embree_rays_per_s / 1e6:.2f} M rays/s"
     )
     print(f"  overhead                {report.overhead:.2f}x raw Embree")
+    print(
+        f"  view factors            {report.view_factor_s:.1f} s once per model "
+        f"({report.view_factor_rays_per_side} rays per side), {report.view_factor_MB:.0f} MB, "
+        f"peak memory {report.view_factor_peak_MB:.0f} MB"
+    )
+    print(f"  diffuse balance setup   {report.exchange_setup_s:.2f} s once per model and materials")
+    print(
+        f"  full reflections        {report.full_per_attitude_ms:.2f} ms per attitude "
+        f"(median {report.full_per_attitude_median_ms:.2f}), {report.full_over_direct:.2f}x direct-only, "
+        f"{report.beam_rays_per_attitude:.0f} beam rays"
+    )
     print(
         f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "
         f"{report.adaptive_rays_per_attitude:.0f} rays"

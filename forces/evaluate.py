@@ -12,6 +12,7 @@ from geometry.illumination import DEFAULT_TOLERANCE
 from geometry.spacecraft import Spacecraft
 
 from .radiation import TOTALS, accumulate_forces, radiation_pressure, solar_flux
+from .reflections import ReflectionSettings, reflected_part
 from .result import SrpResult
 
 
@@ -33,8 +34,9 @@ def srp(
     reference_point_m: Sequence[float] | NDArray | None = None,
     samples: int | None = None,
     tolerance: float = DEFAULT_TOLERANCE,
+    reflections: str | ReflectionSettings = "auto",
 ) -> SrpResult:
-    """Direct solar-radiation force and torque with self-shadowing, at one attitude.
+    """Solar-radiation force and torque with self-shadowing and inter-reflection, at one attitude.
 
     Parameters
     ----------
@@ -50,11 +52,15 @@ def srp(
         Shadow-ray points per side, rounded up to a square; default adaptive.
     tolerance : float
         Adaptive sampling's convergence threshold on a side's lit share.
+    reflections : str or ReflectionSettings
+        ``"none"``, ``"specular"``, ``"full"`` or ``"auto"`` (full when ``K_IS >= 0.1``), or settings
+        with chain cutoff, depth and view-factor sampling (:class:`forces.reflections.ReflectionSettings`).
 
     Returns
     -------
     SrpResult
     """
+    settings = reflections if isinstance(reflections, ReflectionSettings) else ReflectionSettings(reflections)
     u_sun = unit_vector(sun_vector, "sun_vector")
     flux = solar_flux(flux_W_m2, distance_au)
     pressure = radiation_pressure(flux)
@@ -69,12 +75,17 @@ def srp(
     light = craft.sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
     # block sums added in block order: the same bits whatever the threads did
     totals = partials.sum(axis=0)
+    reflected = reflected_part(craft, light, flux, ref, settings, (flux * totals[7], flux * totals[8]))
     return SrpResult(
         sun_vector=u_sun,
         flux_W_m2=flux,
         pressure_Pa=pressure,
-        force_N=totals[0:3],
-        torque_Nm=totals[3:6],
+        force_N=totals[0:3] + reflected.force_N,
+        torque_Nm=totals[3:6] + reflected.torque_Nm,
+        direct_force_N=totals[0:3],
+        direct_torque_Nm=totals[3:6],
+        reflected=reflected,
+        settings=settings,
         reference_point_m=ref,
         reference_point=ref_name,
         lit_area_m2=float(totals[6]),

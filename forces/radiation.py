@@ -100,8 +100,9 @@ def surface_forces(
     return along_sun[:, None] * sun_vector + along_normal[:, None] * normals
 
 
-#: Quantities :func:`accumulate_forces` sums: force, torque, lit area, projected area.
-TOTALS = 8
+#: Quantities :func:`accumulate_forces` sums: force, torque, lit area, projected area, absorbed
+#: projected area (projected area weighted by absorptivity: absorbed power over flux).
+TOTALS = 9
 
 
 @numba.njit(cache=True, nogil=True, fastmath=True)
@@ -122,7 +123,8 @@ def accumulate_forces(
 
     Per-side arrays are indexed by side: ``lit_fraction`` (n,), ``lit_centroid`` (n, 3) [m] where
     each side's force acts, ``normals`` (n, 3), ``areas`` (n,) [m^2], ``optics`` (n, 3) holding
-    ``(rho, beta, sigma)``. Each side's ``[Fx, Fy, Fz, Mx, My, Mz, lit area, projected area]``
+    ``(rho, beta, sigma)``. Each side's ``[Fx, Fy, Fz, Mx, My, Mz, lit area, projected area,
+    absorbed projected area]``
     [N, N m, m^2, m^2] is added, in the order of ``sides``, to the row ``side_block[s]`` of
     ``partials`` (n_blocks, 8). Summing the rows in order gives a total that does not depend on how
     the sides were split between calls, as long as each block's sides come in a fixed order.
@@ -132,7 +134,7 @@ def accumulate_forces(
     u0, u1, u2 = sun_vector[0], sun_vector[1], sun_vector[2]
     x0, x1, x2 = reference_m[0], reference_m[1], reference_m[2]
     block = -1
-    fx = fy = fz = mx = my = mz = lit_total = projected = 0.0
+    fx = fy = fz = mx = my = mz = lit_total = projected = absorbed = 0.0
     n = sides.shape[0]
     for k in range(n + 1):
         if k == n or side_block[sides[k]] != block:
@@ -146,10 +148,11 @@ def accumulate_forces(
                 row[5] += mz
                 row[6] += lit_total
                 row[7] += projected
+                row[8] += absorbed
             if k == n:
                 break
             block = side_block[sides[k]]
-            fx = fy = fz = mx = my = mz = lit_total = projected = 0.0
+            fx = fy = fz = mx = my = mz = lit_total = projected = absorbed = 0.0
         s = sides[k]
         n0, n1, n2 = normals[s, 0], normals[s, 1], normals[s, 2]
         cos = n0 * u0 + n1 * u1 + n2 * u2
@@ -169,3 +172,4 @@ def accumulate_forces(
         mz += r0 * f1 - r1 * f0
         lit_total += lit_area
         projected += lit_area * cos
+        absorbed += lit_area * cos * (1.0 - rho - optics[s, 2])

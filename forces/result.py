@@ -12,13 +12,14 @@ from geometry.illumination import Illumination
 from geometry.spacecraft import Spacecraft
 
 from .radiation import surface_forces
+from .reflections import PowerBalance, Reflected, ReflectionSettings, interference
 
 FRAME = "body frame of the mesh"
 
 
 @dataclass(frozen=True, eq=False)
 class SrpResult:
-    """Direct solar-radiation pressure at one attitude; body frame, SI units.
+    """Solar-radiation pressure at one attitude; body frame, SI units.
 
     Attributes
     ----------
@@ -29,9 +30,15 @@ class SrpResult:
     pressure_Pa : float
         ``P = flux / c``.
     force_N : (3,) float64
-        Total force.
+        Total force: direct plus reflected.
     torque_Nm : (3,) float64
-        Total torque about ``reference_point_m``.
+        Total torque about ``reference_point_m``: direct plus reflected.
+    direct_force_N, direct_torque_Nm : (3,) float64
+        The direct law, eq. (4), on the lit sides: every reflected or transmitted photon escapes.
+    reflected : Reflected
+        What inter-reflection changes: force, torque, power balance, chain and view-factor details.
+    settings : ReflectionSettings
+        The inter-reflection settings asked for.
     reference_point_m : (3,) float64
         Point the torque is taken about.
     reference_point : str
@@ -49,7 +56,7 @@ class SrpResult:
     illumination : Illumination
         Lit share and lit centroid of every side.
 
-    Per-side and per-facet forces and torques are computed on first access.
+    Per-side and per-facet forces and torques (of the direct law) are computed on first access.
     """
 
     sun_vector: NDArray[np.float64]
@@ -57,6 +64,10 @@ class SrpResult:
     pressure_Pa: float
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
+    direct_force_N: NDArray[np.float64]
+    direct_torque_Nm: NDArray[np.float64]
+    reflected: Reflected
+    settings: ReflectionSettings
     reference_point_m: NDArray[np.float64]
     reference_point: str
     lit_area_m2: float
@@ -67,13 +78,40 @@ class SrpResult:
     illumination: Illumination = field(repr=False)
 
     @property
+    def reflected_force_N(self) -> NDArray[np.float64]:
+        """Force inter-reflection adds to the direct force [N], (3,)."""
+        return self.reflected.force_N
+
+    @property
+    def reflected_torque_Nm(self) -> NDArray[np.float64]:
+        """Torque inter-reflection adds to the direct torque [N m], (3,)."""
+        return self.reflected.torque_Nm
+
+    @property
+    def reflections(self) -> str:
+        """Inter-reflection included: "none", "specular" or "full" ("auto" resolved)."""
+        return self.reflected.mode
+
+    @property
+    def power(self) -> PowerBalance:
+        """Incident, absorbed and escaped power [W]."""
+        return self.reflected.power
+
+    @cached_property
+    def k_is(self) -> float:
+        """Interference criterion ``K_IS`` of eq. (7) (computes the view factors if not yet done)."""
+        if self.reflected.k_is is not None:
+            return self.reflected.k_is
+        return interference(self.craft, self.settings)
+
+    @property
     def side_lit_fraction(self) -> NDArray[np.float64]:
         """Lit share of each side's area, (n_sides,)."""
         return self.illumination.lit_fraction
 
     @cached_property
     def side_force_N(self) -> NDArray[np.float64]:
-        """Force on each side [N], (n_sides, 3), by eq. (4) on its lit area."""
+        """Direct force on each side [N], (n_sides, 3), by eq. (4) on its lit area."""
         craft, light = self.craft, self.illumination
         lit = np.flatnonzero(light.lit_fraction > 0)
         rho, beta, sigma = craft.side_optics[lit].T
@@ -92,17 +130,17 @@ class SrpResult:
 
     @cached_property
     def side_torque_Nm(self) -> NDArray[np.float64]:
-        """Torque of each side's force about the reference point [N m], (n_sides, 3)."""
+        """Torque of each side's direct force about the reference point [N m], (n_sides, 3)."""
         return np.cross(self.illumination.lit_centroid - self.reference_point_m, self.side_force_N)
 
     @property
     def facet_force_N(self) -> NDArray[np.float64]:
-        """Force on each facet, both sides summed [N], (n_facets, 3)."""
+        """Direct force on each facet, both sides summed [N], (n_facets, 3)."""
         return _per_facet(self.craft.side_facet, self.side_force_N, self.craft.n_facets)
 
     @property
     def facet_torque_Nm(self) -> NDArray[np.float64]:
-        """Torque of each facet's force about the reference point [N m], (n_facets, 3)."""
+        """Torque of each facet's direct force about the reference point [N m], (n_facets, 3)."""
         return _per_facet(self.craft.side_facet, self.side_torque_Nm, self.craft.n_facets)
 
     @property
@@ -123,13 +161,40 @@ class SrpResult:
             "pressure_Pa": self.pressure_Pa,
             "force_N": self.force_N.tolist(),
             "torque_Nm": self.torque_Nm.tolist(),
+            "direct": {"force_N": self.direct_force_N.tolist(), "torque_Nm": self.direct_torque_Nm.tolist()},
+            "reflected": {
+                "force_N": self.reflected_force_N.tolist(),
+                "torque_Nm": self.reflected_torque_Nm.tolist(),
+            },
+            "reflections": self.reflections,
+            "reflections_requested": self.settings.mode,
+            "k_is": self.k_is,
+            "power": self.power.to_json(),
             "reference_point_m": self.reference_point_m.tolist(),
             "reference_point": self.reference_point,
             "lit_area_m2": self.lit_area_m2,
             "projected_area_m2": self.projected_area_m2,
             "rays": self.rays,
             "sampling": self.sampling,
+            **self._reflection_details(),
         }
+
+    def _reflection_details(self) -> dict:
+        """How the reflected part was computed, for the JSON summary."""
+        details: dict = {}
+        chains, view = self.reflected.chains, self.reflected.view
+        if chains is not None:
+            details["reflection_rays"] = chains.rays
+            details["reflection_depth"] = chains.depth
+            details["reflection_cutoff"] = self.settings.cutoff
+        if view is not None and self.reflections == "full":
+            details["view_factors"] = {
+                "rays_per_side": view.rays_per_side,
+                "seed": view.seed,
+                "origin": view.origin,
+                "seconds": view.seconds,
+            }
+        return details
 
 
 def _per_facet(side_facet: NDArray[np.int64], values: NDArray[np.float64], n: int) -> NDArray[np.float64]:

@@ -88,6 +88,21 @@ class RayScene(SceneFrame):
             return np.zeros(0, dtype=np.int32)
         return self._run(origins, directions, "INTERSECT").astype(np.int32, copy=False)
 
+    def intersect(
+        self, origins: NDArray[np.float32], directions: NDArray[np.float32]
+    ) -> tuple[NDArray[np.int32], NDArray[np.float32]]:
+        """First triangle each ray hits (-1 where it escapes) and the distance to it in scene units
+        (multiply by ``half_size`` for metres; meaningless where the ray escapes)."""
+        if not len(origins):
+            return np.zeros(0, dtype=np.int32), np.zeros(0, dtype=np.float32)
+        parts = map_ranges(
+            lambda lo, hi: self._scene.run(origins[lo:hi], directions[lo:hi], output=True),
+            len(origins),
+            _RAYS_PER_CHUNK,
+        )
+        facets = np.concatenate([p["primID"] for p in parts]).astype(np.int32, copy=False)
+        return facets, np.concatenate([p["tfar"] for p in parts])
+
 
 class BruteForceScene(SceneFrame):
     """The same queries as :class:`RayScene` by testing every ray against every triangle in numpy.
@@ -128,6 +143,11 @@ class BruteForceScene(SceneFrame):
 
     def first_hit(self, origins: NDArray, directions: NDArray) -> NDArray[np.int32]:
         """Index of the first triangle each ray hits, -1 where the ray escapes."""
+        return self.intersect(origins, directions)[0]
+
+    def intersect(self, origins: NDArray, directions: NDArray) -> tuple[NDArray[np.int32], NDArray]:
+        """First triangle each ray hits (-1 where it escapes) and the distance to it, scene units."""
         t = self._distances(origins, directions)
         nearest = np.argmin(t, axis=1).astype(np.int32)
-        return np.where(np.isfinite(t.min(axis=1)), nearest, -1).astype(np.int32)
+        distance = t.min(axis=1)
+        return np.where(np.isfinite(distance), nearest, -1).astype(np.int32), distance

@@ -22,6 +22,12 @@ from .mesh_data import MeshData
 from .raycast import RayScene
 from .sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
 
+#: :meth:`Spacecraft.struck_sides` of a ray that left the model.
+ESCAPED = -1
+#: :meth:`Spacecraft.struck_sides` of a ray that met a side the model does not have (a closed body's
+#: inside, a one-sided sheet's back): absorbed there.
+BLIND = -2
+
 
 def _frozen(array: NDArray) -> NDArray:
     array.flags.writeable = False
@@ -171,6 +177,30 @@ class Spacecraft:
         b = np.concatenate([side_of[s][facet_pairs[:, 1]] for s in side_of])
         keep = (a >= 0) & (b >= 0)
         return _frozen(a[keep]), _frozen(b[keep])
+
+    @cached_property
+    def facet_sides(self) -> NDArray[np.int64]:
+        """Front and back side of each facet, (n_facets, 2); -1 where the facet has no such side."""
+        sides = np.full((self.n_facets, 2), -1, dtype=np.int64)
+        sides[self.side_facet, (self.side_sign < 0).astype(np.int64)] = np.arange(self.n_sides)
+        return _frozen(sides)
+
+    def struck_sides(self, facets: NDArray, directions: NDArray) -> NDArray[np.int64]:
+        """The side that rays travelling along ``directions`` (n, 3) strike on ``facets`` (n,).
+
+        A ray meets the front side where it travels against the facet normal, else the back side.
+        Returns ``ESCAPED`` (-1) where ``facets`` is -1 (the ray left the model) and ``BLIND`` (-2)
+        where the struck side is no side of the model: the inside of a closed body or the back of a
+        one-sided sheet, which absorb whatever reaches them.
+        """
+        facets = np.asarray(facets, dtype=np.int64)
+        hit = facets >= 0
+        out = np.full(len(facets), ESCAPED, dtype=np.int64)
+        f = facets[hit]
+        back = np.einsum("nd,nd->n", self.facet_normals[f], directions[hit]) > 0
+        side = self.facet_sides[f, back.astype(np.int64)]
+        out[hit] = np.where(side >= 0, side, BLIND)
+        return out
 
     # --- whole body ---------------------------------------------------------------------------------
     @property

@@ -38,6 +38,14 @@ def quad_sheet(corners: np.ndarray, part: str, n: int = 1) -> MeshData:
     return MeshData(points, faces, np.zeros(m, np.int32), (part,), -np.ones(m, np.int32))
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _private_view_factor_cache(tmp_path_factory):
+    """Keep view factors computed by tests out of the user's cache directory."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("SUNWIND_CACHE_DIR", str(tmp_path_factory.mktemp("view-factor-cache")))
+        yield
+
+
 ABSORBER = Material("black", 0.0, 0.0, 0.0)
 MIXED = Material("mixed", 0.6, 0.3, 0.1)
 

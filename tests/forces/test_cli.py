@@ -183,6 +183,10 @@ def bad_inputs(tmp_path, mesh, materials):
         (["srp", mesh, *sun, "-m", materials, "--unit", "furlong"], ["furlong", "mm"]),
         (["srp", mesh, "-m", materials], ["--sun"]),
         (["srp", mesh, "--sun", "1", "0", "-m", materials], ["--sun"]),
+        (["srp", mesh, *sun, "-m", materials, "--reflections", "most"], ["--reflections", "most"]),
+        (["srp", mesh, *sun, "-m", materials, "--reflection-cutoff", "2"], ["cutoff", "[0, 1)"]),
+        (["srp", mesh, *sun, "-m", materials, "--reflection-depth", "0"], ["depth"]),
+        (["srp", mesh, *sun, "-m", materials, "--view-rays", "0"], ["--view-rays"]),
     ]
 
 
@@ -274,3 +278,35 @@ def test_bad_mesh_requests_give_one_line(run_cli, tmp_path, args, words):
     assert code != 0 and err.count("\n") == 1
     for word in words:
         assert word in err
+
+
+def test_reflections_in_json_split_direct_and_reflected_and_balance_power(run_cli, craft_files, tmp_path):
+    mesh, materials = craft_files
+    cache = tmp_path / "cache"
+    args = ("srp", mesh, "-m", materials, "--sun", "0.3", "-0.4", "1", "--json", "--cache-dir", cache)
+    code, out, err = run_cli(*args, "--reflections", "full")
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["reflections"] == "full" and doc["reflections_requested"] == "full"
+    assert doc["k_is"] > 0  # the wing sees the bus
+    total = np.add(doc["direct"]["force_N"], doc["reflected"]["force_N"])
+    np.testing.assert_allclose(doc["force_N"], total, rtol=1e-12)
+    assert abs(doc["power"]["imbalance"]) < 1e-9
+    assert "cache" in doc["view_factors"]["origin"] or "computed" in doc["view_factors"]["origin"]
+    assert any(cache.iterdir())  # kept for the next run
+    code, out, _ = run_cli(*args, "--reflections", "full")
+    assert "cache" in json.loads(out)["view_factors"]["origin"]
+    code, out, _ = run_cli(*args, "--reflections", "none")
+    doc = json.loads(out)
+    assert doc["reflections"] == "none" and doc["reflected"]["force_N"] == [0.0, 0.0, 0.0]
+
+
+def test_no_cache_leaves_no_file_and_info_reports_k_is(run_cli, craft_files, tmp_path):
+    mesh, materials = craft_files
+    cache = tmp_path / "cache"
+    code, out, err = run_cli("info", mesh, "-m", materials, "--cache-dir", cache, "--no-cache")
+    assert code == 0, err
+    assert "k_is" in out and "open sky" in out
+    assert not cache.exists() or not any(cache.iterdir())
+    code, out, _ = run_cli("info", mesh, "-m", materials, "--json", "--no-k-is")
+    assert "k_is" not in json.loads(out)

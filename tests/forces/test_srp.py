@@ -11,6 +11,7 @@ from forces.evaluate import srp
 from forces.radiation import (
     SOLAR_FLUX_1AU,
     SPEED_OF_LIGHT,
+    TOTALS,
     accumulate_forces,
     radiation_pressure,
     solar_flux,
@@ -86,7 +87,7 @@ def test_numba_kernel_equals_its_numpy_twin():
     facing = np.flatnonzero(cos > 0)
     ref = np.array([0.1, 0.2, -0.3])
     block = np.sort(rng.integers(0, 7, n))  # any grouping: the rows add up to the same totals
-    partials = np.zeros((7, 8))
+    partials = np.zeros((7, TOTALS))
     accumulate_forces(facing, fraction, centroids, normals, areas, optics, u, P, ref, block, partials)
     totals = partials.sum(axis=0)
     lit = facing[fraction[facing] > 0]
@@ -98,6 +99,8 @@ def test_numba_kernel_equals_its_numpy_twin():
     assert np.allclose(totals[3:6], np.cross(centroids[lit] - ref, forces).sum(axis=0), rtol=1e-12)
     assert np.isclose(totals[6], (areas[lit] * fraction[lit]).sum())
     assert np.isclose(totals[7], (areas[lit] * fraction[lit] * cos[lit]).sum())
+    absorptivity = 1 - rho[m] - sigma[m]
+    assert np.isclose(totals[8], (areas[lit] * fraction[lit] * cos[lit] * absorptivity).sum())
 
 
 @pytest.fixture(scope="module")

@@ -8,8 +8,9 @@ from geometry.errors import MaterialError, MeshError
 from geometry.materials import Material, parse_materials
 from geometry.mesh_data import MeshData
 from geometry.sides import ONE_SIDED, SOLID, TWO_SIDED
-from geometry.spacecraft import build_spacecraft
-from tests.conftest import ABSORBER, mesh_from_trimesh, quad_sheet
+from geometry.spacecraft import BLIND, ESCAPED, build_spacecraft
+from meshes import primitives
+from tests.conftest import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
 
 SPEC = parse_materials(
     {
@@ -193,3 +194,18 @@ def test_side_neighbours_pair_sides_across_shared_edges():
     a, b = craft.side_neighbours
     assert len(a) == 3 * craft.n_facets // 2
     assert np.bincount(np.r_[a, b]).tolist() == [3] * craft.n_facets
+
+
+def test_rays_strike_the_side_they_travel_against():
+    """Front side against the normal, back side with it; a one-sided back or a body's inside is blind."""
+    sheet = quad_sheet(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.0]]), "wing", 1)
+    craft = build_spacecraft(sheet, uniform=MIXED, two_sided=["wing"])
+    front, back = craft.facet_sides[0]
+    down, up = np.array([[0.0, 0, -1]]), np.array([[0.0, 0, 1]])
+    assert craft.struck_sides(np.array([0]), down)[0] == front
+    assert craft.struck_sides(np.array([0]), up)[0] == back
+    assert craft.struck_sides(np.array([-1]), up)[0] == ESCAPED
+    box = build_spacecraft(primitives.box((1.0, 1.0, 1.0)), uniform=MIXED)
+    outward = box.facet_normals[:1]
+    assert box.struck_sides(np.array([0]), outward)[0] == BLIND
+    assert np.all(box.facet_sides[:, 1] == -1)

@@ -42,6 +42,11 @@ def test_embree_and_brute_force_agree(clutter, threads, monkeypatch):
     assert np.mean(first[check] == brute_first) > 0.999
     assert 0.05 < hit.mean() < 0.95  # a real mix of hits and misses
     assert np.array_equal(hit, first >= 0)
+    facets, distance = embree.intersect(origins, directions)
+    brute_facets, brute_distance = brute.intersect(origins[check], directions[check])
+    assert np.array_equal(facets, first)
+    both = (facets[check] >= 0) & (facets[check] == brute_facets)
+    np.testing.assert_allclose(distance[check][both], brute_distance[both], rtol=1e-5, atol=1e-6)
 
 
 def test_origins_are_offset_off_the_surface_so_rays_leaving_it_escape():
