@@ -1,5 +1,6 @@
-"""Benchmark of SRP on the sample spacecraft: time per attitude, ray rate, raw Embree time, and the
-cost of inter-reflection (view-factor precompute once, then time per attitude with full reflections).
+"""Benchmark of SRP and drag on the sample spacecraft: time per attitude, ray rate, raw Embree time,
+the cost of inter-reflection (view-factor precompute once, then time per attitude with full
+reflections), and free-molecular drag per attitude against SRP with the same reflection setting.
 
 The raw figure casts exactly the rays an attitude casts (same origins, directions, threads) with
 nothing else, so ``overhead = time per attitude / raw Embree time`` is what sunwind adds around Embree.
@@ -19,6 +20,8 @@ import numpy as np
 from geometry.illumination import level_for_samples
 from geometry.spacecraft import Spacecraft
 
+from .atmosphere import circular_speed, nrlmsis
+from .drag import drag
 from .evaluate import srp
 from .radiosity import diffuse_exchange
 from .reflections import ReflectionSettings, model_view_factors
@@ -54,6 +57,11 @@ class BenchReport:
     full_per_attitude_median_ms: float
     full_over_direct: float
     beam_rays_per_attitude: float
+    drag_per_attitude_ms: float
+    drag_over_srp: float
+    drag_full_per_attitude_ms: float
+    drag_full_over_srp_full: float
+    drag_atmosphere: str
     peak_memory_MB: float
     machine: str
 
@@ -68,9 +76,9 @@ def _peak_MB() -> float:
 
 def _reflection_figures(
     craft: Spacecraft, directions: np.ndarray, samples: int, direct_times: list[float]
-) -> dict:
+) -> tuple[dict, list[float]]:
     """View-factor precompute (never from the disk cache), the diffuse balance's one-off solves, and
-    time per attitude with full reflections on the attitudes timed direct-only."""
+    time per attitude with full reflections on the attitudes timed direct-only; and those times [s]."""
     settings = ReflectionSettings("full", cache_dir=False)
     start = time.perf_counter()
     view = model_view_factors(craft, settings)
@@ -96,7 +104,29 @@ def _reflection_figures(
         "full_per_attitude_median_ms": 1e3 * float(np.median(times)),
         "full_over_direct": float(np.median(times) / np.median(direct_times)),
         "beam_rays_per_attitude": rays / len(directions),
-    }
+    }, times
+
+
+def _drag_figures(
+    craft: Spacecraft, directions: np.ndarray, samples: int, srp_times: list[float], srp_full: list[float]
+) -> dict:
+    """Drag per attitude (NRLMSIS at 400 km, circular-orbit speed, ``v_rel`` along each direction of
+    the SRP timing) without and with re-emission exchange, against SRP with the same setting."""
+    air = nrlmsis(400.0)
+    speed = circular_speed(400.0)
+    figures = {"drag_atmosphere": air.source}
+    for mode, reference, key in (("none", srp_times, "drag"), ("full", srp_full, "drag_full")):
+        settings = ReflectionSettings(mode, cache_dir=False)
+        drag(craft, speed * directions[0], air, samples=samples, reflections=settings)
+        times = []
+        for u in directions:
+            start = time.perf_counter()
+            drag(craft, speed * u, air, samples=samples, reflections=settings)
+            times.append(time.perf_counter() - start)
+        figures[f"{key}_per_attitude_ms"] = 1e3 * float(np.median(times))
+        ratio_key = "drag_over_srp" if mode == "none" else "drag_full_over_srp_full"
+        figures[ratio_key] = float(np.median(times) / np.median(reference))
+    return figures
 
 
 def sun_directions(count: int, seed: int = 2026) -> np.ndarray:
@@ -142,7 +172,8 @@ def benchmark(
         start = time.perf_counter()
         adaptive_rays += srp(craft, u, reflections="none").rays
         adaptive_times.append(time.perf_counter() - start)
-    reflections = _reflection_figures(craft, directions, samples, times)
+    reflections, full_times = _reflection_figures(craft, directions, samples, times)
+    gas = _drag_figures(craft, directions, samples, times, full_times)
     total, raw = float(np.sum(times)), float(np.sum(raw_times))
     return BenchReport(
         triangles=craft.n_facets,
@@ -163,6 +194,7 @@ def benchmark(
         adaptive_per_attitude_ms=1e3 * float(np.mean(adaptive_times)) if adaptive_times else 0.0,
         adaptive_rays_per_attitude=adaptive_rays / max(1, len(adaptive_times)),
         **reflections,
+        **gas,
         peak_memory_MB=_peak_MB(),
         machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
     )

@@ -5,13 +5,14 @@ from __future__ import annotations
 import json
 import sys
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
 import click
 import numpy as np
 
 from geometry.errors import InputError, SunwindError
-from geometry.materials import Material
+from geometry.materials import GSI_MODELS, GasSurface, Material
 from geometry.spacecraft import Spacecraft, load_spacecraft
 
 
@@ -74,30 +75,48 @@ def reflection_settings(mode: str, cutoff: float, depth: int, view_rays, cache_d
     return ReflectionSettings(mode, cutoff, depth, view_rays, cache)
 
 
-def uniform_material(rho: float | None, beta: float | None, sigma: float | None) -> Material | None:
-    """The command-line uniform material, or None when no flag is given."""
+def uniform_material(
+    rho: float | None, beta: float | None, sigma: float | None, gas: dict | None = None
+) -> Material | None:
+    """The command-line uniform material, or None when no flag is given.
+
+    ``gas`` holds the gas-surface flags given (keys of :data:`geometry.materials.GAS_DEFAULTS`); a
+    drag-only run may give them without optics, and the optics are then not used (all zero).
+    """
     if rho is None and beta is None and sigma is None:
-        return None
+        if not gas:
+            return None
+        return Material.checked(
+            "uniform", {"reflectivity": 0.0, "specular_fraction": 0.0, **gas}, "command line"
+        )
     if rho is None or beta is None:
         raise InputError(
             "a uniform material needs --reflectivity and --specular-fraction",
             hint="e.g. --reflectivity 0.3 --specular-fraction 0.5 [--transmissivity 0]",
         )
-    values = {"reflectivity": rho, "specular_fraction": beta, "transmissivity": sigma or 0.0}
+    values = {"reflectivity": rho, "specular_fraction": beta, "transmissivity": sigma or 0.0, **(gas or {})}
     return Material.checked("uniform", values, source="command line")
 
 
-def load_model(options: dict) -> Spacecraft:
-    """Load the mesh named by :func:`model_options`; print repairs made as notices on stderr."""
+def load_model(options: dict, gas: dict | None = None) -> Spacecraft:
+    """Load the mesh named by :func:`model_options`; print repairs made as notices on stderr.
+
+    Gas-surface flags (``gas``) make the uniform material's gas law and override the gas law of every
+    material of a materials file.
+    """
+    optics = options.pop("reflectivity"), options.pop("specular_fraction"), options.pop("transmissivity")
     craft = load_spacecraft(
         options.pop("mesh"),
         options.pop("materials"),
         unit=options.pop("unit"),
-        uniform=uniform_material(
-            options.pop("reflectivity"), options.pop("specular_fraction"), options.pop("transmissivity")
-        ),
+        uniform=uniform_material(*optics, gas),
         two_sided=options.pop("two_sided"),
     )
+    if gas:
+        surface = GasSurface.checked("command line", gas)
+        fields = {"gsi": "model", "wall_temperature": "wall_temperature_K"}
+        changes = {fields.get(key, key): getattr(surface, fields.get(key, key)) for key in gas}
+        craft = replace(craft, materials=craft.materials.with_gas(**changes))
     for notice in craft.notices:
         print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
     return craft
@@ -251,6 +270,286 @@ def srp(
         print(f"  view factors     {view.rays_per_side} rays per side, {view.origin}")
 
 
+def gas_options(command: Callable) -> Callable:
+    """Gas-surface flags: the uniform material's gas law, or an override of every material's."""
+    options = [
+        click.option(
+            "--gsi",
+            type=click.Choice(GSI_MODELS),
+            help="Gas-surface model [default sentman, or the materials file's].",
+        ),
+        click.option("--energy-accommodation", type=float, help="alpha_E of sentman and dria [default 1]."),
+        click.option(
+            "--normal-accommodation",
+            type=float,
+            help="sigma_n of schaaf-chambre, alpha_n of cll [default 1].",
+        ),
+        click.option(
+            "--tangential-accommodation", type=float, help="sigma_t of schaaf-chambre and cll [default 1]."
+        ),
+        click.option("--wall-temperature", type=float, help="Wall temperature T_w [K] [default 300]."),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def flow_options(command: Callable) -> Callable:
+    """The flow velocity and the atmosphere (see :mod:`forces.environment`)."""
+    options = [
+        click.option(
+            "--velocity",
+            nargs=3,
+            type=float,
+            default=None,
+            metavar="X Y Z",
+            help="v_rel: spacecraft velocity relative to the atmosphere, body frame [m/s].",
+        ),
+        click.option(
+            "--flow-azel",
+            nargs=2,
+            type=float,
+            default=None,
+            metavar="AZ EL",
+            help="Direction of v_rel [deg], az = atan2(y, x), el = asin(z); with --speed or --altitude.",
+        ),
+        click.option("--speed", type=float, help="|v_rel| [m/s] [default: circular orbit at --altitude]."),
+        click.option(
+            "--corotating", is_flag=True, help="Subtract the Earth-rotating atmosphere from the orbit speed."
+        ),
+        click.option(
+            "--heading",
+            type=float,
+            default=90.0,
+            show_default=True,
+            help="With --corotating: direction of motion [deg from north, 90 = east].",
+        ),
+        click.option("--altitude", type=float, help="Altitude [km] for NRLMSIS 2.1 (and the orbit speed)."),
+        click.option("--lat", type=float, default=0.0, show_default=True, help="Geodetic latitude [deg]."),
+        click.option("--lon", type=float, default=0.0, show_default=True, help="Longitude [deg]."),
+        click.option("--time", default="2024-01-01T00:00:00Z", show_default=True, help="UTC time, ISO 8601."),
+        click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
+        click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
+        click.option("--ap", type=float, default=4.0, show_default=True, help="Daily Ap index."),
+        click.option("--density", type=float, help="Explicit atmosphere: mass density [kg/m^3]."),
+        click.option("--temperature", type=float, help="Explicit atmosphere: temperature [K]."),
+        click.option("--composition", help='Explicit atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),
+        click.option(
+            "--normalise-composition", is_flag=True, help="Rescale mole fractions that do not sum to 1."
+        ),
+        click.option(
+            "--ref-area", type=float, help="Coefficient reference area [m^2] [default total area / 4]."
+        ),
+        click.option(
+            "--ref-length",
+            type=float,
+            help="Moment-coefficient reference length [m] [default largest extent].",
+        ),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+_GAS_FLAGS = (
+    "gsi",
+    "energy_accommodation",
+    "normal_accommodation",
+    "tangential_accommodation",
+    "wall_temperature",
+)
+_FLOW_FLAGS = ("velocity", "flow_azel", "speed", "corotating", "heading")
+_AIR_FLAGS = {
+    "altitude": "altitude_km",
+    "lat": "latitude_deg",
+    "lon": "longitude_deg",
+    "time": "time",
+    "f107": "f107",
+    "f107a": "f107a",
+    "ap": "ap",
+    "density": "density_kg_m3",
+    "temperature": "temperature_K",
+    "composition": "composition",
+    "normalise_composition": "normalise_composition",
+}
+
+
+def free_stream(options: dict):
+    """Pop the flow, atmosphere and gas flags from ``options``: ``(v_rel, atmosphere, gas flags)``.
+
+    Everything is checked here, before a mesh is loaded.
+    """
+    from forces.environment import AtmosphereOptions, FlowOptions, atmosphere, flow_velocity
+
+    gas = {key: value for key in _GAS_FLAGS if (value := options.pop(key)) is not None}
+    if gas:
+        GasSurface.checked("command line", gas)
+    flow = FlowOptions(*(options.pop(key) for key in _FLOW_FLAGS))
+    air = AtmosphereOptions(**{field: options.pop(flag) for flag, field in _AIR_FLAGS.items()})
+    return flow_velocity(flow, air), atmosphere(air), gas
+
+
+def _print_drag(result, heading: str) -> None:
+    """The human-readable drag report."""
+    from forces.drag_result import VALIDITY
+
+    air = result.atmosphere
+    cd, cs, cl = result.force_coefficients
+    az, el = result.to_json()["flow_azel_deg"]
+    print(heading)
+    print("  frame            body frame of the mesh; SI units")
+    print(f"  v_rel   [m/s]    {_vec(result.velocity_m_s, '{:+.3f}')}  az {az:.3f} deg  el {el:.3f} deg")
+    print(f"  atmosphere       {air.source}")
+    print(
+        f"                   rho {air.density_kg_m3:.6e} kg/m^3, T {air.temperature_K:.1f} K, "
+        f"q = {result.dynamic_pressure_Pa:.6e} Pa, speed ratio {result.speed_ratio:.3f}"
+    )
+    print(f"  force   [N]      {_vec(result.force_N)}  |F| = {np.linalg.norm(result.force_N):.6e}")
+    print(f"    panel law      {_vec(result.direct_force_N)}")
+    print(f"    re-emission    {_vec(result.reflected_force_N)}")
+    print(f"  torque  [N m]    {_vec(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
+    print(f"  about   [m]      {_vec(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
+    print(
+        f"  coefficients     CD {cd:.6f}  CL {cl:+.6f}  CS {cs:+.6f}  CM {_vec(result.moment_coefficients)}"
+    )
+    print(
+        f"{'':19}A_ref {result.reference_area_m2:.6g} m^2, L_ref {result.reference_length_m:.6g} m; "
+        "C = F/(q A_ref), C_M = M/(q A_ref L_ref)"
+    )
+    print(f"  projected area   {result.projected_area_m2:.6f} m^2 (normal to the flow)")
+    k_is = "n/a" if result.reflected.k_is is None else f"{result.reflected.k_is:.4f}"
+    print(f"  re-emission      {result.reflections} (asked: {result.settings.mode}); molecular K_IS = {k_is}")
+    print(f"  shadow rays      {result.rays} ({result.sampling})")
+    print(f"  validity         {VALIDITY}")
+
+
+@app.command()
+@model_options
+@gas_options
+@flow_options
+@click.option(
+    "--ref-point", nargs=3, type=float, default=None, metavar="X Y Z", help="Torque reference point [m]."
+)
+@click.option("--samples", type=int, help="Shadow-ray points per facet side [default: adaptive].")
+@click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Adaptive sampling threshold.")
+@click.option(
+    "--reflections",
+    type=click.Choice(["none", "full", "auto"]),
+    default="auto",
+    show_default=True,
+    help="Re-emitted molecules striking other sides: none; full; auto = full when K_IS >= 0.1.",
+)
+@view_factor_options
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def drag(
+    ref_point, samples, tolerance, reflections, view_rays, cache_dir, no_cache, as_json, **options
+) -> None:
+    """Free-molecular force and torque for one flow direction: gas-surface law, shadowing, re-emission."""
+    from forces.drag import drag as evaluate_drag
+
+    velocity, air, gas = free_stream(options)
+    settings = reflection_settings(reflections, 1e-6, 32, view_rays, cache_dir, no_cache)
+    craft = load_model(options, gas)
+    result = evaluate_drag(
+        craft,
+        velocity,
+        air,
+        reference_point_m=ref_point,
+        samples=samples,
+        tolerance=tolerance,
+        reflections=settings,
+        reference_area_m2=options.pop("ref_area"),
+        reference_length_m=options.pop("ref_length"),
+    )
+    if as_json:
+        header = {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
+        print(json.dumps({**header, **result.to_json(), "notices": list(craft.notices)}, indent=2))
+        return
+    _print_drag(result, f"sunwind drag: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+
+
+@app.command()
+@model_options
+@gas_options
+@flow_options
+@click.option("--sun", nargs=3, type=float, default=None, metavar="X Y Z", help="Sun direction, body frame.")
+@click.option(
+    "--sun-azel", nargs=2, type=float, default=None, metavar="AZ EL", help="Sun azimuth, elevation [deg]."
+)
+@click.option("--flux", type=float, help="Solar flux [W/m^2] [default 1361, i.e. 1 au].")
+@click.option("--distance-au", type=float, help="Distance from the Sun [au].")
+@click.option(
+    "--ref-point", nargs=3, type=float, default=None, metavar="X Y Z", help="Torque reference point [m]."
+)
+@click.option("--samples", type=int, help="Shadow-ray points per facet side [default: adaptive].")
+@click.option("--tolerance", type=float, default=1e-3, show_default=True, help="Adaptive sampling threshold.")
+@click.option(
+    "--reflections",
+    type=click.Choice(["none", "full", "auto"]),
+    default="auto",
+    show_default=True,
+    help="Inter-reflection of light and of re-emitted molecules (auto: each by its own K_IS).",
+)
+@view_factor_options
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object: srp, drag, total.")
+def forces(
+    sun,
+    sun_azel,
+    flux,
+    distance_au,
+    ref_point,
+    samples,
+    tolerance,
+    reflections,
+    view_rays,
+    cache_dir,
+    no_cache,
+    as_json,
+    **options,
+) -> None:
+    """Solar-radiation pressure and free-molecular drag together for one attitude, and their total."""
+    from forces.drag import drag as evaluate_drag
+    from forces.evaluate import srp as evaluate_srp
+    from forces.radiation import solar_flux
+    from geometry.directions import azel_to_vector, unit_vector
+
+    if (sun is None) == (sun_azel is None):
+        raise InputError("give the Sun direction with --sun X Y Z or --sun-azel AZ EL (one of them)")
+    sun_vector = unit_vector(sun, "--sun") if sun is not None else azel_to_vector(*sun_azel, "--sun-azel")
+    solar_flux(flux, distance_au)
+    velocity, air, gas = free_stream(options)
+    settings = reflection_settings(reflections, 1e-6, 32, view_rays, cache_dir, no_cache)
+    sizes = {"reference_area_m2": options.pop("ref_area"), "reference_length_m": options.pop("ref_length")}
+    craft = load_model(options, gas)
+    common = {
+        "reference_point_m": ref_point,
+        "samples": samples,
+        "tolerance": tolerance,
+        "reflections": settings,
+    }
+    light = evaluate_srp(craft, sun_vector, flux_W_m2=flux, distance_au=distance_au, **common)
+    gas_result = evaluate_drag(craft, velocity, air, **common, **sizes)
+    force = light.force_N + gas_result.force_N
+    torque = light.torque_Nm + gas_result.torque_Nm
+    if as_json:
+        total = {
+            "force_N": force.tolist(),
+            "torque_Nm": torque.tolist(),
+            "reference_point_m": light.reference_point_m.tolist(),
+            "frame": "body frame of the mesh",
+        }
+        header = {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
+        document = {**header, "srp": light.to_json(), "drag": gas_result.to_json(), "total": total}
+        print(json.dumps({**document, "notices": list(craft.notices)}, indent=2))
+        return
+    print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+    print(f"  total force  [N]    {_vec(force)}  |F| = {np.linalg.norm(force):.6e}")
+    print(f"  total torque [N m]  {_vec(torque)}  about {_vec(light.reference_point_m, '{:+.6f}')} m")
+    print(f"  srp force    [N]    {_vec(light.force_N)}  (sun {_vec(light.sun_vector, '{:+.4f}')})")
+    print(f"  srp torque   [N m]  {_vec(light.torque_Nm)}")
+    _print_drag(gas_result, "  drag:")
+
+
 def _interference_report(model: dict, uniform: Material | None, settings) -> dict:
     """``k_is`` and view-factor figures of the mesh for ``sunwind info``; a note where it cannot load."""
     from forces.reflections import interference, model_view_factors
@@ -279,7 +578,15 @@ def _interference_report(model: dict, uniform: Material | None, settings) -> dic
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Entry point: run the app; report a bad input as one line on stderr with a non-zero exit."""
+    """Entry point: run the app; report a bad input as one line on stderr with a non-zero exit, and a
+    warning (a result outside a model's range, still given) as one line."""
+    import warnings
+
+    def one_line(message, category, filename, lineno, file=None, line=None) -> None:
+        print(f"sunwind: warning: {message}", file=sys.stderr)
+
+    shown = warnings.showwarning
+    warnings.showwarning = one_line
     try:
         app.main(args=argv, prog_name="sunwind", standalone_mode=False)
     except SunwindError as error:
@@ -298,6 +605,8 @@ def main(argv: list[str] | None = None) -> None:
     except KeyboardInterrupt:
         print("sunwind: interrupted", file=sys.stderr)
         sys.exit(130)
+    finally:
+        warnings.showwarning = shown
 
 
 @app.command()
@@ -366,7 +675,8 @@ def info(view_rays, cache_dir, no_cache, no_k_is, as_json, **model) -> None:
 @click.option("--samples", type=int, default=1, show_default=True, help="Shadow-ray points per side.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
-    """Time SRP per attitude: direct against raw Embree on the same rays, then with full reflections."""
+    """Time SRP per attitude (direct against raw Embree on the same rays, then with full reflections)
+    and free-molecular drag per attitude against SRP with the same reflection setting."""
     import time
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
@@ -425,6 +735,14 @@ def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
         f"  full reflections        {report.full_per_attitude_ms:.2f} ms per attitude "
         f"(median {report.full_per_attitude_median_ms:.2f}), {report.full_over_direct:.2f}x direct-only, "
         f"{report.beam_rays_per_attitude:.0f} beam rays"
+    )
+    print(
+        f"  drag, no re-emission    {report.drag_per_attitude_ms:.2f} ms per attitude (median), "
+        f"{report.drag_over_srp:.2f}x SRP direct-only"
+    )
+    print(
+        f"  drag, full re-emission  {report.drag_full_per_attitude_ms:.2f} ms per attitude (median), "
+        f"{report.drag_full_over_srp_full:.2f}x SRP with full reflections"
     )
     print(
         f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "

@@ -74,19 +74,24 @@ class DiffuseExchange:
         View factors of ``craft``'s sides.
     """
 
-    def __init__(self, craft: Spacecraft, view: ViewFactors) -> None:
+    def __init__(self, craft: Spacecraft, view: ViewFactors, *, re_emit_all: bool = False) -> None:
         self.craft = craft
         self.view = view
-        rho, _, sigma = craft.side_optics.T
         n = craft.n_sides
-        facet_sides = craft.facet_sides[craft.side_facet]
-        other = np.where(craft.side_sign > 0, facet_sides[:, 1], facet_sides[:, 0])
-        passes = (craft.facet_kind[craft.side_facet] == TWO_SIDED) & (other >= 0) & (sigma > 0)
-        # T[i, i] = rho_i; T[other(k), k] = sigma_k: light sent through a sheet leaves its other side
-        rows = np.r_[np.arange(n), other[passes]]
-        cols = np.r_[np.arange(n), np.flatnonzero(passes)]
-        self.transfer = scipy.sparse.csr_matrix((np.r_[rho, sigma[passes]], (rows, cols)), shape=(n, n))
-        self.absorptance = 1.0 - rho - np.where(passes, sigma, 0.0)
+        if re_emit_all:
+            # rarefied gas: every molecule that lands is re-emitted (rho = 1, nothing passes a sheet)
+            self.transfer = scipy.sparse.identity(n, format="csr")
+            self.absorptance = np.zeros(n)
+        else:
+            rho, _, sigma = craft.side_optics.T
+            facet_sides = craft.facet_sides[craft.side_facet]
+            other = np.where(craft.side_sign > 0, facet_sides[:, 1], facet_sides[:, 0])
+            passes = (craft.facet_kind[craft.side_facet] == TWO_SIDED) & (other >= 0) & (sigma > 0)
+            # T[i, i] = rho_i; T[other(k), k] = sigma_k: light sent through a sheet leaves its other side
+            rows = np.r_[np.arange(n), other[passes]]
+            cols = np.r_[np.arange(n), np.flatnonzero(passes)]
+            self.transfer = scipy.sparse.csr_matrix((np.r_[rho, sigma[passes]], (rows, cols)), shape=(n, n))
+            self.absorptance = 1.0 - rho - np.where(passes, sigma, 0.0)
         #: ``T F^T``: the diffuse power each side re-emits per watt each side emits; ``M = I - coupling``
         self.coupling = (self.transfer @ view.matrix.T).tocsr()
 
@@ -138,10 +143,14 @@ class DiffuseExchange:
         absorbed = view.matrix @ self.absorptance + view.blind_fraction
         return np.column_stack([view.escape_vector, moment, view.escape_fraction, absorbed])
 
+    def adjoint(self, weights: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T E`` for every source ``E``."""
+        return self._solve(self.coupling.T.tocsr(), np.asarray(weights, dtype=np.float64))
+
     @cached_property
     def responses(self) -> NDArray[np.float64]:
         """``g = M^-T w`` for the :attr:`functionals`, (n_sides, 8): totals are ``g^T E``."""
-        return self._solve(self.coupling.T.tocsr(), self.functionals)
+        return self.adjoint(self.functionals)
 
     def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """Escaping force and torque about ``reference_m`` and the power split, for sources ``E`` [W]."""

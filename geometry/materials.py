@@ -7,7 +7,7 @@ import math
 import os
 import sys
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -20,12 +20,88 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-#: Keys of a ``[materials.NAME]`` table, with the symbol METHOD.md uses.
+#: Optical keys of a ``[materials.NAME]`` table, with the symbol METHOD.md uses.
 MATERIAL_KEYS = {
     "reflectivity": "rho",
     "specular_fraction": "beta",
     "transmissivity": "sigma",
 }
+#: Gas-surface interaction models (``gsi``), in the order of their codes in :class:`MaterialTable`.
+GSI_MODELS = ("sentman", "dria", "schaaf-chambre", "cll", "specular")
+#: Gas-surface keys of a ``[materials.NAME]`` table and their defaults (README "Materials").
+GAS_DEFAULTS = {
+    "gsi": "sentman",
+    "energy_accommodation": 1.0,  # alpha_E (sentman, dria)
+    "normal_accommodation": 1.0,  # sigma_n (schaaf-chambre), alpha_n (cll)
+    "tangential_accommodation": 1.0,  # sigma_t (schaaf-chambre, cll)
+    "wall_temperature": 300.0,  # T_w [K]
+}
+
+
+@dataclass(frozen=True)
+class GasSurface:
+    """How a surface finish meets the rarefied gas (METHOD.md "Free-molecular flow").
+
+    Attributes
+    ----------
+    model : str
+        One of :data:`GSI_MODELS`.
+    energy_accommodation : float
+        ``alpha_E`` [-] in [0, 1], of the diffuse models ``sentman`` and ``dria``.
+    normal_accommodation : float
+        ``sigma_n`` of ``schaaf-chambre``, normal energy accommodation ``alpha_n`` of ``cll`` [-].
+    tangential_accommodation : float
+        ``sigma_t`` [-] of ``schaaf-chambre`` and ``cll``.
+    wall_temperature_K : float
+        ``T_w`` [K], > 0.
+    """
+
+    model: str = GAS_DEFAULTS["gsi"]
+    energy_accommodation: float = GAS_DEFAULTS["energy_accommodation"]
+    normal_accommodation: float = GAS_DEFAULTS["normal_accommodation"]
+    tangential_accommodation: float = GAS_DEFAULTS["tangential_accommodation"]
+    wall_temperature_K: float = GAS_DEFAULTS["wall_temperature"]
+
+    @classmethod
+    def checked(cls, where: str, values: Mapping[str, object], source: str | None = None) -> GasSurface:
+        """Gas-surface parameters from ``GAS_DEFAULTS`` keys (missing keys take their defaults).
+
+        ``where`` names the owner in messages, e.g. "material 'white_paint'" or "command line".
+        """
+        unknown = sorted(set(values) - set(GAS_DEFAULTS))
+        if unknown:
+            raise MaterialError(f"{where} has unknown gas key '{unknown[0]}'", path=source)
+        model = values.get("gsi", GAS_DEFAULTS["gsi"])
+        if model not in GSI_MODELS:
+            raise MaterialError(
+                f"{where}: gsi = {model!r} is not a gas-surface model",
+                path=source,
+                hint=f"use one of {', '.join(GSI_MODELS)}",
+            )
+        numbers = {}
+        for key in ("energy_accommodation", "normal_accommodation", "tangential_accommodation"):
+            numbers[key] = _number(where, key, values.get(key, GAS_DEFAULTS[key]), source, 0.0, 1.0)
+        wall = _number(where, "wall_temperature", values.get("wall_temperature", 300.0), source, 0.0, None)
+        return cls(model=str(model), wall_temperature_K=wall, **numbers)
+
+    @property
+    def code(self) -> int:
+        """Index of :attr:`model` in :data:`GSI_MODELS`."""
+        return GSI_MODELS.index(self.model)
+
+
+def _number(where: str, key: str, value: object, source: str | None, low: float, high: float | None) -> float:
+    """``value`` as a float in ``[low, high]`` (``(low, inf)`` when ``high`` is None), else an error."""
+    interval = f"[{low:g}, {high:g}]" if high is not None else f"> {low:g}"
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise MaterialError(
+            f"{where}: {key} = {value!r} is not a number", path=source, hint=f"use {interval}"
+        )
+    inside = low <= value <= high if high is not None else value > low
+    if not math.isfinite(value) or not inside:
+        unit = " K" if high is None else ""
+        raise MaterialError(f"{where}: {key} = {value}{unit} is outside {interval}", path=source)
+    return float(value)
 
 
 @dataclass(frozen=True)
@@ -41,24 +117,29 @@ class Material:
         ``beta`` [-], specular share of the reflected power, in [0, 1].
     transmissivity : float
         ``sigma`` [-], share transmitted, in [0, 1]; absorptivity is ``1 - rho - sigma``.
+    gas : GasSurface
+        Gas-surface interaction; defaults as :data:`GAS_DEFAULTS`.
     """
 
     name: str
     reflectivity: float
     specular_fraction: float
     transmissivity: float = 0.0
+    gas: GasSurface = GasSurface()
 
     @classmethod
     def checked(cls, name: str, values: Mapping[str, object], source: str | None = None) -> Material:
         """Build a material from a key -> value mapping, rejecting unknown keys and bad values."""
         where = f"material '{name}'"
-        unknown = sorted(set(values) - set(MATERIAL_KEYS))
+        unknown = sorted(set(values) - set(MATERIAL_KEYS) - set(GAS_DEFAULTS))
         if unknown:
             raise MaterialError(
                 f"{where} has unknown key '{unknown[0]}'",
                 path=source,
-                hint=f"the keys are {', '.join(MATERIAL_KEYS)}",
+                hint=f"the keys are {', '.join([*MATERIAL_KEYS, *GAS_DEFAULTS])}",
             )
+        gas = GasSurface.checked(where, {k: v for k, v in values.items() if k in GAS_DEFAULTS}, source)
+        values = {k: v for k, v in values.items() if k in MATERIAL_KEYS}
         missing = [k for k in ("reflectivity", "specular_fraction") if k not in values]
         if missing:
             raise MaterialError(
@@ -77,7 +158,7 @@ class Material:
                     f"{where}: {key} = {value} is outside [0, 1]", path=source, hint="use a number in [0, 1]"
                 )
             numbers[key] = float(value)
-        material = cls(name=name, **numbers)
+        material = cls(name=name, gas=gas, **numbers)
         if material.reflectivity + material.transmissivity > 1.0 + 1e-12:
             raise MaterialError(
                 f"{where}: reflectivity + transmissivity = "
@@ -101,6 +182,7 @@ class MaterialTable:
     rho: NDArray[np.float64]
     beta: NDArray[np.float64]
     sigma: NDArray[np.float64]
+    gas: tuple[GasSurface, ...] = ()
 
     @classmethod
     def from_materials(cls, materials: list[Material]) -> MaterialTable:
@@ -116,11 +198,25 @@ class MaterialTable:
             rho=column("reflectivity"),
             beta=column("specular_fraction"),
             sigma=column("transmissivity"),
+            gas=tuple(m.gas for m in materials),
         )
+
+    def with_gas(self, **changes: object) -> MaterialTable:
+        """This table with the given :class:`GasSurface` fields set on every material."""
+        gas = tuple(replace(g, **changes) for g in self.gas)
+        return replace(self, gas=gas)
+
+    def gas_column(self, attr: str) -> NDArray:
+        """One :class:`GasSurface` field of every material, (n_materials,); ``code`` for the model."""
+        return np.array([getattr(g, attr) for g in self.gas])
 
     def __getitem__(self, index: int) -> Material:
         return Material(
-            self.names[index], float(self.rho[index]), float(self.beta[index]), float(self.sigma[index])
+            self.names[index],
+            float(self.rho[index]),
+            float(self.beta[index]),
+            float(self.sigma[index]),
+            self.gas[index],
         )
 
     def __len__(self) -> int:

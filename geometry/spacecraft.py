@@ -147,6 +147,17 @@ class Spacecraft:
         )
 
     @cached_property
+    def side_gas(self) -> dict[str, NDArray]:
+        """Gas-surface parameters of each side's material, arrays (n_sides,): ``code`` (int8 index into
+        :data:`geometry.materials.GSI_MODELS`), ``energy_accommodation``, ``normal_accommodation``,
+        ``tangential_accommodation`` [-] and ``wall_temperature_K`` [K]."""
+        m = self.materials
+        fields = ("energy_accommodation", "normal_accommodation", "tangential_accommodation")
+        columns = {"code": m.gas_column("code").astype(np.int8)}
+        columns.update({f: m.gas_column(f).astype(np.float64) for f in (*fields, "wall_temperature_K")})
+        return {name: _frozen(np.ascontiguousarray(col[self.side_material])) for name, col in columns.items()}
+
+    @cached_property
     def side_centroids(self) -> NDArray[np.float64]:
         """Centroid of each side [m], (n_sides, 3)."""
         return _frozen(self.facet_centroids[self.side_facet])
