@@ -234,6 +234,18 @@ class Atmosphere:
         speed = _finite(speed_m_s, "speed", "m/s", minimum=0.0)
         return speed / math.sqrt(2.0 * BOLTZMANN * self.temperature_K / self.mean_mass_kg)
 
+    @classmethod
+    def from_json(cls, document: dict) -> Atmosphere:
+        """The atmosphere :meth:`to_json` describes (numbers round-trip exactly through JSON)."""
+        return cls(
+            document["number_density_m3"],
+            document["temperature_K"],
+            document["source"],
+            document.get("altitude_km"),
+            document.get("inputs", {}),
+            document.get("model_density_kg_m3"),
+        )
+
     def to_json(self) -> dict:
         """A JSON-ready description: density [kg/m^3], temperature [K], per-species number density [m^-3]."""
         out: dict = {

@@ -198,3 +198,108 @@ def benchmark(
         peak_memory_MB=_peak_MB(),
         machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
     )
+
+
+@dataclass(frozen=True)
+class SweepReport:
+    """Sweep benchmark figures; times in seconds."""
+
+    triangles: int
+    step_deg: float
+    grid_nodes: int
+    distinct_directions: int
+    samples_per_side: int
+    reflections: str
+    precompute_s: float
+    sweep_s: float
+    srp_per_attitude_ms: float
+    drag_per_attitude_ms: float
+    dask_attitudes: int
+    dask_1_worker_s: float
+    dask_2_workers_s: float
+    dask_speedup: float
+    dask_identical: bool
+    machine: str
+
+    def to_json(self) -> dict:
+        return asdict(self)
+
+
+def sweep_benchmark(
+    triangles: int = 100_000,
+    step_deg: float = 5.0,
+    dask_attitudes: int = 64,
+    samples: int = 1,
+    progress: Callable[[int, int], None] | None = None,
+) -> SweepReport:
+    """A whole grid sweep of SRP and drag with full reflections on the generated sample, then the
+    speed-up of a local Dask cluster of 2 one-thread workers over 1 on ``dask_attitudes`` of its
+    directions (timed once every worker has the model; results checked identical)."""
+    import tempfile
+    from pathlib import Path
+
+    from meshes.samples import write_sample_files
+
+    from .attitudes import direction_grid
+    from .distributed import timed_on_local_cluster
+    from .sweep import DragSetup, Job, ModelRecipe, SrpSetup, precompute, run_sweep
+
+    grid = direction_grid(step_deg)
+    directions = grid.distinct[0]
+    with tempfile.TemporaryDirectory(prefix="sunwind-bench-") as directory:
+        files = write_sample_files(Path(directory), triangles)
+        recipe = ModelRecipe(str(files["obj"]), str(files["toml"]))
+        craft = recipe.load()
+        full = ReflectionSettings("full")
+        jobs = [
+            Job("srp", directions, SrpSetup(1361.0, samples=samples, reflections=full)),
+            Job(
+                "drag",
+                directions,
+                DragSetup(circular_speed(400.0), nrlmsis(400.0), samples=samples, reflections=full),
+            ),
+        ]
+        start = time.perf_counter()
+        precompute(craft, jobs)
+        evaluate = {job.kind: job.setup.evaluate for job in jobs}
+        evaluate["srp"](craft, directions[0])  # compiles what the first attitude compiles
+        evaluate["drag"](craft, directions[0])
+        precompute_s = time.perf_counter() - start
+        total = 2 * len(directions)
+        timings: dict[str, float] = {}
+        start = time.perf_counter()
+        for job in jobs:
+            began = time.perf_counter()
+            run_sweep(
+                recipe,
+                [job],
+                craft=craft,
+                progress=progress
+                and (
+                    lambda done, k=job.kind: progress(done + (len(directions) if k == "drag" else 0), total)
+                ),
+            )
+            timings[job.kind] = time.perf_counter() - began
+        sweep_s = time.perf_counter() - start
+        subset = [Job(job.kind, directions[:dask_attitudes], job.setup) for job in jobs]
+        pending = [(job, lo, hi) for job in subset for lo, hi in job.chunks(8)]
+        one, first = timed_on_local_cluster(recipe, pending, 1)
+        two, second = timed_on_local_cluster(recipe, pending, 2)
+    return SweepReport(
+        triangles=craft.n_facets,
+        step_deg=grid.step_deg,
+        grid_nodes=grid.vectors.shape[0] * grid.vectors.shape[1],
+        distinct_directions=len(directions),
+        samples_per_side=level_for_samples(samples) ** 2,
+        reflections="full",
+        precompute_s=precompute_s,
+        sweep_s=sweep_s,
+        srp_per_attitude_ms=1e3 * timings["srp"] / len(directions),
+        drag_per_attitude_ms=1e3 * timings["drag"] / len(directions),
+        dask_attitudes=2 * min(dask_attitudes, len(directions)),
+        dask_1_worker_s=one,
+        dask_2_workers_s=two,
+        dask_speedup=one / two,
+        dask_identical=all(np.array_equal(a, b) for a, b in zip(first, second, strict=True)),
+        machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
+    )

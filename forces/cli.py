@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import sys
 from collections.abc import Callable
-from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -98,25 +97,35 @@ def uniform_material(
     return Material.checked("uniform", values, source="command line")
 
 
-def load_model(options: dict, gas: dict | None = None) -> Spacecraft:
-    """Load the mesh named by :func:`model_options`; print repairs made as notices on stderr.
+def model_recipe(options: dict, gas: dict | None = None):
+    """Pop the :func:`model_options` from ``options``: a :class:`forces.sweep.ModelRecipe`.
 
     Gas-surface flags (``gas``) make the uniform material's gas law and override the gas law of every
     material of a materials file.
     """
+    from forces.sweep import ModelRecipe
+
     optics = options.pop("reflectivity"), options.pop("specular_fraction"), options.pop("transmissivity")
-    craft = load_spacecraft(
-        options.pop("mesh"),
-        options.pop("materials"),
+    materials = options.pop("materials")
+    return ModelRecipe(
+        mesh=str(options.pop("mesh")),
+        materials=None if materials is None else str(materials),
         unit=options.pop("unit"),
         uniform=uniform_material(*optics, gas),
-        two_sided=options.pop("two_sided"),
+        two_sided=tuple(options.pop("two_sided")),
+        gas=tuple((gas or {}).items()),
     )
-    if gas:
-        surface = GasSurface.checked("command line", gas)
-        fields = {"gsi": "model", "wall_temperature": "wall_temperature_K"}
-        changes = {fields.get(key, key): getattr(surface, fields.get(key, key)) for key in gas}
-        craft = replace(craft, materials=craft.materials.with_gas(**changes))
+
+
+def load_model(options: dict, gas: dict | None = None) -> Spacecraft:
+    """Load the mesh named by :func:`model_options` (see :func:`model_recipe`); print repairs made as
+    notices on stderr."""
+    return loaded(model_recipe(options, gas))
+
+
+def loaded(recipe) -> Spacecraft:
+    """The spacecraft of a :class:`forces.sweep.ModelRecipe`, its repair notices printed on stderr."""
+    craft = recipe.load()
     for notice in craft.notices:
         print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
     return craft
@@ -673,10 +682,17 @@ def info(view_rays, cache_dir, no_cache, no_k_is, as_json, **model) -> None:
 )
 @click.option("--attitudes", type=int, default=50, show_default=True, help="Sun directions timed.")
 @click.option("--samples", type=int, default=1, show_default=True, help="Shadow-ray points per side.")
+@click.option(
+    "--sweep",
+    is_flag=True,
+    help="Time a whole grid sweep (SRP and drag, full reflections) and Dask 2 workers over 1 instead.",
+)
+@click.option("--step", type=float, default=5.0, show_default=True, help="Grid step of --sweep [deg].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
+def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_json) -> None:
     """Time SRP per attitude (direct against raw Embree on the same rays, then with full reflections)
-    and free-molecular drag per attitude against SRP with the same reflection setting."""
+    and free-molecular drag per attitude against SRP with the same reflection setting; or, with
+    --sweep, a whole attitude sweep of the generated sample."""
     import time
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
@@ -686,6 +702,9 @@ def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
 
     if attitudes < 1:
         raise InputError(f"--attitudes {attitudes} must be at least 1")
+    if sweep:
+        _bench_sweep(triangles, step, samples, as_json)
+        return
     start = time.perf_counter()
     if mesh_path is not None:
         craft = load_spacecraft(mesh_path, materials)
@@ -749,6 +768,49 @@ def bench(mesh_path, materials, triangles, attitudes, samples, as_json) -> None:
         f"{report.adaptive_rays_per_attitude:.0f} rays"
     )
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
+
+
+def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> None:
+    """``sunwind bench --sweep``: run and print :func:`forces.bench.sweep_benchmark`."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from forces.attitudes import direction_grid
+    from forces.bench import sweep_benchmark
+
+    direction_grid(step)
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, transient=True, disable=as_json) as bar:
+        task = bar.add_task("sweeping", total=None)
+        report = sweep_benchmark(
+            triangles,
+            step,
+            samples=samples,
+            progress=lambda done, total: bar.update(task, completed=done, total=total),
+        )
+    if as_json:
+        print(json.dumps(report.to_json(), indent=2))
+        return
+    print(f"sunwind bench --sweep: generated sample, {report.triangles} triangles; {report.machine}")
+    print(
+        f"  grid                    {report.step_deg:g} deg: {report.grid_nodes} nodes, "
+        f"{report.distinct_directions} distinct directions, {report.samples_per_side} pt/side, "
+        f"reflections {report.reflections}"
+    )
+    print(f"  precompute              {report.precompute_s:.1f} s (view factors, exchange, first calls)")
+    print(
+        f"  sweep SRP + drag        {report.sweep_s:.1f} s ({report.srp_per_attitude_ms:.1f} ms SRP, "
+        f"{report.drag_per_attitude_ms:.1f} ms drag per attitude)"
+    )
+    print(
+        f"  Dask, {report.dask_attitudes} attitudes      1 worker {report.dask_1_worker_s:.1f} s, "
+        f"2 workers {report.dask_2_workers_s:.1f} s: speed-up {report.dask_speedup:.2f}x "
+        f"(results identical: {report.dask_identical})"
+    )
 
 
 def _builder_params(kind: str, builder, words: list[str]) -> dict:
@@ -844,3 +906,7 @@ def validate() -> None:
 
     if run_validation():
         raise SystemExit(1)
+
+
+# the sweep and plot commands live in their own module; importing it registers them on ``app``
+from . import sweep_cli  # noqa: E402, F401

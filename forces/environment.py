@@ -65,17 +65,23 @@ def flow_velocity(flow: FlowOptions, air: AtmosphereOptions) -> NDArray[np.float
     if flow.velocity is not None:
         return np.asarray(flow.velocity, dtype=np.float64)
     direction = azel_to_vector(*flow.azel_deg, "--flow-azel")
+    return flow_speed(flow, air) * direction
+
+
+def flow_speed(flow: FlowOptions, air: AtmosphereOptions) -> float:
+    """``|v_rel|`` [m/s]: ``--speed``, else the circular-orbit speed at ``--altitude`` (relative to a
+    co-rotating atmosphere with ``--corotating``)."""
     if flow.speed_m_s is not None:
         speed = float(flow.speed_m_s)
         if not np.isfinite(speed) or speed <= 0:
             raise InputError(f"--speed {speed} must be a positive number of m/s")
-    elif air.altitude_km is not None:
-        speed = circular_speed(air.altitude_km)
-        if flow.corotating:
-            speed = corotation_speed(air.altitude_km, air.latitude_deg, flow.heading_deg, speed)
-    else:
-        raise InputError("--flow-azel needs --speed V, or --altitude for the circular-orbit speed")
-    return speed * direction
+        return speed
+    if air.altitude_km is None:
+        raise InputError("a flow direction needs --speed V, or --altitude for the circular-orbit speed")
+    speed = circular_speed(air.altitude_km)
+    if flow.corotating:
+        speed = corotation_speed(air.altitude_km, air.latitude_deg, flow.heading_deg, speed)
+    return speed
 
 
 def atmosphere(air: AtmosphereOptions) -> Atmosphere:

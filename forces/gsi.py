@@ -65,6 +65,12 @@ stream. It carries no mean tangential momentum.
 otherwise, reflected by the same kernel at the same ``T_r``. The *thermal* stream is the full stream
 minus the directed one, so ``full = directed + thermal`` holds by construction. A solver shadows the
 directed part geometrically along ``-u`` and takes the thermal part from the open sky.
+
+**Evaluation.** :func:`panel_coefficients` is the reference, one species and stream at a time in
+numpy. :func:`summed_coefficients` gives both streams summed over weighted species in one pass of a
+numba kernel (:func:`forces.drag_kernels.species_sums`) for elements of a few distinct laws; it agrees
+with the reference to 1e-12 (of the coefficients' scale deep in the lee, ``S gamma < -3``, where the
+incident stream is a difference of nearly equal terms).
 """
 
 from __future__ import annotations
@@ -77,8 +83,10 @@ from scipy.special import erfc, i0e, i1e
 
 from geometry.errors import InputError
 from geometry.materials import GSI_MODELS
+from geometry.parallel import map_ranges
 
 from .atmosphere import BOLTZMANN
+from .drag_kernels import species_sums
 
 #: Model name -> small integer code, for per-side ``int8`` arrays.
 MODEL_CODES: dict[str, int] = {name: code for code, name in enumerate(GSI_MODELS)}
@@ -271,6 +279,85 @@ def diffuse_emission(
     return share, t_r
 
 
+def summed_coefficients(
+    laws: tuple[NDArray, NDArray, NDArray, NDArray, NDArray],
+    law: NDArray[np.int64],
+    cos_incidence: NDArray[np.float64],
+    speed_ratios: ArrayLike,
+    weights: ArrayLike,
+    temperature_K: float,
+    flux_weights: NDArray[np.float64] | None = None,
+) -> NDArray[np.float64]:
+    """Coefficients of both streams summed over species with weights, for elements of few distinct laws.
+
+    The weighted sum over species ``k`` of :func:`panel_coefficients` (``"directed"`` and ``"full"``
+    minus ``"directed"``), in one pass by :func:`forces.drag_kernels.species_sums` on parallel threads
+    (rows do not depend on the thread count); CLL's reflected normal momentum by the same rule as
+    :func:`panel_coefficients`.
+
+    Parameters
+    ----------
+    laws : tuple of five (n_laws,) arrays
+        ``model``, ``energy_accommodation``, ``normal_accommodation``, ``tangential_accommodation``,
+        ``wall_temperature_K`` of each distinct law, as in :func:`panel_coefficients`.
+    law : (n,) int64
+        Row of ``laws`` of each element.
+    cos_incidence : (n,) float64
+        ``gamma = n_out . u`` [-].
+    speed_ratios : (n_species,) array_like
+        ``S_k`` of each species [-], > 0.
+    weights : (n_species,) array_like
+        ``w_k``, e.g. the species' dynamic pressure ``q_k`` [Pa].
+    temperature_K : float
+        Free-stream temperature ``T`` [K], > 0.
+    flux_weights : (n_laws, n_species, m) float64, optional
+        Weights of each species' full-stream number flux over ``n_k V`` (:func:`incident_number_flux`).
+
+    Returns
+    -------
+    (n, 4 + m) float64
+        ``sum_k w_k (c_n, c_t)`` of the directed stream, the same of the thermal stream, and
+        ``sum_k flux_weights[law, k] N_k / (n_k V)`` of the full stream.
+    """
+    ratios = np.atleast_1d(np.asarray(speed_ratios, dtype=np.float64))
+    weight = np.broadcast_to(np.asarray(weights, dtype=np.float64), ratios.shape)
+    for ratio in ratios:
+        _check_speed_ratio(float(ratio))
+    _, alpha_e, sigma_n, sigma_t, t_wall, code = _checked(
+        *laws, np.zeros(np.shape(laws[0])), 1.0, temperature_K, "full"
+    )
+    row = np.ascontiguousarray(law, dtype=np.int64)
+    gamma = np.clip(np.ascontiguousarray(cos_incidence, dtype=np.float64), -1.0, 1.0)
+    if row.shape != gamma.shape or np.any((row < 0) | (row >= len(code))) or not np.all(np.isfinite(gamma)):
+        raise InputError("law rows and cos_incidence must be (n,) arrays of valid rows and finite values")
+    tau_w = t_wall / temperature_K
+    pressure_scale = np.select([code == _SCHAAF_CHAMBRE, code == _SPECULAR], [2.0 - sigma_n, 2.0], 1.0)
+    shear_scale = np.select(
+        [code == _SCHAAF_CHAMBRE, code == _CLL, code == _SPECULAR], [sigma_t, sigma_t, 0.0], 1.0
+    )
+    diffuse = np.zeros((len(code), len(ratios)))
+    for k, ratio in enumerate(ratios):
+        for kind in (_SENTMAN, _DRIA):
+            at = code == kind
+            diffuse[at, k] = _diffuse_normal(
+                1.0, _reemission_ratio(kind, alpha_e[at], tau_w[at], ratio), ratio
+            )
+        at = code == _SCHAAF_CHAMBRE
+        diffuse[at, k] = sigma_n[at] * _diffuse_normal(1.0, tau_w[at], ratio)
+    flux = np.zeros((len(code), len(ratios), 0)) if flux_weights is None else flux_weights
+    out = np.empty((len(gamma), 4 + flux.shape[2]))
+    args = (row, gamma, ratios, np.ascontiguousarray(weight), pressure_scale, diffuse, shear_scale)
+    map_ranges(lambda lo, hi: species_sums(*args, np.ascontiguousarray(flux), out, lo, hi), len(gamma), 2048)
+    cll = np.flatnonzero(code[row] == _CLL)
+    if len(cll):  # CLL's reflected normal momentum, by the reference's quadrature
+        for ratio, w in zip(ratios, weight, strict=True):
+            normal = (gamma[cll], sigma_n[row[cll]], tau_w[row[cll]], ratio)
+            directed = _cll_reflected_normal(*normal, "directed")
+            out[cll, 0] += w * directed
+            out[cll, 2] += w * (_cll_reflected_normal(*normal, "full") - directed)
+    return out
+
+
 # ------------------------------------------------------------------------------------------ kernels
 
 
@@ -454,4 +541,5 @@ __all__ = [
     "diffuse_emission",
     "incident_number_flux",
     "panel_coefficients",
+    "summed_coefficients",
 ]

@@ -27,6 +27,7 @@ import math
 import weakref
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from numpy.typing import NDArray
 
@@ -99,16 +100,31 @@ class MolecularExchange:
         reference_m : (3,)
             Torque reference point [m].
         """
-        escaping = self.first.T @ momentum_emitted + self.later.T @ root_mass_emitted
+        escaping = _escaping(self.first, momentum_emitted, self.later, root_mass_emitted)
         momentum, moment = escaping[0:3], escaping[3:6]
         return ExchangeTotals(force_N=-momentum, torque_Nm=-(moment - np.cross(reference_m, momentum)))
+
+
+@numba.njit(cache=True, nogil=True)
+def _escaping(
+    first: NDArray[np.float64],
+    momentum: NDArray[np.float64],
+    later: NDArray[np.float64],
+    root_mass: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """``first^T momentum + later^T root_mass``, (6,), summed side by side (one pass, no BLAS threads)."""
+    out = np.zeros(first.shape[1])
+    for i in range(first.shape[0]):
+        for c in range(first.shape[1]):
+            out[c] += first[i, c] * momentum[i] + later[i, c] * root_mass[i]
+    return out
 
 
 def gas_interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
     """``K_IS`` of eq. (7) for molecules (``rho = 1`` on every side): re-emitted molecules that meet
     the spacecraft again over those that escape; 0 for a convex body."""
-    escaping = float(craft.side_areas @ view.escape_fraction)
-    returning = float(craft.side_areas @ (1.0 - view.escape_fraction))
+    escaping = float(np.einsum("i,i->", craft.side_areas, view.escape_fraction))
+    returning = float(np.einsum("i,i->", craft.side_areas, 1.0 - view.escape_fraction))
     if returning <= 0.0:
         return 0.0
     return returning / escaping if escaping > 0 else float("inf")

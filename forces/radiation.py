@@ -154,6 +154,8 @@ def accumulate_forces(
             block = side_block[sides[k]]
             fx = fy = fz = mx = my = mz = lit_total = projected = absorbed = 0.0
         s = sides[k]
+        if lit_fraction[s] == 0.0:
+            continue
         n0, n1, n2 = normals[s, 0], normals[s, 1], normals[s, 2]
         cos = n0 * u0 + n1 * u1 + n2 * u2
         rho = optics[s, 0]

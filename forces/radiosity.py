@@ -1,26 +1,31 @@
 """The diffuse balance of reflected light between sides, eq. (12), and what of it escapes.
 
-METHOD.md "Inter-reflection" and "Speed". Unknowns are the diffuse power ``W_i`` leaving each side
-[W] (``W_i = A_i B_i``). Light side ``k`` emits lands on side ``i`` as ``G_i = sum_k F_ki W_k``; side
-``i`` re-emits ``rho_i G_i`` and, on a two-sided sheet, the share ``sigma`` its other side lets through:
+METHOD.md "Inter-reflection" and "Speed". Unknowns are the diffuse power ``W_i`` each side emits
+[W] (``W_i = A_i B_i``). Of side ``k``'s emission the share ``E_kj`` arrives at side ``j``, directly
+or after mirror reflections and transmissions on the way (the exchange factors of
+:mod:`geometry.exchange_factors`; ``E = F``, the view factors, where no side reflects specularly or
+transmits). Side ``j`` re-emits diffusely the share ``rho_d,j = rho_j (1 - beta_j)`` of what arrives:
 
-    W = E + T G = E + T F^T W,        M W = E,   M = I - T F^T
+    W = S + diag(rho_d) E^T W,        M W = S,   M = I - diag(rho_d) E^T
 
-with ``T = diag(rho) + (sigma of the other side of a sheet)``. Written in powers, with the view
-factors exactly as sampled (each row of rays sums to one), the balance holds to round-off whether or
-not sampled ``F`` is exactly reciprocal. What leaves the model is linear in ``E``: force ``-(1/c) sum
-W_i e_esc,i``, torque about ``r`` ``-(1/c) sum W_i [(c_i - r) x e_esc,i + m_i]``, escaped power
-``sum W_i f_esc,i`` and absorbed power ``sum_i (1 - rho_i - sigma'_i) G_i + sum W_i f_blind,i``
-(``sigma'`` the share a side sends through to no other side). So ``g = M^-T w`` for these eight
-functionals is solved once per model and material set, and every attitude's totals are ``g^T E``.
+for diffuse sources ``S`` (diffuse reflections of sunlight and of beams: none on a side with
+``rho_d = 0``, whose rows of ``E`` are therefore not followed). The mirrored share ``rho beta`` of
+arriving diffuse light keeps its angular spread and a sheet's transmitted share goes straight on,
+both inside ``E``; so the balance follows the physics on mixed finishes too, where the paper's
+eq. (12), re-emitting the whole ``rho`` (and a sheet's ``sigma`` from its far side) diffusely, does
+not. Written in powers, with the factors exactly as sampled, the balance holds to round-off. What
+leaves the model is linear in ``W``: force ``-(1/c) sum W_i e_esc,i``, torque about ``r``
+``-(1/c) sum W_i [(c_i - r) x e_esc,i + m_i]``, escaped power ``sum W_i f_esc,i`` and absorbed power
+``sum_j (1 - rho_j - sigma_j) G_j + sum W_i (f_blind,i + f_truncated,i)`` with ``G = E^T W`` (light
+still travelling when a chain was dropped counts as absorbed). So ``g = M^-T w`` for these eight
+functionals is solved once per model and material set, and every attitude's totals are ``g^T S``.
 
-Diffuse light landing on a side is re-emitted diffusely even by a specular finish (the paper's
-approximation: its angular spread is lost); beams are followed specularly by
-:mod:`forces.specular_chains`.
+Molecules (``re_emit_all``) use the view factors with every side re-emitting all that lands.
 """
 
 from __future__ import annotations
 
+import os
 import weakref
 from dataclasses import dataclass
 from functools import cached_property
@@ -31,7 +36,7 @@ import scipy.sparse.linalg
 from numpy.typing import NDArray
 
 from geometry.errors import InputError
-from geometry.sides import TWO_SIDED
+from geometry.exchange_factors import ExchangeFactors, exchange_factors
 from geometry.spacecraft import Spacecraft
 from geometry.view_factors import ViewFactors
 
@@ -65,35 +70,43 @@ class DiffuseTotals:
 
 
 class DiffuseExchange:
-    """The balance ``(I - T F^T) W = E`` of one model, its materials and its view factors.
+    """The balance ``(I - diag(rho_d) E^T) W = S`` of one model, its materials and its view factors.
 
     Parameters
     ----------
     craft : Spacecraft
     view : ViewFactors
         View factors of ``craft``'s sides.
+    re_emit_all : bool
+        Rarefied gas: every molecule that lands is re-emitted diffusely (``rho_d = 1``, ``E = F``,
+        nothing absorbed, nothing passes a sheet).
+    cache_dir : path, bool or None
+        Where exchange factors are kept on disk (:func:`geometry.exchange_factors.exchange_factors`);
+        False: not kept.
     """
 
-    def __init__(self, craft: Spacecraft, view: ViewFactors, *, re_emit_all: bool = False) -> None:
+    def __init__(
+        self,
+        craft: Spacecraft,
+        view: ViewFactors,
+        *,
+        re_emit_all: bool = False,
+        cache_dir: str | os.PathLike | bool | None = False,
+    ) -> None:
         self.craft = craft
         self.view = view
-        n = craft.n_sides
         if re_emit_all:
-            # rarefied gas: every molecule that lands is re-emitted (rho = 1, nothing passes a sheet)
-            self.transfer = scipy.sparse.identity(n, format="csr")
-            self.absorptance = np.zeros(n)
+            self.factors = ExchangeFactors.of_view(view)
+            re_emitted = np.ones(craft.n_sides)
+            self.absorptance = np.zeros(craft.n_sides)
         else:
-            rho, _, sigma = craft.side_optics.T
-            facet_sides = craft.facet_sides[craft.side_facet]
-            other = np.where(craft.side_sign > 0, facet_sides[:, 1], facet_sides[:, 0])
-            passes = (craft.facet_kind[craft.side_facet] == TWO_SIDED) & (other >= 0) & (sigma > 0)
-            # T[i, i] = rho_i; T[other(k), k] = sigma_k: light sent through a sheet leaves its other side
-            rows = np.r_[np.arange(n), other[passes]]
-            cols = np.r_[np.arange(n), np.flatnonzero(passes)]
-            self.transfer = scipy.sparse.csr_matrix((np.r_[rho, sigma[passes]], (rows, cols)), shape=(n, n))
-            self.absorptance = 1.0 - rho - np.where(passes, sigma, 0.0)
-        #: ``T F^T``: the diffuse power each side re-emits per watt each side emits; ``M = I - coupling``
-        self.coupling = (self.transfer @ view.matrix.T).tocsr()
+            rho, beta, sigma = craft.side_optics.T
+            self.factors = exchange_factors(craft, view, cache_dir)
+            re_emitted = rho * (1 - beta)
+            self.absorptance = 1.0 - rho - sigma
+        #: ``diag(rho_d) E^T``: the diffuse power each side re-emits per watt each side emits;
+        #: ``M = I - coupling``
+        self.coupling = (scipy.sparse.diags(re_emitted) @ self.factors.matrix.T).tocsr()
 
     def _solve(self, coupling: scipy.sparse.csr_matrix, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
         """``(I - coupling)^-1 rhs`` for one or more right-hand sides (n,) or (n, k).
@@ -138,10 +151,10 @@ class DiffuseExchange:
     def functionals(self) -> NDArray[np.float64]:
         """The eight weights ``w`` (n_sides, 8) with ``w^T W`` the escaping momentum rate [W] (3), its
         moment about the origin [W m] (3), the escaped and the absorbed power [W]."""
-        craft, view = self.craft, self.view
-        moment = np.cross(craft.side_centroids, view.escape_vector) + view.escape_moment
-        absorbed = view.matrix @ self.absorptance + view.blind_fraction
-        return np.column_stack([view.escape_vector, moment, view.escape_fraction, absorbed])
+        factors = self.factors
+        moment = np.cross(self.craft.side_centroids, factors.escape_vector) + factors.escape_moment
+        absorbed = factors.matrix @ self.absorptance + factors.blind_fraction + factors.truncated_fraction
+        return np.column_stack([factors.escape_vector, moment, factors.escape_fraction, absorbed])
 
     def adjoint(self, weights: NDArray[np.float64]) -> NDArray[np.float64]:
         """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T E`` for every source ``E``."""
@@ -154,7 +167,7 @@ class DiffuseExchange:
 
     def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """Escaping force and torque about ``reference_m`` and the power split, for sources ``E`` [W]."""
-        return self._totals(self.responses.T @ source_W, reference_m)
+        return self._totals(_weighted(self.responses, source_W), reference_m)
 
     @cached_property
     def open_sky_functionals(self) -> NDArray[np.float64]:
@@ -170,11 +183,11 @@ class DiffuseExchange:
         self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]
     ) -> DiffuseTotals:
         """:meth:`totals` as if every side saw only open sky."""
-        return self._totals(self.open_sky_functionals.T @ source_W, reference_m)
+        return self._totals(_weighted(self.open_sky_functionals, source_W), reference_m)
 
     def totals_of(self, emitted_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """The same from a solved ``W`` (diffuse power leaving each side) instead of the sources."""
-        return self._totals(self.functionals.T @ emitted_W, reference_m)
+        return self._totals(_weighted(self.functionals, emitted_W), reference_m)
 
     @staticmethod
     def _totals(values: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
@@ -205,9 +218,18 @@ def interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
 _exchanges: weakref.WeakKeyDictionary[Spacecraft, dict] = weakref.WeakKeyDictionary()
 
 
-def diffuse_exchange(craft: Spacecraft, view: ViewFactors) -> DiffuseExchange:
-    """The :class:`DiffuseExchange` of ``craft`` with ``view``, built once and kept with the model."""
+def diffuse_exchange(
+    craft: Spacecraft, view: ViewFactors, cache_dir: str | os.PathLike | bool | None = False
+) -> DiffuseExchange:
+    """The :class:`DiffuseExchange` of ``craft`` with ``view``, built once and kept with the model;
+    ``cache_dir`` as for :class:`DiffuseExchange`."""
     kept = _exchanges.setdefault(craft, {})
     if id(view) not in kept or kept[id(view)].view is not view:
-        kept[id(view)] = DiffuseExchange(craft, view)
+        kept[id(view)] = DiffuseExchange(craft, view, cache_dir=cache_dir)
     return kept[id(view)]
+
+
+def _weighted(columns: NDArray[np.float64], weights: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``columns.T @ weights`` without BLAS: its thread pool keeps spinning after the call and takes
+    the cores from the next attitude's ray casting (einsum sums in its own, fixed order)."""
+    return np.einsum("ij,i->j", columns, weights)

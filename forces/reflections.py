@@ -17,12 +17,12 @@ from numpy.typing import NDArray
 
 from geometry.errors import InputError
 from geometry.illumination import Illumination
-from geometry.sides import SOLID
 from geometry.spacecraft import Spacecraft
 from geometry.view_factors import VIEW_SEED, ViewFactors, view_factors
 
+from . import chain_kernels as kernels
 from .radiosity import diffuse_exchange, interference_criterion
-from .specular_chains import DEFAULT_CUTOFF, DEFAULT_DEPTH, ChainTotals, follow_chains
+from .specular_chains import DEFAULT_CUTOFF, DEFAULT_DEPTH, ChainTotals, chain_model, follow_chains
 
 MODES = ("none", "specular", "full", "auto")
 #: ``K_IS`` from which ``auto`` includes inter-reflection, eq. (8).
@@ -139,23 +139,22 @@ class _DirectPower:
     absorbed_W: float
     passed_W: float  # transmitted by closed bodies: leaves unchanged
     diffuse_W: NDArray[np.float64]  # (n_sides,) first diffuse reflection of each side
-    beams_W: float  # mirror beams, and light sheets transmit
 
 
 def _direct_power(craft: Spacecraft, light: Illumination, flux_W_m2: float) -> _DirectPower:
-    lit = np.flatnonzero(light.lit_fraction > 0)
-    rho, beta, sigma = craft.side_optics[lit].T
-    incident = flux_W_m2 * craft.side_areas[lit] * light.lit_fraction[lit] * light.cos_incidence[lit]
-    solid = craft.facet_kind[craft.side_facet[lit]] == SOLID
     diffuse = np.zeros(craft.n_sides)
-    diffuse[lit] = rho * (1 - beta) * incident
-    return _DirectPower(
-        incident_W=float(incident.sum()),
-        absorbed_W=float(((1 - rho - sigma) * incident).sum()),
-        passed_W=float((sigma * incident)[solid].sum()),
-        diffuse_W=diffuse,
-        beams_W=float(((rho * beta + np.where(solid, 0.0, sigma)) * incident).sum()),
+    incident, absorbed, passed = kernels.direct_power(
+        light.facing,
+        light.lit_fraction,
+        craft.side_areas,
+        craft.side_normals,
+        craft.side_optics,
+        chain_model(craft).side_sheet,
+        light.direction,
+        flux_W_m2,
+        diffuse,
     )
+    return _DirectPower(incident, absorbed, passed, diffuse)
 
 
 def reflected_part(
@@ -180,14 +179,16 @@ def reflected_part(
         power = PowerBalance(incident, absorbed, incident - absorbed)
         return Reflected(mode, np.zeros(3), np.zeros(3), power, None, view, k_is)
     direct = _direct_power(craft, light, flux_W_m2)
-    chains = follow_chains(craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth)
+    chains = follow_chains(
+        craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth, light.level
+    )
     if mode == "specular":
         force = chains.force_N + chains.open_sky_force_N
         torque = chains.torque_Nm + chains.open_sky_torque_Nm
         escaped = direct.passed_W + direct.diffuse_W.sum() + chains.escaped_W + chains.diffuse_source_W.sum()
         absorbed = direct.absorbed_W + chains.absorbed_W
     else:
-        exchange = diffuse_exchange(craft, view)
+        exchange = diffuse_exchange(craft, view, settings.cache_dir)
         diffuse = exchange.totals(direct.diffuse_W + chains.diffuse_source_W, reference_m)
         # eq. (4) let the first diffuse reflection leave as from an open plate; take that back
         assumed = exchange.open_sky_totals(direct.diffuse_W, reference_m)

@@ -11,17 +11,30 @@ Momentum is counted as METHOD.md says, by what comes from and goes to infinity: 
 correction to the direct force, ``+p d / c`` for every first beam that does not escape after all
 (eq. 4 had it leave) and ``-p d / c`` for every later beam that does escape, at the point it leaves.
 
-Where first beams start: one ray per lit side from the centroid of its lit part would put a whole
-side's beam on one landing point. Sides are sampled like shadows instead: small models start with
-many points per side, large ones with one, and a side whose beam is split (some points escape or
-land on another material than the rest) or that disagrees with an edge neighbour is sampled again
-at twice the level, until its split converges or the likely error of all split beams together is
-below ``TOLERANCE`` of the power of all first beams. Each lit point carries an equal share of the side's
-beam power, so the beam powers equal those of the direct law exactly.
+Where first beams start follows the shadow pass. With a fixed count of points per side, first beams
+leave from the same points: the lit centroid of each side at one point, else the side's lit points,
+one ray each. Adaptive shadows get adaptive first beams: one ray per lit side from the centroid of
+its lit part would put a whole side's beam on one landing point, so sides are sampled like shadows:
+small models start with many points per side, large ones with one, and a side whose beam is split
+(some points escape or land on another material than the rest) or that disagrees with an edge
+neighbour is sampled again at twice the level, until its split converges or the likely error of all
+split beams together is below ``TOLERANCE`` of the power of all first beams. Each lit point carries an
+equal share of the side's beam power, so the beam powers equal those of the direct law exactly.
+
+With fixed sampling, first beams known to escape are not cast. Coplanar sides form patches; a
+patch's first beams of one kind leave its box along one direction, away from its plane, so they can
+meet only facets reaching off the plane on that side. Where the patch's box swept along the beam
+misses the boxes of all such groups of facets, its beams escape, as a ray cast would find. Adaptive
+sampling casts them all: it compares every side's outcome with its neighbours'.
+
+Rays are cast in float32 scene coordinates (:mod:`geometry.raycast`); the point a beam meets a side
+is found again in float64 on the facet's plane.
 """
 
 from __future__ import annotations
 
+import weakref
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,8 +43,9 @@ from numpy.typing import NDArray
 from geometry import triangles as tri
 from geometry.illumination import Illumination
 from geometry.sides import SOLID
-from geometry.spacecraft import BLIND, ESCAPED, Spacecraft
+from geometry.spacecraft import ESCAPED, Spacecraft
 
+from . import chain_kernels as kernels
 from .radiation import LAMBERT_FACTOR, SPEED_OF_LIGHT
 
 #: Default end of a chain: a beam below this share of the power its chain started with.
@@ -45,6 +59,8 @@ MAX_LEVEL = 64
 START_RAYS = 1 << 14
 #: A split side is final when its escaping share moves by at most this between levels.
 TOLERANCE = 1e-4
+#: First beams followed together at a fixed sampling level, to bound memory (whole sides at a time).
+_BATCH_RAYS = 1 << 20
 
 
 @dataclass(frozen=True)
@@ -84,6 +100,147 @@ class ChainTotals:
     depth: int
 
 
+@dataclass(frozen=True)
+class ChainModel:
+    """What the kernels of :mod:`forces.chain_kernels` need of a spacecraft beyond its own arrays."""
+
+    side_sheet: NDArray[np.bool_]  # (n_sides,) the side belongs to a sheet, not a closed body
+    facet_offsets: NDArray[np.float64]  # (n_facets,) ``n . x`` of the facet's plane [m]
+
+
+@dataclass(frozen=True)
+class _EscapeTest:
+    """Patches of coplanar sides and leaves of facets for :func:`forces.chain_kernels.escaping_patches`.
+
+    Leaves are the facets split ``_SPLITS`` times in halves, with their boxes [m]; patches hold up to
+    ``_PATCH_SIDES`` sides of one plane, with their box [m] and a bit for each leaf reaching off that
+    plane on either side. Boxes are grown by ``_margin``.
+    """
+
+    side_patch: NDArray[np.int64]  # (n_sides,) patch of each side, -1 for none
+    patch_low: NDArray[np.float64]  # (n_patches, 3)
+    patch_high: NDArray[np.float64]  # (n_patches, 3)
+    patch_mask: NDArray[np.uint64]  # (n_patches, 2) leaves reaching above, below the plane
+    leaf_low: NDArray[np.float64]  # (n_leaves, 3)
+    leaf_high: NDArray[np.float64]  # (n_leaves, 3)
+
+
+#: Leaves of the escape test: the facets split in halves this many times at most (64, a bit each).
+_SPLITS = 6
+#: Most sides in a patch whose first beams are tested for escape together.
+_PATCH_SIDES = 64
+#: Sides within this share of the origin offset of one plane form patches; a leaf reaches off a
+#: patch's plane where a vertex lies more than ``_REACH`` offsets from it (rays start one offset off).
+_FLAT, _REACH = 0.1, 0.5
+
+_kept: weakref.WeakKeyDictionary[Spacecraft, dict[type, object]] = weakref.WeakKeyDictionary()
+
+
+def chain_model(craft: Spacecraft) -> ChainModel:
+    """The :class:`ChainModel` of ``craft``, built once and kept with the model."""
+    kept = _kept.setdefault(craft, {})
+    if ChainModel not in kept:
+        kept[ChainModel] = ChainModel(
+            side_sheet=craft.facet_kind[craft.side_facet] != SOLID,
+            facet_offsets=np.einsum("nd,nd->n", craft.facet_normals, craft.triangles[:, 0]),
+        )
+    return kept[ChainModel]
+
+
+def _escape_test(craft: Spacecraft) -> _EscapeTest:
+    """The :class:`_EscapeTest` of ``craft``, built once (~0.5 s for 10^5 facets) and kept."""
+    kept = _kept.setdefault(craft, {})
+    if _EscapeTest not in kept:
+        leaf_low, leaf_high, leaf_start, leaf_vertex = _leaves(craft)
+        side_patch, low, high, normal, offset = _patches(craft)
+        reach = _REACH * craft.scene.offset_m
+        kept[_EscapeTest] = _EscapeTest(
+            side_patch=side_patch,
+            patch_low=low,
+            patch_high=high,
+            patch_mask=kernels.occluder_masks(
+                normal, offset, leaf_low, leaf_high, leaf_start, leaf_vertex, craft.vertices, reach
+            ),
+            leaf_low=leaf_low,
+            leaf_high=leaf_high,
+        )
+    return kept[_EscapeTest]
+
+
+def _margin(craft: Spacecraft) -> float:
+    """Growth of the escape test's boxes [m]: the origin offset, and the float32 round-off of the
+    scene with room to spare."""
+    return craft.scene.offset_m + 1e-6 * craft.scene.half_size
+
+
+def _halves(points: NDArray[np.float64], members: NDArray[np.int64], depth: int) -> list[NDArray[np.int64]]:
+    """``members`` split ``depth`` times in two at the median of their ``points`` along the longest
+    extent: ``2**depth`` sets, in the left-to-right order of the binary tree."""
+    parts = [members]
+    for _ in range(depth):
+        halves = []
+        for part in parts:
+            p = points[part]
+            order = part[np.argsort(p[:, np.argmax(np.ptp(p, axis=0))], kind="stable")]
+            halves += [order[: len(order) // 2], order[len(order) // 2 :]]
+        parts = halves
+    return parts
+
+
+def _bounds(craft: Spacecraft, facets: NDArray[np.int64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Box of ``facets`` grown by the margin [m]."""
+    corners = craft.triangles[facets].reshape(-1, 3)
+    return corners.min(axis=0) - _margin(craft), corners.max(axis=0) + _margin(craft)
+
+
+def _leaves(craft: Spacecraft) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """The leaves' boxes (n_leaves, 3) twice and vertices (``leaf_vertex[leaf_start[k]:leaf_start[k
+    + 1]]``)."""
+    leaves = _halves(
+        craft.facet_centroids, np.arange(craft.n_facets), min(_SPLITS, int(np.log2(craft.n_facets)))
+    )
+    low, high = np.array([_bounds(craft, leaf) for leaf in leaves]).transpose(1, 0, 2)
+    vertices = [np.unique(craft.faces[leaf]) for leaf in leaves]
+    start = np.concatenate([[0], np.cumsum([len(v) for v in vertices])])
+    return np.ascontiguousarray(low), np.ascontiguousarray(high), start, np.concatenate(vertices)
+
+
+def _patches(craft: Spacecraft) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
+    """Patches of coplanar sides facing the same way: the patch of each side (-1 for none), each
+    patch's box (n_patches, 3) twice, and its plane's unit normal (n_patches, 3) and offset [m]."""
+    normals = craft.side_normals
+    offsets = np.einsum("nd,nd->n", normals, craft.side_centroids)
+    flat = _FLAT * craft.scene.offset_m
+    key = np.column_stack([np.round(normals * 1e9), np.round(offsets / flat)])
+    _, group = np.unique(key, axis=0, return_inverse=True)
+    order = np.argsort(group.reshape(-1), kind="stable")
+    runs = np.split(order, np.flatnonzero(np.diff(group.reshape(-1)[order])) + 1)
+    side_patch = np.full(craft.n_sides, -1, dtype=np.int64)
+    low, high, patch_normal, patch_offset = [], [], [], []
+    for run in runs:
+        if len(run) < 2:
+            continue
+        depth = int(np.ceil(np.log2(len(run) / _PATCH_SIDES))) if len(run) > _PATCH_SIDES else 0
+        for patch in _halves(craft.side_centroids, run, depth):
+            corners = craft.triangles[craft.side_facet[patch]].reshape(-1, 3)
+            n, c = normals[patch[0]], offsets[patch[0]]
+            if np.abs(corners @ n - c).max() > flat:  # not one plane after all
+                continue
+            side_patch[patch] = len(low)
+            box = _bounds(craft, craft.side_facet[patch])
+            low.append(box[0])
+            high.append(box[1])
+            patch_normal.append(n)
+            patch_offset.append(c)
+    return (
+        side_patch,
+        np.reshape(low, (-1, 3)),
+        np.reshape(high, (-1, 3)),
+        np.reshape(patch_normal, (-1, 3)),
+        np.asarray(patch_offset, dtype=np.float64),
+    )
+
+
 @dataclass
 class _Beams:
     """A generation of rays, each leaving ``origin_m`` (on its surface) along ``direction``."""
@@ -98,8 +255,7 @@ class _Beams:
         return len(self.power_W)
 
     def take(self, mask: NDArray) -> _Beams:
-        return _Beams(self.origin_m[mask], self.lift[mask], self.direction[mask], self.power_W[mask],
-                      self.start_W[mask])
+        return _Beams(*(getattr(self, name)[mask] for name in _BEAM_FIELDS))
 
     @staticmethod
     def join(parts: list[_Beams]) -> _Beams:
@@ -109,61 +265,96 @@ class _Beams:
 _BEAM_FIELDS = ("origin_m", "lift", "direction", "power_W", "start_W")
 
 
-def _empty_beams() -> _Beams:
-    return _Beams(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0), np.zeros(0))
-
-
 def _cast(craft: Spacecraft, beams: _Beams) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
     """Side each beam meets (``ESCAPED``/``BLIND`` codes of :meth:`Spacecraft.struck_sides`) and
-    the point it meets it [m]."""
+    the point it meets it [m] (zero where it meets no side)."""
     scene = craft.scene
-    origins = scene.origins(beams.origin_m, beams.lift)
-    facets, distance = scene.intersect(origins, beams.direction.astype(np.float32))
-    sides = craft.struck_sides(facets, beams.direction)
-    points = beams.origin_m + beams.lift * scene.offset_m
-    points = points + beams.direction * (distance.astype(np.float64) * scene.half_size)[:, None]
-    return sides, points
-
-
-def _mirror(directions: NDArray[np.float64], normals: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Directions (n, 3) reflected on surfaces of unit normals (n, 3)."""
-    return directions - 2 * np.einsum("nd,nd->n", directions, normals)[:, None] * normals
+    origins, directions = kernels.scene_rays(
+        beams.origin_m, beams.lift, beams.direction, scene.centre, scene.half_size, scene.offset_m
+    )
+    return kernels.strike(
+        scene.first_hit(origins, directions),
+        beams.origin_m,
+        beams.lift,
+        beams.direction,
+        scene.offset_m,
+        craft.facet_normals,
+        chain_model(craft).facet_offsets,
+        craft.facet_sides,
+    )
 
 
 @dataclass(frozen=True)
 class _Emitters:
-    """Lit sides sending a first beam: the specular beam of each, the transmitted beam of sheets."""
+    """Lit sides sending a first beam (the specular beam of each, the transmitted beam of sheets), and
+    that beam leaving the side's lit centroid."""
 
     side: NDArray[np.int64]
-    direction: NDArray[np.float64]
-    lift: NDArray[np.float64]
-    power_W: NDArray[np.float64]
+    beams: _Beams
+    escaping_W: float  # power of beams left out as known to escape
 
 
-def _emitters(craft: Spacecraft, light: Illumination, flux_W_m2: float) -> _Emitters:
-    lit = np.flatnonzero(light.lit_fraction > 0)
-    rho, beta, sigma = craft.side_optics[lit].T
-    incident = flux_W_m2 * craft.side_areas[lit] * light.lit_fraction[lit] * light.cos_incidence[lit]
-    normals = craft.side_normals[lit]
-    s = np.broadcast_to(-light.direction, normals.shape)
-    sheet = craft.facet_kind[craft.side_facet[lit]] != SOLID
-    specular = rho * beta > 0
-    through = (sigma > 0) & sheet
-    return _Emitters(
-        side=np.concatenate([lit[specular], lit[through]]),
-        direction=np.concatenate([_mirror(s[specular], normals[specular]), s[through]]),
-        lift=np.concatenate([normals[specular], -normals[through]]),
-        power_W=np.concatenate([(incident * rho * beta)[specular], (incident * sigma)[through]]),
+def _emitters(craft: Spacecraft, light: Illumination, flux_W_m2: float, cull: bool) -> _Emitters:
+    """The emitters of ``light``; with ``cull``, those of patches whose first beams are known to
+    escape are left out and their power is counted in :attr:`_Emitters.escaping_W`."""
+    side_patch = escapes = None
+    if cull:
+        test = _escape_test(craft)
+        side_patch = test.side_patch
+        escapes = kernels.escaping_patches(
+            light.facing,
+            light.lit_fraction,
+            craft.side_normals,
+            craft.side_optics,
+            chain_model(craft).side_sheet,
+            light.direction,
+            side_patch,
+            test.patch_low,
+            test.patch_high,
+            test.patch_mask,
+            test.leaf_low,
+            test.leaf_high,
+        )
+    side, centroid, direction, lift, power, escaping = kernels.emitters(
+        light.facing,
+        light.lit_fraction,
+        light.lit_centroid,
+        craft.side_areas,
+        craft.side_normals,
+        craft.side_optics,
+        chain_model(craft).side_sheet,
+        light.direction,
+        flux_W_m2,
+        side_patch,
+        escapes,
     )
+    return _Emitters(side, _Beams(centroid, lift, direction, power, power), escaping)
 
 
-def _first_beams(
-    craft: Spacecraft, light: Illumination, emitters: _Emitters
-) -> tuple[_Beams, NDArray[np.int64], NDArray[np.float64], int]:
-    """First beams of every emitter, adaptively sampled, with the side each meets and where."""
+#: First beams with the side each meets, where it meets it, and the rays cast to find out.
+_FirstBeams = tuple[_Beams, NDArray[np.int64], NDArray[np.float64], int]
+
+
+def _fixed_first_beams(
+    craft: Spacecraft, light: Illumination, emitters: _Emitters, level: int
+) -> Iterator[_FirstBeams]:
+    """First beams of every emitter from its lit points at ``level``, in batches of whole emitters."""
     n = len(emitters.side)
-    if n == 0:
-        return _empty_beams(), np.zeros(0, np.int64), np.zeros((0, 3)), 0
+    per_batch = max(1, _BATCH_RAYS // level**2)
+    for start in range(0, n, per_batch):
+        chosen = slice(start, start + per_batch)
+        if level == 1:  # the lit centroids
+            beams = emitters.beams.take(chosen)
+            sides, points = _cast(craft, beams)
+            yield beams, sides, points, len(beams)
+        else:
+            beams, _, sides, points, rays = _sample(craft, light, emitters, np.arange(n)[chosen], level)
+            yield beams, sides, points, rays
+
+
+def _first_beams(craft: Spacecraft, light: Illumination, emitters: _Emitters) -> _FirstBeams:
+    """First beams of every emitter (there must be some), adaptively sampled."""
+    n = len(emitters.side)
     level = 1 << max(0, int(np.log2(max(1.0, np.sqrt(START_RAYS / n)))))
     level = min(level, MAX_LEVEL)
     active = np.arange(n)
@@ -184,13 +375,16 @@ def _first_beams(
             np.maximum.at(high, owner, outcome)
         split = low[active] != high[active]
         escaping = np.bincount(owner, weights=(sides == ESCAPED) * beams.power_W, minlength=n)
-        share = escaping[active] / emitters.power_W[active]
+        share = escaping[active] / emitters.beams.power_W[active]
         if first:
             split |= _disagrees_with_neighbour(craft, emitters, active, low, high)
             first = False
         settled = np.abs(share - previous_share[active]) <= TOLERANCE
         again = split & ~settled & (level < MAX_LEVEL)
-        if _split_error(emitters.power_W[active[again]], level) <= TOLERANCE * emitters.power_W.sum():
+        if (
+            _split_error(emitters.beams.power_W[active[again]], level)
+            <= TOLERANCE * emitters.beams.power_W.sum()
+        ):
             again[:] = False
         done = np.zeros(n, dtype=bool)
         done[active[~again]] = True
@@ -199,9 +393,8 @@ def _first_beams(
         previous_share[active] = share
         active = active[again]
         level *= 2
-    parts = [a[0] for a in accepted]
     return (
-        _Beams.join(parts),
+        _Beams.join([a[0] for a in accepted]),
         np.concatenate([a[1] for a in accepted]),
         np.concatenate([a[2] for a in accepted]),
         rays,
@@ -223,7 +416,9 @@ def _disagrees_with_neighbour(
     same kind of beam (mirror or transmitted): the split may fall between their sample points."""
     a, b = craft.side_neighbours
     index = np.full((2, craft.n_sides), -1)
-    kind = (np.einsum("nd,nd->n", emitters.lift, craft.side_normals[emitters.side]) < 0).astype(np.int64)
+    kind = (np.einsum("nd,nd->n", emitters.beams.lift, craft.side_normals[emitters.side]) < 0).astype(
+        np.int64
+    )
     index[kind, emitters.side] = np.arange(len(emitters.side))
     flagged = np.zeros(len(emitters.side), dtype=bool)
     for k in (0, 1):
@@ -245,12 +440,11 @@ def _sample(
     1 the point is the lit centroid. A partly lit side's points are shadow-tested; a side none of whose
     points is lit sends its beam from its lit centroid.
     """
-    side = emitters.side[chosen]
     rays = 0
     if level == 1:
-        points = light.lit_centroid[side][:, None, :]
-        lit = np.ones((len(side), 1), dtype=bool)
+        beams, owner = emitters.beams.take(chosen), chosen
     else:
+        side = emitters.side[chosen]
         bary = tri.subdivision_barycentric(level)
         points = np.einsum("pk,nkd->npd", bary, craft.triangles[craft.side_facet[side]])
         lit = np.ones(points.shape[:2], dtype=bool)
@@ -265,16 +459,10 @@ def _sample(
         none = ~lit.any(axis=1)
         points[none, 0] = light.lit_centroid[side[none]]
         lit[none, 0] = True
-    owner_of_point = np.repeat(np.arange(len(side)), lit.shape[1])[lit.reshape(-1)]
-    per_emitter = lit.sum(axis=1)
-    owner = chosen[owner_of_point]
-    beams = _Beams(
-        origin_m=points[lit],
-        lift=emitters.lift[owner],
-        direction=emitters.direction[owner],
-        power_W=(emitters.power_W[chosen] / per_emitter)[owner_of_point],
-        start_W=(emitters.power_W[chosen] / per_emitter)[owner_of_point],
-    )
+        owner_of_point = np.repeat(np.arange(len(side)), level**2)[lit.reshape(-1)]
+        owner = chosen[owner_of_point]
+        power = (emitters.beams.power_W[chosen] / lit.sum(axis=1))[owner_of_point]
+        beams = _Beams(points[lit], emitters.beams.lift[owner], emitters.beams.direction[owner], power, power)
     sides, hit_points = _cast(craft, beams)
     return beams, owner, sides, hit_points, rays + len(beams)
 
@@ -286,6 +474,7 @@ def follow_chains(
     reference_m: NDArray[np.float64],
     cutoff: float = DEFAULT_CUTOFF,
     depth: int = DEFAULT_DEPTH,
+    level: int | None = None,
 ) -> ChainTotals:
     """Trace the mirror and transmitted beams of every lit side until they escape or fade.
 
@@ -302,98 +491,81 @@ def follow_chains(
         A beam is dropped below this share of the power its chain started with.
     depth : int
         A chain is dropped after meeting this many surfaces after the first.
+    level : int or None
+        The shadow pass's fixed sampling level (``level**2`` points per side): first beams leave from
+        the same points. None: the shadows were sampled adaptively, and so are the first beams.
     """
-    emitters = _emitters(craft, light, flux_W_m2)
-    beams, sides, points, rays = _first_beams(craft, light, emitters)
-    tally = _Tally(craft.n_sides)
-    # eq. (4) had every first beam leave; those that land give that momentum back
-    landed = sides != ESCAPED
-    tally.add_momentum(beams.origin_m[landed], beams.power_W[landed, None] * beams.direction[landed],
-                       reference_m)
-    tally.escaped_W += float(beams.power_W[~landed].sum())
-    generation = 0
-    while len(beams):
-        if generation:
-            gone = sides == ESCAPED
-            tally.leave(beams.origin_m[gone], beams.power_W[gone], beams.direction[gone], reference_m)
-        generation += 1
-        beams = _land(craft, beams, sides, points, tally, reference_m)
-        fading = beams.power_W < cutoff * beams.start_W
-        if generation >= depth:
-            fading[:] = True
-        tally.truncated_W += float(beams.power_W[fading].sum())
-        beams = beams.take(~fading)
-        if len(beams):
-            sides, points = _cast(craft, beams)
-            rays += len(beams)
+    # beams known to escape need no ray, but adaptive sampling compares every emitter's outcomes
+    emitters = _emitters(craft, light, flux_W_m2, cull=level is not None)
+    if level is not None:
+        batches: Iterator[_FirstBeams] | list[_FirstBeams] = _fixed_first_beams(craft, light, emitters, level)
+    else:
+        batches = [_first_beams(craft, light, emitters)] if len(emitters.side) else []
+    totals = np.zeros(kernels.N_TOTALS)
+    totals[kernels.ESCAPED_W] = emitters.escaping_W
+    diffuse_W = np.zeros(craft.n_sides)
+    rays = generations = 0
+    for beams, sides, points, cast in batches:
+        more_rays, chain_generations = _trace(
+            craft, beams, sides, points, reference_m, cutoff, depth, totals, diffuse_W
+        )
+        rays += cast + more_rays
+        generations = max(generations, chain_generations)
+    momentum, open_sky = kernels.MOMENTUM, kernels.OPEN_SKY
     return ChainTotals(
-        force_N=tally.momentum / SPEED_OF_LIGHT,
-        torque_Nm=tally.moment / SPEED_OF_LIGHT,
-        diffuse_source_W=tally.diffuse_W,
-        open_sky_force_N=tally.open_sky_momentum / SPEED_OF_LIGHT,
-        open_sky_torque_Nm=tally.open_sky_moment / SPEED_OF_LIGHT,
-        escaped_W=tally.escaped_W,
-        absorbed_W=tally.absorbed_W,
-        truncated_W=tally.truncated_W,
-        first_W=float(emitters.power_W.sum()),
+        force_N=totals[momentum : momentum + 3] / SPEED_OF_LIGHT,
+        torque_Nm=totals[momentum + 3 : momentum + 6] / SPEED_OF_LIGHT,
+        diffuse_source_W=diffuse_W,
+        open_sky_force_N=totals[open_sky : open_sky + 3] / SPEED_OF_LIGHT,
+        open_sky_torque_Nm=totals[open_sky + 3 : open_sky + 6] / SPEED_OF_LIGHT,
+        escaped_W=float(totals[kernels.ESCAPED_W]),
+        absorbed_W=float(totals[kernels.ABSORBED_W]),
+        truncated_W=float(totals[kernels.TRUNCATED_W]),
+        first_W=float(emitters.beams.power_W.sum()) + emitters.escaping_W,
         rays=rays,
-        depth=generation,
+        depth=generations,
     )
 
 
-class _Tally:
-    """Running sums of a chain trace; momenta in W (divide by c for N)."""
-
-    def __init__(self, n_sides: int) -> None:
-        self.momentum = np.zeros(3)
-        self.moment = np.zeros(3)
-        self.open_sky_momentum = np.zeros(3)
-        self.open_sky_moment = np.zeros(3)
-        self.diffuse_W = np.zeros(n_sides)
-        self.escaped_W = self.absorbed_W = self.truncated_W = 0.0
-
-    def add_momentum(self, at_m: NDArray, momentum_W: NDArray, reference_m: NDArray) -> None:
-        """Add momentum rates (n, 3) acting at points (n, 3) [m] to the force and torque sums."""
-        self.momentum += momentum_W.sum(axis=0)
-        self.moment += np.cross(at_m - reference_m, momentum_W).sum(axis=0)
-
-    def leave(self, at_m: NDArray, power_W: NDArray, direction: NDArray, reference_m: NDArray) -> None:
-        """Beams escaping from points ``at_m``: their momentum is lost to the spacecraft."""
-        self.add_momentum(at_m, -power_W[:, None] * direction, reference_m)
-        self.escaped_W += float(power_W.sum())
-
-
-def _land(
+def _trace(
     craft: Spacecraft,
     beams: _Beams,
     sides: NDArray[np.int64],
     points: NDArray[np.float64],
-    tally: _Tally,
     reference_m: NDArray[np.float64],
-) -> _Beams:
-    """Split the beams that meet a side into absorbed, diffuse, mirror and transmitted parts; return
-    the new mirror and transmitted beams."""
-    tally.absorbed_W += float(beams.power_W[sides == BLIND].sum())
-    hit = sides >= 0
-    side, at, power = sides[hit], points[hit], beams.power_W[hit]
-    direction, start = beams.direction[hit], beams.start_W[hit]
-    rho, beta, sigma = craft.side_optics[side].T
-    normals = craft.side_normals[side]
-    solid = craft.facet_kind[craft.side_facet[side]] == SOLID
-    tally.absorbed_W += float(((1 - rho - sigma) * power).sum())
-    diffuse = rho * (1 - beta) * power
-    tally.diffuse_W += np.bincount(side, weights=diffuse, minlength=craft.n_sides)
-    open_sky = -LAMBERT_FACTOR * diffuse[:, None] * normals
-    tally.open_sky_momentum += open_sky.sum(axis=0)
-    tally.open_sky_moment += np.cross(at - reference_m, open_sky).sum(axis=0)
-    # light a closed body transmits leaves unchanged, as in the direct law
-    tally.leave(at[solid], sigma[solid] * power[solid], direction[solid], reference_m)
-    mirror = rho * beta > 0
-    through = (sigma > 0) & ~solid
-    return _Beams(
-        origin_m=np.concatenate([at[mirror], at[through]]),
-        lift=np.concatenate([normals[mirror], -normals[through]]),
-        direction=np.concatenate([_mirror(direction[mirror], normals[mirror]), direction[through]]),
-        power_W=np.concatenate([(rho * beta * power)[mirror], (sigma * power)[through]]),
-        start_W=np.concatenate([start[mirror], start[through]]),
-    )
+    cutoff: float,
+    depth: int,
+    totals: NDArray[np.float64],
+    diffuse_W: NDArray[np.float64],
+) -> tuple[int, int]:
+    """Follow first ``beams``, already cast (meeting ``sides`` at ``points``), and all they lead to;
+    add to ``totals`` (slots of :mod:`forces.chain_kernels`) and ``diffuse_W``. Returns the rays cast
+    after the first beams and the generations of beams cast."""
+    model = chain_model(craft)
+    rays = generation = 0
+    while len(beams):
+        generation += 1
+        beams = _Beams(
+            *kernels.land(
+                beams.origin_m,
+                beams.direction,
+                beams.power_W,
+                beams.start_W,
+                sides,
+                points,
+                generation == 1,
+                generation >= depth,
+                cutoff,
+                craft.side_normals,
+                craft.side_optics,
+                model.side_sheet,
+                LAMBERT_FACTOR,
+                reference_m,
+                totals,
+                diffuse_W,
+            )
+        )
+        if len(beams):
+            sides, points = _cast(craft, beams)
+            rays += len(beams)
+    return rays, generation

@@ -58,8 +58,32 @@ def azel_to_vector(azimuth_deg: float, elevation_deg: float, name: str = "direct
         raise InputError(f"{name} azimuth/elevation {azimuth_deg} {elevation_deg} must be finite numbers")
     if abs(elevation_deg) > 90:
         raise InputError(f"{name} elevation {elevation_deg} deg is outside [-90, 90]")
-    az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
-    return np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+    return azel_to_vectors(np.array([azimuth_deg]), np.array([elevation_deg]))[0]
+
+
+def _cos_sin_deg(angle_deg: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Cosine and sine of angles [deg], exact (0, +-1) at whole multiples of 90 deg."""
+    radians = np.radians(angle_deg)
+    cos, sin = np.cos(radians), np.sin(radians)
+    quarter = np.round(angle_deg / 90.0)
+    exact = quarter * 90.0 == angle_deg
+    turn = np.mod(quarter, 4).astype(np.int64)
+    cos = np.where(exact, np.array([1.0, 0.0, -1.0, 0.0])[turn], cos)
+    sin = np.where(exact, np.array([0.0, 1.0, 0.0, -1.0])[turn], sin)
+    return cos, sin
+
+
+def azel_to_vectors(azimuth_deg: NDArray, elevation_deg: NDArray) -> NDArray[np.float64]:
+    """Unit vectors (..., 3) of azimuths and elevations [deg] (broadcast), body frame.
+
+    Whole multiples of 90 deg are exact, so every azimuth at elevation +-90 gives the pole
+    ``(0, 0, +-1)`` and azimuths -180 and 180 give the same vector: grid rows that are one direction
+    give one answer. Angles are not checked here (see :func:`azel_to_vector`).
+    """
+    cos_az, sin_az = _cos_sin_deg(np.asarray(azimuth_deg, dtype=np.float64))
+    cos_el, sin_el = _cos_sin_deg(np.asarray(elevation_deg, dtype=np.float64))
+    # + 0.0 turns -0.0 into 0.0: the pole is the same bits from every azimuth
+    return np.stack(np.broadcast_arrays(cos_el * cos_az + 0.0, cos_el * sin_az + 0.0, sin_el + 0.0), axis=-1)
 
 
 def vector_to_azel(direction: Sequence[float] | NDArray) -> tuple[float, float]:

@@ -82,6 +82,9 @@ class Illumination:
         Shadow rays cast.
     sampling : str
         How sides were sampled, in words.
+    level : int or None
+        Subdivision level of fixed sampling (``level**2`` points on every facing side); None when
+        adaptive.
     """
 
     direction: NDArray[np.float64]
@@ -91,6 +94,7 @@ class Illumination:
     lit_centroid: NDArray[np.float64]
     rays: int
     sampling: str
+    level: int | None = None
 
     @cached_property
     def cos_incidence(self) -> NDArray[np.float64]:
@@ -262,7 +266,8 @@ class SideSampler:
             sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
         if reduce is not None:
             reduce(facing, fraction, centroid)
-        return Illumination(direction, craft.side_normals, facing, fraction, centroid, rays, sampling)
+        fixed = None if samples is None else level
+        return Illumination(direction, craft.side_normals, facing, fraction, centroid, rays, sampling, fixed)
 
     def _store(
         self,

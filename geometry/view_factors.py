@@ -36,8 +36,10 @@ from __future__ import annotations
 import math
 import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import TypeVar
 
 import numba
 import numpy as np
@@ -70,6 +72,8 @@ CONCAVE_TOLERANCE = 1e-7
 METHOD_VERSION = 1
 
 _GOLDEN = np.uint64(0x9E3779B97F4A7C15)
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True, eq=False)
@@ -195,23 +199,49 @@ def compute_view_factors(
 def _sample(craft: Spacecraft, grid: int, seed: int) -> tuple[NDArray, ...]:
     """Cast ``grid**2`` rays from every side in threaded batches; the per-side tallies of
     :func:`_tally`, concatenated in side order."""
-    scene, normals, triangles = craft.scene, craft.side_normals, craft.triangles
-    per_batch = max(1, _BATCH_RAYS // grid**2)
-    key = np.uint64(seed)
+    scene = craft.scene
 
     def batch(lo: int, hi: int) -> tuple[NDArray, ...]:
-        origins, directions, lever = _emission_rays(
-            triangles, craft.side_facet, normals, lo, hi - lo, grid, key, scene.centre, scene.half_size,
-            scene.offset_m,
-        )
+        origins, directions, lever = emission_rays(craft, np.arange(lo, hi), grid, seed)
         struck = craft.struck_sides(scene.first_hit(origins, directions), directions)
         return _tally(struck, directions, lever, grid**2)
 
-    def work(lo: int, hi: int) -> list[tuple[NDArray, ...]]:
-        return [batch(s, min(s + per_batch, hi)) for s in range(lo, hi, per_batch)]
-
-    tallies = [t for chunk in map_ranges(work, craft.n_sides, per_batch) for t in chunk]
+    tallies = map_side_batches(batch, craft.n_sides, grid**2)
     return tuple(np.concatenate(field) for field in zip(*tallies, strict=True))
+
+
+def map_side_batches(function: Callable[[int, int], T], n: int, rays_per_side: int) -> list[T]:
+    """``[function(lo, hi) for each batch]`` over ``range(n)`` in batches of about ``_BATCH_RAYS`` rays
+    (``rays_per_side`` per item), made, cast and tallied in turn by one thread; results in order.
+
+    Batch boundaries follow the thread count: ``function`` must treat every item on its own.
+    """
+    per_batch = max(1, _BATCH_RAYS // rays_per_side)
+
+    def work(lo: int, hi: int) -> list[T]:
+        return [function(s, min(s + per_batch, hi)) for s in range(lo, hi, per_batch)]
+
+    return [t for chunk in map_ranges(work, n, per_batch) for t in chunk]
+
+
+def emission_rays(
+    craft: Spacecraft, sides: NDArray[np.int64], grid: int, seed: int
+) -> tuple[NDArray[np.float32], NDArray[np.float32], NDArray[np.float64]]:
+    """The ``grid**2`` emission rays of each of ``sides`` with ``seed``: origins (scene coordinates,
+    float32), directions (float32) and levers (surface point minus side centroid [m]), ray ``r`` of
+    ``sides[k]`` at row ``k grid**2 + r`` (see the module docstring and :func:`_emission_rays`)."""
+    scene = craft.scene
+    return _emission_rays(
+        craft.triangles,
+        craft.side_facet,
+        craft.side_normals,
+        np.asarray(sides, dtype=np.int64),
+        grid,
+        np.uint64(seed),
+        scene.centre,
+        scene.half_size,
+        scene.offset_m,
+    )
 
 
 @numba.njit(cache=True, nogil=True)
@@ -223,7 +253,13 @@ def _mix(z: np.uint64) -> np.uint64:
 
 
 @numba.njit(cache=True, nogil=True)
-def _uniform(key: np.uint64, index: int) -> float:
+def side_key(seed: np.uint64, side: int) -> np.uint64:
+    """Key of the random numbers of ``side``'s rays under ``seed``."""
+    return _mix(seed ^ _mix(np.uint64(side) + _GOLDEN))
+
+
+@numba.njit(cache=True, nogil=True)
+def uniform(key: np.uint64, index: int) -> float:
     """Random number in [0, 1), a hash of ``key`` and ``index``."""
     return float(_mix(key + np.uint64(index + 1) * _GOLDEN) >> np.uint64(11)) * 2.0**-53
 
@@ -269,15 +305,14 @@ def _emission_rays(
     triangles: NDArray[np.float64],
     side_facet: NDArray[np.int64],
     normals: NDArray[np.float64],
-    first: int,
-    count: int,
+    sides: NDArray[np.int64],
     grid: int,
     seed: np.uint64,
     centre: NDArray[np.float64],
     half_size: float,
     offset_m: float,
 ) -> tuple[NDArray[np.float32], NDArray[np.float32], NDArray[np.float64]]:
-    """The ``grid**2`` emission rays of sides ``first .. first + count - 1`` (see the module docstring).
+    """The ``grid**2`` emission rays of each of ``sides`` (see the module docstring).
 
     Returns
     -------
@@ -289,32 +324,34 @@ def _emission_rays(
         Surface point minus side centroid [m].
     """
     n = grid * grid
+    count = sides.shape[0]
     origins = np.empty((count * n, 3), dtype=np.float32)
     directions = np.empty((count * n, 3), dtype=np.float32)
     lever = np.empty((count * n, 3))
     order = np.empty(n, dtype=np.int64)
     third = 1.0 / 3.0
     for k in range(count):
-        s = first + k
-        key = _mix(seed ^ _mix(np.uint64(s) + _GOLDEN))
+        s = sides[k]
+        key = side_key(seed, s)
         # random numbers: direction jitter [0, 2n), point jitter [2n, 4n), pairing [4n, 5n), turn 5n
+        # (above 5n: picks of the exchange factors' chains)
         for i in range(n):
             order[i] = i
         for i in range(n - 1, 0, -1):
-            j = int(_uniform(key, 4 * n + i) * (i + 1))
+            j = int(uniform(key, 4 * n + i) * (i + 1))
             order[i], order[j] = order[j], order[i]
         normal = normals[s]
-        t1, t2 = _frame(normal, 2 * math.pi * _uniform(key, 5 * n))
+        t1, t2 = _frame(normal, 2 * math.pi * uniform(key, 5 * n))
         corners = triangles[side_facet[s]]
         for i in range(n):
             x, y = _disk(
-                (i // grid + _uniform(key, 2 * i)) / grid, (i % grid + _uniform(key, 2 * i + 1)) / grid
+                (i // grid + uniform(key, 2 * i)) / grid, (i % grid + uniform(key, 2 * i + 1)) / grid
             )
             z = math.sqrt(max(0.0, 1.0 - x * x - y * y))
             c = order[i]
             b1, b2 = _square_to_triangle(
-                (c // grid + _uniform(key, 2 * n + 2 * c)) / grid,
-                (c % grid + _uniform(key, 2 * n + 2 * c + 1)) / grid,
+                (c // grid + uniform(key, 2 * n + 2 * c)) / grid,
+                (c % grid + uniform(key, 2 * n + 2 * c + 1)) / grid,
             )
             b0 = 1.0 - b1 - b2
             r = k * n + i

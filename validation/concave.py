@@ -443,8 +443,6 @@ class ReflectionRow:
         The solver's interference criterion ``K_IS``, eq. (7) [-].
     photons : int
         Bundles the tracer launched.
-    radiosity_model : bool
-        Whether the tracer followed the solver's radiosity model rather than the physics.
     tracer_seconds, solver_seconds : float
         Wall-clock times [s].
     """
@@ -463,7 +461,6 @@ class ReflectionRow:
     power_difference: float
     k_is: float
     photons: int
-    radiosity_model: bool
     tracer_seconds: float
     solver_seconds: float
 
@@ -480,11 +477,10 @@ def trace_case(
     photons: int = MC_PHOTONS,
     seed: int = 0,
     max_bounces: int = 100,
-    radiosity_model: bool = False,
 ) -> TracerResult:
     """The tracer's loads for one case, finish and (azimuth, elevation), about the model's default point.
 
-    ``max_bounces`` and ``radiosity_model`` as in :func:`validation.photon_tracer.trace_photons`.
+    ``max_bounces`` as in :func:`validation.photon_tracer.trace_photons`.
     """
     return trace_photons(
         case.spacecraft(finish),
@@ -492,7 +488,6 @@ def trace_case(
         photons=photons,
         seed=seed,
         max_bounces=max_bounces,
-        radiosity_model=radiosity_model,
     )
 
 
@@ -502,18 +497,14 @@ def compare(
     sun_deg: tuple[float, float],
     photons: int = MC_PHOTONS,
     seed: int = 0,
-    radiosity_model: bool = False,
 ) -> ReflectionRow:
-    """Solver (``reflections="full"``) against tracer for one case, finish and Sun direction.
-
-    Both at 1361 W/m^2, torques about the model's default reference point (its area centroid). With
-    ``radiosity_model`` the tracer follows the solver's diffuse model rather than the physics
-    (:func:`validation.photon_tracer.trace_photons`).
-    """
+    """Solver (``reflections="full"``) against the tracer (the physics) for one case, finish and Sun
+    direction; both at 1361 W/m^2, torques about the model's default reference point (its area
+    centroid)."""
     from forces.evaluate import srp  # the solver under test; imported here so the tracer needs none of it
 
     craft = case.spacecraft(finish)
-    mc = trace_case(case, finish, sun_deg, photons, seed, radiosity_model=radiosity_model)
+    mc = trace_case(case, finish, sun_deg, photons, seed)
     start = time.perf_counter()
     solver = srp(
         craft,
@@ -546,7 +537,6 @@ def compare(
         power_difference=max(abs(g) for g in power_gaps) / mc.incident_W,
         k_is=float(solver.k_is),
         photons=mc.photons,
-        radiosity_model=radiosity_model,
         tracer_seconds=mc.seconds,
         solver_seconds=solver_seconds,
     )
@@ -556,11 +546,10 @@ def reflection_table(
     cases: tuple[ConcaveCase, ...] = CONCAVE_CASES,
     photons: int = MC_PHOTONS,
     seed: int = 0,
-    radiosity_model: bool = False,
 ) -> list[ReflectionRow]:
     """:func:`compare` for every case, finish and Sun direction, in that order."""
     return [
-        compare(case, finish, sun, photons, seed, radiosity_model)
+        compare(case, finish, sun, photons, seed)
         for case in cases
         for finish in case.finishes
         for sun in case.suns_deg

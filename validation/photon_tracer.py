@@ -30,12 +30,13 @@ its momentum away). No Russian roulette: power is conserved exactly, bundle by b
 full absorption) and the torque ``(r - r_ref) x J``. Every direction is sampled, never averaged
 (no ``2/3`` Lambertian factor appears), so the tracer checks the solver's force law too.
 
-**Radiosity model.** With ``radiosity_model=True`` the tracer follows the solver's model instead of
-the physics: a bundle once reflected diffusely is reflected diffusely ever after, whatever the
-``beta`` of the surfaces it meets, and leaves a sheet it passes through in a Lambertian spread, as
-the radiosity equation (METHOD.md eq. 12) re-emits the whole ``rho`` and a sheet's ``sigma`` of the
-diffuse light a side receives. The difference between the two runs is the model's error; the
-difference between the solver and this run is the implementation's.
+**Radiosity model.** With ``radiosity_model=True`` the tracer follows the paper's radiosity model
+instead of the physics: a bundle once reflected diffusely is reflected diffusely ever after,
+whatever the ``beta`` of the surfaces it meets, and leaves a sheet it passes through in a Lambertian
+spread, as METHOD.md eq. (12) re-emits the whole ``rho`` and a sheet's ``sigma`` of the diffuse light
+a side receives. The difference between the two runs is that model's error on mixed finishes. The
+solver does not make it (its exchange factors follow mirrored and transmitted diffuse light, see
+:mod:`geometry.exchange_factors`) and is checked against the physics.
 
 **Errors.** The photons are split into independent batches, each with its own stream of random
 numbers; each batch's total is an unbiased estimate, and the standard error of the mean is the
@@ -346,10 +347,10 @@ def trace_photons(
     max_bounces : int
         Most interactions a bundle may have; the power still travelling then is ``cut_W``.
     radiosity_model : bool
-        Trace the radiosity model of METHOD.md eq. (12) instead of the physics: once a bundle has
-        been reflected diffusely, every later reflection of it is Lambertian (the whole ``rho``
+        Trace the paper's radiosity model, METHOD.md eq. (12), instead of the physics: once a bundle
+        has been reflected diffusely, every later reflection of it is Lambertian (the whole ``rho``
         re-emitted diffusely) and its transmission through a sheet leaves the far side Lambertian.
-        Tells the solver's modelling error from its implementation error.
+        Measures what that model misses on mixed finishes.
 
     Returns
     -------
