@@ -100,19 +100,23 @@ def timed_on_local_cluster(
     recipe: ModelRecipe, pending: list[tuple[Job, int, int]], workers: int
 ) -> tuple[float, list[NDArray[np.float64]]]:
     """Seconds a local cluster of ``workers`` one-thread workers takes for ``pending`` chunks once every
-    worker has loaded the model (a one-attitude chunk run on each first), and the chunks' records."""
+    worker has the model and what each job's first attitude makes (one-attitude chunks of every job run
+    on each worker first), and the chunks' records."""
     import time
 
     from dask.distributed import wait
 
     client = connect("local", workers)
     try:
-        job, lo, _ = pending[0]
+        firsts: dict[int, tuple[Job, int]] = {}
+        for job, lo, _ in pending:
+            firsts.setdefault(id(job), (job, lo))
         warm = [
             client.submit(
                 _remote_chunk, recipe, job.setup, job.directions[lo : lo + 1], pure=False, workers=[w]
             )
             for w in client.scheduler_info()["workers"]
+            for job, lo in firsts.values()
         ]
         wait(warm)
         start = time.perf_counter()

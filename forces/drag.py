@@ -336,7 +336,7 @@ def drag(
     speed = float(np.linalg.norm(velocity))
     u = unit_vector(velocity, "velocity")
     ref, ref_name = reference_point(craft, reference_point_m)
-    area_ref, length_ref = _reference_sizes(craft, reference_area_m2, reference_length_m)
+    area_ref, length_ref = reference_sizes(craft, reference_area_m2, reference_length_m)
     speed_ratio = atmosphere.mean_speed_ratio(speed)
     if speed_ratio < LOW_SPEED_RATIO:
         warnings.warn(
@@ -434,7 +434,7 @@ def _summed_laws(
     return summed_coefficients(groups.laws, groups.law, gamma, ratio, q, temperature, emission)
 
 
-def _reference_sizes(craft: Spacecraft, area_m2: float | None, length_m: float | None) -> tuple[float, float]:
+def reference_sizes(craft: Spacecraft, area_m2: float | None, length_m: float | None) -> tuple[float, float]:
     """Coefficient reference area [m^2] and length [m]: the user's, else the defaults of :func:`drag`."""
     area = craft.total_area / 4 if area_m2 is None else float(area_m2)
     length = float(np.ptp(craft.bounds, axis=0).max()) if length_m is None else float(length_m)

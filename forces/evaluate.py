@@ -11,7 +11,8 @@ from geometry.directions import finite_point, unit_vector
 from geometry.illumination import DEFAULT_TOLERANCE
 from geometry.spacecraft import Spacecraft
 
-from .radiation import TOTALS, accumulate_forces, radiation_pressure, solar_flux
+from .direct_sums import TOTALS, accumulate_forces, model_block_moments
+from .radiation import radiation_pressure, solar_flux
 from .reflections import ReflectionSettings, reflected_part
 from .result import SrpResult
 
@@ -65,16 +66,19 @@ def srp(
     flux = solar_flux(flux_W_m2, distance_au)
     pressure = radiation_pressure(flux)
     ref, ref_name = reference_point(craft, reference_point_m)
-    args = (craft.side_normals, craft.side_areas, craft.side_optics, u_sun, pressure, ref)
-    side_block = craft.sampler.side_block
-    partials = np.zeros((craft.sampler.n_blocks, TOTALS))
+    sampler = craft.sampler
+    low, high = sampler.block_normal_bounds
+    args = (craft.side_centroids, craft.side_normals, craft.side_areas, craft.side_optics, u_sun, ref)
+    blocks = (sampler.side_block, low, high, model_block_moments(craft))
+    partials = np.zeros((sampler.n_blocks, TOTALS))
 
     def force_sum(sides: NDArray[np.int64], fraction: NDArray, centroid: NDArray) -> None:
-        accumulate_forces(sides, fraction, centroid, *args, side_block, partials)
+        accumulate_forces(sides, fraction, centroid, *args, *blocks, partials)
 
-    light = craft.sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
-    # block sums added in block order: the same bits whatever the threads did
+    light = sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
+    # block sums added in block order: the same bits whatever the threads did; eq. (4) with P = 1
     totals = partials.sum(axis=0)
+    totals[:6] *= pressure
     reflected = reflected_part(craft, light, flux, ref, settings, (flux * totals[7], flux * totals[8]))
     return SrpResult(
         sun_vector=u_sun,

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 from numpy.typing import NDArray
 
@@ -98,80 +97,3 @@ def surface_forces(
     along_sun = scale * (1.0 - sigma - rho_s)
     along_normal = scale * (2.0 * rho_s * cos_theta + LAMBERT_FACTOR * rho_d)
     return along_sun[:, None] * sun_vector + along_normal[:, None] * normals
-
-
-#: Quantities :func:`accumulate_forces` sums: force, torque, lit area, projected area, absorbed
-#: projected area (projected area weighted by absorptivity: absorbed power over flux).
-TOTALS = 9
-
-
-@numba.njit(cache=True, nogil=True, fastmath=True)
-def accumulate_forces(
-    sides: NDArray[np.int64],
-    lit_fraction: NDArray[np.float64],
-    lit_centroid: NDArray[np.float64],
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    optics: NDArray[np.float64],
-    sun_vector: NDArray[np.float64],
-    pressure_Pa: float,
-    reference_m: NDArray[np.float64],
-    side_block: NDArray[np.int64],
-    partials: NDArray[np.float64],
-) -> None:
-    """Sums of :func:`surface_forces` over ``sides``, with torque about ``reference_m``, per block.
-
-    Per-side arrays are indexed by side: ``lit_fraction`` (n,), ``lit_centroid`` (n, 3) [m] where
-    each side's force acts, ``normals`` (n, 3), ``areas`` (n,) [m^2], ``optics`` (n, 3) holding
-    ``(rho, beta, sigma)``. Each side's ``[Fx, Fy, Fz, Mx, My, Mz, lit area, projected area,
-    absorbed projected area]``
-    [N, N m, m^2, m^2] is added, in the order of ``sides``, to the row ``side_block[s]`` of
-    ``partials`` (n_blocks, 8). Summing the rows in order gives a total that does not depend on how
-    the sides were split between calls, as long as each block's sides come in a fixed order.
-    (fastmath lets the compiler fuse multiply-adds; the branch at block ends keeps it from reordering
-    the sums, so results repeat from run to run.)
-    """
-    u0, u1, u2 = sun_vector[0], sun_vector[1], sun_vector[2]
-    x0, x1, x2 = reference_m[0], reference_m[1], reference_m[2]
-    block = -1
-    fx = fy = fz = mx = my = mz = lit_total = projected = absorbed = 0.0
-    n = sides.shape[0]
-    for k in range(n + 1):
-        if k == n or side_block[sides[k]] != block:
-            if block >= 0:
-                row = partials[block]
-                row[0] += fx
-                row[1] += fy
-                row[2] += fz
-                row[3] += mx
-                row[4] += my
-                row[5] += mz
-                row[6] += lit_total
-                row[7] += projected
-                row[8] += absorbed
-            if k == n:
-                break
-            block = side_block[sides[k]]
-            fx = fy = fz = mx = my = mz = lit_total = projected = absorbed = 0.0
-        s = sides[k]
-        if lit_fraction[s] == 0.0:
-            continue
-        n0, n1, n2 = normals[s, 0], normals[s, 1], normals[s, 2]
-        cos = n0 * u0 + n1 * u1 + n2 * u2
-        rho = optics[s, 0]
-        rho_s = rho * optics[s, 1]
-        lit_area = areas[s] * lit_fraction[s]
-        scale = -pressure_Pa * lit_area * cos
-        a = scale * (1.0 - optics[s, 2] - rho_s)
-        b = scale * (2.0 * rho_s * cos + LAMBERT_FACTOR * (rho - rho_s))
-        f0, f1, f2 = a * u0 + b * n0, a * u1 + b * n1, a * u2 + b * n2
-        r0, r1, r2 = lit_centroid[s, 0] - x0, lit_centroid[s, 1] - x1, lit_centroid[s, 2] - x2
-        fx += f0
-        fy += f1
-        fz += f2
-        mx += r1 * f2 - r2 * f1
-        my += r2 * f0 - r0 * f2
-        mz += r0 * f1 - r1 * f0
-        lit_total += lit_area
-        projected += lit_area * cos
-        absorbed += lit_area * cos * (1.0 - rho - optics[s, 2])

@@ -276,7 +276,7 @@ def _table_attributes(craft, recipe, jobs, flux: float, pressure: float, step: f
     """The table's global attributes: frame, reference point, environment, provenance."""
     from importlib.metadata import version
 
-    from forces.drag import _reference_sizes
+    from forces.drag import reference_sizes
     from forces.evaluate import reference_point
     from forces.result import FRAME
 
@@ -313,7 +313,7 @@ def _table_attributes(craft, recipe, jobs, flux: float, pressure: float, step: f
         else:
             drag_setup = job.setup
             air = drag_setup.atmosphere
-            area, length = _reference_sizes(
+            area, length = reference_sizes(
                 craft, drag_setup.reference_area_m2, drag_setup.reference_length_m
             )
             attrs |= {

@@ -159,7 +159,7 @@ class SideSampler:
         self, direction: NDArray[np.float64], level: int, first: int, last: int
     ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
         """Sides of blocks ``first`` to ``last - 1`` facing ``direction``, and their kept origins."""
-        low, high = self._block_normal_bounds
+        low, high = self.block_normal_bounds
         return _facing_origins(
             self.craft.side_normals,
             direction,
@@ -183,7 +183,7 @@ class SideSampler:
         return np.concatenate([order, np.arange(full * BLOCK, n)])
 
     @cached_property
-    def _block_normal_bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def block_normal_bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Smallest and largest normal components over each block, (n_blocks, 3) each: a block
         whose bound on ``n . u`` is not positive has no side facing ``u`` and is skipped whole."""
         normals = self.craft.side_normals[self._balanced_order]

@@ -1,15 +1,16 @@
 """Data-parallel work over index ranges on one shared thread pool, for kernels that release the GIL.
 
-Embree queries and the numba kernels release the GIL, so threads give real speed-up. Work is cut
-into chunks taken by whichever thread is free, the caller included: a pool thread that wakes late or
-a chunk that costs more does not leave the others idle. A call made from inside a chunk runs
-serially there, so nested calls cannot deadlock the pool. Chunk boundaries may depend on the number
-of threads: a caller that sums floating-point results must sum in an order of its own.
+Embree queries and the numba kernels release the GIL, so threads give real speed-up. Work is taken
+in chunks by whichever thread is free, the caller included, with guided self-scheduling: each chunk
+is the remaining work divided by the number of threads (never under a least size), so chunks start
+large, which keeps the per-chunk cost low, and shrink toward the end, so threads finish together
+even when items cost unequal amounts. A call made from inside a chunk runs serially there, so nested
+calls cannot deadlock the pool. Chunk boundaries depend on the number of threads and on timing: a
+caller that sums floating-point results must sum in an order of its own.
 """
 
 from __future__ import annotations
 
-import itertools
 import os
 import threading
 from collections.abc import Callable
@@ -39,36 +40,40 @@ def _executor() -> ThreadPoolExecutor:
         return _pool
 
 
-#: Chunks per thread: enough to even out chunks of unequal cost, few enough to keep the per-chunk
-#: overhead small.
-CHUNKS_PER_THREAD = 2
-
-
 def map_ranges(function: Callable[[int, int], T], n: int, min_size: int) -> list[T]:
-    """``[function(lo, hi) for each chunk]`` over ``range(n)``, in parallel; results in chunk order.
+    """``[function(lo, hi) for each chunk]`` over ``range(n)``, in parallel; results in range order.
 
-    At most ``CHUNKS_PER_THREAD`` chunks per thread, each of at least ``min_size`` items. Inside a
-    chunk of another call, or with one thread, the whole range runs in the calling thread.
+    Chunks hold at least ``min_size`` items (the last may hold fewer). Inside a chunk of another
+    call, with one thread, or with fewer than ``2 * min_size`` items, the whole range runs in the
+    calling thread.
     """
     threads = thread_count()
-    chunks = min(threads * CHUNKS_PER_THREAD, n // max(1, min_size))
-    if chunks <= 1 or threads == 1 or getattr(_inside, "active", False):
+    min_size = max(1, min_size)
+    if n < 2 * min_size or threads == 1 or getattr(_inside, "active", False):
         return [function(0, n)]
-    bounds = [n * k // chunks for k in range(chunks + 1)]
-    results: list = [None] * chunks
-    tickets = itertools.count()  # next() on a count is atomic under the GIL
+    cursor, lock = [0], threading.Lock()
+    results: dict[int, T] = {}
+
+    def next_chunk() -> tuple[int, int] | None:
+        with lock:
+            lo = cursor[0]
+            if lo >= n:
+                return None
+            hi = min(n, lo + max(min_size, -(-(n - lo) // threads)))
+            cursor[0] = hi
+            return lo, hi
 
     def drain() -> None:
         _inside.active = True
         try:
-            while (k := next(tickets)) < chunks:
-                results[k] = function(bounds[k], bounds[k + 1])
+            while (chunk := next_chunk()) is not None:
+                results[chunk[0]] = function(*chunk)
         finally:
             _inside.active = False
 
-    helpers = [_executor().submit(drain) for _ in range(min(threads, chunks) - 1)]
+    helpers = [_executor().submit(drain) for _ in range(threads - 1)]
     drain()
     wait(helpers)
     for helper in helpers:
         helper.result()  # re-raise a helper's exception
-    return results
+    return [results[lo] for lo in sorted(results)]
