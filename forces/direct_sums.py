@@ -174,7 +174,7 @@ def _add_moments(m: NDArray[np.float64], u: NDArray[np.float64], ref: NDArray[np
 @numba.njit(cache=True, nogil=True, fastmath=True)
 def accumulate_forces(
     sides: NDArray[np.int64],
-    lit_fraction: NDArray[np.float64],
+    lit_share: NDArray[np.float64],
     lit_centroid: NDArray[np.float64],
     side_centroid: NDArray[np.float64],
     normals: NDArray[np.float64],
@@ -191,10 +191,11 @@ def accumulate_forces(
     """Sums of eq. (4) with ``P = 1`` over the facing ``sides``, with torque about ``reference_m``,
     per block.
 
-    Per-side arrays are indexed by side: ``lit_fraction`` (n,), ``lit_centroid`` (n, 3) [m] where
-    each side's force acts (``side_centroid`` on wholly lit sides), ``normals`` (n, 3), ``areas`` (n,)
-    [m^2], ``optics`` (n, 3) holding ``(rho, beta, sigma)``. A block holds consecutive side numbers
-    and its facing sides come together in ``sides``, in order. A block whose normal bounds
+    ``lit_share[k]`` is the lit share of side ``sides[k]`` (float, or bool: lit or not). Per-side
+    arrays are indexed by side: ``lit_centroid`` (n, 3) [m] where each side's force acts
+    (``side_centroid`` on wholly lit sides), ``normals`` (n, 3), ``areas`` (n,) [m^2], ``optics``
+    (n, 3) holding ``(rho, beta, sigma)``. A block holds consecutive side numbers and its facing
+    sides come together in ``sides``, in ascending order. A block whose normal bounds
     ``block_low``/``block_high`` (n_blocks, 3) show that all its sides face is added from its
     ``moments`` (:func:`block_moments`), corrected on sides not wholly lit; the others side by side.
     Each side's ``[Fx, Fy, Fz, Mx, My, Mz, lit area, projected area, absorbed projected area]``
@@ -216,18 +217,19 @@ def accumulate_forces(
         if lower > _FACING_MARGIN:
             # every side of the block faces: the moments, then the sides not wholly lit
             _add_moments(moments[block], u, ref, row)
-            first, count = sides[k], int(moments[block, 94])
-            k += count
-            for s in range(first, first + count):
-                f = lit_fraction[s]
+            end = k + int(moments[block, 94])
+            while k < end:
+                f = lit_share[k]
                 if f != 1.0:
+                    s = sides[k]
                     _add_side(s, areas[s], side_centroid[s], ref, normals, optics, u, -1.0, row)
                     if f != 0.0:
                         _add_side(s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, 1.0, row)
+                k += 1
             continue
         while k < n and side_block[sides[k]] == block:
             s = sides[k]
+            f = lit_share[k]
             k += 1
-            f = lit_fraction[s]
             if f != 0.0:
                 _add_side(s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, 1.0, row)

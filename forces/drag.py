@@ -200,11 +200,10 @@ def _flow_shadow(
     blocked = batch.cast(craft)
     incidence, lit = (None, None) if shadow is None else (shadow.incidence, shadow.lit(blocked))
     if own_flow:
-        lit_fraction = np.zeros(craft.n_sides)
-        lit_fraction[facing] = lit[:, 0]
         rays = int(np.count_nonzero(shadow.pair % len(directions) == 0))
         sampling = f"{level**2} points per side"
-        flow = Illumination(u, craft.side_normals, facing, lit_fraction, craft.side_centroids, rays, sampling)
+        runs = (facing,), (lit[:, 0].astype(np.float64),)
+        flow = Illumination(u, craft.side_normals, *runs, craft.side_centroids, rays, sampling, level)
         incidence, lit = incidence[:, 1:], lit[:, 1:]
     visible = np.array(flow.lit_fraction, dtype=np.float64)
     visible[lee] = 1.0

@@ -72,8 +72,8 @@ def srp(
     blocks = (sampler.side_block, low, high, model_block_moments(craft))
     partials = np.zeros((sampler.n_blocks, TOTALS))
 
-    def force_sum(sides: NDArray[np.int64], fraction: NDArray, centroid: NDArray) -> None:
-        accumulate_forces(sides, fraction, centroid, *args, *blocks, partials)
+    def force_sum(sides: NDArray[np.int64], share: NDArray, centroid: NDArray) -> None:
+        accumulate_forces(sides, share, centroid, *args, *blocks, partials)
 
     light = sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
     # block sums added in block order: the same bits whatever the threads did; eq. (4) with P = 1

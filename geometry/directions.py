@@ -24,9 +24,9 @@ def unit_vector(vector: Sequence[float] | NDArray, name: str = "vector") -> NDAr
         Not three finite numbers, or zero length.
     """
     v = np.asarray(vector, dtype=np.float64).reshape(-1)
-    if v.shape != (3,) or not np.isfinite(v).all():
+    if v.shape != (3,) or not all(map(math.isfinite, v.tolist())):
         raise InputError(f"{name} {_fmt(v)} must be three finite numbers", hint="e.g. 1 0 0")
-    norm = float(np.linalg.norm(v))
+    norm = math.hypot(*v.tolist())
     if norm == 0.0 or not math.isfinite(norm):
         raise InputError(f"{name} {_fmt(v)} has zero length", hint="give a direction, e.g. 1 0 0")
     return v / norm

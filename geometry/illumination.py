@@ -51,13 +51,14 @@ DEFAULT_TOLERANCE = 1e-3
 _BATCH_RAYS = 1 << 21
 
 #: Something summed over facing sides once their lit shares are final:
-#: ``reduce(sides, lit_fraction, lit_centroid)``. It may be called from several threads at once,
-#: each time on whole blocks of :attr:`SideSampler.side_block`, each block's sides in a fixed order.
+#: ``reduce(sides, lit_share, lit_centroid)``, ``lit_share[k]`` the share of side ``sides[k]`` and
+#: ``lit_centroid`` indexed by side. It may be called from several threads at once, each time on
+#: whole blocks of :attr:`SideSampler.side_block`, each block's sides in ascending order.
 Reduction = Callable[[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]], None]
 #: Sides per block of the balanced order.
 BLOCK = 512
 #: Fewest blocks in a chunk of an attitude's parallel work.
-_MIN_BLOCKS_PER_CHUNK = 16
+_MIN_BLOCKS_PER_CHUNK = 8
 #: Largest origin array (points) kept per level for reuse across attitudes.
 _KEEP_POINTS = 1 << 22
 
@@ -72,10 +73,10 @@ class Illumination:
         Unit vector toward the source, body frame (``u_sun``).
     side_normals : (n_sides, 3) float64
         Outward normal of each side (the model's array, not a copy).
-    facing : (n_facing,) int64
-        Sides with ``cos_incidence > 0``; only these can be lit.
-    lit_fraction : (n_sides,) float64
-        Share of the side's area that is lit, in [0, 1]; 0 for sides facing away.
+    facing_runs, share_runs : tuple of arrays
+        The sides with ``cos_incidence > 0`` (only these can be lit), int64, and the share of the
+        area of each that is lit, float64 (or bool with one point per side), in runs as the threads
+        found them; joined on first use as :attr:`facing` and :attr:`facing_share`.
     lit_centroid : (n_sides, 3) float64
         Centroid of the side's lit sample points [m]; the facet centroid where nothing is lit.
     rays : int
@@ -89,8 +90,8 @@ class Illumination:
 
     direction: NDArray[np.float64]
     side_normals: NDArray[np.float64]
-    facing: NDArray[np.int64]
-    lit_fraction: NDArray[np.float64]
+    facing_runs: tuple[NDArray[np.int64], ...]
+    share_runs: tuple[NDArray[np.float64], ...]
     lit_centroid: NDArray[np.float64]
     rays: int
     sampling: str
@@ -100,6 +101,27 @@ class Illumination:
     def cos_incidence(self) -> NDArray[np.float64]:
         """``n_out . direction`` of each side, (n_sides,); computed on first use."""
         return self.side_normals @ self.direction
+
+    @cached_property
+    def facing(self) -> NDArray[np.int64]:
+        """Sides facing the source, (n_facing,)."""
+        return _joined(self.facing_runs)
+
+    @cached_property
+    def facing_share(self) -> NDArray[np.float64]:
+        """Lit share of each of :attr:`facing`, (n_facing,)."""
+        return _joined(self.share_runs).astype(np.float64, copy=False)
+
+    @cached_property
+    def lit_fraction(self) -> NDArray[np.float64]:
+        """Lit share of every side, (n_sides,), 0 for sides facing away; made on first use."""
+        fraction = np.zeros(len(self.side_normals))
+        fraction[self.facing] = self.facing_share
+        return fraction
+
+
+def _joined(runs: tuple[NDArray, ...]) -> NDArray:
+    return runs[0] if len(runs) == 1 else np.concatenate(runs)
 
 
 def level_for_samples(samples: int) -> int:
@@ -115,13 +137,18 @@ class SideSampler:
     def __init__(self, craft: Spacecraft) -> None:
         self.craft = craft
         self.scene = craft.scene
-        self._origins: dict[int, NDArray[np.float32]] = {}
+        self._kept: dict[int, NDArray[np.float32]] = {}
 
     def origins(self, level: int) -> NDArray[np.float32]:
-        """Ray origins of every side at ``level`` in scene coordinates, (n_sides, level**2, 3); kept."""
-        if level not in self._origins:
-            self._origins[level] = self._origins_of(np.arange(self.craft.n_sides), level)
-        return self._origins[level]
+        """Ray origins of every side at ``level`` in scene coordinates, (n_sides, level**2, 3)."""
+        return self._origins_of(np.arange(self.craft.n_sides), level)
+
+    def _kept_origins(self, level: int) -> NDArray[np.float32]:
+        """The origins of every side at ``level`` in the balanced order (row ``k`` belongs to side
+        ``_balanced_order[k]``), so a block's rows are contiguous; made once and kept."""
+        if level not in self._kept:
+            self._kept[level] = self._origins_of(self._balanced_order, level)
+        return self._kept[level]
 
     def _keeps(self, level: int) -> bool:
         return self.craft.n_sides * level**2 <= _KEEP_POINTS
@@ -144,7 +171,7 @@ class SideSampler:
         """Lit flag of each origin, same leading shape as ``origins``."""
         flat = origins.reshape(-1, 3)
         directions = np.broadcast_to(direction.astype(np.float32), flat.shape)
-        return ~self.scene.occluded(flat, directions).reshape(origins.shape[:-1])
+        return self.scene.clear(flat, directions).reshape(origins.shape[:-1])
 
     def facing_rays(
         self, direction: NDArray[np.float64], level: int
@@ -163,7 +190,7 @@ class SideSampler:
         return _facing_origins(
             self.craft.side_normals,
             direction,
-            self.origins(level),
+            self._kept_origins(level),
             self._balanced_order,
             low,
             high,
@@ -209,28 +236,27 @@ class SideSampler:
         self,
         direction: NDArray[np.float64],
         level: int,
-        fraction: NDArray[np.float64],
         centroid: NDArray[np.float64],
         reduce: Reduction | None,
-    ) -> tuple[NDArray[np.int64], NDArray[np.bool_] | None]:
-        """Cast every facing side's kept rays at ``level``; write lit shares (and lit centroids).
+    ) -> tuple[tuple[NDArray[np.int64], ...], tuple[NDArray[np.float64], ...], NDArray[np.bool_] | None]:
+        """Cast every facing side's kept rays at ``level``; write lit centroids of part-lit sides.
 
         Threads take runs of whole blocks of :attr:`_balanced_order` through the facing test, Embree,
-        the lit counts and ``reduce``, in one dispatch. Returns the facing sides and their lit flags
-        (n_facing, level**2), the flags only when ``reduce`` is None.
+        the lit shares and ``reduce``, in one dispatch. Returns the facing sides and their lit shares,
+        in runs, and, only when ``reduce`` is None, the lit flags of all of them (n_facing, level**2).
         """
 
         def work(first: int, last: int) -> tuple:
             facing, mine = self._facing_origins(direction, level, first, last)
             lit = self._lit(mine, direction)
-            self._store(facing, lit, level, fraction, centroid)
+            share = self._shares(facing, lit, level, centroid)
             if reduce is not None:
-                reduce(facing, fraction, centroid)
-            return facing, lit
+                reduce(facing, share, centroid)
+                return facing, share, None
+            return facing, share, lit
 
-        parts = map_ranges(work, self.n_blocks, _MIN_BLOCKS_PER_CHUNK)
-        facing = np.concatenate([p[0] for p in parts])
-        return facing, np.concatenate([p[1] for p in parts]) if reduce is None else None
+        facing, share, lit = zip(*map_ranges(work, self.n_blocks, _MIN_BLOCKS_PER_CHUNK), strict=True)
+        return facing, share, None if reduce is not None else _joined(lit)
 
     def illuminate(
         self,
@@ -247,51 +273,47 @@ class SideSampler:
         threads where possible.
         """
         craft = self.craft
-        level = BASE_LEVEL if samples is None else level_for_samples(samples)
-        fraction = np.zeros(craft.n_sides)
+        fixed = samples is not None
+        level = level_for_samples(samples) if fixed else BASE_LEVEL
         # the lit centroid differs from the side centroid only on partly lit sides, which level 1 has not
         centroid = craft.side_centroids if level == 1 else craft.side_centroids.copy()
         if self._keeps(level):
-            fixed = samples is not None
-            facing, lit = self._cast_kept(direction, level, fraction, centroid, reduce if fixed else None)
+            facing, share, lit = self._cast_kept(direction, level, centroid, reduce if fixed else None)
             reduce = None if fixed else reduce  # a fixed count reduces chunk by chunk as it goes
         else:
-            facing, _ = self.facing_rays(direction, level)
-            lit = self._cast(facing, level, direction)
-            self._store(facing, lit, level, fraction, centroid)
-        rays = len(facing) * level**2
+            sides, _ = self.facing_rays(direction, level)
+            lit = self._cast(sides, level, direction)
+            facing, share = (sides,), (self._shares(sides, lit, level, centroid),)
+        rays = sum(map(len, facing)) * level**2
         sampling = f"{level**2} points per side"
-        if samples is None:
-            rays += self._refine(direction, facing, lit, fraction, centroid, tolerance)
+        if not fixed:
+            sides = _joined(facing)
+            fraction = np.zeros(craft.n_sides)
+            fraction[sides] = _joined(share)
+            rays += self._refine(direction, sides, lit, fraction, centroid, tolerance)
+            facing, share = (sides,), (fraction[sides],)
             sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
         if reduce is not None:
-            reduce(facing, fraction, centroid)
-        fixed = None if samples is None else level
-        return Illumination(direction, craft.side_normals, facing, fraction, centroid, rays, sampling, fixed)
+            reduce(facing[0], share[0], centroid)
+        return Illumination(
+            direction, craft.side_normals, facing, share, centroid, rays, sampling, level if fixed else None
+        )
 
-    def _store(
+    def _shares(
         self,
         sides: NDArray[np.int64],
         lit: NDArray[np.bool_],
         level: int,
-        fraction: NDArray[np.float64],
         centroid: NDArray[np.float64],
-    ) -> None:
-        """Write lit share and lit-point centroid of ``sides`` from their lit flags (n, level**2).
-
-        ``centroid`` must hold the facet centroid of sides not sampled before at a finer level.
-        """
-        count = _lit_counts(sides, lit, fraction)
-        if level == 1:
-            return
-        partial = np.flatnonzero((count > 0) & (count < lit.shape[1]))
-        if len(partial):
-            # the mean of the lit points is the triangle at the mean barycentric of those points
-            weights = (
-                lit[partial].astype(np.float64) @ tri.subdivision_barycentric(level) / count[partial, None]
-            )
-            corners = self.craft.triangles[self.craft.side_facet[sides[partial]]]
-            centroid[sides[partial]] = np.einsum("nk,nkd->nd", weights, corners)
+    ) -> NDArray[np.float64]:
+        """Lit share of each of ``sides`` from its lit flags (n, level**2); writes the centroid of the
+        lit points of each part-lit side into ``centroid``, which holds the facet centroid elsewhere."""
+        if level == 1:  # one point per side: its flag is its share, and no side is lit in part
+            return lit.reshape(-1)
+        craft = self.craft
+        barycentric = tri.subdivision_barycentric(level)
+        _lit_centroids(sides, lit, barycentric, craft.triangles, craft.side_facet, centroid)
+        return _lit_shares(lit)
 
     @cached_property
     def _adjacency(self) -> scipy.sparse.csr_matrix:
@@ -345,7 +367,7 @@ class SideSampler:
             previous = fraction[active].copy()
             centroid[active] = craft.side_centroids[active]
             lit = self._cast(active, level, direction)
-            self._store(active, lit, level, fraction, centroid)
+            fraction[active] = self._shares(active, lit, level, centroid)
             rays += lit.size
             now = fraction[active]
             partly = (now > 0) & (now < 1)
@@ -372,7 +394,7 @@ class SideSampler:
 def _facing_origins(
     normals: NDArray[np.float64],
     direction: NDArray[np.float64],
-    origins: NDArray[np.float32],
+    ordered_origins: NDArray[np.float32],
     order: NDArray[np.int64],
     block_low: NDArray[np.float64],
     block_high: NDArray[np.float64],
@@ -380,13 +402,15 @@ def _facing_origins(
     last: int,
 ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
     """Sides of ``order[first * BLOCK:last * BLOCK]`` with ``normals . direction > 0``, and their
-    ``origins``. The bounds of each block's normal components bound ``n . direction`` over it: a
-    block that cannot face is skipped unread, one that must face is taken without reading normals."""
+    origins (``ordered_origins[k]`` belongs to side ``order[k]``). The bounds of each block's normal
+    components bound ``n . direction`` over it: a block that cannot face is skipped unread, one that
+    must face is copied whole without reading normals."""
     d0, d1, d2 = direction[0], direction[1], direction[2]
-    points = origins.shape[1]
     start, stop = first * BLOCK, min(last * BLOCK, order.shape[0])
+    width = ordered_origins.shape[1] * 3  # float32 values per side
     facing = np.empty(stop - start, dtype=np.int64)
-    out = np.empty((stop - start, points, 3), dtype=np.float32)
+    out = np.empty((stop - start, ordered_origins.shape[1], 3), dtype=np.float32)
+    source, target = ordered_origins.reshape(-1), out.reshape(-1)
     count = 0
     for b in range(first, last):
         upper = lower = 0.0
@@ -396,15 +420,20 @@ def _facing_origins(
             lower += min(a, c)
         if upper <= 0.0:
             continue
-        every = lower > 0.0  # every side of the block faces the source: no normal to read
-        for k in range(b * BLOCK, min((b + 1) * BLOCK, stop)):
+        low, high = b * BLOCK, min((b + 1) * BLOCK, stop)
+        if lower > 0.0:  # every side of the block faces the source: one contiguous copy
+            for j in range(high - low):
+                facing[count + j] = order[low + j]
+            for j in range((high - low) * width):
+                target[count * width + j] = source[low * width + j]
+            count += high - low
+            continue
+        for k in range(low, high):
             s = order[k]
-            if every or normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
+            if normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
                 facing[count] = s
-                for p in range(points):
-                    out[count, p, 0] = origins[s, p, 0]
-                    out[count, p, 1] = origins[s, p, 1]
-                    out[count, p, 2] = origins[s, p, 2]
+                for j in range(width):
+                    target[count * width + j] = source[k * width + j]
                 count += 1
     return facing[:count], out[:count]
 
@@ -436,16 +465,41 @@ def _sample_origins(
 
 
 @numba.njit(cache=True, nogil=True)
-def _lit_counts(
-    sides: NDArray[np.int64], lit: NDArray[np.bool_], fraction: NDArray[np.float64]
-) -> NDArray[np.int64]:
-    """Lit points per side from flags (n, points); writes ``fraction[sides]``, returns the counts."""
+def _lit_shares(lit: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """Share of each row of lit flags (n, points) that is lit, (n,)."""
     n, points = lit.shape
-    counts = np.zeros(n, dtype=np.int64)
+    share = np.empty(n)
     for k in range(n):
-        c = 0
+        count = 0
         for p in range(points):
-            c += lit[k, p]
-        counts[k] = c
-        fraction[sides[k]] = c / points
-    return counts
+            count += lit[k, p]
+        share[k] = count / points
+    return share
+
+
+@numba.njit(cache=True, nogil=True)
+def _lit_centroids(
+    sides: NDArray[np.int64],
+    lit: NDArray[np.bool_],
+    barycentric: NDArray[np.float64],
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    centroid: NDArray[np.float64],
+) -> None:
+    """Write the mean of the lit points of each part-lit side of ``sides`` (lit flags (n, points) of
+    its points at ``barycentric``) into ``centroid[s]``: the triangle at their mean barycentric."""
+    n, points = lit.shape
+    for k in range(n):
+        count = 0
+        w0 = w1 = w2 = 0.0
+        for p in range(points):
+            if lit[k, p]:
+                count += 1
+                w0 += barycentric[p, 0]
+                w1 += barycentric[p, 1]
+                w2 += barycentric[p, 2]
+        if 0 < count < points:
+            f = side_facet[sides[k]]
+            for d in range(3):
+                corner = w0 * triangles[f, 0, d] + w1 * triangles[f, 1, d] + w2 * triangles[f, 2, d]
+                centroid[sides[k], d] = corner / count

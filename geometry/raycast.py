@@ -82,6 +82,12 @@ class RayScene(SceneFrame):
             return np.zeros(0, dtype=bool)
         return self._run(origins, directions, "OCCLUDED") != -1
 
+    def clear(self, origins: NDArray[np.float32], directions: NDArray[np.float32]) -> NDArray[np.bool_]:
+        """Whether each ray meets no triangle: the opposite of :meth:`occluded`."""
+        if not len(origins):
+            return np.zeros(0, dtype=bool)
+        return self._run(origins, directions, "OCCLUDED") == -1
+
     def first_hit(self, origins: NDArray[np.float32], directions: NDArray[np.float32]) -> NDArray[np.int32]:
         """Index of the first triangle each ray hits, -1 where the ray escapes."""
         if not len(origins):
@@ -140,6 +146,10 @@ class BruteForceScene(SceneFrame):
     def occluded(self, origins: NDArray, directions: NDArray) -> NDArray[np.bool_]:
         """Whether each ray hits any triangle."""
         return np.isfinite(self._distances(origins, directions)).any(axis=1)
+
+    def clear(self, origins: NDArray, directions: NDArray) -> NDArray[np.bool_]:
+        """Whether each ray meets no triangle."""
+        return ~self.occluded(origins, directions)
 
     def first_hit(self, origins: NDArray, directions: NDArray) -> NDArray[np.int32]:
         """Index of the first triangle each ray hits, -1 where the ray escapes."""

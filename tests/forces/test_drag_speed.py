@@ -45,13 +45,16 @@ def sample():
 def counting_rays(monkeypatch, craft):
     """Count the rays ``craft``'s scene is asked about; returns the list of batch sizes."""
     batches = []
-    occluded = craft.scene.occluded
 
-    def counted(origins, directions):
-        batches.append(len(origins))
-        return occluded(origins, directions)
+    def counting(query):
+        def counted(origins, directions):
+            batches.append(len(origins))
+            return query(origins, directions)
 
-    monkeypatch.setattr(craft.scene, "occluded", counted)
+        return counted
+
+    for name in ("occluded", "clear"):
+        monkeypatch.setattr(craft.scene, name, counting(getattr(craft.scene, name)))
     return batches
 
 

@@ -17,6 +17,7 @@ from forces.radiation import (
     surface_forces,
 )
 from geometry.errors import InputError
+from geometry.illumination import BLOCK
 from geometry.materials import Material
 from geometry.mesh_data import MeshData
 from geometry.spacecraft import build_spacecraft
@@ -70,16 +71,20 @@ def test_flux_from_distance_and_pressure():
             solar_flux(**bad)
 
 
-def _direct_sums_twin(u, spread, shares):
+def _direct_sums_twin(u, spread, shares, flags=False):
     """The kernel's block sums and the numpy sums of eq. (4) over the same random sides.
 
-    Normals lie within ``spread`` of ``u`` (1 or more: any direction); blocks of 50 sides; each side
-    is dark, wholly lit or lit in part with the probabilities ``shares``, a part-lit side's force
-    acting at a point off its centroid.
+    Normals of even blocks lie within ``spread`` of ``u`` (1 or more: any direction); each side is
+    dark, wholly lit or lit in part with the probabilities ``shares``, a part-lit side's force acting
+    at a point off its centroid. Blocks are runs of ``BLOCK`` sides, as the sampler's. With
+    ``flags`` (and no part-lit side) the kernel gets lit flags instead of shares.
     """
     rng = np.random.default_rng(5)
-    n, n_blocks = 500, 10
-    normals = rng.normal(size=(n, 3)) + u / max(spread, 1e-9)
+    n_blocks = 10
+    n = n_blocks * BLOCK - 7  # the last block is short, as the sampler's may be
+    block = np.arange(n) // BLOCK
+    # odd blocks take any direction, so blocks summed side by side come between the others
+    normals = rng.normal(size=(n, 3)) + u / np.where(block % 2 == 0, spread, 10.0)[:, None]
     normals /= np.linalg.norm(normals, axis=1)[:, None]
     state = rng.choice(3, size=n, p=shares)
     fraction = np.select([state == 0, state == 1], [0.0, 1.0], rng.random(n))
@@ -91,14 +96,13 @@ def _direct_sums_twin(u, spread, shares):
     cos = normals @ u
     facing = np.flatnonzero(cos > 0)
     ref = np.array([0.1, 0.2, -0.3])
-    block = np.arange(n) // (n // n_blocks)
     low = np.array([normals[block == b].min(axis=0) for b in range(n_blocks)])
     high = np.array([normals[block == b].max(axis=0) for b in range(n_blocks)])
     moments = block_moments(normals, areas, optics, centroids, block, n_blocks)
     partials = np.zeros((n_blocks, TOTALS))
     accumulate_forces(
         facing,
-        fraction,
+        fraction[facing] > 0 if flags else fraction[facing],
         lit_centroid,
         centroids,
         normals,
@@ -132,16 +136,22 @@ def _direct_sums_twin(u, spread, shares):
 
 
 @pytest.mark.parametrize(
-    "spread, shares",
-    [(10.0, (0.3, 0.4, 0.3)), (0.3, (0.3, 0.4, 0.3)), (0.3, (0.0, 1.0, 0.0)), (0.3, (0.8, 0.1, 0.1))],
-    ids=["any-normals", "whole-blocks-mixed-light", "whole-blocks-all-lit", "whole-blocks-mostly-dark"],
+    "spread, shares, flags",
+    [
+        (10.0, (0.3, 0.4, 0.3), False),
+        (0.2, (0.3, 0.4, 0.3), False),
+        (0.2, (0.0, 1.0, 0.0), False),
+        (0.2, (0.8, 0.1, 0.1), False),
+        (0.2, (0.4, 0.6, 0.0), True),
+    ],
+    ids=["any-normals", "whole-blocks-mixed-light", "whole-blocks-all-lit", "whole-blocks-dark", "flags"],
 )
-def test_direct_sums_equal_their_numpy_twin(spread, shares):
+def test_direct_sums_equal_their_numpy_twin(spread, shares, flags):
     """Side by side, and from block moments with corrections for sides not wholly lit: the same sums
     to round-off (1e-12 of the largest total of each kind)."""
     u = np.array([0.2, -0.5, 0.84])
     u /= np.linalg.norm(u)
-    totals, twin, whole = _direct_sums_twin(u, spread, shares)
+    totals, twin, whole = _direct_sums_twin(u, spread, shares, flags)
     assert whole.any() == (spread < 1)  # the moment path is taken where it should be
     for kind in (slice(0, 3), slice(3, 6), slice(6, 9)):
         scale = np.abs(twin[kind]).max()

@@ -38,10 +38,13 @@ def test_embree_and_brute_force_agree(clutter, threads, monkeypatch):
     check = slice(0, 3_000)
     brute_first = brute.first_hit(origins[check], directions[check])
     # rays passing within float32 round-off of an edge may differ; there are none or a handful
-    assert np.mean(hit[check] == brute.occluded(origins[check], directions[check])) > 0.999
+    brute_hit = brute.occluded(origins[check], directions[check])
+    assert np.mean(hit[check] == brute_hit) > 0.999
     assert np.mean(first[check] == brute_first) > 0.999
     assert 0.05 < hit.mean() < 0.95  # a real mix of hits and misses
     assert np.array_equal(hit, first >= 0)
+    assert np.array_equal(embree.clear(origins, directions), ~hit)
+    assert np.array_equal(brute.clear(origins[check], directions[check]), ~brute_hit)
     facets, distance = embree.intersect(origins, directions)
     brute_facets, brute_distance = brute.intersect(origins[check], directions[check])
     assert np.array_equal(facets, first)
