@@ -57,6 +57,8 @@ class BenchReport:
     full_per_attitude_median_ms: float
     full_over_direct: float
     beam_rays_per_attitude: float
+    adaptive_full_per_attitude_ms: float
+    adaptive_full_over_direct: float
     drag_per_attitude_ms: float
     drag_over_srp: float
     drag_full_per_attitude_ms: float
@@ -75,10 +77,15 @@ def _peak_MB() -> float:
 
 
 def _reflection_figures(
-    craft: Spacecraft, directions: np.ndarray, samples: int, direct_times: list[float]
+    craft: Spacecraft,
+    directions: np.ndarray,
+    samples: int,
+    direct_times: list[float],
+    adaptive_times: list[float],
 ) -> tuple[dict, list[float]]:
     """View-factor precompute (never from the disk cache), the diffuse balance's one-off solves, and
-    time per attitude with full reflections on the attitudes timed direct-only; and those times [s]."""
+    time per attitude with full reflections on the attitudes timed direct-only, with ``samples`` points
+    per side and adaptively (the first ``len(adaptive_times)``); and the former times [s]."""
     settings = ReflectionSettings("full", cache_dir=False)
     start = time.perf_counter()
     view = model_view_factors(craft, settings)
@@ -94,6 +101,11 @@ def _reflection_figures(
         result = srp(craft, u, samples=samples, reflections=settings)
         times.append(time.perf_counter() - start)
         rays += result.reflected.chains.rays
+    adaptive_full = []
+    for u in directions[: len(adaptive_times)]:
+        start = time.perf_counter()
+        srp(craft, u, reflections=settings)
+        adaptive_full.append(time.perf_counter() - start)
     return {
         "view_factor_s": view_s,
         "view_factor_rays_per_side": view.rays_per_side,
@@ -104,6 +116,10 @@ def _reflection_figures(
         "full_per_attitude_median_ms": 1e3 * float(np.median(times)),
         "full_over_direct": float(np.median(times) / np.median(direct_times)),
         "beam_rays_per_attitude": rays / len(directions),
+        "adaptive_full_per_attitude_ms": 1e3 * float(np.mean(adaptive_full)) if adaptive_full else 0.0,
+        "adaptive_full_over_direct": float(np.sum(adaptive_full) / np.sum(adaptive_times))
+        if adaptive_full
+        else 0.0,
     }, times
 
 
@@ -175,7 +191,7 @@ def benchmark(
         start = time.perf_counter()
         adaptive_rays += srp(craft, u, reflections="none").rays
         adaptive_times.append(time.perf_counter() - start)
-    reflections, full_times = _reflection_figures(craft, directions, samples, times)
+    reflections, full_times = _reflection_figures(craft, directions, samples, times, adaptive_times)
     gas = _drag_figures(craft, directions, samples, times, full_times)
     total, raw = float(np.sum(times)), float(np.sum(raw_times))
     return BenchReport(

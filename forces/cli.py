@@ -765,7 +765,8 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     )
     print(
         f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "
-        f"{report.adaptive_rays_per_attitude:.0f} rays"
+        f"{report.adaptive_rays_per_attitude:.0f} rays; with full reflections "
+        f"{report.adaptive_full_per_attitude_ms:.1f} ms, {report.adaptive_full_over_direct:.2f}x"
     )
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
 

@@ -30,6 +30,7 @@ import weakref
 from dataclasses import dataclass
 from functools import cached_property
 
+import numba
 import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
@@ -37,6 +38,7 @@ from numpy.typing import NDArray
 
 from geometry.errors import InputError
 from geometry.exchange_factors import ExchangeFactors, exchange_factors
+from geometry.parallel import map_ranges
 from geometry.spacecraft import Spacecraft
 from geometry.view_factors import ViewFactors
 
@@ -49,6 +51,8 @@ _SWEEPS = 400
 #: Columns of :attr:`DiffuseExchange.responses`: escaping momentum (3), its moment about the origin
 #: (3), escaped power, absorbed power.
 _RESPONSES = 8
+#: Sides per block of the weighted sums of :func:`_weighted`.
+_BLOCK_SIDES = 4096
 
 
 @dataclass(frozen=True)
@@ -163,7 +167,7 @@ class DiffuseExchange:
     @cached_property
     def responses(self) -> NDArray[np.float64]:
         """``g = M^-T w`` for the :attr:`functionals`, (n_sides, 8): totals are ``g^T E``."""
-        return self.adjoint(self.functionals)
+        return np.ascontiguousarray(self.adjoint(self.functionals))
 
     def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """Escaping force and torque about ``reference_m`` and the power split, for sources ``E`` [W]."""
@@ -230,6 +234,30 @@ def diffuse_exchange(
 
 
 def _weighted(columns: NDArray[np.float64], weights: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``columns.T @ weights`` without BLAS: its thread pool keeps spinning after the call and takes
-    the cores from the next attitude's ray casting (einsum sums in its own, fixed order)."""
-    return np.einsum("ij,i->j", columns, weights)
+    """``columns.T @ weights`` for C-ordered ``columns`` (n, k), reading only the rows of nonzero
+    weights. Blocks of ``_BLOCK_SIDES`` rows are summed in parallel and added in block order, so the
+    result has the same bits whatever the threads did (and no BLAS thread pool is left spinning,
+    taking the cores from the next attitude's ray casting)."""
+    n_blocks = -(-len(weights) // _BLOCK_SIDES)
+    partial = np.zeros((n_blocks, columns.shape[1]))
+    weights = np.ascontiguousarray(weights, dtype=np.float64)
+    map_ranges(lambda lo, hi: _block_sums(columns, weights, partial, lo, hi), n_blocks, 2)
+    return partial.sum(axis=0)
+
+
+@numba.njit(cache=True, nogil=True)
+def _block_sums(
+    columns: NDArray[np.float64],
+    weights: NDArray[np.float64],
+    partial: NDArray[np.float64],
+    first: int,
+    last: int,
+) -> None:
+    """Row ``b`` of ``partial``: ``columns.T @ weights`` over block ``b`` of ``_BLOCK_SIDES`` rows, for
+    blocks ``first`` to ``last - 1``."""
+    for b in range(first, last):
+        for i in range(b * _BLOCK_SIDES, min((b + 1) * _BLOCK_SIDES, weights.shape[0])):
+            w = weights[i]
+            if w != 0.0:
+                for j in range(columns.shape[1]):
+                    partial[b, j] += w * columns[i, j]

@@ -17,7 +17,7 @@ from .parallel import map_ranges, thread_count
 #: Origin offset along the surface normal, as a share of the model half-size (5 um on a 10 m model).
 ORIGIN_OFFSET = 1e-6
 #: Rays per chunk of a batch cast in parallel.
-_RAYS_PER_CHUNK = 16_384
+_RAYS_PER_CHUNK = 4_096
 
 
 class SceneFrame:
