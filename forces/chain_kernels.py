@@ -1,5 +1,5 @@
-"""Numba kernels of inter-reflection (:mod:`forces.specular_chains`, :mod:`forces.reflections`): the
-direct light's power split, emitting first beams, landing beams and their sums.
+"""Numba kernels of inter-reflection (:mod:`forces.specular_chains`): emitting first beams, landing
+beams and their sums.
 
 Each kernel runs serially over its beams in their given order, so its sums have the same bits
 whatever the threads did elsewhere. Powers are in W, momenta in W (divide by c for N), lengths in m.
@@ -51,34 +51,6 @@ def _incident(
     """Cosine of incidence on side ``s`` and the direct power [W] on its lit part."""
     cos = _cos(s, side_normals, toward_source)
     return cos, flux_W_m2 * side_areas[s] * lit_fraction[s] * cos
-
-
-@numba.njit(cache=True, nogil=True)
-def direct_power(
-    facing: NDArray[np.int64],
-    lit_fraction: NDArray[np.float64],
-    side_areas: NDArray[np.float64],
-    side_normals: NDArray[np.float64],
-    side_optics: NDArray[np.float64],
-    side_sheet: NDArray[np.bool_],
-    toward_source: NDArray[np.float64],
-    flux_W_m2: float,
-    diffuse_W: NDArray[np.float64],
-) -> tuple[float, float, float]:
-    """Power of the direct light on the sides ``facing`` [W]: incident, absorbed, and transmitted by
-    closed bodies (it leaves unchanged). Writes each side's first diffuse reflection into ``diffuse_W``."""
-    incident = absorbed = passed = 0.0
-    for s in facing:
-        if lit_fraction[s] <= 0.0:
-            continue
-        rho, beta, sigma = side_optics[s, 0], side_optics[s, 1], side_optics[s, 2]
-        power = _incident(s, lit_fraction, side_areas, side_normals, toward_source, flux_W_m2)[1]
-        incident += power
-        absorbed += (1.0 - rho - sigma) * power
-        if not side_sheet[s]:
-            passed += sigma * power
-        diffuse_W[s] = rho * (1.0 - beta) * power
-    return incident, absorbed, passed
 
 
 @numba.njit(cache=True, nogil=True)

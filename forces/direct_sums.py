@@ -12,6 +12,11 @@ absorbed projected area. These block moments are made once per model; an attitud
 contraction per such block plus a correction on its sides that are not wholly lit (their full share
 taken off, their lit share put back), instead of a pass over all its sides. Blocks that face only in
 part are summed side by side.
+
+The same pass sums any per-side weights ``w`` (k of them) times the direct power per unit flux a
+side receives, ``A f (n . u)`` with ``f`` its lit share: over a block that faces, ``W u`` with the
+block moment ``W = sum A w (x) n`` (:func:`weight_moments`). Inter-reflection takes what the direct
+light hands to it this way (:mod:`forces.reflections`).
 """
 
 from __future__ import annotations
@@ -83,6 +88,21 @@ def block_moments(
     return np.ascontiguousarray(np.concatenate(parts, axis=1))
 
 
+def weight_moments(
+    weights: NDArray[np.float64],
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    side_block: NDArray[np.int64],
+    n_blocks: int,
+) -> NDArray[np.float64]:
+    """``W = sum A w (x) n`` over each block's sides for per-side ``weights`` (n_sides, k), flattened
+    to (n_blocks, 3 k): ``W[b, 3 j + d]`` (module docstring)."""
+    terms = (areas[:, None, None] * weights[:, :, None] * normals[:, None, :]).reshape(len(areas), -1)
+    out = np.zeros((n_blocks, terms.shape[1]))
+    np.add.at(out, side_block, terms)
+    return out
+
+
 _kept: weakref.WeakKeyDictionary[Spacecraft, NDArray[np.float64]] = weakref.WeakKeyDictionary()
 
 
@@ -110,11 +130,13 @@ def _add_side(
     normals: NDArray[np.float64],
     optics: NDArray[np.float64],
     u: NDArray[np.float64],
+    weights: NDArray[np.float64] | None,
     scale: float,
     row: NDArray[np.float64],
 ) -> None:
     """Add ``scale`` times side ``s``'s eq. (4) force over ``lit_area`` [m^2] with ``P = 1``, acting at
-    ``point`` [m], its torque about ``reference`` [m] and its areas, to the totals ``row``."""
+    ``point`` [m], its torque about ``reference`` [m], its areas and its ``weights`` times its
+    projected area, to the totals ``row``."""
     r0, r1, r2 = point[0] - reference[0], point[1] - reference[1], point[2] - reference[2]
     u0, u1, u2 = u[0], u[1], u[2]
     n0, n1, n2 = normals[s, 0], normals[s, 1], normals[s, 2]
@@ -134,6 +156,9 @@ def _add_side(
     row[6] += area
     row[7] += area * cos
     row[8] += area * cos * (1.0 - rho - optics[s, 2])
+    if weights is not None:
+        for j in range(weights.shape[1]):
+            row[TOTALS + j] += area * cos * weights[s, j]
 
 
 @numba.njit(cache=True, nogil=True, fastmath=True)
@@ -172,6 +197,13 @@ def _add_moments(m: NDArray[np.float64], u: NDArray[np.float64], ref: NDArray[np
 
 
 @numba.njit(cache=True, nogil=True, fastmath=True)
+def _add_weight_moments(w: NDArray[np.float64], u: NDArray[np.float64], row: NDArray[np.float64]) -> None:
+    """Add one block's weighted sums from its weight moments ``w`` (3 k,) to ``row``."""
+    for j in range(w.shape[0] // 3):
+        row[TOTALS + j] += w[3 * j] * u[0] + w[3 * j + 1] * u[1] + w[3 * j + 2] * u[2]
+
+
+@numba.njit(cache=True, nogil=True, fastmath=True)
 def accumulate_forces(
     sides: NDArray[np.int64],
     lit_share: NDArray[np.float64],
@@ -186,10 +218,12 @@ def accumulate_forces(
     block_low: NDArray[np.float64],
     block_high: NDArray[np.float64],
     moments: NDArray[np.float64],
+    side_weights: NDArray[np.float64] | None,
+    block_weights: NDArray[np.float64] | None,
     partials: NDArray[np.float64],
 ) -> None:
     """Sums of eq. (4) with ``P = 1`` over the facing ``sides``, with torque about ``reference_m``,
-    per block.
+    and of the ``side_weights`` times the direct power, per block.
 
     ``lit_share[k]`` is the lit share of side ``sides[k]`` (float, or bool: lit or not). Per-side
     arrays are indexed by side: ``lit_centroid`` (n, 3) [m] where each side's force acts
@@ -199,7 +233,9 @@ def accumulate_forces(
     ``block_low``/``block_high`` (n_blocks, 3) show that all its sides face is added from its
     ``moments`` (:func:`block_moments`), corrected on sides not wholly lit; the others side by side.
     Each side's ``[Fx, Fy, Fz, Mx, My, Mz, lit area, projected area, absorbed projected area]``
-    [N/Pa, N m/Pa, m^2, m^2, m^2] lands in row ``side_block[s]`` of ``partials`` (n_blocks, TOTALS).
+    [N/Pa, N m/Pa, m^2, m^2, m^2], then its ``side_weights`` (n, k) times its lit projected area, land
+    in row ``side_block[s]`` of ``partials`` (n_blocks, TOTALS + k); ``block_weights`` (n_blocks, 3 k)
+    are the weights' :func:`weight_moments`; both None for no weights (a kernel compiled without them).
     Summing the rows in order gives a total that does not depend on how the blocks were split
     between calls. (fastmath lets the compiler fuse multiply-adds; the sums keep their order, so
     results repeat from run to run.)
@@ -217,14 +253,18 @@ def accumulate_forces(
         if lower > _FACING_MARGIN:
             # every side of the block faces: the moments, then the sides not wholly lit
             _add_moments(moments[block], u, ref, row)
+            if block_weights is not None:
+                _add_weight_moments(block_weights[block], u, row)
             end = k + int(moments[block, 94])
             while k < end:
                 f = lit_share[k]
                 if f != 1.0:
                     s = sides[k]
-                    _add_side(s, areas[s], side_centroid[s], ref, normals, optics, u, -1.0, row)
+                    _add_side(s, areas[s], side_centroid[s], ref, normals, optics, u, side_weights, -1.0, row)
                     if f != 0.0:
-                        _add_side(s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, 1.0, row)
+                        _add_side(
+                            s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, side_weights, 1.0, row
+                        )
                 k += 1
             continue
         while k < n and side_block[sides[k]] == block:
@@ -232,4 +272,4 @@ def accumulate_forces(
             f = lit_share[k]
             k += 1
             if f != 0.0:
-                _add_side(s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, 1.0, row)
+                _add_side(s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, side_weights, 1.0, row)

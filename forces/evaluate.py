@@ -13,7 +13,7 @@ from geometry.spacecraft import Spacecraft
 
 from .direct_sums import TOTALS, accumulate_forces, model_block_moments
 from .radiation import radiation_pressure, solar_flux
-from .reflections import ReflectionSettings, reflected_part
+from .reflections import ReflectionSettings, reflected_part, reflection_plan
 from .result import SrpResult
 
 
@@ -66,11 +66,19 @@ def srp(
     flux = solar_flux(flux_W_m2, distance_au)
     pressure = radiation_pressure(flux)
     ref, ref_name = reference_point(craft, reference_point_m)
+    plan = reflection_plan(craft, settings)
     sampler = craft.sampler
     low, high = sampler.block_normal_bounds
     args = (craft.side_centroids, craft.side_normals, craft.side_areas, craft.side_optics, u_sun, ref)
-    blocks = (sampler.side_block, low, high, model_block_moments(craft))
-    partials = np.zeros((sampler.n_blocks, TOTALS))
+    blocks = (
+        sampler.side_block,
+        low,
+        high,
+        model_block_moments(craft),
+        plan.side_weights,
+        plan.block_weights,
+    )
+    partials = np.zeros((sampler.n_blocks, TOTALS + plan.channels))
 
     def force_sum(sides: NDArray[np.int64], share: NDArray, centroid: NDArray) -> None:
         accumulate_forces(sides, share, centroid, *args, *blocks, partials)
@@ -79,7 +87,7 @@ def srp(
     # block sums added in block order: the same bits whatever the threads did; eq. (4) with P = 1
     totals = partials.sum(axis=0)
     totals[:6] *= pressure
-    reflected = reflected_part(craft, light, flux, ref, settings, (flux * totals[7], flux * totals[8]))
+    reflected = reflected_part(craft, light, flux, ref, settings, plan, flux * totals[7:])
     return SrpResult(
         sun_vector=u_sun,
         flux_W_m2=flux,

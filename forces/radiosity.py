@@ -72,6 +72,18 @@ class DiffuseTotals:
     escaped_W: float
     absorbed_W: float
 
+    @classmethod
+    def from_sums(cls, values: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
+        """The totals from the eight sums of :attr:`DiffuseExchange.functionals` over a diffuse
+        emission (or of its responses over the sources) [W], torque about ``reference_m``."""
+        momentum, moment = values[0:3], values[3:6]
+        return cls(
+            force_N=-momentum / SPEED_OF_LIGHT,
+            torque_Nm=-(moment - np.cross(reference_m, momentum)) / SPEED_OF_LIGHT,
+            escaped_W=float(values[6]),
+            absorbed_W=float(values[7]),
+        )
+
 
 class DiffuseExchange:
     """The balance ``(I - diag(rho_d) E^T) W = S`` of one model, its materials and its view factors.
@@ -171,7 +183,7 @@ class DiffuseExchange:
 
     def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """Escaping force and torque about ``reference_m`` and the power split, for sources ``E`` [W]."""
-        return self._totals(_weighted(self.responses, source_W), reference_m)
+        return DiffuseTotals.from_sums(_weighted(self.responses, source_W), reference_m)
 
     @cached_property
     def open_sky_functionals(self) -> NDArray[np.float64]:
@@ -183,25 +195,9 @@ class DiffuseExchange:
         n = craft.n_sides
         return np.column_stack([vector, moment, np.ones(n), np.zeros(n)])
 
-    def open_sky_totals(
-        self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]
-    ) -> DiffuseTotals:
-        """:meth:`totals` as if every side saw only open sky."""
-        return self._totals(_weighted(self.open_sky_functionals, source_W), reference_m)
-
     def totals_of(self, emitted_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """The same from a solved ``W`` (diffuse power leaving each side) instead of the sources."""
-        return self._totals(_weighted(self.functionals, emitted_W), reference_m)
-
-    @staticmethod
-    def _totals(values: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
-        momentum, moment = values[0:3], values[3:6]
-        return DiffuseTotals(
-            force_N=-momentum / SPEED_OF_LIGHT,
-            torque_Nm=-(moment - np.cross(reference_m, momentum)) / SPEED_OF_LIGHT,
-            escaped_W=float(values[6]),
-            absorbed_W=float(values[7]),
-        )
+        return DiffuseTotals.from_sums(_weighted(self.functionals, emitted_W), reference_m)
 
 
 def interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:

@@ -20,8 +20,8 @@ from geometry.illumination import Illumination
 from geometry.spacecraft import Spacecraft
 from geometry.view_factors import VIEW_SEED, ViewFactors, view_factors
 
-from . import chain_kernels as kernels
-from .radiosity import diffuse_exchange, interference_criterion
+from .direct_sums import weight_moments
+from .radiosity import DiffuseExchange, DiffuseTotals, diffuse_exchange, interference_criterion
 from .specular_chains import DEFAULT_CUTOFF, DEFAULT_DEPTH, ChainTotals, chain_model, follow_chains
 
 MODES = ("none", "specular", "full", "auto")
@@ -131,30 +131,64 @@ class Reflected:
     k_is: float | None
 
 
+#: Channels of :attr:`ReflectionPlan.side_weights`: power a closed body transmits (it leaves unchanged)
+#: and power reflected diffusely, per watt of direct light; with ``full``, from ``NET`` the eight
+#: sums of :attr:`forces.radiosity.DiffuseExchange.responses` over that diffuse light, less, in the
+#: six momentum slots, what eq. (4) took of it (leaving as from an open plate).
+PASSED, DIFFUSE, NET = 0, 1, 2
+
+
 @dataclass(frozen=True)
-class _DirectPower:
-    """Power of the direct light per destination, from the lit shares."""
+class ReflectionPlan:
+    """Inter-reflection of one model with one setting, resolved before an attitude is cast.
 
-    incident_W: float
-    absorbed_W: float
-    passed_W: float  # transmitted by closed bodies: leaves unchanged
-    diffuse_W: NDArray[np.float64]  # (n_sides,) first diffuse reflection of each side
+    The direct light hands inter-reflection power on each lit side in proportion to the direct power
+    there: ``side_weights`` (n_sides, k) per watt, summed by the direct pass with their block moments
+    ``block_weights`` (:func:`forces.direct_sums.weight_moments`); both None for ``none``. Channels:
+    :data:`PASSED`, :data:`DIFFUSE`, :data:`NET`.
+    """
+
+    mode: str  # none, specular or full: auto resolved
+    view: ViewFactors | None
+    k_is: float | None
+    exchange: DiffuseExchange | None
+    side_weights: NDArray[np.float64] | None
+    block_weights: NDArray[np.float64] | None
+
+    @property
+    def channels(self) -> int:
+        """Number of weighted sums the direct pass makes for this plan."""
+        return 0 if self.side_weights is None else self.side_weights.shape[1]
 
 
-def _direct_power(craft: Spacecraft, light: Illumination, flux_W_m2: float) -> _DirectPower:
-    diffuse = np.zeros(craft.n_sides)
-    incident, absorbed, passed = kernels.direct_power(
-        light.facing,
-        light.lit_fraction,
-        craft.side_areas,
-        craft.side_normals,
-        craft.side_optics,
-        chain_model(craft).side_sheet,
-        light.direction,
-        flux_W_m2,
-        diffuse,
-    )
-    return _DirectPower(incident, absorbed, passed, diffuse)
+def reflection_plan(craft: Spacecraft, settings: ReflectionSettings) -> ReflectionPlan:
+    """The :class:`ReflectionPlan` of ``craft`` with ``settings``, made once and kept with the model."""
+    kept = _views.setdefault(craft, {})
+    key = ("plan", settings.mode, settings.rays_per_side, str(settings.cache_dir))
+    if key not in kept:
+        mode, view, k_is, exchange = settings.mode, None, None, None
+        if mode in ("full", "auto"):
+            view = model_view_factors(craft, settings)
+            k_is = interference(craft, settings)
+            if mode == "auto":
+                mode = "full" if k_is >= AUTO_THRESHOLD else "none"
+        weights = moments = None
+        if mode != "none":
+            rho, beta, sigma = craft.side_optics.T
+            diffuse = rho * (1 - beta)
+            columns = [np.where(chain_model(craft).side_sheet, 0.0, sigma), diffuse]
+            if mode == "full":
+                exchange = diffuse_exchange(craft, view, settings.cache_dir)
+                net = exchange.responses.copy()
+                net[:, :6] -= exchange.open_sky_functionals[:, :6]
+                columns += list((diffuse[:, None] * net).T)
+            weights = np.column_stack(columns)
+            sampler = craft.sampler
+            moments = weight_moments(
+                weights, craft.side_normals, craft.side_areas, sampler.side_block, sampler.n_blocks
+            )
+        kept[key] = ReflectionPlan(mode, view, k_is, exchange, weights, moments)
+    return kept[key]
 
 
 def reflected_part(
@@ -163,38 +197,30 @@ def reflected_part(
     flux_W_m2: float,
     reference_m: NDArray[np.float64],
     settings: ReflectionSettings,
-    direct_W: tuple[float, float],
+    plan: ReflectionPlan,
+    direct_W: NDArray[np.float64],
 ) -> Reflected:
     """Inter-reflection's correction to the direct force and torque of one attitude, and the power
-    balance; the mode ``auto`` resolved by ``K_IS``. ``direct_W`` is the incident and the absorbed
-    power of the direct light [W], as the direct sum found them."""
-    mode, view, k_is = settings.mode, None, None
-    if mode in ("full", "auto"):
-        view = model_view_factors(craft, settings)
-        k_is = interference(craft, settings)
-        if mode == "auto":
-            mode = "full" if k_is >= AUTO_THRESHOLD else "none"
-    if mode == "none":
-        incident, absorbed = direct_W
+    balance. ``direct_W`` holds the incident and the absorbed power of the direct light [W], then its
+    sums over the ``plan``'s channels [W], as the direct pass found them."""
+    incident, absorbed = float(direct_W[0]), float(direct_W[1])
+    channels = direct_W[2:]
+    if plan.mode == "none":
         power = PowerBalance(incident, absorbed, incident - absorbed)
-        return Reflected(mode, np.zeros(3), np.zeros(3), power, None, view, k_is)
-    direct = _direct_power(craft, light, flux_W_m2)
-    chains = follow_chains(
-        craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth, light.level
-    )
-    if mode == "specular":
+        return Reflected(plan.mode, np.zeros(3), np.zeros(3), power, None, plan.view, plan.k_is)
+    chains = follow_chains(craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth, light.level)
+    escaped = channels[PASSED] + chains.escaped_W
+    absorbed += chains.absorbed_W
+    if plan.mode == "specular":
         force = chains.force_N + chains.open_sky_force_N
         torque = chains.torque_Nm + chains.open_sky_torque_Nm
-        escaped = direct.passed_W + direct.diffuse_W.sum() + chains.escaped_W + chains.diffuse_source_W.sum()
-        absorbed = direct.absorbed_W + chains.absorbed_W
+        escaped += channels[DIFFUSE] + chains.diffuse_source_W.sum()
     else:
-        exchange = diffuse_exchange(craft, view, settings.cache_dir)
-        diffuse = exchange.totals(direct.diffuse_W + chains.diffuse_source_W, reference_m)
-        # eq. (4) let the first diffuse reflection leave as from an open plate; take that back
-        assumed = exchange.open_sky_totals(direct.diffuse_W, reference_m)
-        force = chains.force_N + diffuse.force_N - assumed.force_N
-        torque = chains.torque_Nm + diffuse.torque_Nm - assumed.torque_Nm
-        escaped = direct.passed_W + chains.escaped_W + diffuse.escaped_W
-        absorbed = direct.absorbed_W + chains.absorbed_W + diffuse.absorbed_W
-    power = PowerBalance(direct.incident_W, absorbed, float(escaped), chains.truncated_W)
-    return Reflected(mode, force, torque, power, chains, view, k_is)
+        beams = plan.exchange.totals(chains.diffuse_source_W, reference_m)
+        direct = DiffuseTotals.from_sums(channels[NET:], reference_m)
+        force = chains.force_N + beams.force_N + direct.force_N
+        torque = chains.torque_Nm + beams.torque_Nm + direct.torque_Nm
+        escaped += beams.escaped_W + direct.escaped_W
+        absorbed += beams.absorbed_W + direct.absorbed_W
+    power = PowerBalance(incident, absorbed, float(escaped), chains.truncated_W)
+    return Reflected(plan.mode, force, torque, power, chains, plan.view, plan.k_is)

@@ -16,8 +16,10 @@ from .parallel import map_ranges, thread_count
 
 #: Origin offset along the surface normal, as a share of the model half-size (5 um on a 10 m model).
 ORIGIN_OFFSET = 1e-6
-#: Rays per chunk of a batch cast in parallel.
+#: Rays per chunk of a batch of occlusion queries cast in parallel.
 _RAYS_PER_CHUNK = 4_096
+#: Rays per chunk of a batch of first-hit queries: they cost several times more per ray.
+_HITS_PER_CHUNK = 1_024
 
 
 class SceneFrame:
@@ -64,7 +66,7 @@ class RayScene(SceneFrame):
         parts = map_ranges(
             lambda lo, hi: self._scene.run(origins[lo:hi], directions[lo:hi], query=query),
             len(origins),
-            _RAYS_PER_CHUNK,
+            _RAYS_PER_CHUNK if query == "OCCLUDED" else _HITS_PER_CHUNK,
         )
         return parts[0] if len(parts) == 1 else np.concatenate(parts)
 
@@ -104,7 +106,7 @@ class RayScene(SceneFrame):
         parts = map_ranges(
             lambda lo, hi: self._scene.run(origins[lo:hi], directions[lo:hi], output=True),
             len(origins),
-            _RAYS_PER_CHUNK,
+            _HITS_PER_CHUNK,
         )
         facets = np.concatenate([p["primID"] for p in parts]).astype(np.int32, copy=False)
         return facets, np.concatenate([p["tfar"] for p in parts])

@@ -159,3 +159,33 @@ def test_results_with_reflections_are_the_same_bits_whatever_the_threads(monkeyp
         result = srp(craft, [0.3, 0.2, 1.0], reflections=full())
         runs.append(np.r_[result.force_N, result.torque_Nm])
     assert np.array_equal(runs[0], runs[1])
+
+
+@pytest.mark.parametrize("samples", [1, None], ids=["one-point", "adaptive"])
+def test_the_diffuse_light_the_direct_pass_hands_on_equals_the_side_by_side_sums(samples):
+    """The direct pass sums what each lit side hands the diffuse balance from block moments
+    (:func:`forces.direct_sums.weight_moments`); side by side, from each side's first diffuse
+    reflection through the adjoint totals, the result is the same to 1e-10."""
+    craft = open_box(MIXED, 24)
+    u = np.array([0.3, 0.2, 1.0]) / np.linalg.norm([0.3, 0.2, 1.0])
+    low, high = craft.sampler.block_normal_bounds
+    assert (np.minimum(low * u, high * u).sum(axis=1) > 0).any()  # blocks summed from their moments
+    ref = np.array([0.2, 0.7, 0.4])
+    result = srp(craft, u, reflections=full(), samples=samples, reference_point_m=ref)
+    light, chains = result.illumination, result.reflected.chains
+    rho, beta, _ = craft.side_optics.T
+    power = np.zeros(craft.n_sides)
+    facing = light.facing
+    power[facing] = result.flux_W_m2 * craft.side_areas[facing] * light.lit_fraction[facing]
+    power[facing] *= craft.side_normals[facing] @ u
+    first = rho * (1 - beta) * power
+    balance = diffuse_exchange(craft, model_view_factors(craft, full())).totals(
+        first + chains.diffuse_source_W, ref
+    )
+    open_plate = -(2 / 3) * first[:, None] * craft.side_normals / SPEED_OF_LIGHT  # what eq. (4) took
+    force = result.direct_force_N + chains.force_N + balance.force_N - open_plate.sum(axis=0)
+    torque = result.direct_torque_Nm + chains.torque_Nm + balance.torque_Nm
+    torque -= np.cross(craft.side_centroids - ref, open_plate).sum(axis=0)
+    np.testing.assert_allclose(result.force_N, force, rtol=1e-10, atol=1e-10 * np.abs(force).max())
+    np.testing.assert_allclose(result.torque_Nm, torque, rtol=1e-10, atol=1e-10 * np.abs(torque).max())
+    assert result.power.escaped_W == pytest.approx(chains.escaped_W + balance.escaped_W, rel=1e-10)

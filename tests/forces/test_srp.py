@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from forces.direct_sums import TOTALS, accumulate_forces, block_moments
+from forces.direct_sums import TOTALS, accumulate_forces, block_moments, weight_moments
 from forces.evaluate import srp
 from forces.radiation import (
     SOLAR_FLUX_1AU,
@@ -71,13 +71,14 @@ def test_flux_from_distance_and_pressure():
             solar_flux(**bad)
 
 
-def _direct_sums_twin(u, spread, shares, flags=False):
+def _direct_sums_twin(u, spread, shares, flags, weighted):
     """The kernel's block sums and the numpy sums of eq. (4) over the same random sides.
 
     Normals of even blocks lie within ``spread`` of ``u`` (1 or more: any direction); each side is
     dark, wholly lit or lit in part with the probabilities ``shares``, a part-lit side's force acting
     at a point off its centroid. Blocks are runs of ``BLOCK`` sides, as the sampler's. With
-    ``flags`` (and no part-lit side) the kernel gets lit flags instead of shares.
+    ``flags`` (and no part-lit side) the kernel gets lit flags instead of shares. ``weighted``: two
+    random weights per side are summed with the lit projected area, as inter-reflection's channels are.
     """
     rng = np.random.default_rng(5)
     n_blocks = 10
@@ -99,7 +100,8 @@ def _direct_sums_twin(u, spread, shares, flags=False):
     low = np.array([normals[block == b].min(axis=0) for b in range(n_blocks)])
     high = np.array([normals[block == b].max(axis=0) for b in range(n_blocks)])
     moments = block_moments(normals, areas, optics, centroids, block, n_blocks)
-    partials = np.zeros((n_blocks, TOTALS))
+    weights = rng.normal(size=(n, 2 if weighted else 0))
+    partials = np.zeros((n_blocks, TOTALS + weights.shape[1]))
     accumulate_forces(
         facing,
         fraction[facing] > 0 if flags else fraction[facing],
@@ -114,6 +116,8 @@ def _direct_sums_twin(u, spread, shares, flags=False):
         low,
         high,
         moments,
+        weights if weighted else None,
+        weight_moments(weights, normals, areas, block, n_blocks) if weighted else None,
         partials,
     )
     lit = facing[fraction[facing] > 0]
@@ -129,6 +133,7 @@ def _direct_sums_twin(u, spread, shares, flags=False):
                 (lit_area * cos[lit]).sum(),
                 (lit_area * cos[lit] * (1 - rho[m] - sigma[m])).sum(),
             ],
+            (lit_area * cos[lit]) @ weights[lit],
         ]
     )
     whole = np.minimum(low * u, high * u).sum(axis=1) > 0
@@ -146,14 +151,16 @@ def _direct_sums_twin(u, spread, shares, flags=False):
     ],
     ids=["any-normals", "whole-blocks-mixed-light", "whole-blocks-all-lit", "whole-blocks-dark", "flags"],
 )
-def test_direct_sums_equal_their_numpy_twin(spread, shares, flags):
+@pytest.mark.parametrize("weighted", [False, True], ids=["", "weighted"])
+def test_direct_sums_equal_their_numpy_twin(spread, shares, flags, weighted):
     """Side by side, and from block moments with corrections for sides not wholly lit: the same sums
     to round-off (1e-12 of the largest total of each kind)."""
     u = np.array([0.2, -0.5, 0.84])
     u /= np.linalg.norm(u)
-    totals, twin, whole = _direct_sums_twin(u, spread, shares, flags)
+    totals, twin, whole = _direct_sums_twin(u, spread, shares, flags, weighted)
     assert whole.any() == (spread < 1)  # the moment path is taken where it should be
-    for kind in (slice(0, 3), slice(3, 6), slice(6, 9)):
+    assert len(totals) == len(twin) == TOTALS + (2 if weighted else 0)
+    for kind in (slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 10), slice(10, 11))[: len(twin) - 6]:
         scale = np.abs(twin[kind]).max()
         assert np.allclose(totals[kind], twin[kind], rtol=0, atol=1e-12 * scale)
 
