@@ -313,9 +313,7 @@ def _table_attributes(craft, recipe, jobs, flux: float, pressure: float, step: f
         else:
             drag_setup = job.setup
             air = drag_setup.atmosphere
-            area, length = reference_sizes(
-                craft, drag_setup.reference_area_m2, drag_setup.reference_length_m
-            )
+            area, length = reference_sizes(craft, drag_setup.reference_area_m2, drag_setup.reference_length_m)
             attrs |= {
                 "speed_m_s": drag_setup.speed_m_s,
                 "density_kg_m3": air.density_kg_m3,

@@ -36,7 +36,9 @@ def hottel_perpendicular(w: float, h: float) -> float:
     (Hottel; Incropera, Fundamentals of Heat and Mass Transfer, Table 13.2)."""
     s = w * w + h * h
     log = np.log(
-        (1 + w * w) * (1 + h * h) / (1 + s)
+        (1 + w * w)
+        * (1 + h * h)
+        / (1 + s)
         * (w * w * (1 + s) / ((1 + w * w) * s)) ** (w * w)
         * (h * h * (1 + s) / ((1 + h * h) * s)) ** (h * h)
     )
