@@ -54,82 +54,62 @@ def _incident(
 
 
 @numba.njit(cache=True, nogil=True)
-def occluder_masks(
-    plane_normal: NDArray[np.float64],
-    plane_offset: NDArray[np.float64],
-    leaf_low: NDArray[np.float64],
-    leaf_high: NDArray[np.float64],
-    leaf_start: NDArray[np.int64],
-    leaf_vertex: NDArray[np.int64],
-    vertices: NDArray[np.float64],
-    tolerance_m: float,
-) -> NDArray[np.uint64]:
-    """Which groups of facets ("leaves", at most 64) reach off each plane ``n . x = c``, (n_planes, 2):
-    bit ``k`` of column 0 is set where a vertex of leaf ``k`` (``leaf_vertex[leaf_start[k]:leaf_start[k
-    + 1]]``, inside the box ``leaf_low[k]`` .. ``leaf_high[k]``) lies more than ``tolerance_m`` above
-    the plane (along ``n``), of column 1 below it. Vertices are read only where the box leaves it open."""
-    masks = np.zeros((plane_normal.shape[0], 2), dtype=np.uint64)
-    for p in range(plane_normal.shape[0]):
-        for k in range(leaf_start.shape[0] - 1):
-            centre = spread = 0.0
-            for a in range(3):
-                centre += plane_normal[p, a] * 0.5 * (leaf_high[k, a] + leaf_low[k, a])
-                spread += abs(plane_normal[p, a]) * 0.5 * (leaf_high[k, a] - leaf_low[k, a])
-            top, bottom = centre + spread - plane_offset[p], centre - spread - plane_offset[p]
-            above, below = bottom > tolerance_m, top < -tolerance_m
-            if not (above or below or (top <= tolerance_m and bottom >= -tolerance_m)):
-                for j in range(leaf_start[k], leaf_start[k + 1]):
-                    v = leaf_vertex[j]
-                    h = (
-                        plane_normal[p, 0] * vertices[v, 0]
-                        + plane_normal[p, 1] * vertices[v, 1]
-                        + plane_normal[p, 2] * vertices[v, 2]
-                        - plane_offset[p]
-                    )
-                    above |= h > tolerance_m
-                    below |= h < -tolerance_m
-            bit = np.uint64(1) << np.uint64(k)
-            if above:
-                masks[p, 0] |= bit
-            if below:
-                masks[p, 1] |= bit
-    return masks
-
-
-@numba.njit(cache=True, nogil=True)
 def _swept_box_escapes(
     p: int,
+    above: bool,
+    direction: tuple[float, float, float],
     patch_low: NDArray[np.float64],
     patch_high: NDArray[np.float64],
-    direction: tuple[float, float, float],
-    mask: np.uint64,
-    leaf_low: NDArray[np.float64],
-    leaf_high: NDArray[np.float64],
+    patch_normal: NDArray[np.float64],
+    patch_offset: NDArray[np.float64],
+    node_low: NDArray[np.float64],
+    node_high: NDArray[np.float64],
+    first_child: NDArray[np.int64],
+    margin_m: float,
+    reach_m: float,
+    stack: NDArray[np.int64],
 ) -> bool:
-    """Whether box ``p`` of ``patch_low``..``patch_high``, swept along ``direction``, misses the box of
-    every leaf whose bit is set in ``mask``. The swept box meets a box where a ray from its centre
-    meets that box grown by its half-size."""
+    """Whether box ``p`` of ``patch_low``..``patch_high``, swept along ``direction``, misses the box
+    (grown by ``margin_m``) of every leaf of the tree ``node_low``..``node_high`` (children
+    ``first_child`` and the next, -1 for a leaf: :class:`geometry.box_tree.BoxTree`) that reaches more than
+    ``reach_m`` off the patch's plane on the beam's side (``above``: along the plane's normal). Nodes
+    that do not reach off the plane, or that the swept box misses, are not gone into. The swept box
+    meets a box where a ray from its centre meets that box grown by its half-size."""
     inverse = (
         1.0 / direction[0] if direction[0] != 0.0 else 0.0,
         1.0 / direction[1] if direction[1] != 0.0 else 0.0,
         1.0 / direction[2] if direction[2] != 0.0 else 0.0,
     )
-    for k in range(leaf_low.shape[0]):
-        if not (mask >> np.uint64(k)) & np.uint64(1):
+    stack[0] = 0
+    top = 1
+    while top > 0:
+        top -= 1
+        k = stack[top]
+        centre = spread = 0.0
+        for a in range(3):
+            centre += patch_normal[p, a] * 0.5 * (node_high[k, a] + node_low[k, a])
+            spread += abs(patch_normal[p, a]) * 0.5 * (node_high[k, a] - node_low[k, a])
+        height = centre - patch_offset[p]
+        if (height + spread <= reach_m) if above else (height - spread >= -reach_m):
             continue
         near, far = 0.0, np.inf
         for a in range(3):
-            centre = 0.5 * (patch_high[p, a] + patch_low[p, a])
-            half = 0.5 * (patch_high[p, a] - patch_low[p, a])
-            lo, hi = leaf_low[k, a] - half - centre, leaf_high[k, a] + half - centre
+            middle = 0.5 * (patch_high[p, a] + patch_low[p, a])
+            half = 0.5 * (patch_high[p, a] - patch_low[p, a]) + margin_m
+            lo, hi = node_low[k, a] - half - middle, node_high[k, a] + half - middle
             if direction[a] == 0.0:  # parallel to the slab: always in it or never
                 if lo > 0.0 or hi < 0.0:
                     far = -1.0
                 continue
             t1, t2 = lo * inverse[a], hi * inverse[a]
             near, far = max(near, min(t1, t2)), min(far, max(t1, t2))
-        if near <= far:
+        if near > far:
+            continue
+        if first_child[k] < 0:
             return False
+        stack[top] = first_child[k]
+        stack[top + 1] = first_child[k] + 1
+        top += 2
     return True
 
 
@@ -157,22 +137,28 @@ def escaping_patches(
     side_patch: NDArray[np.int64],
     patch_low: NDArray[np.float64],
     patch_high: NDArray[np.float64],
-    patch_mask: NDArray[np.uint64],
-    leaf_low: NDArray[np.float64],
-    leaf_high: NDArray[np.float64],
+    patch_normal: NDArray[np.float64],
+    patch_offset: NDArray[np.float64],
+    node_low: NDArray[np.float64],
+    node_high: NDArray[np.float64],
+    first_child: NDArray[np.int64],
+    tree_depth: int,
+    margin_m: float,
+    reach_m: float,
 ) -> NDArray[np.bool_]:
     """Which patches of coplanar sides send mirror (column 0) and transmitted (column 1) first beams
     known to escape, (n_patches, 2).
 
-    Sides of patch ``side_patch[s]`` (-1 for none) lie in one plane and inside the box ``patch_low``
-    .. ``patch_high``, grown by more than a ray's origin offset. A first beam of the patch leaves that
-    box along one direction (all its sides share their normal), away from the plane, so it can meet
-    only facets reaching off the plane on its side: the leaves (boxes ``leaf_low`` .. ``leaf_high``)
-    whose bits are set in ``patch_mask`` (column 0 along the normal, 1 against it). Where the box
-    swept along the beam misses them all, every first beam of the patch escapes.
+    Sides of patch ``side_patch[s]`` (-1 for none) lie in the plane ``patch_normal . x =
+    patch_offset`` and inside the box ``patch_low`` .. ``patch_high``, grown by more than a ray's origin
+    offset. A first beam of the patch leaves that box along one direction (all its sides share their
+    normal), away from the plane, so it can meet only facets reaching off the plane on its side. Where
+    the box swept along the beam misses all of those in the tree ``node_low`` .. ``node_high`` (see
+    :func:`_swept_box_escapes`; ``tree_depth`` its depth), every first beam of the patch escapes.
     """
-    escapes = np.zeros((patch_mask.shape[0], 2), dtype=np.bool_)
-    first = np.full((patch_mask.shape[0], 2), -1, dtype=np.int64)
+    n_patches = patch_low.shape[0]
+    escapes = np.zeros((n_patches, 2), dtype=np.bool_)
+    first = np.full((n_patches, 2), -1, dtype=np.int64)
     for k in range(facing.shape[0]):
         s, p = facing[k], side_patch[facing[k]]
         if p < 0 or lit_fraction[s] <= 0.0:
@@ -180,14 +166,26 @@ def escaping_patches(
         for kind in range(2):
             if first[p, kind] < 0 and _share(side_optics, side_sheet, s, kind == 1) > 0.0:
                 first[p, kind] = s
-    for p in range(first.shape[0]):
+    stack = np.empty(tree_depth + 2, dtype=np.int64)
+    for p in range(n_patches):
         for kind in range(2):
             s = first[p, kind]
             if s >= 0:
                 cos = _cos(s, side_normals, toward_source)
-                heading = _beam_direction(s, kind == 1, cos, side_normals, toward_source)
                 escapes[p, kind] = _swept_box_escapes(
-                    p, patch_low, patch_high, heading, patch_mask[p, kind], leaf_low, leaf_high
+                    p,
+                    kind == 0,
+                    _beam_direction(s, kind == 1, cos, side_normals, toward_source),
+                    patch_low,
+                    patch_high,
+                    patch_normal,
+                    patch_offset,
+                    node_low,
+                    node_high,
+                    first_child,
+                    margin_m,
+                    reach_m,
+                    stack,
                 )
     return escapes
 

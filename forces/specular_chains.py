@@ -23,9 +23,10 @@ equal share of the side's beam power, so the beam powers equal those of the dire
 
 With fixed sampling, first beams known to escape are not cast. Coplanar sides form patches; a
 patch's first beams of one kind leave its box along one direction, away from its plane, so they can
-meet only facets reaching off the plane on that side. Where the patch's box swept along the beam
-misses the boxes of all such groups of facets, its beams escape, as a ray cast would find. Adaptive
-sampling casts them all: it compares every side's outcome with its neighbours'.
+meet only facets reaching off the plane on that side. The patch's box swept along the beam is
+tested against a tree of boxes of the facets, going down only into nodes that reach off the plane
+on the beam's side; where it misses every leaf that does, its beams escape, as a ray cast would find.
+Adaptive sampling casts them all: it compares every side's outcome with its neighbours'.
 
 Rays are cast in float32 scene coordinates (:mod:`geometry.raycast`); the point a beam meets a side
 is found again in float64 on the facet's plane.
@@ -41,6 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from geometry import triangles as tri
+from geometry.box_tree import BoxTree, box_tree
 from geometry.illumination import Illumination
 from geometry.sides import SOLID
 from geometry.spacecraft import ESCAPED, Spacecraft
@@ -110,27 +112,27 @@ class ChainModel:
 
 @dataclass(frozen=True)
 class _EscapeTest:
-    """Patches of coplanar sides and leaves of facets for :func:`forces.chain_kernels.escaping_patches`.
+    """Patches of coplanar sides and a tree of facet boxes for
+    :func:`forces.chain_kernels.escaping_patches`.
 
-    Leaves are the facets split ``_SPLITS`` times in halves, with their boxes [m]; patches hold up to
-    ``_PATCH_SIDES`` sides of one plane, with their box [m] and a bit for each leaf reaching off that
-    plane on either side. Boxes are grown by ``_margin``.
+    Patches hold up to ``_PATCH_SIDES`` sides of one plane, with their box [m] grown by ``_margin`` and
+    their plane; the tree's boxes are tight round the facets.
     """
 
     side_patch: NDArray[np.int64]  # (n_sides,) patch of each side, -1 for none
     patch_low: NDArray[np.float64]  # (n_patches, 3)
     patch_high: NDArray[np.float64]  # (n_patches, 3)
-    patch_mask: NDArray[np.uint64]  # (n_patches, 2) leaves reaching above, below the plane
-    leaf_low: NDArray[np.float64]  # (n_leaves, 3)
-    leaf_high: NDArray[np.float64]  # (n_leaves, 3)
+    patch_normal: NDArray[np.float64]  # (n_patches, 3) unit normal of the plane
+    patch_offset: NDArray[np.float64]  # (n_patches,) ``n . x`` of the plane [m]
+    tree: BoxTree
+    margin_m: float  # growth of the nodes' boxes for the sweep, as ``_margin``
+    reach_m: float  # a node reaches off a plane where its box does by more than this
 
 
-#: Leaves of the escape test: the facets split in halves this many times at most (64, a bit each).
-_SPLITS = 6
 #: Most sides in a patch whose first beams are tested for escape together.
 _PATCH_SIDES = 64
-#: Sides within this share of the origin offset of one plane form patches; a leaf reaches off a
-#: patch's plane where a vertex lies more than ``_REACH`` offsets from it (rays start one offset off).
+#: Sides within this share of the origin offset of one plane form patches; facets reach off a
+#: patch's plane where they rise more than ``_REACH`` offsets from it (rays start one offset off).
 _FLAT, _REACH = 0.1, 0.5
 
 _kept: weakref.WeakKeyDictionary[Spacecraft, dict[type, object]] = weakref.WeakKeyDictionary()
@@ -151,18 +153,17 @@ def _escape_test(craft: Spacecraft) -> _EscapeTest:
     """The :class:`_EscapeTest` of ``craft``, built once (~0.5 s for 10^5 facets) and kept."""
     kept = _kept.setdefault(craft, {})
     if _EscapeTest not in kept:
-        leaf_low, leaf_high, leaf_start, leaf_vertex = _leaves(craft)
         side_patch, low, high, normal, offset = _patches(craft)
-        reach = _REACH * craft.scene.offset_m
+        tree = box_tree(craft.triangles)
         kept[_EscapeTest] = _EscapeTest(
             side_patch=side_patch,
             patch_low=low,
             patch_high=high,
-            patch_mask=kernels.occluder_masks(
-                normal, offset, leaf_low, leaf_high, leaf_start, leaf_vertex, craft.vertices, reach
-            ),
-            leaf_low=leaf_low,
-            leaf_high=leaf_high,
+            patch_normal=normal,
+            patch_offset=offset,
+            tree=tree,
+            margin_m=_margin(craft),
+            reach_m=_REACH * craft.scene.offset_m,
         )
     return kept[_EscapeTest]
 
@@ -191,18 +192,6 @@ def _bounds(craft: Spacecraft, facets: NDArray[np.int64]) -> tuple[NDArray[np.fl
     """Box of ``facets`` grown by the margin [m]."""
     corners = craft.triangles[facets].reshape(-1, 3)
     return corners.min(axis=0) - _margin(craft), corners.max(axis=0) + _margin(craft)
-
-
-def _leaves(craft: Spacecraft) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """The leaves' boxes (n_leaves, 3) twice and vertices (``leaf_vertex[leaf_start[k]:leaf_start[k
-    + 1]]``)."""
-    leaves = _halves(
-        craft.facet_centroids, np.arange(craft.n_facets), min(_SPLITS, int(np.log2(craft.n_facets)))
-    )
-    low, high = np.array([_bounds(craft, leaf) for leaf in leaves]).transpose(1, 0, 2)
-    vertices = [np.unique(craft.faces[leaf]) for leaf in leaves]
-    start = np.concatenate([[0], np.cumsum([len(v) for v in vertices])])
-    return np.ascontiguousarray(low), np.ascontiguousarray(high), start, np.concatenate(vertices)
 
 
 def _patches(craft: Spacecraft) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
@@ -311,9 +300,14 @@ def _emitters(craft: Spacecraft, light: Illumination, flux_W_m2: float, cull: bo
             side_patch,
             test.patch_low,
             test.patch_high,
-            test.patch_mask,
-            test.leaf_low,
-            test.leaf_high,
+            test.patch_normal,
+            test.patch_offset,
+            test.tree.low,
+            test.tree.high,
+            test.tree.first_child,
+            test.tree.depth,
+            test.margin_m,
+            test.reach_m,
         )
     side, centroid, direction, lift, power, escaping = kernels.emitters(
         light.facing,

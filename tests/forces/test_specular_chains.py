@@ -76,8 +76,11 @@ def test_first_beams_the_escape_test_leaves_out_all_escape(craft, sun):
     # no side of the sample transmits: one beam a side
     assert len(np.unique(every.side)) == len(every.side)
     left_out = ~np.isin(every.side, kept.side)
-    assert left_out.mean() > 0.2
     assert np.all(sides[left_out] == ESCAPED)
+    # most beams of patches that escape are found: 60-73 % here (43-57 % with 64 leaves split at
+    # the median, which box the struts' feet with the faces round them)
+    in_patch = chains._escape_test(craft).side_patch[every.side] >= 0
+    assert left_out[(sides == ESCAPED) & in_patch].mean() > 0.5
     assert kept.escaping_W == pytest.approx(every.beams.power_W[left_out].sum(), rel=1e-12)
 
 
