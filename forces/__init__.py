@@ -1,12 +1,18 @@
 """Surface-interaction physics: the SRP force law, gas-surface laws, one-attitude evaluation of SRP and
 drag, the atmosphere, the CLI and the benchmark."""
 
-from .drag import drag
-from .drag_result import DragResult
-from .evaluate import srp
-from .radiation import SOLAR_FLUX_1AU, SPEED_OF_LIGHT, radiation_pressure, solar_flux, surface_forces
-from .reflections import PowerBalance, ReflectionSettings, model_view_factors
-from .result import SrpResult
+from sunwind.forces.drag import drag
+from sunwind.forces.drag_result import DragResult
+from sunwind.forces.radiation.law import (
+    SOLAR_FLUX_1AU,
+    SPEED_OF_LIGHT,
+    radiation_pressure,
+    solar_flux,
+    surface_forces,
+)
+from sunwind.forces.reflection.plan import PowerBalance, ReflectionSettings, model_view_factors
+from sunwind.forces.results import SrpResult
+from sunwind.forces.srp import srp
 
 __all__ = [
     "SOLAR_FLUX_1AU",

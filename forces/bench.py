@@ -17,14 +17,13 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from geometry.illumination import level_for_samples
-from geometry.spacecraft import Spacecraft
-
-from .atmosphere import circular_speed, nrlmsis
-from .drag import drag
-from .evaluate import srp
-from .radiosity import diffuse_exchange
-from .reflections import ReflectionSettings, model_view_factors
+from sunwind.forces.drag import drag
+from sunwind.forces.gas.atmosphere import circular_speed, nrlmsis
+from sunwind.forces.reflection.diffuse import diffuse_exchange
+from sunwind.forces.reflection.plan import ReflectionSettings, model_view_factors
+from sunwind.forces.srp import srp
+from sunwind.geometry.rays.shadows import level_for_samples
+from sunwind.geometry.spacecraft import Spacecraft
 
 
 @dataclass(frozen=True)
@@ -257,11 +256,10 @@ def sweep_benchmark(
     import tempfile
     from pathlib import Path
 
-    from meshes.samples import write_sample_files
-
-    from .attitudes import direction_grid
-    from .distributed import timed_on_local_cluster
-    from .sweep import DragSetup, Job, ModelRecipe, SrpSetup, precompute, run_sweep
+    from sunwind.forces.tables.attitudes import direction_grid
+    from sunwind.forces.tables.cluster import timed_on_local_cluster
+    from sunwind.forces.tables.sweep import DragSetup, Job, ModelRecipe, SrpSetup, precompute, run_sweep
+    from sunwind.meshes.samples import write_sample_files
 
     grid = direction_grid(step_deg)
     directions = grid.distinct[0]

@@ -1,6 +1,7 @@
 """Free-molecular force and torque at one attitude (METHOD.md "Free-molecular flow", "Shadowing").
 
-Per species ``k`` and side ``i`` the gas-surface law (:mod:`forces.gsi`) gives pressure and shear for
+Per species ``k`` and side ``i`` the gas-surface law (:mod:`sunwind.forces.gas.laws`) gives pressure and
+shear for
 the incident drifting Maxwellian, split exactly into a *directed* stream (a cold beam along the flow)
 and the *thermal* rest. Both reach a side where its view toward the molecules' directions of arrival
 is open (:func:`_flow_shadow`):
@@ -12,12 +13,14 @@ is open (:func:`_flow_shadow`):
 
 On a convex body nothing is blocked: the result is the per-side sum of the gas-surface law, lee
 faces included, at every speed ratio. With ``full``, re-emitted molecules landing on other sides are
-re-emitted again (:mod:`forces.molecular_exchange`).
+re-emitted again (:mod:`sunwind.forces.gas.exchange`).
 
 Speed (METHOD.md "Speed"). Sides of one law and one normal share every coefficient: the laws are
-evaluated once per such group, summed over species in one pass (:func:`forces.gsi.summed_coefficients`).
-Rays that provably meet nothing are not cast (:mod:`geometry.hull`); the others of an attitude go to
-Embree in one batch. Per-side kernels run on the threads of :mod:`geometry.parallel` and write
+evaluated once per such group, summed over species in one pass
+(:func:`sunwind.forces.gas.laws.summed_coefficients`).
+Rays that provably meet nothing are not cast (:mod:`sunwind.geometry.rays.hull`); the others of an attitude
+go to
+Embree in one batch. Per-side kernels run on the threads of :mod:`sunwind.geometry.parallel` and write
 per-side results, which are summed afterwards: results do not depend on the number of threads.
 """
 
@@ -33,15 +36,10 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from geometry.directions import unit_vector
-from geometry.errors import InputError
-from geometry.hull import clearance
-from geometry.illumination import DEFAULT_TOLERANCE, Illumination, level_for_samples
-from geometry.parallel import map_ranges
-from geometry.spacecraft import Spacecraft
-
-from .atmosphere import BOLTZMANN, Atmosphere
-from .drag_kernels import (
+from sunwind.forces.drag_result import DragResult, GasReflected
+from sunwind.forces.gas.atmosphere import BOLTZMANN, Atmosphere
+from sunwind.forces.gas.exchange import gas_interference_criterion, mean_momentum, molecular_exchange
+from sunwind.forces.gas.kernels import (
     gather_rays,
     group_stresses,
     incidences,
@@ -51,18 +49,23 @@ from .drag_kernels import (
     side_forces,
     spread_visibility,
 )
-from .drag_result import DragResult, GasReflected
-from .evaluate import reference_point
-from .gsi import diffuse_emission, summed_coefficients
-from .molecular_exchange import gas_interference_criterion, mean_momentum, molecular_exchange
-from .reflections import AUTO_THRESHOLD, ReflectionSettings, model_view_factors
+from sunwind.forces.gas.laws import diffuse_emission, summed_coefficients
+from sunwind.forces.reflection.plan import AUTO_THRESHOLD, ReflectionSettings, model_view_factors
+from sunwind.forces.srp import reference_point
+from sunwind.geometry.directions import unit_vector
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.parallel import map_ranges
+from sunwind.geometry.rays.hull import clearance
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, Illumination, level_for_samples
+from sunwind.geometry.spacecraft import Spacecraft
 
 #: Inter-reflection modes of molecules (specular chains are followed for light only).
 DRAG_MODES = ("none", "full", "auto")
 #: Speed ratio below which the panel method's flow shadowing is a rough approximation on concave
 #: shapes (the directed/thermal split; convex shapes stay exact).
 LOW_SPEED_RATIO = 3.0
-#: Gas-law columns of :attr:`Spacecraft.side_gas`, in the order of :func:`forces.gsi.panel_coefficients`.
+#: Gas-law columns of :attr:`Spacecraft.side_gas`, in the order of
+# :func:`sunwind.forces.gas.laws.panel_coefficients`.
 _LAW_FIELDS = (
     "code",
     "energy_accommodation",
@@ -175,10 +178,11 @@ def _flow_shadow(
     Every direction counted lies in the side's own open hemisphere, so on a convex body nothing is
     blocked at any speed ratio. ``gamma`` is ``n . u`` of each side.
 
-    Rays that provably meet nothing (:mod:`geometry.hull`) are not cast. With a fixed sample count
+    Rays that provably meet nothing (:mod:`sunwind.geometry.rays.hull`) are not cast. With a fixed sample
+    count
     whose ray origins the sampler keeps, the spread's rays are cast in one batch with the lee probes,
     and with one point per side the shadow rays along ``u`` too; otherwise the shadow along ``u`` and
-    along each spread direction is a pass of :meth:`geometry.illumination.SideSampler.illuminate`.
+    along each spread direction is a pass of :meth:`sunwind.geometry.rays.shadows.SideSampler.illuminate`.
     """
     sampler, batch = craft.sampler, _RayBatch()
     level = None if samples is None else level_for_samples(samples)
@@ -219,7 +223,7 @@ def _flow_shadow(
 
 
 def _clearance_arrays(craft: Spacecraft) -> tuple[NDArray, ...]:
-    """The arrays of :func:`geometry.hull.clearance` in the order the ray kernels take them."""
+    """The arrays of :func:`sunwind.geometry.rays.hull.clearance` in the order the ray kernels take them."""
     clear = clearance(craft)
     return clear.open_sky, clear.own_part_clear, clear.blockers, clear.box_low, clear.box_high
 
@@ -306,9 +310,9 @@ def drag(
     velocity_m_s : (3,) array_like
         ``v_rel``, the spacecraft's velocity relative to the atmosphere, body frame [m/s].
     atmosphere : Atmosphere
-        Number density of every species and the temperature (:mod:`forces.atmosphere`).
+        Number density of every species and the temperature (:mod:`sunwind.forces.gas.atmosphere`).
     reference_point_m : (3,) array_like, optional
-        Torque reference point [m]; default as :func:`forces.evaluate.srp`.
+        Torque reference point [m]; default as :func:`sunwind.forces.srp.srp`.
     samples, tolerance
         Shadow-ray sampling along the flow, as for sunlight.
     reflections : str or ReflectionSettings
@@ -411,10 +415,11 @@ def _summed_laws(
     groups: _GasGroups, gamma: NDArray[np.float64], atmosphere: Atmosphere, speed: float, re_emission: bool
 ) -> NDArray[np.float64]:
     """The gas-surface laws of each group (``gamma = n . u`` of each) summed over the species, each
-    weighted by its dynamic pressure ``q_k`` [Pa]: :func:`forces.gsi.summed_coefficients`, (n_groups, 4),
+    weighted by its dynamic pressure ``q_k`` [Pa]: :func:`sunwind.forces.gas.laws.summed_coefficients`,
+    (n_groups, 4),
     and with ``re_emission`` two more columns: per unit area of the group and per unit share arriving
     unobstructed, the first re-emission's momentum per second [N/m^2] and its molecules per second
-    weighted by the square root of their mass [sqrt(kg)/(s m^2)] (:mod:`forces.molecular_exchange`)."""
+    weighted by the square root of their mass [sqrt(kg)/(s m^2)] (:mod:`sunwind.forces.gas.exchange`)."""
     temperature = atmosphere.temperature_K
     # species of equal mass (O and anomalous O) move alike: one stream of their summed density
     names = list(atmosphere.number_density_m3)

@@ -7,13 +7,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from geometry.directions import vector_to_azel
-from geometry.spacecraft import Spacecraft
-from geometry.view_factors import ViewFactors
-
-from .atmosphere import Atmosphere
-from .reflections import ReflectionSettings
-from .result import FRAME
+from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.reflection.plan import ReflectionSettings
+from sunwind.forces.results import FRAME
+from sunwind.geometry.directions import vector_to_azel
+from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.geometry.views.view_factors import ViewFactors
 
 #: How every coefficient is normalised (METHOD.md "Outputs").
 NORMALISATION = "C = F / (q A_ref), C_M = M / (q A_ref L_ref), q = rho V^2 / 2 (total density)"

@@ -1,11 +1,11 @@
 """The spacecraft model: mesh and material loading, checks, ray casting and shadow sampling."""
 
-from .errors import InputError, MaterialError, MeshError, SunwindError
-from .illumination import Illumination, SideSampler
-from .materials import Material, MaterialSpec, MaterialTable, load_materials, parse_materials
-from .mesh_data import MeshData
-from .raycast import BruteForceScene, RayScene
-from .spacecraft import Spacecraft, build_spacecraft, load_spacecraft
+from sunwind.geometry.errors import InputError, MaterialError, MeshError, SunwindError
+from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials, parse_materials
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.scene import BruteForceScene, RayScene
+from sunwind.geometry.rays.shadows import Illumination, SideSampler
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft, load_spacecraft
 
 __all__ = [
     "BruteForceScene",

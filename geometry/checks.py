@@ -9,9 +9,9 @@ import scipy.sparse
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import connected_components
 
-from . import triangles as tri
-from .errors import MeshError
-from .sides import SOLID
+from sunwind.geometry import triangles as tri
+from sunwind.geometry.errors import MeshError
+from sunwind.geometry.sides import SOLID
 
 #: Vertices closer than this share of the model size are merged before connectivity is judged.
 MERGE_TOLERANCE = 1e-9

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import InputError
+from sunwind.geometry.errors import InputError
 
 
 def unit_vector(vector: Sequence[float] | NDArray, name: str = "vector") -> NDArray[np.float64]:

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import MaterialError
+from sunwind.geometry.errors import MaterialError
 
 if sys.version_info >= (3, 11):
     import tomllib

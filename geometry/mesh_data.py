@@ -18,7 +18,7 @@ class MeshData:
     """Triangles with part and material labels, in metres, as read from a file or built in memory.
 
     Nothing here is checked beyond shapes: degenerate triangles, winding, closedness and
-    non-finite coordinates are judged when a :class:`geometry.Spacecraft` is built.
+    non-finite coordinates are judged when a :class:`sunwind.geometry.Spacecraft` is built.
 
     Attributes
     ----------

@@ -8,9 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import MaterialError
-from .materials import Material, MaterialSpec, MaterialTable, part_matches
-from .mesh_data import MeshData
+from sunwind.geometry.errors import MaterialError
+from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, part_matches
+from sunwind.geometry.mesh_data import MeshData
 
 #: Facet kinds: a facet of a closed body (front side only), an open sheet lit from the front only,
 #: and a zero-thickness sheet whose two sides are both lit, each with its own material.

@@ -12,15 +12,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from .illumination import SideSampler
+    from sunwind.geometry.rays.shadows import SideSampler
 
-from . import triangles as tri
-from .checks import MeshCheck, check_mesh
-from .errors import MeshError
-from .materials import Material, MaterialSpec, MaterialTable, load_materials
-from .mesh_data import MeshData
-from .raycast import RayScene
-from .sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
+from sunwind.geometry import triangles as tri
+from sunwind.geometry.checks import MeshCheck, check_mesh
+from sunwind.geometry.errors import MeshError
+from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.scene import RayScene
+from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
 
 #: :meth:`Spacecraft.struck_sides` of a ray that left the model.
 ESCAPED = -1
@@ -53,7 +53,7 @@ class Spacecraft:
         Index into ``part_names``.
     part_names : tuple of str
     facet_kind : (n_facets,) int8
-        ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` (see :mod:`geometry.sides`).
+        ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` (see :mod:`sunwind.geometry.sides`).
     side_facet : (n_sides,) int64
         Facet of each side.
     side_sign : (n_sides,) float64
@@ -149,7 +149,7 @@ class Spacecraft:
     @cached_property
     def side_gas(self) -> dict[str, NDArray]:
         """Gas-surface parameters of each side's material, arrays (n_sides,): ``code`` (int8 index into
-        :data:`geometry.materials.GSI_MODELS`), ``energy_accommodation``, ``normal_accommodation``,
+        :data:`sunwind.geometry.materials.GSI_MODELS`), ``energy_accommodation``, ``normal_accommodation``,
         ``tangential_accommodation`` [-] and ``wall_temperature_K`` [K]."""
         m = self.materials
         fields = ("energy_accommodation", "normal_accommodation", "tangential_accommodation")
@@ -257,7 +257,7 @@ class Spacecraft:
     @cached_property
     def sampler(self) -> SideSampler:
         """Shadow-ray sampler of the sides, keeping its ray origins across attitudes."""
-        from .illumination import SideSampler
+        from sunwind.geometry.rays.shadows import SideSampler
 
         return SideSampler(self)
 
@@ -280,7 +280,7 @@ def build_spacecraft(
     mesh : MeshData
         Triangles with parts and material keys [m].
     materials : MaterialSpec or path, optional
-        Materials file (see :func:`geometry.materials.load_materials`).
+        Materials file (see :func:`sunwind.geometry.materials.load_materials`).
     uniform : Material, optional
         Material for every part the materials file and the mesh file leave without one.
     two_sided : sequence of str
@@ -355,7 +355,7 @@ def load_spacecraft(
 
     ``unit`` is the file's length unit (m, mm, cm, in); by default the unit the file declares, else m.
     """
-    from .io import load_mesh
+    from sunwind.geometry.io import load_mesh
 
     return build_spacecraft(load_mesh(path, unit=unit), materials, uniform, two_sided)
 

@@ -7,11 +7,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import triangles as tri
-from .checks import check_mesh
-from .errors import MaterialError
-from .materials import Material, MaterialSpec, load_materials, part_matches
-from .sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
+from sunwind.geometry import triangles as tri
+from sunwind.geometry.checks import check_mesh
+from sunwind.geometry.errors import MaterialError
+from sunwind.geometry.materials import Material, MaterialSpec, load_materials, part_matches
+from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
 
 _SURFACE = {SOLID: "closed body", ONE_SIDED: "one-sided sheet", TWO_SIDED: "two-sided sheet"}
 
@@ -34,7 +34,7 @@ def describe(
         JSON-ready: mesh, unit, triangles, area_m2, volume_m3, closed, bounds_m, reference_point,
         checks (list of str), parts (list of dict), materials (list of dict).
     """
-    from .io import load_mesh
+    from sunwind.geometry.io import load_mesh
 
     mesh = load_mesh(path, unit=unit)
     spec: MaterialSpec | None = load_materials(materials) if materials is not None else None

@@ -2,7 +2,7 @@
 
 from typing import Any
 
-from .primitives import (
+from sunwind.meshes.primitives import (
     PRIMITIVES,
     box,
     box_wing,
@@ -17,7 +17,8 @@ from .primitives import (
     transform,
 )
 
-#: Names of :mod:`meshes.samples`, imported on first use so ``python -m meshes.samples`` runs the
+#: Names of :mod:`sunwind.meshes.samples`, imported on first use so ``python -m sunwind.meshes.samples`` runs
+# the
 #: module once, not after an import of it.
 _SAMPLE_NAMES = (
     "SAMPLE_OPTICS",
@@ -48,7 +49,7 @@ __all__ = [
 
 def __getattr__(name: str) -> Any:
     if name in _SAMPLE_NAMES:
-        from . import samples
+        from sunwind.meshes import samples
 
         return getattr(samples, name)
     raise AttributeError(f"module 'meshes' has no attribute '{name}'")

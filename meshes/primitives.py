@@ -1,6 +1,6 @@
 """Parametric meshes of the validation shapes: plate, sphere, cylinder, cone, box, box-wing, dish.
 
-Every builder returns a :class:`geometry.mesh_data.MeshData` in metres whose ``metadata`` holds
+Every builder returns a :class:`sunwind.geometry.mesh_data.MeshData` in metres whose ``metadata`` holds
 ``"shape"`` and every parameter as resolved (STYLE.md §8), so :func:`build` can rebuild it.
 Closed shapes are watertight: every edge is shared by exactly two faces, the winding is outward
 (counter-clockwise seen from outside, positive signed volume) and vertices are shared. Open sheets
@@ -35,8 +35,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import ConvexHull, Delaunay
 
-from geometry.errors import InputError
-from geometry.mesh_data import MeshData
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.mesh_data import MeshData
 
 # Default resolutions; the error each gives is derived in the builders' docstrings.
 SPHERE_SUBDIVISIONS = 216

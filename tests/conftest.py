@@ -1,41 +1,10 @@
-"""Shared fixtures: small meshes built in memory, and a runner for the command line."""
+"""Shared fixtures: a private view-factor cache, and a runner for the command line."""
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
-import trimesh
 
-from forces.cli import main
-from geometry.materials import Material
-from geometry.mesh_data import MeshData
-
-
-def mesh_from_trimesh(mesh: trimesh.Trimesh, part: str = "body", source: str = "<memory>") -> MeshData:
-    """A one-part MeshData from a trimesh mesh, no material keys."""
-    n = len(mesh.faces)
-    return MeshData(
-        mesh.vertices, mesh.faces, np.zeros(n, np.int32), (part,), -np.ones(n, np.int32), source=source
-    )
-
-
-def quad_sheet(corners: np.ndarray, part: str, n: int = 1) -> MeshData:
-    """A flat quadrilateral ``corners`` (4, 3), counter-clockwise seen from the front, as 2 n^2 triangles."""
-    s, t = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1), indexing="ij")
-    a, b, c, d = corners
-    points = (
-        (1 - s)[..., None] * (1 - t)[..., None] * a
-        + s[..., None] * (1 - t)[..., None] * b
-        + s[..., None] * t[..., None] * c
-        + (1 - s)[..., None] * t[..., None] * d
-    ).reshape(-1, 3)
-    idx = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
-    v00, v10, v11, v01 = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
-    faces = np.concatenate(
-        [np.stack([v00, v10, v11], -1).reshape(-1, 3), np.stack([v00, v11, v01], -1).reshape(-1, 3)]
-    )
-    m = len(faces)
-    return MeshData(points, faces, np.zeros(m, np.int32), (part,), -np.ones(m, np.int32))
+from sunwind.forces.cli.app import main
 
 
 @pytest.fixture(autouse=True, scope="session")
@@ -44,10 +13,6 @@ def _private_view_factor_cache(tmp_path_factory):
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("SUNWIND_CACHE_DIR", str(tmp_path_factory.mktemp("view-factor-cache")))
         yield
-
-
-ABSORBER = Material("black", 0.0, 0.0, 0.0)
-MIXED = Material("mixed", 0.6, 0.3, 0.1)
 
 
 @pytest.fixture

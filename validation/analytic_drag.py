@@ -9,7 +9,7 @@ Notes
 -----
 **Flow and frames** (METHOD.md "Frames"). ``u = v_rel / |v_rel|`` is the unit flow vector (the
 spacecraft's velocity relative to the atmosphere, body frame); molecules travel along ``-u``. The
-bodies are placed as in :mod:`meshes.primitives`: the plate centred at the origin in ``z = 0``
+bodies are placed as in :mod:`sunwind.meshes.primitives`: the plate centred at the origin in ``z = 0``
 with front normal +z; the sphere centred at the origin; the cylinder on the z axis from
 ``z = -L/2`` to ``L/2``; the cone with its base disc in ``z = 0`` (normal -z) and apex at
 ``(0, 0, R / tan(half_angle))``. :func:`flow_vector_from_alpha` puts ``u`` at ``alpha`` from +z in
@@ -146,7 +146,7 @@ __all__ = [
     "surface_law",
 ]
 
-#: Models with closed forms here (CLL has none; see forces.gsi for it).
+#: Models with closed forms here (CLL has none; see sunwind.forces.gas.laws for it).
 DRAG_MODELS = ("sentman", "dria", "schaaf-chambre", "specular")
 STREAMS = ("full", "directed", "thermal")
 _SQRT_PI = math.sqrt(math.pi)

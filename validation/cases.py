@@ -1,7 +1,7 @@
 """The SRP validation cases, one table read by the runner, the tests and the README.
 
 Each case is a meshed body with one material, a closed-form reference from
-:mod:`validation.analytic_srp`, the Sun directions it is checked at, and a tolerance with its reason.
+:mod:`sunwind.validation.analytic_srp`, the Sun directions it is checked at, and a tolerance with its reason.
 Errors are measured on vectors against a physical scale, so components near zero do not inflate them:
 ``|F - F_ref| / (P A_ref)`` for force and ``|M - M_ref| / (P A_ref L_ref)`` for torque.
 """
@@ -15,12 +15,11 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 
-from geometry.materials import parse_materials
-from geometry.mesh_data import MeshData
-from geometry.spacecraft import Spacecraft, build_spacecraft
-from meshes import primitives
-
-from .analytic_srp import (
+from sunwind.geometry.materials import parse_materials
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
+from sunwind.meshes import primitives
+from sunwind.validation.analytic_srp import (
     ForceTorque,
     Optics,
     cone_srp,
@@ -220,7 +219,7 @@ REFINEMENT_CASES = tuple(c for c in SRP_CASES if c.name.endswith("/mixed") and n
 class ShadowCase:
     """Plate B partly shadowing plate A (both one-sided, finish ``optics``), against the exact answer.
 
-    Geometry as :func:`validation.analytic_srp.shadowed_plates_srp`. The error measures are relative
+    Geometry as :func:`sunwind.validation.analytic_srp.shadowed_plates_srp`. The error measures are relative
     to the reference magnitude of A's force and of A's torque about A's centre, which the shadow's
     first moment alone sets: the sharp test of where the lit area is.
     """

@@ -1,9 +1,9 @@
 """Concave validation cases, where light reflected by one facet strikes another, and the V-groove closed form.
 
-The reference for these shapes is the Monte Carlo photon tracer of :mod:`validation.photon_tracer`,
+The reference for these shapes is the Monte Carlo photon tracer of :mod:`sunwind.validation.photon_tracer`,
 plus, for a mirror V-groove lit in the plane across its axis, the exact answer
 :func:`v_groove_srp` derived below. :func:`compare` and :func:`reflection_table` put the solver
-(``forces.evaluate.srp`` with ``reflections="full"``) beside the tracer and return the numbers; they
+(``sunwind.forces.srp.srp`` with ``reflections="full"``) beside the tracer and return the numbers; they
 print nothing.
 
 Cases (:data:`CONCAVE_CASES`): a 90 deg V-groove of two long plates, an L of two unequal plates, a
@@ -80,14 +80,13 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from geometry.materials import parse_materials
-from geometry.mesh_data import MeshData
-from geometry.spacecraft import Spacecraft, build_spacecraft
-from meshes.primitives import grid_faces
-from meshes.samples import SAMPLE_OPTICS, sample_spacecraft
-
-from .analytic_srp import SOLAR_FLUX_1AU_W_M2, SPEED_OF_LIGHT_M_S, ForceTorque, Optics
-from .photon_tracer import TracerResult, trace_photons
+from sunwind.geometry.materials import parse_materials
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
+from sunwind.meshes.primitives import grid_faces
+from sunwind.meshes.samples import SAMPLE_OPTICS, sample_spacecraft
+from sunwind.validation.analytic_srp import SOLAR_FLUX_1AU_W_M2, SPEED_OF_LIGHT_M_S, ForceTorque, Optics
+from sunwind.validation.photon_tracer import TracerResult, trace_photons
 
 __all__ = [
     "CONCAVE_CASES",
@@ -225,7 +224,8 @@ def open_box_mesh(edge_m: float = 1.0, divisions: int = 8) -> MeshData:
 
 @lru_cache(maxsize=2)
 def dish_mesh(triangles: int = 20_000) -> MeshData:
-    """The ``"dish"`` part of :func:`meshes.samples.sample_spacecraft` alone, where it sits in the sample.
+    """The ``"dish"`` part of :func:`sunwind.meshes.samples.sample_spacecraft` alone, where it sits in the
+    sample.
 
     A paraboloid of diameter 1.2 m and f/D 0.35, concave side +z (its front), vertex at z = 0.904 m.
     """
@@ -480,7 +480,7 @@ def trace_case(
 ) -> TracerResult:
     """The tracer's loads for one case, finish and (azimuth, elevation), about the model's default point.
 
-    ``max_bounces`` as in :func:`validation.photon_tracer.trace_photons`.
+    ``max_bounces`` as in :func:`sunwind.validation.photon_tracer.trace_photons`.
     """
     return trace_photons(
         case.spacecraft(finish),
@@ -501,7 +501,7 @@ def compare(
     """Solver (``reflections="full"``) against the tracer (the physics) for one case, finish and Sun
     direction; both at 1361 W/m^2, torques about the model's default reference point (its area
     centroid)."""
-    from forces.evaluate import srp  # the solver under test; imported here so the tracer needs none of it
+    from sunwind.forces.srp import srp  # the solver under test; imported here so the tracer needs none of it
 
     craft = case.spacecraft(finish)
     mc = trace_case(case, finish, sun_deg, photons, seed)

@@ -1,12 +1,13 @@
 """Concave shapes in free-molecular flow: the panel solver against the test-particle Monte Carlo tracer.
 
-The reference is :mod:`validation.tpmc`, which samples molecules from the drifting Maxwellian and
-follows every wall interaction. :func:`compare` runs the solver (``forces.drag.drag``) with and without
+The reference is :mod:`sunwind.validation.tpmc`, which samples molecules from the drifting Maxwellian and
+follows every wall interaction. :func:`compare` runs the solver (``sunwind.forces.drag.drag``) with and
+without
 the exchange of re-emitted molecules beside it; :func:`drag_table` does every case. Both print
 nothing.
 
 Cases (:data:`DRAG_CASES`): the 90 deg V-groove, the open box and the sample spacecraft's dish of
-:mod:`validation.concave`, each a two-sided sheet, in one species (atomic oxygen at 1000 K) at speed
+:mod:`sunwind.validation.concave`, each a two-sided sheet, in one species (atomic oxygen at 1000 K) at speed
 ratio :data:`SPEED_RATIO`, with diffuse re-emission fully accommodated to the 300 K wall (Sentman,
 ``alpha_E = 1``: the kernel the tracer follows exactly) and with specular reflection, at flow
 directions into the opening and across it. Flow directions are the azimuth and elevation of
@@ -22,13 +23,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from forces.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
-from geometry.materials import GasSurface, Material
-from geometry.mesh_data import MeshData
-from geometry.spacecraft import Spacecraft, build_spacecraft
-
-from .concave import dish_mesh, open_box_mesh, sun_from_az_el, torque_scale, v_groove_mesh
-from .tpmc import TpmcResult, trace_molecules
+from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
+from sunwind.geometry.materials import GasSurface, Material
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
+from sunwind.validation.concave import dish_mesh, open_box_mesh, sun_from_az_el, torque_scale, v_groove_mesh
+from sunwind.validation.tpmc import TpmcResult, trace_molecules
 
 #: Speed ratio of the comparison (METHOD.md: the panel method's shadowing is built for S >> 1).
 SPEED_RATIO = 8.0
@@ -79,7 +79,7 @@ class DragRow:
 
     ``force_difference`` is ``|F_solver - F_mc| / |F_mc|`` with the exchange of re-emitted molecules,
     ``force_difference_none`` without it (every re-emitted molecule escaping); torques likewise over
-    :func:`validation.concave.torque_scale`. ``*_sigma`` are the tracer's standard errors on the same
+    :func:`sunwind.validation.concave.torque_scale`. ``*_sigma`` are the tracer's standard errors on the same
     scales.
     """
 
@@ -127,7 +127,7 @@ def compare(
     case: DragCase, law: str, flow_deg: tuple[float, float], molecules: int = MOLECULES, seed: int = 0
 ) -> DragRow:
     """Solver (with and without re-emission exchange) against tracer, torques about the tracer's point."""
-    from forces.drag import drag  # the solver under test; the tracer needs none of it
+    from sunwind.forces.drag import drag  # the solver under test; the tracer needs none of it
 
     craft = case.spacecraft(law)
     start = time.perf_counter()

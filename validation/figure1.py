@@ -5,10 +5,10 @@ speed (Sentman, full accommodation to a 300 K wall), sunlight at 1 au. The paper
 et al. 1977) finds the atmosphere ahead below about 500 km and sunlight ahead above about 1000 km, the
 crossover in between depending on solar activity; here it is found for low, moderate and high
 activity (F10.7 = F10.7a = 70, 150, 250 sfu; Ap = 4) at local midnight on the equator (the default
-place and time of :func:`forces.atmosphere.nrlmsis`). Aluminium: reflectivity 0.85, nine tenths of
+place and time of :func:`sunwind.forces.gas.atmosphere.nrlmsis`). Aluminium: reflectivity 0.85, nine tenths of
 it specular (the sphere's SRP depends on the diffuse share only: ``P pi R^2 (1 + 4/9 rho_d)``).
 
-Run ``python -m validation.figure1 [-o figure1.png]``: prints the table and the crossover altitudes
+Run ``python -m sunwind.validation.figure1 [-o figure1.png]``: prints the table and the crossover altitudes
 and writes the plot.
 """
 
@@ -22,12 +22,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from forces.atmosphere import AtmosphereWarning, circular_speed, nrlmsis
-from forces.drag import drag
-from forces.evaluate import srp
-from geometry.materials import GasSurface, Material
-from geometry.spacecraft import Spacecraft, build_spacecraft
-from meshes.primitives import sphere
+from sunwind.forces.drag import drag
+from sunwind.forces.gas.atmosphere import AtmosphereWarning, circular_speed, nrlmsis
+from sunwind.forces.srp import srp
+from sunwind.geometry.materials import GasSurface, Material
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
+from sunwind.meshes.primitives import sphere
 
 #: Altitudes of the figure [km].
 ALTITUDES_KM = np.arange(200.0, 1501.0, 50.0)
@@ -109,7 +109,9 @@ def plot(result: Figure1, path: str) -> None:
 
 
 def main(argv: list[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(prog="python -m validation.figure1", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m sunwind.validation.figure1", description=__doc__.split("\n")[0]
+    )
     parser.add_argument("-o", "--output", default="figure1.png", help="PNG file to write")
     args = parser.parse_args(argv)
     result = figure1()

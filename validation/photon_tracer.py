@@ -1,7 +1,7 @@
 """Brute-force Monte Carlo photon tracer: the reference for solar-radiation pressure on concave shapes.
 
 It is written apart from the solver in ``forces`` and imports nothing from it: it reads only the
-model (triangles, sides, optics) from the :class:`geometry.spacecraft.Spacecraft` and casts its rays
+model (triangles, sides, optics) from the :class:`sunwind.geometry.spacecraft.Spacecraft` and casts its rays
 in an Embree scene of its own. It is slow and simple on purpose, and unbiased.
 
 Notes
@@ -36,7 +36,7 @@ whatever the ``beta`` of the surfaces it meets, and leaves a sheet it passes thr
 spread, as METHOD.md eq. (12) re-emits the whole ``rho`` and a sheet's ``sigma`` of the diffuse light
 a side receives. The difference between the two runs is that model's error on mixed finishes. The
 solver does not make it (its exchange factors follow mirrored and transmitted diffuse light, see
-:mod:`geometry.exchange_factors`) and is checked against the physics.
+:mod:`sunwind.geometry.views.exchange_factors`) and is checked against the physics.
 
 **Errors.** The photons are split into independent batches, each with its own stream of random
 numbers; each batch's total is an unbiased estimate, and the standard error of the mean is the
@@ -60,10 +60,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from geometry.sides import SOLID
-from geometry.spacecraft import Spacecraft
-
-from .analytic_srp import SOLAR_FLUX_1AU_W_M2, SPEED_OF_LIGHT_M_S
+from sunwind.geometry.sides import SOLID
+from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.validation.analytic_srp import SOLAR_FLUX_1AU_W_M2, SPEED_OF_LIGHT_M_S
 
 __all__ = ["TracerResult", "trace_photons"]
 

@@ -1,6 +1,6 @@
 """Run the validation cases through the solver and tabulate case, reference, computed and error.
 
-``python -m validation.runner`` (or ``sunwind validate``) prints the table the README quotes.
+``python -m sunwind.validation.runner`` (or ``sunwind validate``) prints the table the README quotes.
 """
 
 from __future__ import annotations
@@ -11,10 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from forces.evaluate import srp
-from forces.radiation import SOLAR_FLUX_1AU, radiation_pressure
-
-from .cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES, ShadowCase, SrpCase
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure
+from sunwind.forces.srp import srp
+from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES, ShadowCase, SrpCase
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,7 @@
 """Test-particle Monte Carlo (TPMC): the reference for free-molecular drag on concave shapes.
 
 It is written apart from the panel solver in ``forces`` and imports nothing from it: it reads only
-the triangles and sides of the :class:`geometry.spacecraft.Spacecraft` and casts its rays in the
+the triangles and sides of the :class:`sunwind.geometry.spacecraft.Spacecraft` and casts its rays in the
 model's Embree scene (``craft.scene``). It is slow and simple on purpose, and unbiased: it samples
 the free stream, every wall interaction and every re-emission, and averages nothing analytically,
 so it checks the finite-speed-ratio flux integrals, the gas-surface kernels and the multiple
@@ -88,7 +88,7 @@ threads (Embree and most numpy work release the GIL) and are summed in batch ord
 the same bits on any machine load.
 
 **Precision.** The hit point is rebuilt in float64 from Embree's float32 distance and projected onto
-the facet's plane, as in :mod:`validation.photon_tracer`.
+the facet's plane, as in :mod:`sunwind.validation.photon_tracer`.
 """
 
 from __future__ import annotations
@@ -102,7 +102,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from geometry.spacecraft import BLIND, ESCAPED, Spacecraft
+from sunwind.geometry.spacecraft import BLIND, ESCAPED, Spacecraft
 
 __all__ = [
     "BOLTZMANN_J_K",

@@ -4,7 +4,7 @@ Formats: STL, OBJ, PLY, glTF/GLB, USD (``.usd``, ``.usda``, ``.usdc``; ``.usdz``
 See :func:`load_mesh` and :func:`save_mesh` for what each format carries.
 """
 
-from geometry.io.registry import SUPPORTED_SUFFIXES, load_mesh, save_mesh
-from geometry.io.units import UNITS
+from sunwind.geometry.io.registry import SUPPORTED_SUFFIXES, load_mesh, save_mesh
+from sunwind.geometry.io.units import UNITS
 
 __all__ = ["SUPPORTED_SUFFIXES", "UNITS", "load_mesh", "save_mesh"]

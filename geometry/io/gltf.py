@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.io.topology import bounds, compact, groups
-from geometry.mesh_data import MeshData
+from sunwind.geometry.io.topology import bounds, compact, groups
+from sunwind.geometry.mesh_data import MeshData
 
 # glTF enumerations (glTF 2.0 specification, section 5)
 _FLOAT, _UNSIGNED_INT = 5126, 5125

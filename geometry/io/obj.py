@@ -16,9 +16,9 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from geometry.errors import MeshError
-from geometry.io.topology import fan_triangles
-from geometry.mesh_data import MeshData
+from sunwind.geometry.errors import MeshError
+from sunwind.geometry.io.topology import fan_triangles
+from sunwind.geometry.mesh_data import MeshData
 
 #: A comment to the end of its line.
 _COMMENT = re.compile(r"#[^\n]*")

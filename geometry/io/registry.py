@@ -14,13 +14,13 @@ from collections.abc import Callable, Mapping
 from dataclasses import replace
 from pathlib import Path
 
-from geometry.errors import InputError, MeshError, SunwindError
-from geometry.io.gltf import write_gltf
-from geometry.io.obj import read_obj, write_obj
-from geometry.io.trimesh_ import read_gltf, read_single, read_stl, write_ply, write_stl
-from geometry.io.units import parse_unit, resolve_unit
-from geometry.io.usd_ import read_usd, write_usd
-from geometry.mesh_data import OPTICS_KEYS, MeshData
+from sunwind.geometry.errors import InputError, MeshError, SunwindError
+from sunwind.geometry.io.gltf import write_gltf
+from sunwind.geometry.io.obj import read_obj, write_obj
+from sunwind.geometry.io.trimesh_ import read_gltf, read_single, read_stl, write_ply, write_stl
+from sunwind.geometry.io.units import parse_unit, resolve_unit
+from sunwind.geometry.io.usd_ import read_usd, write_usd
+from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
 
 #: Reader of each file suffix (lower case); it returns the file's data in file units.
 LOADERS: dict[str, Callable[[Path], MeshData]] = {

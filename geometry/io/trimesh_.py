@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from geometry.errors import MeshError
-from geometry.mesh_data import MeshData
+from sunwind.geometry.errors import MeshError
+from sunwind.geometry.mesh_data import MeshData
 
 
 def read_stl(path: Path) -> MeshData:

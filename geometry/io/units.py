@@ -11,7 +11,7 @@ import math
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from geometry.errors import InputError
+from sunwind.geometry.errors import InputError
 
 #: Unit names a user may give, with their length in metres (read-only).
 UNITS: Mapping[str, float] = MappingProxyType({"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254})

@@ -17,9 +17,9 @@ import numpy as np
 from numpy.typing import NDArray
 from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdShade, Vt
 
-from geometry.errors import MeshError
-from geometry.io.topology import bounds, compact, fan_triangles, groups
-from geometry.mesh_data import OPTICS_KEYS, MeshData
+from sunwind.geometry.errors import MeshError
+from sunwind.geometry.io.topology import bounds, compact, fan_triangles, groups
+from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
 
 #: USD attribute on a Material prim holding each key of ``OPTICS_KEYS``.
 OPTICS_ATTRIBUTES = dict(

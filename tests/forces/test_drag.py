@@ -6,15 +6,15 @@ import warnings
 import numpy as np
 import pytest
 
-from forces.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
-from forces.drag import LowSpeedRatioWarning, drag
-from forces.drag_result import aerodynamic_axes
-from forces.gsi import panel_coefficients
-from geometry.errors import InputError
-from geometry.materials import GasSurface, Material
-from geometry.mesh_data import MeshData
-from geometry.spacecraft import build_spacecraft
-from meshes import primitives
+from sunwind.forces.drag import LowSpeedRatioWarning, drag
+from sunwind.forces.drag_result import aerodynamic_axes
+from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
+from sunwind.forces.gas.laws import panel_coefficients
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import GasSurface, Material
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.spacecraft import build_spacecraft
+from sunwind.meshes import primitives
 
 TEMPERATURE_K = 1000.0
 AIR = Atmosphere({"O": 4e14, "N2": 1e14}, TEMPERATURE_K, "test")
@@ -31,7 +31,7 @@ def craft_of(mesh, model="sentman", two_sided=(), **gas):
 
 
 def per_side_law(craft, velocity, air, reference):
-    """Force and torque summed side by side from forces.gsi: every side sees the free stream."""
+    """Force and torque summed side by side from sunwind.forces.gas.laws: every side sees the free stream."""
     speed = np.linalg.norm(velocity)
     u = velocity / speed
     n = craft.side_normals
@@ -161,7 +161,7 @@ def test_re_emission_exchange_adds_drag_on_a_cavity_facing_the_flow():
     """Molecules the walls of an open box re-emit can leave only through its opening, upstream, so
     more of their momentum leaves against the flow than the open-plate law lets the walls send
     sideways: the exchange adds drag, and keeps the force on the axis of a symmetric box."""
-    from validation.concave import open_box_mesh
+    from sunwind.validation.concave import open_box_mesh
 
     craft = craft_of(open_box_mesh(1.0, 6), two_sided=["*"])
     velocity = speed_for(8.0) * np.array([0.0, 0.0, 1.0])

@@ -7,21 +7,21 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from forces.direct_sums import TOTALS, accumulate_forces, block_moments, weight_moments
-from forces.evaluate import srp
-from forces.radiation import (
+from helpers import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
+from sunwind.forces.radiation.direct import TOTALS, accumulate_forces, block_moments, weight_moments
+from sunwind.forces.radiation.law import (
     SOLAR_FLUX_1AU,
     SPEED_OF_LIGHT,
     radiation_pressure,
     solar_flux,
     surface_forces,
 )
-from geometry.errors import InputError
-from geometry.illumination import BLOCK
-from geometry.materials import Material
-from geometry.mesh_data import MeshData
-from geometry.spacecraft import build_spacecraft
-from tests.conftest import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
+from sunwind.forces.srp import srp
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import Material
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.shadows import BLOCK
+from sunwind.geometry.spacecraft import build_spacecraft
 
 P = SOLAR_FLUX_1AU / SPEED_OF_LIGHT
 
@@ -241,7 +241,7 @@ def test_shadowing_is_visible_and_per_side_arrays_sum_to_the_totals(dumbbell):
 def test_one_sided_sheet_feels_nothing_from_behind_and_two_sided_feels_its_back_material():
     square = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0]], float)
     sheet = quad_sheet(square, "panel", 3)
-    from geometry.materials import parse_materials
+    from sunwind.geometry.materials import parse_materials
 
     spec = parse_materials(
         {
@@ -271,7 +271,7 @@ def test_bad_directions_and_reference_points_are_input_errors(dumbbell):
 
 def test_results_are_the_same_bits_whatever_the_number_of_threads(monkeypatch):
     """Force sums run in blocks added in a fixed order, so threads cannot change the last bit."""
-    from meshes.samples import sample_spacecraft
+    from sunwind.meshes.samples import sample_spacecraft
 
     craft = build_spacecraft(sample_spacecraft(30_000))
     u = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])

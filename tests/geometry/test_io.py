@@ -10,9 +10,9 @@ import pytest
 import trimesh
 from pxr import Sdf, UsdUtils
 
-from geometry.errors import InputError, MeshError, SunwindError
-from geometry.io import SUPPORTED_SUFFIXES, UNITS, load_mesh, save_mesh
-from geometry.mesh_data import MeshData
+from sunwind.geometry.errors import InputError, MeshError, SunwindError
+from sunwind.geometry.io import SUPPORTED_SUFFIXES, UNITS, load_mesh, save_mesh
+from sunwind.geometry.mesh_data import MeshData
 
 OPTICS = {
     "gold": {"reflectivity": 0.3, "specular_fraction": 0.5, "transmissivity": 0.0},
@@ -687,7 +687,7 @@ def test_unreadable_file(tmp_path, monkeypatch):
     def refuse(file, mode="r"):
         raise PermissionError(13, "Permission denied", str(file))
 
-    monkeypatch.setattr("geometry.io.registry.open", refuse, raising=False)  # root reads anything
+    monkeypatch.setattr("sunwind.geometry.io.registry.open", refuse, raising=False)  # root reads anything
     error = load_error(path)
     assert (error.message, error.hint) == (
         "cannot open the file (Permission denied)",

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from geometry.errors import MaterialError
-from geometry.materials import Material, load_materials, part_matches
+from sunwind.geometry.errors import MaterialError
+from sunwind.geometry.materials import Material, load_materials, part_matches
 
 GOOD = """
 [materials.white_paint]

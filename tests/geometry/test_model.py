@@ -4,13 +4,13 @@ import numpy as np
 import pytest
 import trimesh
 
-from geometry.errors import MaterialError, MeshError
-from geometry.materials import Material, parse_materials
-from geometry.mesh_data import MeshData
-from geometry.sides import ONE_SIDED, SOLID, TWO_SIDED
-from geometry.spacecraft import BLIND, ESCAPED, build_spacecraft
-from meshes import primitives
-from tests.conftest import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
+from helpers import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
+from sunwind.geometry.errors import MaterialError, MeshError
+from sunwind.geometry.materials import Material, parse_materials
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED
+from sunwind.geometry.spacecraft import BLIND, ESCAPED, build_spacecraft
+from sunwind.meshes import primitives
 
 SPEC = parse_materials(
     {

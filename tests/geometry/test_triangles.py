@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from geometry import triangles as tri
+from sunwind.geometry import triangles as tri
 
 
 def test_level_one_is_the_centroid():

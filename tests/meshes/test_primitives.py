@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from geometry.errors import InputError
-from geometry.triangles import areas, cross, signed_volume
-from meshes import PRIMITIVES, box, box_wing, build, cone, cylinder, dish, plate, sphere
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.triangles import areas, cross, signed_volume
+from sunwind.meshes import PRIMITIVES, box, box_wing, build, cone, cylinder, dish, plate, sphere
 
 #: Unit directions for projected areas: random, the axes, and a 45 deg one.
 _RNG = np.random.default_rng(20260)

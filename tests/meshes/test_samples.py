@@ -8,13 +8,19 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from geometry.checks import check_mesh
-from geometry.errors import InputError
-from geometry.materials import Material, load_materials
-from geometry.sides import SOLID, TWO_SIDED
-from geometry.triangles import cross, signed_volume
-from meshes import SAMPLE_OPTICS, materials_toml, sample_materials_path, sample_path, sample_spacecraft
-from meshes.samples import DIMENSIONS, SHEETS, main, write_sample_files
+from sunwind.geometry.checks import check_mesh
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import Material, load_materials
+from sunwind.geometry.sides import SOLID, TWO_SIDED
+from sunwind.geometry.triangles import cross, signed_volume
+from sunwind.meshes import (
+    SAMPLE_OPTICS,
+    materials_toml,
+    sample_materials_path,
+    sample_path,
+    sample_spacecraft,
+)
+from sunwind.meshes.samples import DIMENSIONS, SHEETS, main, write_sample_files
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -156,14 +162,14 @@ class TestShippedFiles:
         assert set(spec.materials) == set(SAMPLE_OPTICS)
 
     def test_obj_loads_back_identical(self, reference):
-        load_mesh = pytest.importorskip("geometry.io").load_mesh
+        load_mesh = pytest.importorskip("sunwind.geometry.io").load_mesh
         mesh = load_mesh(sample_path("sample_spacecraft.obj"))
         assert mesh.n_faces == reference.n_faces
         assert np.array_equal(mesh.vertices, reference.vertices)
         assert labelled_faces(mesh) == labelled_faces(reference)
 
     def test_usd_carries_geometry_and_optics(self, reference):
-        load_mesh = pytest.importorskip("geometry.io").load_mesh
+        load_mesh = pytest.importorskip("sunwind.geometry.io").load_mesh
         mesh = load_mesh(sample_path("sample_spacecraft.usda"))
         assert mesh.n_faces == reference.n_faces
         assert np.abs(mesh.vertices - reference.vertices).max() < 1e-6  # float32 points
@@ -175,7 +181,7 @@ class TestShippedFiles:
             assert mesh.file_optics[name] == pytest.approx(optics)
 
     def test_obj_with_toml_builds_a_spacecraft(self):
-        spacecraft = pytest.importorskip("geometry.spacecraft")
+        spacecraft = pytest.importorskip("sunwind.geometry.spacecraft")
         model = spacecraft.load_spacecraft(sample_path(), sample_materials_path())
         assert model.notices == ()
         assert model.n_sides == model.n_facets + sum(

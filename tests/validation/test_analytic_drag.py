@@ -3,9 +3,9 @@
 Three independent routes: (1) the local law written again here from the incident-stream formulas
 and summed by brute-force 2-D quadrature over parametrised surfaces (full stream; smooth, so
 Gauss-Legendre and the periodic trapezoid rule converge fast); (2) the directed stream against the
-SRP closed forms of :mod:`validation.analytic_srp` (the directed gas law is a radiation law with
-``P = 2 q``); (3) per-facet sums of :func:`forces.gsi.panel_coefficients` on meshes of
-:mod:`meshes.primitives`.
+SRP closed forms of :mod:`sunwind.validation.analytic_srp` (the directed gas law is a radiation law with
+``P = 2 q``); (3) per-facet sums of :func:`sunwind.forces.gas.laws.panel_coefficients` on meshes of
+:mod:`sunwind.meshes.primitives`.
 """
 
 from __future__ import annotations
@@ -17,12 +17,12 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import erfc
 
-from forces.gsi import MODEL_CODES, panel_coefficients
-from geometry.materials import Material
-from geometry.spacecraft import build_spacecraft
-from meshes import primitives
-from validation import analytic_srp
-from validation.analytic_drag import (
+from sunwind.forces.gas.laws import MODEL_CODES, panel_coefficients
+from sunwind.geometry.materials import Material
+from sunwind.geometry.spacecraft import build_spacecraft
+from sunwind.meshes import primitives
+from sunwind.validation import analytic_srp
+from sunwind.validation.analytic_drag import (
     GasLaw,
     cone_drag,
     cylinder_drag,
@@ -553,7 +553,7 @@ def test_bad_input():
         cylinder_drag(1.0, 1.0, (0.0, 0.0, 1.0), SURFACES["sentman"], 2.0, T_INF, lateral="series")
 
 
-# ---------------------------------------------------------------------- meshes: forces.gsi sums
+# ---------------------------------------------------------------------- meshes: sunwind.forces.gas.laws sums
 
 
 def mesh_sides(mesh, sheet=None):
@@ -622,7 +622,8 @@ MESH_CASES = {
 
 @pytest.mark.parametrize("name", list(MESH_CASES))
 def test_gsi_on_fine_meshes_matches_closed_forms(name):
-    """Per-facet sums of forces.gsi on the default primitives agree with the closed forms to 0.1 %.
+    """Per-facet sums of sunwind.forces.gas.laws on the default primitives agree with the closed forms to 0.1
+    %.
 
     Both coefficients are compared on the scale ``max(|C_D|, |C_L|)`` (a lift near zero is judged
     against the drag, a drag near zero against the lift). Attitudes where that scale is below 1e-3

@@ -17,7 +17,7 @@ import pytest
 from scipy.optimize import brentq
 from scipy.spatial import ConvexHull
 
-from validation.analytic_srp import (
+from sunwind.validation.analytic_srp import (
     SPEED_OF_LIGHT_M_S,
     ForceTorque,
     Optics,

@@ -2,7 +2,7 @@
 
 import pytest
 
-from validation.concave_drag import DRAG_CASES, TOLERANCE, compare
+from sunwind.validation.concave_drag import DRAG_CASES, TOLERANCE, compare
 
 
 @pytest.mark.parametrize("case", DRAG_CASES, ids=lambda c: c.name)

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from validation.figure1 import crossover, figure1, plot
+from sunwind.validation.figure1 import crossover, figure1, plot
 
 
 def test_crossover_lies_where_the_paper_puts_it_and_moves_up_with_solar_activity(tmp_path):

@@ -10,14 +10,21 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from geometry.materials import parse_materials
-from geometry.mesh_data import MeshData
-from geometry.spacecraft import Spacecraft, build_spacecraft
-from meshes import primitives
-from validation.analytic_srp import Optics, plate_srp, sphere_srp
-from validation.cases import BACK_OPTICS, OPTICS, sun_vector
-from validation.concave import CONCAVE_CASES, TRANSLUCENT, l_mesh, open_box_mesh, v_groove_mesh, v_groove_srp
-from validation.photon_tracer import trace_photons
+from sunwind.geometry.materials import parse_materials
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
+from sunwind.meshes import primitives
+from sunwind.validation.analytic_srp import Optics, plate_srp, sphere_srp
+from sunwind.validation.cases import BACK_OPTICS, OPTICS, sun_vector
+from sunwind.validation.concave import (
+    CONCAVE_CASES,
+    TRANSLUCENT,
+    l_mesh,
+    open_box_mesh,
+    v_groove_mesh,
+    v_groove_srp,
+)
+from sunwind.validation.photon_tracer import trace_photons
 
 #: Standard errors a tracer estimate may lie from the exact value.
 Z = 4.0
@@ -103,7 +110,7 @@ def test_closed_body_passes_transmitted_light_untouched():
 @pytest.mark.parametrize("psi", [0.0, 12.0, 27.0, -38.0, 45.0])
 def test_v_groove_matches_its_closed_form(rho, psi):
     """Mirror V-groove lit across its axis: the share ``tan psi`` leaves after one bounce, the rest is
-    retro-reflected after two (validation.concave Notes)."""
+    retro-reflected after two (sunwind.validation.concave Notes)."""
     craft = _build(v_groove_mesh(), Optics(rho, 1.0, 0.0), Optics(rho, 1.0, 0.0))
     u = np.array([np.sin(np.radians(psi)), 0.0, np.cos(np.radians(psi))])
     ref = craft.default_reference[0]

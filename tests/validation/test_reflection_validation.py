@@ -1,11 +1,11 @@
 """The solver's inter-reflection against the Monte Carlo photon tracer and the V-groove closed form.
 
-Every case of :data:`validation.concave.CONCAVE_CASES` (V-groove, L, open box, the sample's dish),
+Every case of :data:`sunwind.validation.concave.CONCAVE_CASES` (V-groove, L, open box, the sample's dish),
 each finish (specular, diffuse, mixed, the L's translucent wall, the dish's sample materials), each
 Sun direction: the solver with ``reflections="full"`` must land within
-:data:`~validation.concave.TOLERANCE` (1 %) of the tracer following the physics in force (over
-``|F_mc|``), torque (over :func:`~validation.concave.torque_scale`) and power (incident, absorbed and
-escaped, over the incident power). The tracer runs :data:`~validation.concave.MC_PHOTONS` (600 000)
+:data:`~sunwind.validation.concave.TOLERANCE` (1 %) of the tracer following the physics in force (over
+``|F_mc|``), torque (over :func:`~sunwind.validation.concave.torque_scale`) and power (incident, absorbed and
+escaped, over the incident power). The tracer runs :data:`~sunwind.validation.concave.MC_PHOTONS` (600 000)
 bundles per comparison, enough that its own standard error stays below a quarter of the tolerance,
 which is asserted too. Measured: within 0.15 % in force, 0.3 % in torque and 0.04 % in power on every
 comparison, mixed finishes included (the exchange factors follow the mirrored and transmitted share
@@ -20,9 +20,9 @@ import math
 import numpy as np
 import pytest
 
-from forces.evaluate import srp
-from validation.analytic_srp import Optics
-from validation.concave import (
+from sunwind.forces.srp import srp
+from sunwind.validation.analytic_srp import Optics
+from sunwind.validation.concave import (
     CONCAVE_CASES,
     FINISHES,
     MC_PHOTONS,
@@ -61,7 +61,7 @@ def test_full_reflection_matches_the_photon_tracer(case, finish, sun):
 @pytest.mark.parametrize("rho", [1.0, 0.9])
 @pytest.mark.parametrize("psi", [0.0, 20.0, -35.0])
 def test_v_groove_solver_matches_the_closed_form(rho, psi):
-    """Mirror groove lit across its axis (validation.concave Notes); exact, so no tracer noise."""
+    """Mirror groove lit across its axis (sunwind.validation.concave Notes); exact, so no tracer noise."""
     case = CASE["v-groove"]
     mirror = Optics(rho, 1.0, 0.0)
     craft = finished_spacecraft(case.mesh(), {"*": (mirror, mirror)}, f"v-groove/mirror {rho}")

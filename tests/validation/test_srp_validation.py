@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES
-from validation.runner import refinement_study, run_shadow_case, run_srp_case
+from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES
+from sunwind.validation.runner import refinement_study, run_shadow_case, run_srp_case
 
 
 @pytest.mark.parametrize("case", SRP_CASES, ids=lambda c: c.name)

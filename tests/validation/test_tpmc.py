@@ -25,7 +25,7 @@ sphere::
     C_D = exp(-S^2) (2 S^2 + 1) / (sqrt(pi) S^3) + (4 S^4 + 4 S^2 - 1) erf(S) / (2 S^4)
           + (2 sqrt(pi) / (3 S)) sqrt(T_w / T).
 
-These equal :mod:`validation.analytic_drag`, derived separately, to round-off (checked below when
+These equal :mod:`sunwind.validation.analytic_drag`, derived separately, to round-off (checked below when
 that module is present). In a gas at rest with ``T_w = T`` (or with specular walls at any ``T_w``),
 detailed balance makes the force and torque on any body, concave or not, vanish.
 """
@@ -39,11 +39,11 @@ import pytest
 from scipy import stats
 from scipy.special import erfc
 
-from geometry.materials import Material
-from geometry.spacecraft import Spacecraft, build_spacecraft
-from meshes import primitives
-from validation.concave import open_box_mesh
-from validation.tpmc import (
+from sunwind.geometry.materials import Material
+from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
+from sunwind.meshes import primitives
+from sunwind.validation.concave import open_box_mesh
+from sunwind.validation.tpmc import (
     BOLTZMANN_J_K,
     cll_reemission,
     flux_normal_speeds,
@@ -161,8 +161,8 @@ def plate_loads(u, speed_ratio: float, diffuse_front: bool, diffuse_back: bool):
 
 @pytest.mark.parametrize("speed_ratio", [1.0, 2.0, 8.0])
 def test_closed_forms_agree_with_analytic_drag(speed_ratio):
-    """The references above equal :mod:`validation.analytic_drag` (derived apart) to round-off."""
-    analytic = pytest.importorskip("validation.analytic_drag")
+    """The references above equal :mod:`sunwind.validation.analytic_drag` (derived apart) to round-off."""
+    analytic = pytest.importorskip("sunwind.validation.analytic_drag")
     q = dynamic_pressure(speed_ratio)
     u_sphere = np.array([0.3, -0.5, 0.8]) / math.sqrt(0.98)
     for diffuse in (True, False):

@@ -1,0 +1,5 @@
+"""``python -m sunwind``: the ``sunwind`` command line."""
+
+from sunwind.forces.cli import main
+
+main()

@@ -1,0 +1,5 @@
+"""The ``sunwind`` command line."""
+
+from sunwind.forces.cli.app import main
+
+__all__ = ["main"]

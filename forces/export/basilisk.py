@@ -1,0 +1,133 @@
+"""Basilisk ``RadiationPressure`` lookup tables (faceted model) written from an SRP sweep table.
+
+Format, as Basilisk's ``parseSRPLookup.SRPLookupTableHandler.parseAndLoadXML`` reads it
+(AVSLab/basilisk: src/simulation/dynamics/RadiationPressure/parseSRPLookup.py and the unit-test tables
+``_UnitTest/cannonballLookup.xml``, ``cube_lookup.xml`` written by ``makeSphereXML.py``)::
+
+    <srp_values>
+       <sHatBValues>  <sHat_B index="i"> <value_1/> <value_2/> <value_3/> </sHat_B> ...  </sHatBValues>
+       <forceBValues> <force_B index="i"> ... </force_B> ...                              </forceBValues>
+       <torqueBValues><torque_B index="i"> ... </torque_B> ...                            </torqueBValues>
+    </srp_values>
+
+Entry ``i`` of each block belongs together; the handler's arrays are then fed one row at a time to
+``addSHatLookupBEntry``, ``addForceLookupBEntry`` and ``addTorqueLookupBEntry``.
+
+Conventions (``RadiationPressure::computeLookupModel``, radiationPressure.cpp):
+
+- ``sHat_B`` is the unit spacecraft-to-Sun vector in the body frame B;
+- ``force_B`` [N] and ``torque_B`` [N m] are at 1 au; Basilisk scales both by ``(1 au / r)^2`` and by the
+  eclipse illumination factor. They are written here at ``SOLAR_FLUX_1AU`` = 1361 W/m^2 (the table's
+  force times 1361 / ``flux_W_m2``); Basilisk's cannonball model uses its own 1 au flux constant instead;
+- ``torque_B`` is the torque about point B, the origin of the body frame: the table's torque about its
+  reference point ``r_ref`` is moved to the origin, ``M_B = M_ref + r_ref x F``.
+
+Sampling: Basilisk picks the entry whose ``sHat_B`` has the largest dot product with the Sun direction (no
+interpolation), so the direction it uses is off by up to half the grid spacing: about ``h / sqrt(2)`` for
+equal azimuth and elevation steps ``h`` (less toward the poles, where azimuths crowd). The force error is
+that angle times the force's angular rate, ``|dF/dtheta|``, which is of order ``|F|`` per radian for a flat
+plate or a wing (the cosine of incidence) and smaller for rounded bodies. For a relative error ``eps`` choose
+
+    h [deg] ~ sqrt(2) * eps / g * (180 / pi),    g = |dF/dtheta| / |F| (about 1)
+
+e.g. 1 % needs ``h`` ~ 0.8 deg (about 65 000 entries), 5 % ``h`` ~ 4 deg (about 2 600). Basilisk searches
+all entries at every step, so the lookup costs time in proportion to their number.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import version
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
+from sunwind.forces.tables.interpolation import azel_directions, grid_axes
+from sunwind.geometry.errors import InputError
+
+_ENTRY = (
+    '      <{tag} index="%d">\n'
+    "         <value_1>%.17g</value_1>\n"
+    "         <value_2>%.17g</value_2>\n"
+    "         <value_3>%.17g</value_3>\n"
+    "      </{tag}>\n"
+)
+
+
+def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
+    """Write the SRP of a sweep table (grid or list) as a Basilisk ``RadiationPressure`` lookup XML.
+
+    A grid table gives one entry per distinct direction: the duplicated azimuth +180 column is left out
+    and each pole is written once (its row's mean over azimuth). A list table gives one entry per attitude.
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Raises
+    ------
+    InputError
+        The table has no SRP results, or no positive ``flux_W_m2``.
+    """
+    missing = [name for name in ("srp_force_N", "srp_torque_Nm") if name not in table.data_vars]
+    if missing:
+        raise InputError(
+            f"cannot write a Basilisk SRP lookup: the table has no {', '.join(missing)}",
+            hint="run the sweep with SRP included",
+        )
+    flux = float(table.attrs.get("flux_W_m2", np.nan))
+    if not flux > 0:
+        raise InputError(
+            "the table's flux_W_m2 attribute is missing or not positive", hint="re-run the sweep"
+        )
+    sun, force, torque = _entries(table)
+    reference = np.asarray(table.attrs.get("reference_point_m", (0.0, 0.0, 0.0)), dtype=np.float64)
+    scale = SOLAR_FLUX_1AU / flux
+    force_1au = force * scale
+    torque_1au = (torque + np.cross(reference, force)) * scale
+    index = np.arange(len(sun), dtype=np.float64)[:, None]
+    blocks = [
+        f"   <{block}>\n"
+        + (_ENTRY.format(tag=tag) * len(values)) % tuple(np.hstack([index, values]).ravel())
+        + f"   </{block}>\n"
+        for block, tag, values in (
+            ("sHatBValues", "sHat_B", sun),
+            ("forceBValues", "force_B", force_1au),
+            ("torqueBValues", "torque_B", torque_1au),
+        )
+    ]
+    note = (
+        f"sunwind {table.attrs.get('sunwind_version', version('sunwind'))}; mesh sha256 "
+        f"{table.attrs.get('mesh_sha256', 'n/a')}; sHat_B unit spacecraft-to-Sun, body frame; force_B [N] "
+        f"and torque_B [N m] about the body-frame origin B at 1 au ({SOLAR_FLUX_1AU:g} W/m^2), fully lit"
+    ).replace("--", "- -")
+    out = Path(path)
+    out.write_text(
+        '<?xml version="1.0" encoding="utf-8"?>\n'
+        f"<!-- {note} -->\n<srp_values>\n" + "".join(blocks) + "</srp_values>\n",
+        encoding="utf-8",
+    )
+    return out
+
+
+def _entries(table: xr.Dataset) -> tuple[NDArray, NDArray, NDArray]:
+    """Unit Sun vectors, forces and torques (n, 3) of the distinct directions of a table."""
+    if "sun_azimuth" not in table.dims:
+        sun = table["sun_vector"].transpose(..., "component").values.reshape(-1, 3)
+        force = table["srp_force_N"].transpose(..., "component").values.reshape(-1, 3)
+        torque = table["srp_torque_Nm"].transpose(..., "component").values.reshape(-1, 3)
+        return sun / np.linalg.norm(sun, axis=1, keepdims=True), force, torque
+    axes = grid_axes(table, "sun")
+    dims = ("sun_azimuth", "sun_elevation", "component")
+    force, torque = (table[name].transpose(*dims).values[:-1] for name in ("srp_force_N", "srp_torque_Nm"))
+    sun = azel_directions(axes.azimuth_deg[:-1, None], axes.elevation_deg[None, 1:-1]).reshape(-1, 3)
+    poles = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+
+    def distinct(values: NDArray) -> NDArray:
+        pole_values = values[:, [0, -1]].mean(axis=0)
+        return np.vstack([values[:, 1:-1].reshape(-1, 3), pole_values])
+
+    return np.vstack([sun, poles]), distinct(force), distinct(torque)

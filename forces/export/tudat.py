@@ -1,0 +1,159 @@
+"""Tudat tabulated aerodynamic coefficient files (angle of attack x sideslip) written from a drag sweep table.
+
+File format, as Tudat's ``readCoefficientsFile`` (tudat src/io/multiDimensionalArrayReader.cpp) reads it for
+``readTabulatedAerodynamicCoefficientsFromFiles`` (tudatpy ``aerodynamic_coefficients.tabulated_from_files``):
+lines starting with ``#`` are comments; the first other line is the number of independent variables (2);
+the next two lines list the values of the first (angle of attack) and second (sideslip) variable; then a
+block with one row per angle of attack and one column per sideslip angle. One file per coefficient
+component: force files keyed 0, 1, 2 and moment files keyed 0, 1, 2 (x, y, z).
+
+Angles (Tudat ``getAirspeedBasedAerodynamicToBodyFrameTransformationMatrix`` and its unit test, tudat
+src/astro/reference_frames/referenceFrameTransformations.cpp): the airspeed-based aerodynamic frame's x-axis,
+along the vehicle's velocity relative to the atmosphere, has body-frame components
+``(cos(alpha) cos(beta), sin(beta), sin(alpha) cos(beta))``. With the mesh frame as Tudat's body frame and
+the table's flow vector ``u = v_rel / |v_rel|`` this gives
+
+    alpha = atan2(u_z, u_x),    beta = asin(u_y),    alpha in [-180, 180], beta in [-90, 90] deg,
+
+in radians in the files. The (alpha, beta) grid covers the sphere once, with its poles at ``u = +-y``.
+
+Coefficients: force ``C_F = F / (q S_ref)`` and moment ``C_M = M / (q S_ref L_ref)`` about the table's
+reference point, body frame, positive along the +x, +y, +z body axes. In tudatpy pass
+``force_coefficients_frame = body_fixed_frame_coefficients`` (C++: ``areCoefficientsInAerodynamicFrame =
+false``, ``areCoefficientsInNegativeAxisDirection = false``; the default, negative aerodynamic-frame
+C_D, C_S, C_L, does not apply), ``moment_coefficients_frame = body_fixed_frame_coefficients``,
+``independent_variable_names = [angle_of_attack_dependent, angle_of_sideslip_dependent]`` and the reference
+area, length and moment reference point returned in :class:`TudatFiles`. Every file repeats these in its
+comments.
+
+Grid: the alpha/beta nodes are not the table's azimuth/elevation nodes, so every value is computed from the
+table by :class:`sunwind.forces.tables.interpolation.TableInterpolator` (bicubic by default) at the direction
+of each
+(alpha, beta) node; Tudat then interpolates linearly between the nodes. The coefficients hold for the
+table's atmosphere only (speed ratio, temperature, composition).
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import version
+from pathlib import Path
+from typing import Literal, NamedTuple
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from sunwind.forces.tables.interpolation import TableInterpolator, check_step, grid_axes
+from sunwind.geometry.errors import InputError
+
+_COMPONENTS = "xyz"
+
+
+class TudatFiles(NamedTuple):
+    """Files and reference values to hand to Tudat's tabulated aerodynamic coefficient settings."""
+
+    force: dict[int, Path]  # 0, 1, 2 -> C_Fx, C_Fy, C_Fz files
+    moment: dict[int, Path]  # 0, 1, 2 -> C_Mx, C_My, C_Mz files
+    reference_area_m2: float
+    reference_length_m: float
+    moment_reference_point_m: tuple[float, float, float]
+
+
+def flow_vector(alpha_rad: NDArray, beta_rad: NDArray) -> NDArray[np.float64]:
+    """Body-frame unit flow vectors ``u`` (..., 3) of Tudat angles of attack and sideslip [rad]."""
+    alpha, beta = np.broadcast_arrays(np.asarray(alpha_rad, float), np.asarray(beta_rad, float))
+    return np.stack([np.cos(alpha) * np.cos(beta), np.sin(beta), np.sin(alpha) * np.cos(beta)], axis=-1)
+
+
+def write_tudat(
+    table: xr.Dataset,
+    prefix: str | Path,
+    alpha_step_deg: float | None = None,
+    beta_step_deg: float | None = None,
+    method: Literal["bilinear", "bicubic"] = "bicubic",
+) -> TudatFiles:
+    """Write the drag of a grid sweep table as six Tudat coefficient files ``{prefix}_C{F,M}{x,y,z}.txt``.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        Grid sweep table with ``drag_force_N`` and ``drag_torque_Nm``.
+    prefix : path
+        Directory and start of the file names.
+    alpha_step_deg, beta_step_deg : float, optional
+        Steps of the angle-of-attack (-180..180) and sideslip (-90..90) grids [deg]; default the table's
+        flow azimuth and elevation steps.
+    method : {"bicubic", "bilinear"}
+        Interpolation from the table's grid to the alpha/beta nodes.
+
+    Raises
+    ------
+    InputError
+        A list table, no drag results, a step that does not divide its range, or missing or non-positive
+        ``dynamic_pressure_Pa``, ``reference_area_m2`` or ``reference_length_m``.
+    """
+    missing = [name for name in ("drag_force_N", "drag_torque_Nm") if name not in table.data_vars]
+    if missing:
+        raise InputError(
+            f"cannot write Tudat coefficient files: the table has no {', '.join(missing)}",
+            hint="run the sweep with drag included",
+        )
+    if "flow_azimuth" not in table.dims:
+        raise InputError(
+            "Tudat coefficient files need a grid of flow directions, but this table is a list of attitudes",
+            hint="sweep on a grid to write Tudat files",
+        )
+    axes = grid_axes(table, "flow")
+    reference = {
+        key: float(table.attrs.get(key, np.nan))
+        for key in ("dynamic_pressure_Pa", "reference_area_m2", "reference_length_m")
+    }
+    bad = [key for key, value in reference.items() if not value > 0]
+    if bad:
+        raise InputError(f"the table's {', '.join(bad)} attribute is missing or not positive", hint="re-run")
+    alpha_step = axes.azimuth_step_deg if alpha_step_deg is None else alpha_step_deg
+    beta_step = axes.elevation_step_deg if beta_step_deg is None else beta_step_deg
+    alpha = np.radians(np.linspace(-180.0, 180.0, check_step(alpha_step, 360.0, "angle-of-attack") + 1))
+    beta = np.radians(np.linspace(-90.0, 90.0, check_step(beta_step, 180.0, "sideslip") + 1))
+    loads = TableInterpolator(table, method).drag(flow_vector(alpha[:, None], beta[None, :]))
+    q_s = reference["dynamic_pressure_Pa"] * reference["reference_area_m2"]
+    coefficients = {
+        "F": loads.force_N / q_s,
+        "M": loads.torque_Nm / (q_s * reference["reference_length_m"]),
+    }
+    point = tuple(float(v) for v in table.attrs.get("reference_point_m", (0.0, 0.0, 0.0)))
+    comments = _comments(table, reference, point, method)
+    base = Path(prefix)
+    files: dict[str, dict[int, Path]] = {"F": {}, "M": {}}
+    for kind, values in coefficients.items():
+        for index, axis in enumerate(_COMPONENTS):
+            path = base.with_name(f"{base.name}_C{kind}{axis}.txt")
+            header = f"C{kind}{axis}: {'force' if kind == 'F' else 'moment'} coefficient along +{axis}\n"
+            with path.open("w", encoding="ascii", newline="\n") as stream:
+                stream.write("".join(f"# {line}\n" for line in [header.strip(), *comments]))
+                stream.write("2\n")
+                np.savetxt(stream, alpha[None, :], fmt="%.17g")
+                np.savetxt(stream, beta[None, :], fmt="%.17g")
+                np.savetxt(stream, values[..., index], fmt="%.17g")
+            files[kind][index] = path
+    return TudatFiles(
+        files["F"], files["M"], reference["reference_area_m2"], reference["reference_length_m"], point
+    )
+
+
+def _comments(table: xr.Dataset, reference: dict[str, float], point: tuple, method: str) -> list[str]:
+    attrs = table.attrs
+    release = attrs.get("sunwind_version", version("sunwind"))
+    return [
+        f"sunwind {release}, mesh sha256 {attrs.get('mesh_sha256', 'n/a')}",
+        "independent variables: angle_of_attack_dependent [rad] (rows), angle_of_sideslip_dependent [rad] "
+        "(columns)",
+        "u = v_rel/|v_rel| in the body frame = (cos(alpha) cos(beta), sin(beta), sin(alpha) cos(beta))",
+        "frame: body_fixed_frame_coefficients (positive along +x, +y, +z body axes) for forces and moments",
+        f"C_F = F / (q S_ref), C_M = M / (q S_ref L_ref), q = {reference['dynamic_pressure_Pa']:.9g} Pa, "
+        f"S_ref = {reference['reference_area_m2']:.9g} m^2, L_ref = {reference['reference_length_m']:.9g} m",
+        "moment reference point [m]: " + " ".join(f"{v:.9g}" for v in point),
+        f"atmosphere: rho {attrs.get('density_kg_m3', 'n/a')} kg/m^3, "
+        f"speed {attrs.get('speed_m_s', 'n/a')} m/s, T {attrs.get('temperature_K', 'n/a')} K; "
+        f"values {method}-interpolated from the sweep table",
+    ]

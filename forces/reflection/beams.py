@@ -1,0 +1,566 @@
+"""Specular and transmitted light followed from surface to surface (METHOD.md "Inter-reflection").
+
+The direct force law (eq. 4) lets every reflected and transmitted photon leave to infinity. Here the
+mirror beam of each lit side, and the beam a lit sheet transmits, are cast as rays. A ray that meets
+another side becomes an incident beam there: the absorbed share stays, the diffuse share becomes a
+source of the radiosity balance, the specular share is cast again along the mirror direction and a
+sheet's transmitted share goes on through it. A chain ends when it escapes, when its power falls
+below ``cutoff`` times the power it started with, or after ``depth`` surfaces.
+
+Momentum is counted as METHOD.md says, by what comes from and goes to infinity: the result is the
+correction to the direct force, ``+p d / c`` for every first beam that does not escape after all
+(eq. 4 had it leave) and ``-p d / c`` for every later beam that does escape, at the point it leaves.
+
+Where first beams start follows the shadow pass. With a fixed count of points per side, first beams
+leave from the same points: the lit centroid of each side at one point, else the side's lit points,
+one ray each. Adaptive shadows get adaptive first beams: one ray per lit side from the centroid of
+its lit part would put a whole side's beam on one landing point, so sides are sampled like shadows:
+small models start with many points per side, large ones with one, and a side whose beam is split
+(some points escape or land on another material than the rest) or that disagrees with an edge
+neighbour is sampled again at twice the level, until its split converges or the likely error of all
+split beams together is below ``TOLERANCE`` of the power of all first beams. Each lit point carries an
+equal share of the side's beam power, so the beam powers equal those of the direct law exactly.
+
+With fixed sampling, first beams known to escape are not cast. Coplanar sides form patches; a
+patch's first beams of one kind leave its box along one direction, away from its plane, so they can
+meet only facets reaching off the plane on that side. The patch's box swept along the beam is
+tested against a tree of boxes of the facets, going down only into nodes that reach off the plane
+on the beam's side; where it misses every leaf that does, its beams escape, as a ray cast would find.
+Adaptive sampling casts them all: it compares every side's outcome with its neighbours'.
+
+Rays are cast in float32 scene coordinates (:mod:`sunwind.geometry.rays.scene`); the point a beam meets a side
+is found again in float64 on the facet's plane.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
+from sunwind.forces.reflection import beam_kernels as kernels
+from sunwind.geometry import triangles as tri
+from sunwind.geometry.rays.box_tree import BoxTree, box_tree
+from sunwind.geometry.rays.shadows import Illumination
+from sunwind.geometry.sides import SOLID
+from sunwind.geometry.spacecraft import ESCAPED, Spacecraft
+
+#: Default end of a chain: a beam below this share of the power its chain started with.
+DEFAULT_CUTOFF = 1e-6
+#: Default end of a chain: this many surfaces met after the first.
+DEFAULT_DEPTH = 32
+#: Finest sampling of a side's first beam: 4096 points.
+MAX_LEVEL = 64
+#: First beams cast at the starting level when a model is small: the starting level is the largest
+#: power of two giving at most this many rays (one ray per side on large models).
+START_RAYS = 1 << 14
+#: A split side is final when its escaping share moves by at most this between levels.
+TOLERANCE = 1e-4
+#: First beams followed together at a fixed sampling level, to bound memory (whole sides at a time).
+_BATCH_RAYS = 1 << 20
+
+
+@dataclass(frozen=True)
+class ChainTotals:
+    """What the chains of one attitude add to the direct result; body frame, SI.
+
+    Attributes
+    ----------
+    force_N, torque_Nm : (3,) float64
+        Correction to the direct force and torque (torque about the reference point) from beams that
+        land somewhere instead of escaping, and from beams that escape after landing.
+    diffuse_source_W : (n_sides,) float64
+        Power landed beams hand to diffuse reflection on each side (a source of the radiosity balance).
+    open_sky_force_N, open_sky_torque_Nm : (3,) float64
+        Force and torque if that diffuse light left each landing point to open sky, ``(2/3) n``.
+    escaped_W, absorbed_W, truncated_W : float
+        Beam power that left the model (first beams included), was absorbed (landed beams, and beams
+        reaching a side the model does not have), and was dropped by ``cutoff`` or ``depth``.
+    first_W : float
+        Power of all first beams.
+    rays : int
+        Rays cast (first beams, their re-sampling and every later generation).
+    depth : int
+        Most surfaces any chain met.
+    """
+
+    force_N: NDArray[np.float64]
+    torque_Nm: NDArray[np.float64]
+    diffuse_source_W: NDArray[np.float64]
+    open_sky_force_N: NDArray[np.float64]
+    open_sky_torque_Nm: NDArray[np.float64]
+    escaped_W: float
+    absorbed_W: float
+    truncated_W: float
+    first_W: float
+    rays: int
+    depth: int
+
+
+@dataclass(frozen=True)
+class ChainModel:
+    """What the kernels of :mod:`sunwind.forces.reflection.beam_kernels` need of a spacecraft beyond its own
+    arrays."""
+
+    side_sheet: NDArray[np.bool_]  # (n_sides,) the side belongs to a sheet, not a closed body
+    facet_offsets: NDArray[np.float64]  # (n_facets,) ``n . x`` of the facet's plane [m]
+
+
+@dataclass(frozen=True)
+class _EscapeTest:
+    """Patches of coplanar sides and a tree of facet boxes for
+    :func:`sunwind.forces.reflection.beam_kernels.escaping_patches`.
+
+    Patches hold up to ``_PATCH_SIDES`` sides of one plane, with their box [m] grown by ``_margin`` and
+    their plane; the tree's boxes are tight round the facets.
+    """
+
+    side_patch: NDArray[np.int64]  # (n_sides,) patch of each side, -1 for none
+    patch_low: NDArray[np.float64]  # (n_patches, 3)
+    patch_high: NDArray[np.float64]  # (n_patches, 3)
+    patch_normal: NDArray[np.float64]  # (n_patches, 3) unit normal of the plane
+    patch_offset: NDArray[np.float64]  # (n_patches,) ``n . x`` of the plane [m]
+    tree: BoxTree
+    margin_m: float  # growth of the nodes' boxes for the sweep, as ``_margin``
+    reach_m: float  # a node reaches off a plane where its box does by more than this
+
+
+#: Most sides in a patch whose first beams are tested for escape together.
+_PATCH_SIDES = 64
+#: Sides within this share of the origin offset of one plane form patches; facets reach off a
+#: patch's plane where they rise more than ``_REACH`` offsets from it (rays start one offset off).
+_FLAT, _REACH = 0.1, 0.5
+
+_kept: weakref.WeakKeyDictionary[Spacecraft, dict[type, object]] = weakref.WeakKeyDictionary()
+
+
+def chain_model(craft: Spacecraft) -> ChainModel:
+    """The :class:`ChainModel` of ``craft``, built once and kept with the model."""
+    kept = _kept.setdefault(craft, {})
+    if ChainModel not in kept:
+        kept[ChainModel] = ChainModel(
+            side_sheet=craft.facet_kind[craft.side_facet] != SOLID,
+            facet_offsets=np.einsum("nd,nd->n", craft.facet_normals, craft.triangles[:, 0]),
+        )
+    return kept[ChainModel]
+
+
+def _escape_test(craft: Spacecraft) -> _EscapeTest:
+    """The :class:`_EscapeTest` of ``craft``, built once (~0.5 s for 10^5 facets) and kept."""
+    kept = _kept.setdefault(craft, {})
+    if _EscapeTest not in kept:
+        side_patch, low, high, normal, offset = _patches(craft)
+        tree = box_tree(craft.triangles)
+        kept[_EscapeTest] = _EscapeTest(
+            side_patch=side_patch,
+            patch_low=low,
+            patch_high=high,
+            patch_normal=normal,
+            patch_offset=offset,
+            tree=tree,
+            margin_m=_margin(craft),
+            reach_m=_REACH * craft.scene.offset_m,
+        )
+    return kept[_EscapeTest]
+
+
+def _margin(craft: Spacecraft) -> float:
+    """Growth of the escape test's boxes [m]: the origin offset, and the float32 round-off of the
+    scene with room to spare."""
+    return craft.scene.offset_m + 1e-6 * craft.scene.half_size
+
+
+def _halves(points: NDArray[np.float64], members: NDArray[np.int64], depth: int) -> list[NDArray[np.int64]]:
+    """``members`` split ``depth`` times in two at the median of their ``points`` along the longest
+    extent: ``2**depth`` sets, in the left-to-right order of the binary tree."""
+    parts = [members]
+    for _ in range(depth):
+        halves = []
+        for part in parts:
+            p = points[part]
+            order = part[np.argsort(p[:, np.argmax(np.ptp(p, axis=0))], kind="stable")]
+            halves += [order[: len(order) // 2], order[len(order) // 2 :]]
+        parts = halves
+    return parts
+
+
+def _bounds(craft: Spacecraft, facets: NDArray[np.int64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Box of ``facets`` grown by the margin [m]."""
+    corners = craft.triangles[facets].reshape(-1, 3)
+    return corners.min(axis=0) - _margin(craft), corners.max(axis=0) + _margin(craft)
+
+
+def _patches(craft: Spacecraft) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
+    """Patches of coplanar sides facing the same way: the patch of each side (-1 for none), each
+    patch's box (n_patches, 3) twice, and its plane's unit normal (n_patches, 3) and offset [m]."""
+    normals = craft.side_normals
+    offsets = np.einsum("nd,nd->n", normals, craft.side_centroids)
+    flat = _FLAT * craft.scene.offset_m
+    key = np.column_stack([np.round(normals * 1e9), np.round(offsets / flat)])
+    _, group = np.unique(key, axis=0, return_inverse=True)
+    order = np.argsort(group.reshape(-1), kind="stable")
+    runs = np.split(order, np.flatnonzero(np.diff(group.reshape(-1)[order])) + 1)
+    side_patch = np.full(craft.n_sides, -1, dtype=np.int64)
+    low, high, patch_normal, patch_offset = [], [], [], []
+    for run in runs:
+        if len(run) < 2:
+            continue
+        depth = int(np.ceil(np.log2(len(run) / _PATCH_SIDES))) if len(run) > _PATCH_SIDES else 0
+        for patch in _halves(craft.side_centroids, run, depth):
+            corners = craft.triangles[craft.side_facet[patch]].reshape(-1, 3)
+            n, c = normals[patch[0]], offsets[patch[0]]
+            if np.abs(corners @ n - c).max() > flat:  # not one plane after all
+                continue
+            side_patch[patch] = len(low)
+            box = _bounds(craft, craft.side_facet[patch])
+            low.append(box[0])
+            high.append(box[1])
+            patch_normal.append(n)
+            patch_offset.append(c)
+    return (
+        side_patch,
+        np.reshape(low, (-1, 3)),
+        np.reshape(high, (-1, 3)),
+        np.reshape(patch_normal, (-1, 3)),
+        np.asarray(patch_offset, dtype=np.float64),
+    )
+
+
+@dataclass
+class _Beams:
+    """A generation of rays, each leaving ``origin_m`` (on its surface) along ``direction``."""
+
+    origin_m: NDArray[np.float64]  # (n, 3) surface point
+    lift: NDArray[np.float64]  # (n, 3) unit vector the origin is pushed along, off the surface
+    direction: NDArray[np.float64]  # (n, 3)
+    power_W: NDArray[np.float64]  # (n,)
+    start_W: NDArray[np.float64]  # (n,) power its chain started with
+
+    def __len__(self) -> int:
+        return len(self.power_W)
+
+    def take(self, mask: NDArray) -> _Beams:
+        return _Beams(*(getattr(self, name)[mask] for name in _BEAM_FIELDS))
+
+    @staticmethod
+    def join(parts: list[_Beams]) -> _Beams:
+        return _Beams(*(np.concatenate([getattr(p, name) for p in parts]) for name in _BEAM_FIELDS))
+
+
+_BEAM_FIELDS = ("origin_m", "lift", "direction", "power_W", "start_W")
+
+
+def _cast(craft: Spacecraft, beams: _Beams) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """Side each beam meets (``ESCAPED``/``BLIND`` codes of :meth:`Spacecraft.struck_sides`) and
+    the point it meets it [m] (zero where it meets no side)."""
+    scene = craft.scene
+    origins, directions = kernels.scene_rays(
+        beams.origin_m, beams.lift, beams.direction, scene.centre, scene.half_size, scene.offset_m
+    )
+    return kernels.strike(
+        scene.first_hit(origins, directions),
+        beams.origin_m,
+        beams.lift,
+        beams.direction,
+        scene.offset_m,
+        craft.facet_normals,
+        chain_model(craft).facet_offsets,
+        craft.facet_sides,
+    )
+
+
+@dataclass(frozen=True)
+class _Emitters:
+    """Lit sides sending a first beam (the specular beam of each, the transmitted beam of sheets), and
+    that beam leaving the side's lit centroid."""
+
+    side: NDArray[np.int64]
+    beams: _Beams
+    escaping_W: float  # power of beams left out as known to escape
+
+
+def _emitters(craft: Spacecraft, light: Illumination, flux_W_m2: float, cull: bool) -> _Emitters:
+    """The emitters of ``light``; with ``cull``, those of patches whose first beams are known to
+    escape are left out and their power is counted in :attr:`_Emitters.escaping_W`."""
+    side_patch = escapes = None
+    if cull:
+        test = _escape_test(craft)
+        side_patch = test.side_patch
+        escapes = kernels.escaping_patches(
+            light.facing,
+            light.lit_fraction,
+            craft.side_normals,
+            craft.side_optics,
+            chain_model(craft).side_sheet,
+            light.direction,
+            side_patch,
+            test.patch_low,
+            test.patch_high,
+            test.patch_normal,
+            test.patch_offset,
+            test.tree.low,
+            test.tree.high,
+            test.tree.first_child,
+            test.tree.depth,
+            test.margin_m,
+            test.reach_m,
+        )
+    side, centroid, direction, lift, power, escaping = kernels.emitters(
+        light.facing,
+        light.lit_fraction,
+        light.lit_centroid,
+        craft.side_areas,
+        craft.side_normals,
+        craft.side_optics,
+        chain_model(craft).side_sheet,
+        light.direction,
+        flux_W_m2,
+        side_patch,
+        escapes,
+    )
+    return _Emitters(side, _Beams(centroid, lift, direction, power, power), escaping)
+
+
+#: First beams with the side each meets, where it meets it, and the rays cast to find out.
+_FirstBeams = tuple[_Beams, NDArray[np.int64], NDArray[np.float64], int]
+
+
+def _fixed_first_beams(
+    craft: Spacecraft, light: Illumination, emitters: _Emitters, level: int
+) -> Iterator[_FirstBeams]:
+    """First beams of every emitter from its lit points at ``level``, in batches of whole emitters."""
+    n = len(emitters.side)
+    per_batch = max(1, _BATCH_RAYS // level**2)
+    for start in range(0, n, per_batch):
+        chosen = slice(start, start + per_batch)
+        if level == 1:  # the lit centroids
+            beams = emitters.beams.take(chosen)
+            sides, points = _cast(craft, beams)
+            yield beams, sides, points, len(beams)
+        else:
+            beams, _, sides, points, rays = _sample(craft, light, emitters, np.arange(n)[chosen], level)
+            yield beams, sides, points, rays
+
+
+def _first_beams(craft: Spacecraft, light: Illumination, emitters: _Emitters) -> _FirstBeams:
+    """First beams of every emitter (there must be some), adaptively sampled."""
+    n = len(emitters.side)
+    level = 1 << max(0, int(np.log2(max(1.0, np.sqrt(START_RAYS / n)))))
+    level = min(level, MAX_LEVEL)
+    active = np.arange(n)
+    previous_share = np.full(n, np.nan)
+    accepted: list[tuple[_Beams, NDArray[np.int64], NDArray[np.float64]]] = []
+    rays = 0
+    first = True
+    while len(active):
+        beams, owner, sides, points, cast = _sample(craft, light, emitters, active, level)
+        rays += cast
+        outcome = np.where(sides >= 0, craft.side_material[np.maximum(sides, 0)], sides)
+        low = np.full(n, np.iinfo(np.int64).max)
+        high = np.full(n, np.iinfo(np.int64).min)
+        if level == 1:  # one beam per emitter, in order
+            low[owner] = high[owner] = outcome
+        else:
+            np.minimum.at(low, owner, outcome)
+            np.maximum.at(high, owner, outcome)
+        split = low[active] != high[active]
+        escaping = np.bincount(owner, weights=(sides == ESCAPED) * beams.power_W, minlength=n)
+        share = escaping[active] / emitters.beams.power_W[active]
+        if first:
+            split |= _disagrees_with_neighbour(craft, emitters, active, low, high)
+            first = False
+        settled = np.abs(share - previous_share[active]) <= TOLERANCE
+        again = split & ~settled & (level < MAX_LEVEL)
+        if (
+            _split_error(emitters.beams.power_W[active[again]], level)
+            <= TOLERANCE * emitters.beams.power_W.sum()
+        ):
+            again[:] = False
+        done = np.zeros(n, dtype=bool)
+        done[active[~again]] = True
+        keep = done[owner]
+        accepted.append((beams.take(keep), sides[keep], points[keep]))
+        previous_share[active] = share
+        active = active[again]
+        level *= 2
+    return (
+        _Beams.join([a[0] for a in accepted]),
+        np.concatenate([a[1] for a in accepted]),
+        np.concatenate([a[2] for a in accepted]),
+        rays,
+    )
+
+
+def _split_error(power_W: NDArray[np.float64], level: int) -> float:
+    """Likely error [W] of the escaping power of split beams of powers ``power_W`` sampled at
+    ``level``: one point decides a whole beam (half its power at stake) at level 1; stratified points
+    make the share of a split beam good to about ``level**-1.5``; independent errors add in quadrature."""
+    share_error = 0.5 if level == 1 else level**-1.5
+    return float(np.sqrt(np.sum(power_W**2))) * share_error
+
+
+def _disagrees_with_neighbour(
+    craft: Spacecraft, emitters: _Emitters, active: NDArray[np.int64], low: NDArray, high: NDArray
+) -> NDArray[np.bool_]:
+    """Emitters among ``active`` whose uniform outcome differs from an edge neighbour's sending the
+    same kind of beam (mirror or transmitted): the split may fall between their sample points."""
+    a, b = craft.side_neighbours
+    index = np.full((2, craft.n_sides), -1)
+    kind = (np.einsum("nd,nd->n", emitters.beams.lift, craft.side_normals[emitters.side]) < 0).astype(
+        np.int64
+    )
+    index[kind, emitters.side] = np.arange(len(emitters.side))
+    flagged = np.zeros(len(emitters.side), dtype=bool)
+    for k in (0, 1):
+        ea, eb = index[k, a], index[k, b]
+        both = (ea >= 0) & (eb >= 0)
+        ea, eb = ea[both], eb[both]
+        differ = (low[ea] == high[ea]) & (low[eb] == high[eb]) & (low[ea] != low[eb])
+        flagged[ea[differ]] = True
+        flagged[eb[differ]] = True
+    return flagged[active]
+
+
+def _sample(
+    craft: Spacecraft, light: Illumination, emitters: _Emitters, chosen: NDArray[np.int64], level: int
+) -> tuple[_Beams, NDArray[np.int64], NDArray[np.int64], NDArray[np.float64], int]:
+    """First beams of ``chosen`` emitters from their lit points at ``level``, cast.
+
+    Returns the beams, the emitter of each, the side each meets and where, and the rays cast. At level
+    1 the point is the lit centroid. A partly lit side's points are shadow-tested; a side none of whose
+    points is lit sends its beam from its lit centroid.
+    """
+    rays = 0
+    if level == 1:
+        beams, owner = emitters.beams.take(chosen), chosen
+    else:
+        side = emitters.side[chosen]
+        bary = tri.subdivision_barycentric(level)
+        points = np.einsum("pk,nkd->npd", bary, craft.triangles[craft.side_facet[side]])
+        lit = np.ones(points.shape[:2], dtype=bool)
+        partly = np.flatnonzero(light.lit_fraction[side] < 1)
+        if len(partly):
+            scene = craft.scene
+            normals = np.repeat(craft.side_normals[side[partly]], level**2, axis=0)
+            origins = scene.origins(points[partly].reshape(-1, 3), normals)
+            toward = np.broadcast_to(light.direction.astype(np.float32), origins.shape)
+            lit[partly] = ~scene.occluded(origins, toward).reshape(len(partly), level**2)
+            rays += origins.shape[0]
+        none = ~lit.any(axis=1)
+        points[none, 0] = light.lit_centroid[side[none]]
+        lit[none, 0] = True
+        owner_of_point = np.repeat(np.arange(len(side)), level**2)[lit.reshape(-1)]
+        owner = chosen[owner_of_point]
+        power = (emitters.beams.power_W[chosen] / lit.sum(axis=1))[owner_of_point]
+        beams = _Beams(points[lit], emitters.beams.lift[owner], emitters.beams.direction[owner], power, power)
+    sides, hit_points = _cast(craft, beams)
+    return beams, owner, sides, hit_points, rays + len(beams)
+
+
+def follow_chains(
+    craft: Spacecraft,
+    light: Illumination,
+    flux_W_m2: float,
+    reference_m: NDArray[np.float64],
+    cutoff: float = DEFAULT_CUTOFF,
+    depth: int = DEFAULT_DEPTH,
+    level: int | None = None,
+) -> ChainTotals:
+    """Trace the mirror and transmitted beams of every lit side until they escape or fade.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+    light : Illumination
+        Lit shares and lit centroids of the attitude (from the direct computation).
+    flux_W_m2 : float
+        Solar flux [W/m^2].
+    reference_m : (3,) float64
+        Torque reference point [m].
+    cutoff : float
+        A beam is dropped below this share of the power its chain started with.
+    depth : int
+        A chain is dropped after meeting this many surfaces after the first.
+    level : int or None
+        The shadow pass's fixed sampling level (``level**2`` points per side): first beams leave from
+        the same points. None: the shadows were sampled adaptively, and so are the first beams.
+    """
+    # beams known to escape need no ray, but adaptive sampling compares every emitter's outcomes
+    emitters = _emitters(craft, light, flux_W_m2, cull=level is not None)
+    if level is not None:
+        batches: Iterator[_FirstBeams] | list[_FirstBeams] = _fixed_first_beams(craft, light, emitters, level)
+    else:
+        batches = [_first_beams(craft, light, emitters)] if len(emitters.side) else []
+    totals = np.zeros(kernels.N_TOTALS)
+    totals[kernels.ESCAPED_W] = emitters.escaping_W
+    diffuse_W = np.zeros(craft.n_sides)
+    rays = generations = 0
+    for beams, sides, points, cast in batches:
+        more_rays, chain_generations = _trace(
+            craft, beams, sides, points, reference_m, cutoff, depth, totals, diffuse_W
+        )
+        rays += cast + more_rays
+        generations = max(generations, chain_generations)
+    momentum, open_sky = kernels.MOMENTUM, kernels.OPEN_SKY
+    return ChainTotals(
+        force_N=totals[momentum : momentum + 3] / SPEED_OF_LIGHT,
+        torque_Nm=totals[momentum + 3 : momentum + 6] / SPEED_OF_LIGHT,
+        diffuse_source_W=diffuse_W,
+        open_sky_force_N=totals[open_sky : open_sky + 3] / SPEED_OF_LIGHT,
+        open_sky_torque_Nm=totals[open_sky + 3 : open_sky + 6] / SPEED_OF_LIGHT,
+        escaped_W=float(totals[kernels.ESCAPED_W]),
+        absorbed_W=float(totals[kernels.ABSORBED_W]),
+        truncated_W=float(totals[kernels.TRUNCATED_W]),
+        first_W=float(emitters.beams.power_W.sum()) + emitters.escaping_W,
+        rays=rays,
+        depth=generations,
+    )
+
+
+def _trace(
+    craft: Spacecraft,
+    beams: _Beams,
+    sides: NDArray[np.int64],
+    points: NDArray[np.float64],
+    reference_m: NDArray[np.float64],
+    cutoff: float,
+    depth: int,
+    totals: NDArray[np.float64],
+    diffuse_W: NDArray[np.float64],
+) -> tuple[int, int]:
+    """Follow first ``beams``, already cast (meeting ``sides`` at ``points``), and all they lead to;
+    add to ``totals`` (slots of :mod:`sunwind.forces.reflection.beam_kernels`) and ``diffuse_W``. Returns the
+    rays cast
+    after the first beams and the generations of beams cast."""
+    model = chain_model(craft)
+    rays = generation = 0
+    while len(beams):
+        generation += 1
+        beams = _Beams(
+            *kernels.land(
+                beams.origin_m,
+                beams.direction,
+                beams.power_W,
+                beams.start_W,
+                sides,
+                points,
+                generation == 1,
+                generation >= depth,
+                cutoff,
+                craft.side_normals,
+                craft.side_optics,
+                model.side_sheet,
+                LAMBERT_FACTOR,
+                reference_m,
+                totals,
+                diffuse_W,
+            )
+        )
+        if len(beams):
+            sides, points = _cast(craft, beams)
+            rays += len(beams)
+    return rays, generation

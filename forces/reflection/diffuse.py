@@ -1,0 +1,260 @@
+"""The diffuse balance of reflected light between sides, eq. (12), and what of it escapes.
+
+METHOD.md "Inter-reflection" and "Speed". Unknowns are the diffuse power ``W_i`` each side emits
+[W] (``W_i = A_i B_i``). Of side ``k``'s emission the share ``E_kj`` arrives at side ``j``, directly
+or after mirror reflections and transmissions on the way (the exchange factors of
+:mod:`sunwind.geometry.views.exchange_factors`; ``E = F``, the view factors, where no side reflects
+specularly or
+transmits). Side ``j`` re-emits diffusely the share ``rho_d,j = rho_j (1 - beta_j)`` of what arrives:
+
+    W = S + diag(rho_d) E^T W,        M W = S,   M = I - diag(rho_d) E^T
+
+for diffuse sources ``S`` (diffuse reflections of sunlight and of beams: none on a side with
+``rho_d = 0``, whose rows of ``E`` are therefore not followed). The mirrored share ``rho beta`` of
+arriving diffuse light keeps its angular spread and a sheet's transmitted share goes straight on,
+both inside ``E``; so the balance follows the physics on mixed finishes too, where the paper's
+eq. (12), re-emitting the whole ``rho`` (and a sheet's ``sigma`` from its far side) diffusely, does
+not. Written in powers, with the factors exactly as sampled, the balance holds to round-off. What
+leaves the model is linear in ``W``: force ``-(1/c) sum W_i e_esc,i``, torque about ``r``
+``-(1/c) sum W_i [(c_i - r) x e_esc,i + m_i]``, escaped power ``sum W_i f_esc,i`` and absorbed power
+``sum_j (1 - rho_j - sigma_j) G_j + sum W_i (f_blind,i + f_truncated,i)`` with ``G = E^T W`` (light
+still travelling when a chain was dropped counts as absorbed). So ``g = M^-T w`` for these eight
+functionals is solved once per model and material set, and every attitude's totals are ``g^T S``.
+
+Molecules (``re_emit_all``) use the view factors with every side re-emitting all that lands.
+"""
+
+from __future__ import annotations
+
+import os
+import weakref
+from dataclasses import dataclass
+from functools import cached_property
+
+import numba
+import numpy as np
+import scipy.sparse
+import scipy.sparse.linalg
+from numpy.typing import NDArray
+
+from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.parallel import map_ranges
+from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.geometry.views.exchange_factors import ExchangeFactors, exchange_factors
+from sunwind.geometry.views.view_factors import ViewFactors
+
+#: Relative residual the iterative solves reach.
+SOLVER_TOLERANCE = 1e-13
+#: Fixed-point sweeps before the solver turns to GMRES.
+_SWEEPS = 400
+#: Columns of :attr:`DiffuseExchange.responses`: escaping momentum (3), its moment about the origin
+#: (3), escaped power, absorbed power.
+_RESPONSES = 8
+#: Sides per block of the weighted sums of :func:`_weighted`.
+_BLOCK_SIDES = 4096
+
+
+@dataclass(frozen=True)
+class DiffuseTotals:
+    """What the diffuse light of one attitude does once all its reflections are done; body frame, SI.
+
+    Attributes
+    ----------
+    force_N, torque_Nm : (3,) float64
+        Force and torque (about the reference point) of the diffuse light that escapes.
+    escaped_W, absorbed_W : float
+        Diffuse power that leaves the model, and that sides absorb.
+    """
+
+    force_N: NDArray[np.float64]
+    torque_Nm: NDArray[np.float64]
+    escaped_W: float
+    absorbed_W: float
+
+    @classmethod
+    def from_sums(cls, values: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
+        """The totals from the eight sums of :attr:`DiffuseExchange.functionals` over a diffuse
+        emission (or of its responses over the sources) [W], torque about ``reference_m``."""
+        momentum, moment = values[0:3], values[3:6]
+        return cls(
+            force_N=-momentum / SPEED_OF_LIGHT,
+            torque_Nm=-(moment - np.cross(reference_m, momentum)) / SPEED_OF_LIGHT,
+            escaped_W=float(values[6]),
+            absorbed_W=float(values[7]),
+        )
+
+
+class DiffuseExchange:
+    """The balance ``(I - diag(rho_d) E^T) W = S`` of one model, its materials and its view factors.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+    view : ViewFactors
+        View factors of ``craft``'s sides.
+    re_emit_all : bool
+        Rarefied gas: every molecule that lands is re-emitted diffusely (``rho_d = 1``, ``E = F``,
+        nothing absorbed, nothing passes a sheet).
+    cache_dir : path, bool or None
+        Where exchange factors are kept on disk
+        (:func:`sunwind.geometry.views.exchange_factors.exchange_factors`);
+        False: not kept.
+    """
+
+    def __init__(
+        self,
+        craft: Spacecraft,
+        view: ViewFactors,
+        *,
+        re_emit_all: bool = False,
+        cache_dir: str | os.PathLike | bool | None = False,
+    ) -> None:
+        self.craft = craft
+        self.view = view
+        if re_emit_all:
+            self.factors = ExchangeFactors.of_view(view)
+            re_emitted = np.ones(craft.n_sides)
+            self.absorptance = np.zeros(craft.n_sides)
+        else:
+            rho, beta, sigma = craft.side_optics.T
+            self.factors = exchange_factors(craft, view, cache_dir)
+            re_emitted = rho * (1 - beta)
+            self.absorptance = 1.0 - rho - sigma
+        #: ``diag(rho_d) E^T``: the diffuse power each side re-emits per watt each side emits;
+        #: ``M = I - coupling``
+        self.coupling = (scipy.sparse.diags(re_emitted) @ self.factors.matrix.T).tocsr()
+
+    def _solve(self, coupling: scipy.sparse.csr_matrix, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``(I - coupling)^-1 rhs`` for one or more right-hand sides (n,) or (n, k).
+
+        All columns iterate together ``x <- rhs + coupling x`` (the reflections one after another,
+        converging as fast as light dies out in the model); columns not settled to
+        :data:`SOLVER_TOLERANCE` after :data:`_SWEEPS` sweeps go on by GMRES from there.
+        """
+        x = np.array(rhs, dtype=np.float64)
+        if not np.any(x):
+            return x
+        for _ in range(_SWEEPS):
+            step = rhs + coupling @ x - x
+            x += step
+            if np.all(np.abs(step).max(axis=0) <= SOLVER_TOLERANCE * np.abs(x).max(axis=0)):
+                return x
+        columns = x.reshape(len(x), -1)
+        matrix = scipy.sparse.identity(coupling.shape[0], format="csr") - coupling
+        targets = np.reshape(rhs, columns.shape)
+        for k in range(columns.shape[1]):
+            columns[:, k] = self._gmres(matrix, targets[:, k], columns[:, k])
+        return x
+
+    def _gmres(self, matrix, rhs: NDArray[np.float64], start: NDArray[np.float64]) -> NDArray[np.float64]:
+        x, info = scipy.sparse.linalg.gmres(
+            matrix, rhs, x0=start, rtol=SOLVER_TOLERANCE, atol=0.0, restart=60, maxiter=2000
+        )
+        residual = np.linalg.norm(matrix @ x - rhs) / max(np.linalg.norm(rhs), np.finfo(float).tiny)
+        if info != 0 and residual > 1e3 * SOLVER_TOLERANCE:
+            raise InputError(
+                f"the diffuse reflection balance did not converge (relative residual {residual:.1e})",
+                path=self.craft.source,
+                hint="a closed cavity with reflectivity 1 traps light forever; lower its reflectivity",
+            )
+        return x
+
+    def solve(self, source_W: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Diffuse power ``W`` leaving each side [W], (n_sides,), for diffuse sources ``E`` [W]."""
+        return self._solve(self.coupling, np.asarray(source_W, dtype=np.float64))
+
+    @cached_property
+    def functionals(self) -> NDArray[np.float64]:
+        """The eight weights ``w`` (n_sides, 8) with ``w^T W`` the escaping momentum rate [W] (3), its
+        moment about the origin [W m] (3), the escaped and the absorbed power [W]."""
+        factors = self.factors
+        moment = np.cross(self.craft.side_centroids, factors.escape_vector) + factors.escape_moment
+        absorbed = factors.matrix @ self.absorptance + factors.blind_fraction + factors.truncated_fraction
+        return np.column_stack([factors.escape_vector, moment, factors.escape_fraction, absorbed])
+
+    def adjoint(self, weights: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T E`` for every source ``E``."""
+        return self._solve(self.coupling.T.tocsr(), np.asarray(weights, dtype=np.float64))
+
+    @cached_property
+    def responses(self) -> NDArray[np.float64]:
+        """``g = M^-T w`` for the :attr:`functionals`, (n_sides, 8): totals are ``g^T E``."""
+        return np.ascontiguousarray(self.adjoint(self.functionals))
+
+    def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
+        """Escaping force and torque about ``reference_m`` and the power split, for sources ``E`` [W]."""
+        return DiffuseTotals.from_sums(_weighted(self.responses, source_W), reference_m)
+
+    @cached_property
+    def open_sky_functionals(self) -> NDArray[np.float64]:
+        """:attr:`functionals` as if every side saw only open sky (``e_esc = (2/3) n``, nothing
+        absorbed), (n_sides, 8): what the direct law assumes of diffuse light."""
+        craft = self.craft
+        vector = LAMBERT_FACTOR * craft.side_normals
+        moment = np.cross(craft.side_centroids, vector)
+        n = craft.n_sides
+        return np.column_stack([vector, moment, np.ones(n), np.zeros(n)])
+
+    def totals_of(self, emitted_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
+        """The same from a solved ``W`` (diffuse power leaving each side) instead of the sources."""
+        return DiffuseTotals.from_sums(_weighted(self.functionals, emitted_W), reference_m)
+
+
+def interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
+    """``K_IS`` of eq. (7): reflected light that meets the spacecraft again over light that escapes.
+
+    ``Omega_inf / 2 pi`` is taken as the cosine-weighted open-sky share ``f_esc``, the share of a
+    side's diffusely reflected light that escapes, which is the ratio eq. (7) describes. 0 for a
+    convex body or a black one.
+    """
+    rho_area = craft.side_optics[:, 0] * craft.side_areas
+    escaping = float(rho_area @ view.escape_fraction)
+    returning = float(rho_area @ (1.0 - view.escape_fraction))
+    if returning == 0.0:
+        return 0.0
+    return returning / escaping if escaping > 0 else float("inf")
+
+
+_exchanges: weakref.WeakKeyDictionary[Spacecraft, dict] = weakref.WeakKeyDictionary()
+
+
+def diffuse_exchange(
+    craft: Spacecraft, view: ViewFactors, cache_dir: str | os.PathLike | bool | None = False
+) -> DiffuseExchange:
+    """The :class:`DiffuseExchange` of ``craft`` with ``view``, built once and kept with the model;
+    ``cache_dir`` as for :class:`DiffuseExchange`."""
+    kept = _exchanges.setdefault(craft, {})
+    if id(view) not in kept or kept[id(view)].view is not view:
+        kept[id(view)] = DiffuseExchange(craft, view, cache_dir=cache_dir)
+    return kept[id(view)]
+
+
+def _weighted(columns: NDArray[np.float64], weights: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``columns.T @ weights`` for C-ordered ``columns`` (n, k), reading only the rows of nonzero
+    weights. Blocks of ``_BLOCK_SIDES`` rows are summed in parallel and added in block order, so the
+    result has the same bits whatever the threads did (and no BLAS thread pool is left spinning,
+    taking the cores from the next attitude's ray casting)."""
+    n_blocks = -(-len(weights) // _BLOCK_SIDES)
+    partial = np.zeros((n_blocks, columns.shape[1]))
+    weights = np.ascontiguousarray(weights, dtype=np.float64)
+    map_ranges(lambda lo, hi: _block_sums(columns, weights, partial, lo, hi), n_blocks, 2)
+    return partial.sum(axis=0)
+
+
+@numba.njit(cache=True, nogil=True)
+def _block_sums(
+    columns: NDArray[np.float64],
+    weights: NDArray[np.float64],
+    partial: NDArray[np.float64],
+    first: int,
+    last: int,
+) -> None:
+    """Row ``b`` of ``partial``: ``columns.T @ weights`` over block ``b`` of ``_BLOCK_SIDES`` rows, for
+    blocks ``first`` to ``last - 1``."""
+    for b in range(first, last):
+        for i in range(b * _BLOCK_SIDES, min((b + 1) * _BLOCK_SIDES, weights.shape[0])):
+            w = weights[i]
+            if w != 0.0:
+                for j in range(columns.shape[1]):
+                    partial[b, j] += w * columns[i, j]

@@ -1,0 +1,199 @@
+"""Attitude sets of a sweep: body-frame Sun and flow directions on an az/el grid or from a CSV list.
+
+Conventions (METHOD.md "Frames"): directions are unit vectors in the body frame; the Sun vector points
+from the spacecraft to the Sun, the flow vector ``u = v_rel / |v_rel|`` along the spacecraft's velocity
+relative to the atmosphere; azimuth ``az = atan2(y, x)`` from +x toward +y, elevation ``el = asin(z)``.
+
+**Grid.** Azimuth from -180 to 180 deg and elevation from -90 to 90 deg, both ends present, in steps
+that divide 180 deg: the layout simulators' tables use (SPAD, for one). Its 73 x 37 = 2701 nodes at
+5 deg hold fewer distinct directions (every azimuth at a pole is the pole, az -180 is az 180); each
+distinct direction is evaluated once and copied to the nodes that share it.
+
+**List.** A CSV file with a header row naming its columns: ``sun_x, sun_y, sun_z`` and/or
+``flow_x, flow_y, flow_z`` (any non-zero length; normalised). With quaternion columns
+``qw, qx, qy, qz`` (scalar first; the body frame's attitude relative to the inertial frame, so a
+vector's body components are ``d_B = R(q)^T d_I``) the direction columns are inertial and are turned
+into the body frame row by row. One row is one attitude: Sun and flow tied as the user's orbit ties
+them.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
+
+from sunwind.geometry.directions import azel_to_vectors
+from sunwind.geometry.errors import InputError
+
+#: Columns of a direction in an attitude CSV file.
+SUN_COLUMNS = ("sun_x", "sun_y", "sun_z")
+FLOW_COLUMNS = ("flow_x", "flow_y", "flow_z")
+QUATERNION_COLUMNS = ("qw", "qx", "qy", "qz")
+
+
+@dataclass(frozen=True)
+class DirectionGrid:
+    """The regular azimuth/elevation grid of one direction (Sun or flow) [deg]."""
+
+    step_deg: float
+
+    @cached_property
+    def azimuth_deg(self) -> NDArray[np.float64]:
+        """Azimuths -180 to 180 inclusive, (n_az,)."""
+        return self._axis(180.0)
+
+    @cached_property
+    def elevation_deg(self) -> NDArray[np.float64]:
+        """Elevations -90 to 90 inclusive, (n_el,)."""
+        return self._axis(90.0)
+
+    def _axis(self, half_range: float) -> NDArray[np.float64]:
+        count = round(2 * half_range / self.step_deg)
+        return np.linspace(-half_range, half_range, count + 1)
+
+    @cached_property
+    def vectors(self) -> NDArray[np.float64]:
+        """Unit vector of every node, (n_az, n_el, 3); shared directions have the same bits."""
+        return azel_to_vectors(self.azimuth_deg[:, None], self.elevation_deg[None, :])
+
+    @cached_property
+    def distinct(self) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+        """The distinct directions (k, 3) in node order and, for each node (n_az * n_el,), its index
+        among them."""
+        flat = self.vectors.reshape(-1, 3)
+        _, first, inverse = np.unique(flat, axis=0, return_index=True, return_inverse=True)
+        order = np.argsort(first)  # keep node order: the sweep runs the grid as a user reads it
+        rank = np.empty_like(order)
+        rank[order] = np.arange(len(order))
+        return flat[first[order]], rank[inverse.reshape(-1)]
+
+
+def direction_grid(step_deg: float, name: str = "--step") -> DirectionGrid:
+    """A :class:`DirectionGrid` of ``step_deg``, checked.
+
+    Raises
+    ------
+    InputError
+        A step that is not positive or does not divide 180 deg.
+    """
+    if not math.isfinite(step_deg) or step_deg <= 0 or step_deg > 90:
+        raise InputError(f"{name} {step_deg} deg must be a positive angle of at most 90 deg")
+    count = round(180.0 / step_deg)
+    if abs(count * step_deg - 180.0) > 1e-9 * 180.0:
+        divisors = [d for d in (1, 2, 2.5, 3, 5, 6, 7.5, 9, 10, 15, 18, 20, 30, 45) if abs(d - step_deg) < 6]
+        raise InputError(
+            f"{name} {step_deg:g} deg does not divide the azimuth and elevation ranges (-180..180, -90..90)",
+            hint=f"grids (SPAD among them) need a divisor of 180 deg, e.g. {', '.join(map(str, divisors))}",
+        )
+    return DirectionGrid(180.0 / count)
+
+
+@dataclass(frozen=True, eq=False)
+class AttitudeList:
+    """Attitudes read from a CSV file, one per row; body-frame unit vectors.
+
+    Attributes
+    ----------
+    sun_vectors, flow_vectors : (n, 3) float64 or None
+        Sun and flow directions of every row, where the file gives them.
+    quaternions : (n, 4) float64 or None
+        The rows' attitude quaternions ``(w, x, y, z)`` when the file gives them.
+    source : str
+        The file.
+    """
+
+    sun_vectors: NDArray[np.float64] | None
+    flow_vectors: NDArray[np.float64] | None
+    quaternions: NDArray[np.float64] | None
+    source: str
+
+    def __len__(self) -> int:
+        present = self.sun_vectors if self.sun_vectors is not None else self.flow_vectors
+        return len(present)
+
+
+def read_attitude_csv(path: str | Path) -> AttitudeList:
+    """Read an attitude list (see the module notes for its columns).
+
+    Raises
+    ------
+    InputError
+        Missing or unreadable file, no direction columns, a column set given in part, a value that is
+        not a finite number, a zero direction or quaternion.
+    """
+    path = Path(path)
+    try:
+        with path.open(newline="") as handle:
+            rows = [row for row in csv.reader(handle) if row and not row[0].lstrip().startswith("#")]
+    except OSError as error:
+        raise InputError(f"cannot read the attitude list: {error.strerror}", path=path) from None
+    if len(rows) < 2:
+        raise InputError("the attitude list needs a header row and at least one attitude", path=path)
+    header = [name.strip().lower() for name in rows[0]]
+    table = _numbers(rows[1:], len(header), path)
+    columns = {name: table[:, k] for k, name in enumerate(header)}
+    sun = _vectors(columns, SUN_COLUMNS, path)
+    flow = _vectors(columns, FLOW_COLUMNS, path)
+    if sun is None and flow is None:
+        raise InputError(
+            "the attitude list has no direction columns",
+            path=path,
+            hint=f"name them {', '.join(SUN_COLUMNS)} and/or {', '.join(FLOW_COLUMNS)} in the header row",
+        )
+    quaternions = _columns(columns, QUATERNION_COLUMNS, path)
+    if quaternions is not None:
+        norms = np.linalg.norm(quaternions, axis=1)
+        if np.any(norms == 0):
+            row = int(np.argmin(norms)) + 2
+            raise InputError(f"row {row}: the quaternion is zero", path=path)
+        body_from_inertial = Rotation.from_quat(quaternions[:, [1, 2, 3, 0]]).inv()
+        sun = None if sun is None else body_from_inertial.apply(sun)
+        flow = None if flow is None else body_from_inertial.apply(flow)
+        quaternions = quaternions / norms[:, None]
+    return AttitudeList(sun, flow, quaternions, str(path))
+
+
+def _numbers(rows: list[list[str]], width: int, path: Path) -> NDArray[np.float64]:
+    """The data rows as a float array (n, width)."""
+    values = np.empty((len(rows), width))
+    for r, row in enumerate(rows):
+        if len(row) != width:
+            raise InputError(f"row {r + 2} has {len(row)} values, the header {width}", path=path)
+        try:
+            values[r] = [float(x) for x in row]
+        except ValueError:
+            raise InputError(f"row {r + 2}: {','.join(row)} is not all numbers", path=path) from None
+    if not np.isfinite(values).all():
+        row = int(np.flatnonzero(~np.isfinite(values).all(axis=1))[0]) + 2
+        raise InputError(f"row {row} holds a NaN or infinite value", path=path)
+    return values
+
+
+def _columns(columns: dict, names: tuple[str, ...], path: Path) -> NDArray[np.float64] | None:
+    """The named columns side by side, None when none of them is there."""
+    present = [name in columns for name in names]
+    if not any(present):
+        return None
+    if not all(present):
+        missing = [name for name in names if name not in columns]
+        raise InputError(f"the attitude list lacks column {', '.join(missing)}", path=path)
+    return np.column_stack([columns[name] for name in names])
+
+
+def _vectors(columns: dict, names: tuple[str, ...], path: Path) -> NDArray[np.float64] | None:
+    """Unit vectors from three named columns, None when absent."""
+    vectors = _columns(columns, names, path)
+    if vectors is None:
+        return None
+    lengths = np.linalg.norm(vectors, axis=1)
+    if np.any(lengths == 0):
+        row = int(np.argmin(lengths)) + 2
+        raise InputError(f"row {row}: the {names[0][:-2]} direction is zero", path=path)
+    return vectors / lengths[:, None]

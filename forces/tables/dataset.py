@@ -1,0 +1,232 @@
+"""Sweep results as a table: an xarray Dataset with units, frame and provenance, in netCDF or CSV.
+
+**Grid tables** have the dimensions ``sun_azimuth, sun_elevation`` for SRP and ``flow_azimuth,
+flow_elevation`` for drag (degrees, -180..180 and -90..90 with both ends), and ``component`` (x, y, z)
+for vectors. **List tables** have one dimension ``attitude`` (rows of the attitude CSV) shared by
+SRP and drag. Variables are ``srp_*`` (force, torque, their direct and reflected parts, lit and
+projected area, ``sun_vector``) and ``drag_*`` (the same parts, the coefficients ``CD, CS, CL`` and
+``CM``, ``flow_vector``); every variable has ``units`` and ``long_name``; the global attributes hold
+the frame, conventions, reference point, solar flux, atmosphere, coefficient references, mesh and
+materials digests and the sunwind version.
+
+netCDF is written with xarray, CSV as ``#`` comment lines with the attributes and a header row whose
+column names carry their units. Files are written to a temporary name and renamed into place.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid
+from sunwind.forces.tables.sweep import FIELDS, records_by_field
+from sunwind.geometry.errors import InputError
+
+#: Variable units by field name.
+UNITS = {
+    "force_N": "N",
+    "torque_Nm": "N m",
+    "direct_force_N": "N",
+    "direct_torque_Nm": "N m",
+    "reflected_force_N": "N",
+    "reflected_torque_Nm": "N m",
+    "lit_area_m2": "m^2",
+    "projected_area_m2": "m^2",
+    "CD": "1",
+    "CS": "1",
+    "CL": "1",
+    "CM": "1",
+}
+#: Long names by field name.
+LONG_NAMES = {
+    "force_N": "force, body frame",
+    "torque_Nm": "torque about the reference point, body frame",
+    "direct_force_N": "force of the direct flux (panel law with shadowing)",
+    "direct_torque_Nm": "torque of the direct flux",
+    "reflected_force_N": "force added by inter-reflection (light) or re-emission exchange (molecules)",
+    "reflected_torque_Nm": "torque added by inter-reflection or re-emission exchange",
+    "lit_area_m2": "lit area",
+    "projected_area_m2": "lit area projected normal to the Sun",
+    "CD": "drag coefficient F.(-u)/(q A_ref)",
+    "CS": "side-force coefficient",
+    "CL": "lift coefficient",
+    "CM": "moment coefficients M/(q A_ref L_ref), body axes",
+}
+#: Netcdf/CSV file conventions, stated in every table.
+CONVENTIONS = (
+    "body frame of the mesh, SI units; azimuth = atan2(y, x) from +x toward +y, elevation = asin(z) [deg]; "
+    "sun_vector points from the spacecraft to the Sun; flow_vector u = v_rel/|v_rel|, v_rel the spacecraft "
+    "velocity relative to the atmosphere (molecules travel along -u); SRP scales with flux_W_m2"
+)
+#: Dimension names of each quantity's direction in grid tables.
+GRID_DIMS = {"srp": ("sun_azimuth", "sun_elevation"), "drag": ("flow_azimuth", "flow_elevation")}
+#: The direction variable of each quantity.
+DIRECTION = {"srp": "sun_vector", "drag": "flow_vector"}
+
+
+def _variables(
+    kind: str, records: NDArray[np.float64], dims: tuple[str, ...], shape: tuple[int, ...]
+) -> dict:
+    out = {}
+    for name, values in records_by_field(kind, records).items():
+        vector = values.ndim == 2
+        data = values.reshape((*shape, 3) if vector else shape)
+        attrs = {"units": UNITS[name], "long_name": f"{kind.upper()} {LONG_NAMES[name]}"}
+        out[f"{kind}_{name}"] = xr.Variable((*dims, "component") if vector else dims, data, attrs)
+    return out
+
+
+def _direction_variable(kind: str, vectors: NDArray[np.float64], dims: tuple[str, ...]) -> xr.Variable:
+    text = "unit vector toward the Sun" if kind == "srp" else "unit flow vector u = v_rel/|v_rel|"
+    return xr.Variable((*dims, "component"), vectors, {"units": "1", "long_name": f"{text}, body frame"})
+
+
+def grid_table(
+    records: Mapping[str, NDArray[np.float64]],
+    grids: Mapping[str, DirectionGrid],
+    attrs: Mapping[str, object],
+) -> xr.Dataset:
+    """The grid table of sweep records: ``records[kind]`` (distinct directions, width) in the order of
+    ``grids[kind].distinct``."""
+    variables, coords = {}, {"component": ["x", "y", "z"]}
+    for kind, values in records.items():
+        grid = grids[kind]
+        az_dim, el_dim = GRID_DIMS[kind]
+        coords[az_dim] = (az_dim, grid.azimuth_deg, {"units": "degree", "long_name": f"{kind} azimuth"})
+        coords[el_dim] = (el_dim, grid.elevation_deg, {"units": "degree", "long_name": f"{kind} elevation"})
+        shape = (len(grid.azimuth_deg), len(grid.elevation_deg))
+        nodes = values[grid.distinct[1]]
+        variables.update(_variables(kind, nodes, (az_dim, el_dim), shape))
+        variables[DIRECTION[kind]] = _direction_variable(kind, grid.vectors, (az_dim, el_dim))
+    return xr.Dataset(variables, coords=coords, attrs=_attributes(attrs))
+
+
+def list_table(
+    records: Mapping[str, NDArray[np.float64]], attitudes: AttitudeList, attrs: Mapping[str, object]
+) -> xr.Dataset:
+    """The list table of sweep records, one row per attitude of ``attitudes``."""
+    variables = {}
+    directions = {"srp": attitudes.sun_vectors, "drag": attitudes.flow_vectors}
+    for kind, values in records.items():
+        variables.update(_variables(kind, values, ("attitude",), (len(values),)))
+        variables[DIRECTION[kind]] = _direction_variable(kind, directions[kind], ("attitude",))
+    if attitudes.quaternions is not None:
+        variables["quaternion"] = xr.Variable(
+            ("attitude", "quaternion_component"),
+            attitudes.quaternions,
+            {"units": "1", "long_name": "attitude quaternion (w, x, y, z), body relative to inertial"},
+        )
+    coords = {"attitude": np.arange(len(attitudes)), "component": ["x", "y", "z"]}
+    return xr.Dataset(variables, coords=coords, attrs=_attributes({**attrs, "attitudes": attitudes.source}))
+
+
+def _attributes(attrs: Mapping[str, object]) -> dict:
+    """netCDF-safe global attributes (None dropped, dicts as JSON text, booleans as 0/1)."""
+    out: dict = {"conventions": CONVENTIONS}
+    for key, value in attrs.items():
+        if value is None:
+            continue
+        if isinstance(value, dict):
+            value = json.dumps(value)
+        elif isinstance(value, bool):
+            value = int(value)
+        elif isinstance(value, list | tuple):
+            value = np.asarray(value, dtype=np.float64)
+        out[key] = value
+    return out
+
+
+def kinds_of(table: xr.Dataset) -> list[str]:
+    """The quantities a table holds, in :data:`sunwind.forces.tables.sweep.KINDS` order."""
+    return [kind for kind in FIELDS if f"{kind}_force_N" in table]
+
+
+def write_netcdf(table: xr.Dataset, path: Path) -> Path:
+    """Write ``table`` to netCDF at ``path``, atomically."""
+    temporary = path.with_name(f".{path.name}.tmp")
+    table.to_netcdf(temporary)
+    os.replace(temporary, path)
+    return path
+
+
+def csv_paths(path: Path, table: xr.Dataset) -> dict[str, Path]:
+    """CSV file of each quantity: ``path`` itself for a list table or one quantity, else
+    ``NAME.srp.csv`` and ``NAME.drag.csv`` (SRP and drag are on different grids)."""
+    kinds = kinds_of(table)
+    if "attitude" in table.dims or len(kinds) == 1:
+        return {"all": path}
+    return {kind: path.with_name(f"{path.stem}.{kind}{path.suffix}") for kind in kinds}
+
+
+def write_csv(table: xr.Dataset, path: Path) -> list[Path]:
+    """Write ``table`` as CSV (see :func:`csv_paths`), atomically; returns the files written."""
+    written = []
+    for kind, target in csv_paths(path, table).items():
+        part = table if kind == "all" else table[[name for name in table.data_vars if name.startswith(kind)]]
+        if kind != "all":
+            part[DIRECTION[kind]] = table[DIRECTION[kind]]
+        written.append(_write_csv_part(part, table.attrs, target))
+    return written
+
+
+def _write_csv_part(table: xr.Dataset, attrs: Mapping[str, object], path: Path) -> Path:
+    dims = [d for d in table[next(iter(table.data_vars))].dims if d != "component"]
+    index = np.stack(np.meshgrid(*(table[d].values for d in dims), indexing="ij"), axis=-1).reshape(
+        -1, len(dims)
+    )
+    names = [f"{d}_deg" if d.endswith(("azimuth", "elevation")) else d for d in dims]
+    columns = [index.astype(np.float64)]
+    for name, variable in table.data_vars.items():
+        if any(d not in (*dims, "component", "quaternion_component") for d in variable.dims):
+            continue
+        values = variable.transpose(*dims, ...).values.reshape(len(index), -1)
+        unit = variable.attrs.get("units", "1").replace(" ", "").replace("^", "")
+        if values.shape[1] == 1:
+            names.append(f"{name}[{unit}]")
+        else:
+            suffixes = "wxyz" if "quaternion_component" in variable.dims else "xyz"
+            names += [f"{name}_{c}[{unit}]" for c in suffixes]
+        columns.append(values)
+    lines = [f"# {key}: {_text(value)}" for key, value in attrs.items()]
+    body = np.hstack(columns)
+    temporary = path.with_name(f".{path.name}.tmp")
+    with temporary.open("w") as handle:
+        handle.write("\n".join(lines) + "\n" + ",".join(names) + "\n")
+        np.savetxt(handle, body, delimiter=",", fmt="%.17g")
+    os.replace(temporary, path)
+    return path
+
+
+def _text(value: object) -> str:
+    if isinstance(value, np.ndarray):
+        return " ".join(f"{v:.17g}" for v in value)
+    return str(value)
+
+
+def open_table(path: str | os.PathLike) -> xr.Dataset:
+    """A table written by :func:`write_netcdf`, loaded into memory.
+
+    Raises
+    ------
+    InputError
+        Not there, or not a sunwind table.
+    """
+    path = Path(path)
+    if not path.exists():
+        raise InputError("no such table file", path=str(path))
+    try:
+        with xr.open_dataset(path) as table:
+            table = table.load()
+    except (OSError, ValueError) as error:
+        raise InputError(
+            f"cannot read the table: {error}", path=str(path), hint="give a .nc file sunwind wrote"
+        ) from None
+    if not kinds_of(table):
+        raise InputError("not a sunwind table (no srp_force_N or drag_force_N)", path=str(path))
+    return table

@@ -1,0 +1,165 @@
+"""Figures of sweep tables (force and torque over azimuth/elevation) and of per-facet pressure on a model.
+
+Figures are drawn on ``matplotlib.figure.Figure`` objects rendered by Agg, without pyplot: no global state,
+no display needed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from matplotlib.cm import ScalarMappable
+from matplotlib.colors import Normalize
+from matplotlib.figure import Figure
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+from numpy.typing import ArrayLike, NDArray
+
+from sunwind.forces.tables.interpolation import PREFIX
+from sunwind.geometry.directions import unit_vector
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.spacecraft import Spacecraft
+
+_DIRECTION_NAME = {"sun": "Sun", "flow": "flow"}
+
+
+def plot_table(table: xr.Dataset, directory: str | Path) -> list[Path]:
+    """Write one PNG per force and torque variable of a sweep table: x, y, z maps over the directions.
+
+    Grid tables are drawn with ``pcolormesh`` over azimuth/elevation [deg]; list tables as points at the
+    azimuth/elevation of their Sun or flow vectors. Files are ``{variable}.png`` (e.g. ``srp_force_N.png``,
+    ``drag_torque_Nm.png``) in ``directory``, which is created if needed.
+
+    Raises
+    ------
+    InputError
+        The table has no SRP or drag force or torque.
+    """
+    names = [
+        (f"{kind}_{quantity}", prefix)
+        for kind, prefix in PREFIX.items()
+        for quantity in ("force_N", "torque_Nm")
+        if f"{kind}_{quantity}" in table.data_vars
+    ]
+    if not names:
+        raise InputError("the table has no srp_* or drag_* force or torque to plot", hint="run a sweep first")
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    return [_plot_map(table, name, prefix, out / f"{name}.png") for name, prefix in names]
+
+
+def plot_facet_pressure(
+    craft: Spacecraft,
+    pressure_Pa: ArrayLike,
+    direction: ArrayLike,
+    path: str | Path,
+    label: str = "Sun",
+) -> Path:
+    """Write a 3-D view of the spacecraft with each facet coloured by its pressure, and a colour bar.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model; ``craft.triangles`` (n_facets, 3, 3) [m], body frame.
+    pressure_Pa : (n_facets,) float
+        Pressure on each facet [Pa].
+    direction : (3,) float
+        Sun vector or flow vector ``u``, body frame. The arrow, labelled ``label``, comes in from that side
+        toward the body, as the photons or molecules do.
+    path : path
+        PNG file to write.
+
+    Raises
+    ------
+    InputError
+        ``pressure_Pa`` not one finite value per facet, or a zero direction.
+    """
+    triangles = craft.triangles
+    pressure = np.asarray(pressure_Pa, dtype=np.float64)
+    if pressure.shape != (len(triangles),) or not np.isfinite(pressure).all():
+        raise InputError(
+            f"pressure_Pa has shape {pressure.shape}, expected one finite value per facet ({len(triangles)},)"
+        )
+    d = unit_vector(direction, "direction")
+    low, high = triangles.reshape(-1, 3).min(axis=0), triangles.reshape(-1, 3).max(axis=0)
+    centre, radius = (low + high) / 2, float(np.max(high - low)) / 2 or 1.0
+    norm = Normalize(*_limits(pressure))
+    mappable = ScalarMappable(norm=norm, cmap="viridis")
+
+    fig = Figure(figsize=(7.5, 6.5), layout="constrained")
+    ax = fig.add_subplot(projection="3d")
+    ax.add_collection3d(Poly3DCollection(triangles, facecolors=mappable.to_rgba(pressure), linewidths=0))
+    tail = centre + 1.9 * radius * d
+    ax.quiver(*tail, *(-0.7 * radius * d), color="tab:red", linewidth=2, arrow_length_ratio=0.25)
+    ax.text(*(tail + 0.1 * radius * d), label, color="tab:red")
+    for set_lim, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre, strict=True):
+        set_lim(c - 2 * radius, c + 2 * radius)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.set_title(
+        f"pressure on each facet [Pa], body frame; {label} from ({d[0]:.3f}, {d[1]:.3f}, {d[2]:.3f})"
+    )
+    fig.colorbar(mappable, ax=ax, shrink=0.7, label="pressure [Pa]")
+    out = Path(path)
+    fig.savefig(out, dpi=110)
+    return out
+
+
+def _plot_map(table: xr.Dataset, name: str, prefix: str, path: Path) -> Path:
+    variable = table[name]
+    units = variable.attrs.get("units", "")
+    who = _DIRECTION_NAME[prefix]
+    fig = Figure(figsize=(14, 4.2), layout="constrained")
+    axes = fig.subplots(1, 3, sharey=True)
+    az, el, values = _map_data(table, name, prefix)
+    for index, (ax, component) in enumerate(zip(axes, "xyz", strict=True)):
+        v = values[..., index]
+        limit = float(np.max(np.abs(v))) or 1.0
+        style = {"cmap": "RdBu_r", "vmin": -limit, "vmax": limit}
+        if v.ndim == 2:
+            artist = ax.pcolormesh(az, el, v.T, shading="nearest", **style)
+        else:
+            artist = ax.scatter(az, el, c=v, s=12, **style)
+        fig.colorbar(artist, ax=ax, label=f"{component} [{units}]")
+        ax.set_title(f"{component} component")
+        ax.set_xlabel(f"{who} azimuth [deg]")
+        ax.set_xlim(-180, 180)
+        ax.set_ylim(-90, 90)
+        ax.set_xticks(np.arange(-180, 181, 90))
+        ax.set_yticks(np.arange(-90, 91, 45))
+    axes[0].set_ylabel(f"{who} elevation [deg]")
+    title = variable.attrs.get("long_name", name)
+    frame = "" if "frame" in title else f", {table.attrs.get('frame', 'body frame')}"
+    fig.suptitle(f"{title} [{units}]{frame}{_conditions(table, prefix)}")
+    fig.savefig(path, dpi=100)
+    return path
+
+
+def _map_data(table: xr.Dataset, name: str, prefix: str) -> tuple[NDArray, NDArray, NDArray]:
+    """Azimuths, elevations [deg] and values (..., 3) of a grid (2-D) or list (1-D) table."""
+    az_name, el_name = f"{prefix}_azimuth", f"{prefix}_elevation"
+    if az_name in table.dims:
+        values = table[name].transpose(az_name, el_name, "component").values
+        return table[az_name].values, table[el_name].values, values
+    vectors = table[f"{prefix}_vector"].transpose(..., "component").values.reshape(-1, 3)
+    vectors = vectors / np.linalg.norm(vectors, axis=1, keepdims=True)
+    az = np.degrees(np.arctan2(vectors[:, 1], vectors[:, 0]))
+    el = np.degrees(np.arcsin(np.clip(vectors[:, 2], -1.0, 1.0)))
+    return az, el, table[name].transpose(..., "component").values.reshape(-1, 3)
+
+
+def _conditions(table: xr.Dataset, prefix: str) -> str:
+    attrs = table.attrs
+    if prefix == "sun" and "flux_W_m2" in attrs:
+        return f"; flux {float(attrs['flux_W_m2']):g} W/m^2"
+    if prefix == "flow" and "dynamic_pressure_Pa" in attrs:
+        return f"; q = {float(attrs['dynamic_pressure_Pa']):.4g} Pa"
+    return ""
+
+
+def _limits(values: NDArray[np.float64]) -> tuple[float, float]:
+    low, high = float(values.min()), float(values.max())
+    return (low, high) if high > low else (low - 0.5, high + 0.5)

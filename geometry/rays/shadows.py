@@ -1,0 +1,505 @@
+"""Which share of each side a distant source lights, by shadow rays from quadrature points.
+
+METHOD.md "Shadowing".
+
+A side has one sample point in each of its ``level**2`` congruent sub-triangles (the centroid at
+level 1, a seeded stratified point above: :func:`sunwind.geometry.triangles.subdivision_barycentric`). A
+point is lit when a ray from it toward the source leaves the model. On a flat side under a uniform
+beam the force per unit lit area is the same everywhere, so the lit share and the centroid of the
+lit points carry all that force and torque need.
+
+Sampling is fixed (``level**2`` points on every side facing the source) or adaptive: every facing
+side starts at ``BASE_LEVEL``. Sides whose points disagree, the sides sharing a vertex with them, and
+edge neighbours with different uniform states are refined by doubling ``level``; a side found mixed
+brings its vertex neighbours in. A side stops when it is uniformly lit or dark at two successive
+levels, the finer with at least ``UNIFORM_LEVEL**2`` points, or when its lit share has changed by at
+most ``tolerance`` between levels while one sub-triangle's share ``1 / level**2`` is also within
+``tolerance`` (lit shares move in steps of ``1 / level**2``, so coarse levels can agree by chance);
+``MAX_LEVEL`` caps it. Fine meshes make shadow edges cross small sides, where this converges fast.
+
+Transmissive sheets cast full shadows here: light they transmit is not traced onward.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cached_property
+
+import numba
+import numpy as np
+import scipy.sparse
+from numpy.typing import NDArray
+
+from sunwind.geometry import triangles as tri
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.parallel import map_ranges
+from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.geometry.triangles import STRATIFIED_SEED
+
+#: Level of the first pass of adaptive sampling: 4 points per side.
+BASE_LEVEL = 2
+#: Finest level of adaptive sampling: 4096 points per side.
+MAX_LEVEL = 64
+#: Level at which a side near a shadow edge, lit or dark at every point of two successive levels, is
+#: accepted as uniform: 64 points, so a shadow nicking ~2 % of it or more is not missed.
+UNIFORM_LEVEL = 8
+#: Default convergence threshold on a refined side's lit share between successive levels.
+DEFAULT_TOLERANCE = 1e-3
+#: Rays cast per batch when origins are made on the fly, to bound memory.
+_BATCH_RAYS = 1 << 21
+
+#: Something summed over facing sides once their lit shares are final:
+#: ``reduce(sides, lit_share, lit_centroid)``, ``lit_share[k]`` the share of side ``sides[k]`` and
+#: ``lit_centroid`` indexed by side. It may be called from several threads at once, each time on
+#: whole blocks of :attr:`SideSampler.side_block`, each block's sides in ascending order.
+Reduction = Callable[[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]], None]
+#: Sides per block of the balanced order.
+BLOCK = 512
+#: Fewest blocks in a chunk of an attitude's parallel work.
+_MIN_BLOCKS_PER_CHUNK = 8
+#: Largest origin array (points) kept per level for reuse across attitudes.
+_KEEP_POINTS = 1 << 22
+
+
+@dataclass(frozen=True, eq=False)
+class Illumination:
+    """The lit share of every side for one source direction.
+
+    Attributes
+    ----------
+    direction : (3,) float64
+        Unit vector toward the source, body frame (``u_sun``).
+    side_normals : (n_sides, 3) float64
+        Outward normal of each side (the model's array, not a copy).
+    facing_runs, share_runs : tuple of arrays
+        The sides with ``cos_incidence > 0`` (only these can be lit), int64, and the share of the
+        area of each that is lit, float64 (or bool with one point per side), in runs as the threads
+        found them; joined on first use as :attr:`facing` and :attr:`facing_share`.
+    lit_centroid : (n_sides, 3) float64
+        Centroid of the side's lit sample points [m]; the facet centroid where nothing is lit.
+    rays : int
+        Shadow rays cast.
+    sampling : str
+        How sides were sampled, in words.
+    level : int or None
+        Subdivision level of fixed sampling (``level**2`` points on every facing side); None when
+        adaptive.
+    """
+
+    direction: NDArray[np.float64]
+    side_normals: NDArray[np.float64]
+    facing_runs: tuple[NDArray[np.int64], ...]
+    share_runs: tuple[NDArray[np.float64], ...]
+    lit_centroid: NDArray[np.float64]
+    rays: int
+    sampling: str
+    level: int | None = None
+
+    @cached_property
+    def cos_incidence(self) -> NDArray[np.float64]:
+        """``n_out . direction`` of each side, (n_sides,); computed on first use."""
+        return self.side_normals @ self.direction
+
+    @cached_property
+    def facing(self) -> NDArray[np.int64]:
+        """Sides facing the source, (n_facing,)."""
+        return _joined(self.facing_runs)
+
+    @cached_property
+    def facing_share(self) -> NDArray[np.float64]:
+        """Lit share of each of :attr:`facing`, (n_facing,)."""
+        return _joined(self.share_runs).astype(np.float64, copy=False)
+
+    @cached_property
+    def lit_fraction(self) -> NDArray[np.float64]:
+        """Lit share of every side, (n_sides,), 0 for sides facing away; made on first use."""
+        fraction = np.zeros(len(self.side_normals))
+        fraction[self.facing] = self.facing_share
+        return fraction
+
+
+def _joined(runs: tuple[NDArray, ...]) -> NDArray:
+    return runs[0] if len(runs) == 1 else np.concatenate(runs)
+
+
+def level_for_samples(samples: int) -> int:
+    """Subdivision level whose ``level**2`` points per side are at least ``samples``."""
+    if samples < 1:
+        raise InputError(f"--samples {samples} must be at least 1", hint="give a positive count per facet")
+    return math.isqrt(samples - 1) + 1
+
+
+class SideSampler:
+    """Shadow-ray sampling of one spacecraft's sides, with per-level ray origins kept for reuse."""
+
+    def __init__(self, craft: Spacecraft) -> None:
+        self.craft = craft
+        self.scene = craft.scene
+        self._kept: dict[int, NDArray[np.float32]] = {}
+
+    def origins(self, level: int) -> NDArray[np.float32]:
+        """Ray origins of every side at ``level`` in scene coordinates, (n_sides, level**2, 3)."""
+        return self._origins_of(np.arange(self.craft.n_sides), level)
+
+    def _kept_origins(self, level: int) -> NDArray[np.float32]:
+        """The origins of every side at ``level`` in the balanced order (row ``k`` belongs to side
+        ``_balanced_order[k]``), so a block's rows are contiguous; made once and kept."""
+        if level not in self._kept:
+            self._kept[level] = self._origins_of(self._balanced_order, level)
+        return self._kept[level]
+
+    def _keeps(self, level: int) -> bool:
+        return self.craft.n_sides * level**2 <= _KEEP_POINTS
+
+    def _origins_of(self, sides: NDArray[np.int64], level: int) -> NDArray[np.float32]:
+        """Ray origins of ``sides`` at ``level`` in scene coordinates, (len(sides), level**2, 3)."""
+        scene = self.scene
+        return _sample_origins(
+            self.craft.triangles,
+            self.craft.side_facet,
+            self.craft.side_normals,
+            sides,
+            tri.subdivision_barycentric(level),
+            scene.centre,
+            scene.half_size,
+            scene.offset_m,
+        )
+
+    def _lit(self, origins: NDArray[np.float32], direction: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Lit flag of each origin, same leading shape as ``origins``."""
+        flat = origins.reshape(-1, 3)
+        directions = np.broadcast_to(direction.astype(np.float32), flat.shape)
+        return self.scene.clear(flat, directions).reshape(origins.shape[:-1])
+
+    def facing_rays(
+        self, direction: NDArray[np.float64], level: int
+    ) -> tuple[NDArray[np.int64], NDArray[np.float32] | None]:
+        """The sides facing ``direction`` and their ray origins at ``level`` (n_facing, level**2, 3)
+        when kept for reuse, else None."""
+        if not self._keeps(level):
+            return np.flatnonzero(self.craft.side_normals @ direction > 0), None
+        return self._facing_origins(direction, level, 0, self.n_blocks)
+
+    def _facing_origins(
+        self, direction: NDArray[np.float64], level: int, first: int, last: int
+    ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
+        """Sides of blocks ``first`` to ``last - 1`` facing ``direction``, and their kept origins."""
+        low, high = self.block_normal_bounds
+        return _facing_origins(
+            self.craft.side_normals,
+            direction,
+            self._kept_origins(level),
+            self._balanced_order,
+            low,
+            high,
+            first,
+            last,
+        )
+
+    @cached_property
+    def _balanced_order(self) -> NDArray[np.int64]:
+        """All sides, in blocks of ``BLOCK`` consecutive sides taken in a seeded random order:
+        equal runs of blocks hold about as many sides facing any direction, so threads given equal
+        runs finish together. Block ``k`` of the order is ``order[k * BLOCK:(k + 1) * BLOCK]``."""
+        n = self.craft.n_sides
+        full = n // BLOCK  # the last, shorter block stays last so that every block stays whole
+        blocks = np.random.default_rng(STRATIFIED_SEED).permutation(full)
+        order = (blocks[:, None] * BLOCK + np.arange(BLOCK)).reshape(-1)
+        return np.concatenate([order, np.arange(full * BLOCK, n)])
+
+    @cached_property
+    def block_normal_bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Smallest and largest normal components over each block, (n_blocks, 3) each: a block
+        whose bound on ``n . u`` is not positive has no side facing ``u`` and is skipped whole."""
+        normals = self.craft.side_normals[self._balanced_order]
+        padded = np.concatenate([normals, np.repeat(normals[-1:], self.n_blocks * BLOCK - len(normals), 0)])
+        blocks = padded.reshape(self.n_blocks, BLOCK, 3)
+        return blocks.min(axis=1), blocks.max(axis=1)
+
+    @property
+    def n_blocks(self) -> int:
+        """Number of blocks in :attr:`side_block`."""
+        return -(-self.craft.n_sides // BLOCK)
+
+    @cached_property
+    def side_block(self) -> NDArray[np.int64]:
+        """The block of the balanced order each side belongs to, (n_sides,): a fixed grouping for
+        sums whose result must not depend on how work was split over threads."""
+        block = np.empty(self.craft.n_sides, dtype=np.int64)
+        block[self._balanced_order] = np.arange(self.craft.n_sides) // BLOCK
+        block.flags.writeable = False
+        return block
+
+    def _cast_kept(
+        self,
+        direction: NDArray[np.float64],
+        level: int,
+        centroid: NDArray[np.float64],
+        reduce: Reduction | None,
+    ) -> tuple[tuple[NDArray[np.int64], ...], tuple[NDArray[np.float64], ...], NDArray[np.bool_] | None]:
+        """Cast every facing side's kept rays at ``level``; write lit centroids of part-lit sides.
+
+        Threads take runs of whole blocks of :attr:`_balanced_order` through the facing test, Embree,
+        the lit shares and ``reduce``, in one dispatch. Returns the facing sides and their lit shares,
+        in runs, and, only when ``reduce`` is None, the lit flags of all of them (n_facing, level**2).
+        """
+
+        def work(first: int, last: int) -> tuple:
+            facing, mine = self._facing_origins(direction, level, first, last)
+            lit = self._lit(mine, direction)
+            share = self._shares(facing, lit, level, centroid)
+            if reduce is not None:
+                reduce(facing, share, centroid)
+                return facing, share, None
+            return facing, share, lit
+
+        facing, share, lit = zip(*map_ranges(work, self.n_blocks, _MIN_BLOCKS_PER_CHUNK), strict=True)
+        return facing, share, None if reduce is not None else _joined(lit)
+
+    def illuminate(
+        self,
+        direction: NDArray[np.float64],
+        samples: int | None = None,
+        tolerance: float = DEFAULT_TOLERANCE,
+        reduce: Reduction | None = None,
+    ) -> Illumination:
+        """Lit share and lit centroid of every side for a source along unit vector ``direction``.
+
+        ``samples`` fixes the points per side (rounded up to a square, ``level**2``); None samples
+        adaptively to ``tolerance`` on each refined side's lit share. ``reduce``, if given, is called
+        on the facing sides once their lit shares are final (see ``Reduction``), in the worker
+        threads where possible.
+        """
+        craft = self.craft
+        fixed = samples is not None
+        level = level_for_samples(samples) if fixed else BASE_LEVEL
+        # the lit centroid differs from the side centroid only on partly lit sides, which level 1 has not
+        centroid = craft.side_centroids if level == 1 else craft.side_centroids.copy()
+        if self._keeps(level):
+            facing, share, lit = self._cast_kept(direction, level, centroid, reduce if fixed else None)
+            reduce = None if fixed else reduce  # a fixed count reduces chunk by chunk as it goes
+        else:
+            sides, _ = self.facing_rays(direction, level)
+            lit = self._cast(sides, level, direction)
+            facing, share = (sides,), (self._shares(sides, lit, level, centroid),)
+        rays = sum(map(len, facing)) * level**2
+        sampling = f"{level**2} points per side"
+        if not fixed:
+            sides = _joined(facing)
+            fraction = np.zeros(craft.n_sides)
+            fraction[sides] = _joined(share)
+            rays += self._refine(direction, sides, lit, fraction, centroid, tolerance)
+            facing, share = (sides,), (fraction[sides],)
+            sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
+        if reduce is not None:
+            reduce(facing[0], share[0], centroid)
+        return Illumination(
+            direction, craft.side_normals, facing, share, centroid, rays, sampling, level if fixed else None
+        )
+
+    def _shares(
+        self,
+        sides: NDArray[np.int64],
+        lit: NDArray[np.bool_],
+        level: int,
+        centroid: NDArray[np.float64],
+    ) -> NDArray[np.float64]:
+        """Lit share of each of ``sides`` from its lit flags (n, level**2); writes the centroid of the
+        lit points of each part-lit side into ``centroid``, which holds the facet centroid elsewhere."""
+        if level == 1:  # one point per side: its flag is its share, and no side is lit in part
+            return lit.reshape(-1)
+        craft = self.craft
+        barycentric = tri.subdivision_barycentric(level)
+        _lit_centroids(sides, lit, barycentric, craft.triangles, craft.side_facet, centroid)
+        return _lit_shares(lit)
+
+    @cached_property
+    def _adjacency(self) -> scipy.sparse.csr_matrix:
+        """Sides sharing a vertex and facing the same way, as a sparse matrix (a shadow edge can
+        leave a side through a corner)."""
+        craft = self.craft
+        n_vertices = len(craft.vertices)
+        # a back side's vertices are numbered apart, so front and back sides never neighbour
+        corner = craft.faces[craft.side_facet] + n_vertices * (craft.side_sign < 0)[:, None]
+        rows = np.repeat(np.arange(craft.n_sides), 3)
+        incidence = scipy.sparse.csr_matrix(
+            (np.ones(len(rows)), (rows, corner.reshape(-1))), shape=(craft.n_sides, 2 * n_vertices)
+        )
+        return (incidence @ incidence.T).tocsr()
+
+    def _neighbours(self, sides: NDArray[np.int64]) -> NDArray[np.int64]:
+        """Sides adjacent to any of ``sides``."""
+        return np.unique(self._adjacency[sides].indices)
+
+    def _refine(
+        self,
+        direction: NDArray[np.float64],
+        facing: NDArray[np.int64],
+        lit: NDArray[np.bool_],
+        fraction: NDArray[np.float64],
+        centroid: NDArray[np.float64],
+        tolerance: float,
+    ) -> int:
+        """Refine the sides on a shadow edge in place; return the rays cast.
+
+        Suspect at the base level: mixed sides, the sides sharing a vertex with them, and edge
+        neighbours whose uniform states differ. Whenever refinement finds a side mixed, its
+        unexamined facing vertex neighbours join.
+        """
+        craft = self.craft
+        is_facing = np.zeros(craft.n_sides, dtype=bool)
+        is_facing[facing] = True
+        count = lit.sum(axis=1)
+        state = np.full(craft.n_sides, -1)  # -1 facing away or mixed, 0 dark, 1 lit
+        state[facing] = np.where(count == lit.shape[1], 1, np.where(count == 0, 0, -1))
+        a, b = craft.side_neighbours
+        differ = (state[a] >= 0) & (state[b] >= 0) & (state[a] != state[b])
+        mixed = facing[(count > 0) & (count < lit.shape[1])]
+        examined = np.zeros(craft.n_sides, dtype=bool)
+        examined[np.r_[a[differ], b[differ], mixed, self._neighbours(mixed)]] = True
+        examined &= is_facing
+        active = np.flatnonzero(examined)
+        level, rays = BASE_LEVEL, 0
+        while len(active) and level < MAX_LEVEL:
+            level *= 2
+            previous = fraction[active].copy()
+            centroid[active] = craft.side_centroids[active]
+            lit = self._cast(active, level, direction)
+            fraction[active] = self._shares(active, lit, level, centroid)
+            rays += lit.size
+            now = fraction[active]
+            partly = (now > 0) & (now < 1)
+            joining = self._neighbours(active[partly])
+            joining = joining[is_facing[joining] & ~examined[joining]]
+            examined[joining] = True
+            uniform = ~partly & (now == previous) & (level >= UNIFORM_LEVEL)
+            converged = (np.abs(now - previous) <= tolerance) & (level**-2 <= tolerance)
+            active = np.r_[active[~(uniform | converged)], joining]
+        return rays
+
+    def _cast(
+        self, sides: NDArray[np.int64], level: int, direction: NDArray[np.float64]
+    ) -> NDArray[np.bool_]:
+        """Lit flags (len(sides), level**2) of ``sides`` at ``level``, origins made on the fly in batches."""
+        per_batch = max(1, _BATCH_RAYS // level**2)
+        batches = [sides[start : start + per_batch] for start in range(0, len(sides), per_batch)]
+        if not batches:
+            return np.zeros((0, level**2), dtype=bool)
+        return np.concatenate([self._lit(self._origins_of(batch, level), direction) for batch in batches])
+
+
+@numba.njit(cache=True, nogil=True)
+def _facing_origins(
+    normals: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    ordered_origins: NDArray[np.float32],
+    order: NDArray[np.int64],
+    block_low: NDArray[np.float64],
+    block_high: NDArray[np.float64],
+    first: int,
+    last: int,
+) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
+    """Sides of ``order[first * BLOCK:last * BLOCK]`` with ``normals . direction > 0``, and their
+    origins (``ordered_origins[k]`` belongs to side ``order[k]``). The bounds of each block's normal
+    components bound ``n . direction`` over it: a block that cannot face is skipped unread, one that
+    must face is copied whole without reading normals."""
+    d0, d1, d2 = direction[0], direction[1], direction[2]
+    start, stop = first * BLOCK, min(last * BLOCK, order.shape[0])
+    width = ordered_origins.shape[1] * 3  # float32 values per side
+    facing = np.empty(stop - start, dtype=np.int64)
+    out = np.empty((stop - start, ordered_origins.shape[1], 3), dtype=np.float32)
+    source, target = ordered_origins.reshape(-1), out.reshape(-1)
+    count = 0
+    for b in range(first, last):
+        upper = lower = 0.0
+        for d, component in enumerate((d0, d1, d2)):
+            a, c = block_low[b, d] * component, block_high[b, d] * component
+            upper += max(a, c)
+            lower += min(a, c)
+        if upper <= 0.0:
+            continue
+        low, high = b * BLOCK, min((b + 1) * BLOCK, stop)
+        if lower > 0.0:  # every side of the block faces the source: one contiguous copy
+            for j in range(high - low):
+                facing[count + j] = order[low + j]
+            for j in range((high - low) * width):
+                target[count * width + j] = source[low * width + j]
+            count += high - low
+            continue
+        for k in range(low, high):
+            s = order[k]
+            if normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
+                facing[count] = s
+                for j in range(width):
+                    target[count * width + j] = source[k * width + j]
+                count += 1
+    return facing[:count], out[:count]
+
+
+@numba.njit(cache=True, nogil=True)
+def _sample_origins(
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    sides: NDArray[np.int64],
+    barycentric: NDArray[np.float64],
+    centre: NDArray[np.float64],
+    half_size: float,
+    offset_m: float,
+) -> NDArray[np.float32]:
+    """Sample points of ``sides`` pushed ``offset_m`` along their normals, in float32 scene
+    coordinates ``(p - centre) / half_size``, (len(sides), n_points, 3)."""
+    points = barycentric.shape[0]
+    out = np.empty((sides.shape[0], points, 3), dtype=np.float32)
+    for k in range(sides.shape[0]):
+        s = sides[k]
+        f = side_facet[s]
+        for p in range(points):
+            w0, w1, w2 = barycentric[p, 0], barycentric[p, 1], barycentric[p, 2]
+            for d in range(3):
+                x = w0 * triangles[f, 0, d] + w1 * triangles[f, 1, d] + w2 * triangles[f, 2, d]
+                out[k, p, d] = (x + offset_m * normals[s, d] - centre[d]) / half_size
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _lit_shares(lit: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """Share of each row of lit flags (n, points) that is lit, (n,)."""
+    n, points = lit.shape
+    share = np.empty(n)
+    for k in range(n):
+        count = 0
+        for p in range(points):
+            count += lit[k, p]
+        share[k] = count / points
+    return share
+
+
+@numba.njit(cache=True, nogil=True)
+def _lit_centroids(
+    sides: NDArray[np.int64],
+    lit: NDArray[np.bool_],
+    barycentric: NDArray[np.float64],
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    centroid: NDArray[np.float64],
+) -> None:
+    """Write the mean of the lit points of each part-lit side of ``sides`` (lit flags (n, points) of
+    its points at ``barycentric``) into ``centroid[s]``: the triangle at their mean barycentric."""
+    n, points = lit.shape
+    for k in range(n):
+        count = 0
+        w0 = w1 = w2 = 0.0
+        for p in range(points):
+            if lit[k, p]:
+                count += 1
+                w0 += barycentric[p, 0]
+                w1 += barycentric[p, 1]
+                w2 += barycentric[p, 2]
+        if 0 < count < points:
+            f = side_facet[sides[k]]
+            for d in range(3):
+                corner = w0 * triangles[f, 0, d] + w1 * triangles[f, 1, d] + w2 * triangles[f, 2, d]
+                centroid[sides[k], d] = corner / count

@@ -1,0 +1,131 @@
+"""Disk store of geometry-only precomputations: verified ``.npz`` entries keyed by a hash of their inputs.
+
+An entry is written atomically (a temporary file in the same directory, then ``os.replace``) and holds
+its arrays, the key it was made for and a SHA-256 checksum of both. Reading checks key and checksum, so a
+truncated, damaged or stale file is reported and never used. Cache keys hash the model's geometry
+(triangles, facet kinds and sides) and the caller's settings; materials do not enter.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+import zipfile
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.geometry.spacecraft import Spacecraft
+
+#: Version of the entry layout; part of every key, so a new layout never reads an old file.
+FORMAT_VERSION = 1
+#: Environment variable naming the cache directory.
+CACHE_ENV = "SUNWIND_CACHE_DIR"
+
+_KEY, _CHECKSUM = "key", "checksum"
+
+
+class CacheEntryError(Exception):
+    """A cache entry that cannot be used; ``str()`` says why: "was corrupt (...)", "was stale (...)" or
+    "could not be read (...)"."""
+
+
+def default_cache_dir() -> Path:
+    """``$SUNWIND_CACHE_DIR``, else ``$XDG_CACHE_HOME/sunwind``, else ``~/.cache/sunwind``."""
+    if os.environ.get(CACHE_ENV):
+        return Path(os.environ[CACHE_ENV])
+    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "sunwind"
+
+
+def cache_directory(cache_dir: str | os.PathLike | bool | None) -> Path | None:
+    """The directory ``cache_dir`` asks for: None or True -> :func:`default_cache_dir`, False -> None."""
+    if cache_dir is False:
+        return None
+    if cache_dir is None or cache_dir is True:
+        return default_cache_dir()
+    return Path(cache_dir)
+
+
+def geometry_key(craft: Spacecraft, settings: Mapping[str, object]) -> str:
+    """SHA-256 (hex) of ``FORMAT_VERSION``, the model's geometry and ``settings`` (JSON-serialisable).
+
+    The geometry is the facet corners (float64), facet kinds, and each side's facet and sign, in fixed
+    little-endian dtypes so the key is the same on every machine.
+    """
+    digest = hashlib.sha256()
+    digest.update(json.dumps({"format": FORMAT_VERSION, **settings}, sort_keys=True).encode())
+    for array, dtype in (
+        (craft.triangles, "<f8"),
+        (craft.facet_kind, "<i1"),
+        (craft.side_facet, "<i8"),
+        (craft.side_sign, "<f8"),
+    ):
+        data = np.ascontiguousarray(array, dtype=dtype)
+        digest.update(repr(data.shape).encode())
+        digest.update(data.tobytes())
+    return digest.hexdigest()
+
+
+def _checksum(arrays: Mapping[str, NDArray]) -> str:
+    """SHA-256 (hex) of the arrays' names, dtypes, shapes and bytes, in name order."""
+    digest = hashlib.sha256()
+    for name in sorted(arrays):
+        data = np.ascontiguousarray(arrays[name])
+        digest.update(f"{name}:{data.dtype.str}:{data.shape}".encode())
+        digest.update(data.tobytes())
+    return digest.hexdigest()
+
+
+def read_entry(path: Path, key: str) -> dict[str, NDArray]:
+    """The arrays of the entry at ``path``, checked against ``key`` and its stored checksum.
+
+    Raises
+    ------
+    FileNotFoundError
+        There is no entry.
+    CacheEntryError
+        The file is truncated or altered ("was corrupt ..."), was made for other inputs ("was stale
+        ..."), or cannot be opened ("could not be read ...").
+    """
+    if not path.is_file():
+        raise FileNotFoundError(path)
+    try:
+        with np.load(path, allow_pickle=False) as stored:
+            arrays = {name: stored[name] for name in stored.files}
+    except (ValueError, EOFError, zipfile.BadZipFile) as error:
+        raise CacheEntryError(f"was corrupt ({type(error).__name__}: {error})") from error
+    except OSError as error:
+        raise CacheEntryError(f"could not be read ({error})") from error
+    stored_key, checksum = arrays.pop(_KEY, None), arrays.pop(_CHECKSUM, None)
+    if stored_key is None or checksum is None:
+        raise CacheEntryError("was corrupt (no key or checksum)")
+    if str(checksum) != _checksum({_KEY: stored_key, **arrays}):
+        raise CacheEntryError("was corrupt (checksum mismatch)")
+    if str(stored_key) != key:
+        raise CacheEntryError("was stale (made for other geometry or settings)")
+    return arrays
+
+
+def write_entry(path: Path, key: str, arrays: Mapping[str, NDArray]) -> None:
+    """Store ``arrays`` under ``key`` at ``path`` atomically, creating the directory.
+
+    Raises
+    ------
+    OSError
+        The directory cannot be created or written; nothing is left behind.
+    """
+    path.parent.mkdir(parents=True, exist_ok=True)
+    content = {_KEY: np.array(key), **arrays}
+    content[_CHECKSUM] = np.array(_checksum(content))
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}-", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "wb") as file:
+            np.savez(file, **content)
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise

@@ -1,0 +1,431 @@
+"""Attitude sweeps: grids, lists, the table against single attitudes, checkpoints, resume, Dask, bad input."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from sunwind.forces.drag import drag
+from sunwind.forces.srp import srp
+from sunwind.forces.tables.attitudes import direction_grid, read_attitude_csv
+from sunwind.forces.tables.dataset import grid_table, open_table, write_netcdf
+from sunwind.forces.tables.sweep import DragSetup, Job, ModelRecipe, SrpSetup, records_by_field, run_sweep
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import Material
+from sunwind.meshes.primitives import sphere
+from sunwind.validation.analytic_srp import Optics, sphere_srp
+
+OPTICS = Material("paint", 0.4, 0.5, 0.1)
+#: Meshed sphere against the analytic sphere: the inscribed mesh's area error, ~2.5 / bands^2.
+SPHERE_BANDS, SPHERE_TOLERANCE = 48, 2e-3
+
+
+@pytest.fixture(scope="module")
+def model(tmp_path_factory):
+    """The box-wing written by ``sunwind mesh``, and its recipe (uniform material, wings two-sided)."""
+    from sunwind.forces.cli.app import main
+
+    path = tmp_path_factory.mktemp("sweep") / "box_wing.obj"
+    main(["mesh", "box_wing", "-o", str(path)])
+    recipe = ModelRecipe(str(path), uniform=OPTICS, two_sided=("wing*",))
+    return recipe, recipe.load()
+
+
+@pytest.fixture(scope="module")
+def air():
+    from sunwind.forces.gas.atmosphere import explicit
+
+    return explicit(3e-12, 900.0, "O:0.8,N2:0.2")
+
+
+def _jobs(craft, air, step=45.0, reflections="full"):
+    grid = direction_grid(step)
+    directions = grid.distinct[0]
+    return grid, [
+        Job("srp", directions, SrpSetup(1361.0, samples=4, reflections=_settings(reflections))),
+        Job("drag", directions, DragSetup(7600.0, air, samples=4, reflections=_settings(reflections))),
+    ]
+
+
+def _settings(mode):
+    from sunwind.forces.reflection.plan import ReflectionSettings
+
+    return ReflectionSettings(mode, rays_per_side=64)
+
+
+# ------------------------------------------------------------------------------------------ grids
+
+
+def test_grid_has_both_ends_and_shares_directions_exactly():
+    grid = direction_grid(30)
+    assert grid.azimuth_deg[[0, -1]].tolist() == [-180.0, 180.0]
+    assert grid.elevation_deg[[0, -1]].tolist() == [-90.0, 90.0]
+    assert grid.vectors.shape == (13, 7, 3)
+    np.testing.assert_array_equal(grid.vectors[0], grid.vectors[-1])  # az -180 is az 180
+    assert (grid.vectors[:, -1] == [0.0, 0.0, 1.0]).all() and (grid.vectors[:, 0] == [0.0, 0.0, -1.0]).all()
+    distinct, node = grid.distinct
+    assert len(distinct) == 12 * 5 + 2
+    np.testing.assert_array_equal(distinct[node], grid.vectors.reshape(-1, 3))
+    assert direction_grid(5).vectors.shape[:2] == (73, 37)  # 2701 nodes
+
+
+@pytest.mark.parametrize("step", [7.0, 0.0, -5.0, 100.0, math.nan])
+def test_a_step_that_does_not_divide_the_range_is_refused(step):
+    with pytest.raises(InputError, match="--step"):
+        direction_grid(step)
+
+
+# ----------------------------------------------------------------------------------- table entries
+
+
+def test_every_table_entry_equals_the_single_attitude_result(model, air):
+    recipe, craft = model
+    grid, jobs = _jobs(craft, air)
+    records = run_sweep(recipe, jobs, craft=craft, chunk=7)
+    table = grid_table(records, dict.fromkeys(("srp", "drag"), grid), {})
+    for i, az in enumerate(grid.azimuth_deg):
+        for j, el in enumerate(grid.elevation_deg):
+            u = grid.vectors[i, j]
+            light = srp(craft, u, samples=4, reflections=_settings("full"))
+            gas = drag(craft, 7600.0 * u, air, samples=4, reflections=_settings("full"))
+            at = {"sun_azimuth": az, "sun_elevation": el}
+            np.testing.assert_array_equal(table.srp_force_N.sel(at).values, light.force_N)
+            np.testing.assert_array_equal(table.srp_torque_Nm.sel(at).values, light.torque_Nm)
+            np.testing.assert_array_equal(table.srp_reflected_force_N.sel(at).values, light.reflected_force_N)
+            flow = {"flow_azimuth": az, "flow_elevation": el}
+            np.testing.assert_array_equal(table.drag_force_N.sel(flow).values, gas.force_N)
+            np.testing.assert_array_equal(table.drag_torque_Nm.sel(flow).values, gas.torque_Nm)
+            assert table.drag_CD.sel(flow).item() == gas.force_coefficients[0]
+    assert np.abs(table.srp_reflected_force_N.values).max() > 0  # the concave model does reflect
+
+
+def test_table_entry_equals_the_command_line(model, run_cli, tmp_path):
+    recipe, _ = model
+    table_path = tmp_path / "t.nc"
+    flags = ["--reflectivity", "0.4", "--specular-fraction", "0.5", "--transmissivity", "0.1"]
+    flags += ["--two-sided", "wing*", "--samples", "4", "--reflections", "full"]
+    air_flags = ["--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:0.2"]
+    code, out, err = run_cli(
+        "sweep", recipe.mesh, *flags, *air_flags, "--speed", "7600", "--step", "45", "-o", table_path
+    )
+    assert code == 0, err
+    table = open_table(table_path)
+    code, out, err = run_cli("srp", recipe.mesh, *flags, "--sun-azel", "-135", "45", "--json")
+    single = json.loads(out)
+    value = table.srp_force_N.sel(sun_azimuth=-135, sun_elevation=45).values
+    assert value.tolist() == single["force_N"]
+    code, out, err = run_cli(
+        "drag", recipe.mesh, *flags, *air_flags, "--speed", "7600", "--flow-azel", "90", "-45", "--json"
+    )
+    single = json.loads(out)
+    value = table.drag_torque_Nm.sel(flow_azimuth=90, flow_elevation=-45).values
+    assert value.tolist() == single["torque_Nm"]
+    for key in (
+        "frame",
+        "reference_point_m",
+        "flux_W_m2",
+        "mesh_sha256",
+        "sunwind_version",
+        "dynamic_pressure_Pa",
+    ):
+        assert key in table.attrs
+    assert table.srp_force_N.attrs["units"] == "N"
+
+
+def test_sphere_table_equals_the_analytic_sphere():
+    craft_optics = Optics(0.4, 0.5, 0.1)
+    from sunwind.geometry.spacecraft import build_spacecraft
+
+    craft = build_spacecraft(sphere(1.0, SPHERE_BANDS), uniform=OPTICS)
+    grid = direction_grid(30)
+    jobs = [
+        Job(
+            "srp",
+            grid.distinct[0],
+            SrpSetup(1361.0, reference_point_m=(0.0, 0.0, 0.0), samples=1, reflections=_settings("none")),
+        )
+    ]
+    records = run_sweep(ModelRecipe("<memory>"), jobs, craft=craft)
+    table = grid_table(records, {"srp": grid}, {})
+    forces = table.srp_force_N.values.reshape(-1, 3)
+    expected = np.array([sphere_srp(1.0, u, craft_optics).force_N for u in grid.vectors.reshape(-1, 3)])
+    error = np.linalg.norm(forces - expected, axis=1) / np.linalg.norm(expected, axis=1)
+    assert error.max() < SPHERE_TOLERANCE
+
+
+# -------------------------------------------------------------------------------- checkpoint, resume
+
+
+class _Stop(Exception):
+    pass
+
+
+def test_an_interrupted_sweep_resumes_to_the_same_table(model, air, tmp_path):
+    recipe, craft = model
+    grid, jobs = _jobs(craft, air, reflections="none")
+    whole = run_sweep(recipe, jobs, craft=craft, chunk=5)
+    checkpoint = tmp_path / "t.nc.checkpoint"
+    seen = []
+
+    def stop_after_two_chunks(done: int) -> None:
+        seen.append(done)
+        if len(seen) == 3:
+            raise _Stop
+
+    with pytest.raises(_Stop):
+        run_sweep(recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint, progress=stop_after_two_chunks)
+    assert len(list(checkpoint.glob("*.npy"))) == 2
+    progress = []
+    resumed = run_sweep(
+        recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint, resume=True, progress=progress.append
+    )
+    assert progress[0] == 10  # the two chunks kept are not recomputed
+    for kind in whole:
+        np.testing.assert_array_equal(resumed[kind], whole[kind])
+    assert not checkpoint.exists()  # removed once finished
+    a = write_netcdf(grid_table(whole, dict.fromkeys(whole, grid), {}), tmp_path / "a.nc")
+    b = write_netcdf(grid_table(resumed, dict.fromkeys(whole, grid), {}), tmp_path / "b.nc")
+    xr.testing.assert_identical(xr.load_dataset(a), xr.load_dataset(b))
+
+
+def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
+    recipe, craft = model
+    _, jobs = _jobs(craft, air, reflections="none")
+    checkpoint = tmp_path / "c"
+
+    def stop(done: int) -> None:
+        if done:
+            raise _Stop
+
+    with pytest.raises(_Stop):
+        run_sweep(recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint, progress=stop)
+    with pytest.raises(InputError, match="--resume"):
+        run_sweep(recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint)
+    other = [Job(j.kind, j.directions, type(j.setup)(**{**j.setup.__dict__, "samples": 9})) for j in jobs]
+    with pytest.raises(InputError, match="srp_settings"):
+        run_sweep(recipe, other, craft=craft, chunk=5, checkpoint=checkpoint, resume=True)
+    paint = ModelRecipe(recipe.mesh, uniform=Material("paint", 0.2, 0.5, 0.1), two_sided=recipe.two_sided)
+    with pytest.raises(InputError, match="model"):
+        run_sweep(paint, jobs, craft=craft, chunk=5, checkpoint=checkpoint, resume=True)
+
+
+def test_killed_command_line_sweep_resumes_to_the_same_file(model, tmp_path):
+    """A real process killed after its first checkpoint chunk, then resumed, writes the same CSV."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    recipe, _ = model
+    args = [
+        sys.executable,
+        "-c",
+        "from sunwind.forces.cli.app import main; main()",
+        "sweep",
+        recipe.mesh,
+        "--reflectivity",
+        "0.4",
+        "--specular-fraction",
+        "0.5",
+        "--two-sided",
+        "wing*",
+        "--srp",
+        "--samples",
+        "4",
+        "--reflections",
+        "none",
+        "--step",
+        "15",
+        "--chunk",
+        "8",
+    ]
+    reference = tmp_path / "whole.csv"
+    subprocess.run([*args, "-o", reference], check=True, capture_output=True, env=os.environ.copy())
+    target = tmp_path / "killed.csv"
+    process = subprocess.Popen([*args, "-o", target], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    checkpoint = tmp_path / "killed.csv.checkpoint"
+    deadline = time.monotonic() + 120
+    while not list(checkpoint.glob("*.npy")) and time.monotonic() < deadline and process.poll() is None:
+        time.sleep(0.05)
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    assert not target.exists() and list(checkpoint.glob("*.npy"))
+    subprocess.run([*args, "-o", target, "--resume"], check=True, capture_output=True)
+    assert target.read_bytes() == reference.read_bytes()
+
+
+# ------------------------------------------------------------------------------------------- lists
+
+
+def test_attitude_list_with_quaternions_turns_inertial_directions_into_the_body_frame(tmp_path):
+    path = tmp_path / "a.csv"
+    half = math.sqrt(0.5)
+    # body turned +90 deg about z: the inertial +x Sun is at body -y
+    path.write_text(f"qw,qx,qy,qz,sun_x,sun_y,sun_z\n1,0,0,0,2,0,0\n{half},0,0,{half},1,0,0\n")
+    attitudes = read_attitude_csv(path)
+    np.testing.assert_allclose(attitudes.sun_vectors, [[1, 0, 0], [0, -1, 0]], atol=1e-15)
+    assert attitudes.flow_vectors is None and len(attitudes) == 2
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ("sun_x,sun_y\n1,0\n", "sun_z"),
+        ("a,b,c\n1,2,3\n", "no direction columns"),
+        ("sun_x,sun_y,sun_z\n0,0,0\n", "zero"),
+        ("sun_x,sun_y,sun_z\n1,nan,0\n", "NaN"),
+        ("sun_x,sun_y,sun_z\n1,x,0\n", "not all numbers"),
+        ("sun_x,sun_y,sun_z\n", "at least one"),
+    ],
+)
+def test_bad_attitude_lists_are_refused(tmp_path, text, match):
+    path = tmp_path / "a.csv"
+    path.write_text(text)
+    with pytest.raises(InputError, match=match):
+        read_attitude_csv(path)
+
+
+def test_list_sweep_from_the_command_line(model, run_cli, tmp_path):
+    recipe, craft = model
+    path = tmp_path / "list.csv"
+    path.write_text("sun_x,sun_y,sun_z,flow_x,flow_y,flow_z\n1,0,0,0,1,0\n0,0,1,-1,0,0\n")
+    out_path = tmp_path / "list.csv.nc"
+    code, _out, err = run_cli(
+        "sweep",
+        recipe.mesh,
+        "--reflectivity",
+        "0.4",
+        "--specular-fraction",
+        "0.5",
+        "--transmissivity",
+        "0.1",
+        "--two-sided",
+        "wing*",
+        "--samples",
+        "4",
+        "--reflections",
+        "none",
+        "--attitudes",
+        path,
+        "--speed",
+        "7600",
+        "--density",
+        "3e-12",
+        "--temperature",
+        "900",
+        "--composition",
+        "O:0.8,N2:0.2",
+        "-o",
+        out_path,
+    )
+    assert code == 0, err
+    table = open_table(out_path)
+    assert table.sizes["attitude"] == 2
+    single = srp(craft, [0, 0, 1], samples=4, reflections="none")
+    np.testing.assert_array_equal(table.srp_force_N.values[1], single.force_N)
+
+
+# --------------------------------------------------------------------------------------- bad input
+
+
+def test_unwritable_output_is_refused_before_any_work(run_cli, tmp_path):
+    code, _out, err = run_cli("sweep", tmp_path / "missing.obj", "--srp", "-o", tmp_path / "no" / "t.nc")
+    assert code == 1 and "directory does not exist" in err and "Traceback" not in err
+
+
+def test_unknown_extension_and_wrong_format_are_refused(run_cli, tmp_path):
+    code, _, err = run_cli("sweep", tmp_path / "m.obj", "-o", tmp_path / "t.dat")
+    assert code == 1 and "--format" in err
+    code, _, err = run_cli("sweep", tmp_path / "m.obj", "--drag", "-o", tmp_path / "t.xml")
+    assert code == 1 and "basilisk holds srp only" in err
+
+
+def test_unreachable_scheduler_is_reported(model, run_cli, tmp_path):
+    pytest.importorskip("dask.distributed")
+    recipe, _ = model
+    code, _, err = run_cli(
+        "sweep",
+        recipe.mesh,
+        "--reflectivity",
+        "0.4",
+        "--specular-fraction",
+        "0.5",
+        "--two-sided",
+        "wing*",
+        "--srp",
+        "--step",
+        "90",
+        "--scheduler",
+        "tcp://127.0.0.1:9",
+        "-o",
+        tmp_path / "t.nc",
+    )
+    assert code == 1 and "cannot reach the Dask scheduler" in err
+
+
+def test_dask_local_cluster_gives_the_local_result(model, air):
+    pytest.importorskip("dask.distributed")
+    recipe, craft = model
+    _grid, jobs = _jobs(craft, air, step=45.0)
+    local = run_sweep(recipe, jobs, craft=craft, chunk=9)
+    distributed = run_sweep(recipe, jobs, chunk=9, scheduler="local", workers=2)
+    for kind in local:
+        np.testing.assert_array_equal(distributed[kind], local[kind])
+    assert set(records_by_field("drag", local["drag"])) >= {"force_N", "CD", "CM"}
+
+
+# ----------------------------------------------------------------------------------- formats, plots
+
+FLAGS = ("--reflectivity", "0.4", "--specular-fraction", "0.5", "--two-sided", "wing*", "--samples", "1")
+AIR = ("--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:0.2", "--speed", "7600")
+
+
+@pytest.mark.parametrize(
+    ("name", "extra", "written"),
+    [
+        ("t.nc", (), ["t.nc"]),
+        ("t.csv", (), ["t.srp.csv", "t.drag.csv"]),
+        ("t.spo", (), ["t.srp.spo", "t.drag.spo"]),
+        ("t.xml", (), ["t.xml"]),
+        ("aero", ("--format", "tudat"), ["aero_CFx.txt", "aero_CMz.txt"]),
+    ],
+)
+def test_every_format_is_written_and_named(model, run_cli, tmp_path, name, extra, written):
+    recipe, _ = model
+    code, out, err = run_cli(
+        "sweep",
+        recipe.mesh,
+        *FLAGS,
+        *AIR,
+        "--reflections",
+        "none",
+        "--step",
+        "45",
+        "-o",
+        tmp_path / name,
+        *extra,
+    )
+    assert code == 0, err
+    for file in written:
+        assert (tmp_path / file).stat().st_size > 0
+        assert str(tmp_path / file) in out
+
+
+def test_plot_writes_maps_and_a_pressure_view(model, run_cli, tmp_path):
+    recipe, _ = model
+    table = tmp_path / "t.nc"
+    code, _, err = run_cli(
+        "sweep", recipe.mesh, *FLAGS, *AIR, "--reflections", "none", "--step", "45", "-o", table
+    )
+    assert code == 0, err
+    code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
+    assert code == 0, err
+    pngs = sorted((tmp_path / "plots").glob("*.png"))
+    assert len(pngs) == 5  # SRP and drag force and torque maps (x, y, z panels each), one 3-D view
+    assert any("pressure" in p.name for p in pngs)
+    assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in pngs)
