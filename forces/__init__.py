@@ -1,30 +1,59 @@
-"""Surface-interaction physics: the SRP force law, gas-surface laws, one-attitude evaluation of SRP and
-drag, the atmosphere, the CLI and the benchmark."""
+"""Surface-interaction physics of a spacecraft model: solar-radiation pressure and free-molecular drag
+at one attitude or a batch, attitude sweeps into tables, and the file formats simulators read.
+
+Subpackages, each importing only those before it: :mod:`~sunwind.forces.radiation` (the force law and
+the direct pass), :mod:`~sunwind.forces.reflection` (beam chains and the diffuse balance),
+:mod:`~sunwind.forces.gas` (atmosphere, gas-surface laws, flow shadow, molecular exchange),
+:mod:`~sunwind.forces.tables` (attitudes, sweeps, interpolation), :mod:`~sunwind.forces.export`
+(netCDF, CSV, SPAD, Basilisk, Tudat) and :mod:`~sunwind.forces.cli` (the ``sunwind`` command).
+
+>>> from sunwind.forces import load, srp
+>>> model = load("meshes/data/sample_spacecraft.usda")  # doctest: +SKIP
+>>> srp(model, [0.3, -0.5, 0.8]).force_N  # doctest: +SKIP
+"""
 
 from sunwind.forces.drag import drag
-from sunwind.forces.drag_result import DragResult
-from sunwind.forces.radiation.law import (
+from sunwind.forces.gas import Atmosphere, circular_speed, corotation_speed, explicit, nrlmsis
+from sunwind.forces.model import Model, ModelSource, load
+from sunwind.forces.radiation import (
     SOLAR_FLUX_1AU,
     SPEED_OF_LIGHT,
     radiation_pressure,
     solar_flux,
     surface_forces,
 )
-from sunwind.forces.reflection.plan import PowerBalance, ReflectionSettings, model_view_factors
-from sunwind.forces.results import SrpResult
+from sunwind.forces.reflection import PowerBalance, ReflectionSettings, model_view_factors
+from sunwind.forces.results import AttitudeResult, DragBatch, DragResult, ResultBatch, SrpBatch, SrpResult
 from sunwind.forces.srp import srp
+from sunwind.forces.tables import DragSetup, SrpSetup, SweepRun, sweep
 
 __all__ = [
     "SOLAR_FLUX_1AU",
     "SPEED_OF_LIGHT",
+    "Atmosphere",
+    "AttitudeResult",
+    "DragBatch",
     "DragResult",
+    "DragSetup",
+    "Model",
+    "ModelSource",
     "PowerBalance",
     "ReflectionSettings",
+    "ResultBatch",
+    "SrpBatch",
     "SrpResult",
+    "SrpSetup",
+    "SweepRun",
+    "circular_speed",
+    "corotation_speed",
     "drag",
+    "explicit",
+    "load",
     "model_view_factors",
+    "nrlmsis",
     "radiation_pressure",
     "solar_flux",
     "srp",
     "surface_forces",
+    "sweep",
 ]

@@ -11,19 +11,27 @@ from __future__ import annotations
 import os
 import platform
 import resource
+import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
+from pathlib import Path
 
 import numpy as np
 
 from sunwind.forces.drag import drag
-from sunwind.forces.gas.atmosphere import circular_speed, nrlmsis
+from sunwind.forces.gas import circular_speed, nrlmsis
+from sunwind.forces.model import load
+from sunwind.forces.reflection import ReflectionSettings, model_view_factors
 from sunwind.forces.reflection.diffuse import diffuse_exchange
-from sunwind.forces.reflection.plan import ReflectionSettings, model_view_factors
 from sunwind.forces.srp import srp
-from sunwind.geometry.rays.shadows import level_for_samples
+from sunwind.forces.tables import DragSetup, Job, SrpSetup, SweepRun, direction_grid, run_jobs
+from sunwind.forces.tables.cluster import timed_on_local_cluster
+from sunwind.forces.tables.sweep import precompute
+from sunwind.geometry.parallel import thread_count
+from sunwind.geometry.rays.shadows import level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.meshes.samples import write_sample_files
 
 
 @dataclass(frozen=True)
@@ -91,7 +99,7 @@ def _reflection_figures(
     view_s = time.perf_counter() - start
     view_peak = _peak_MB()
     start = time.perf_counter()
-    _ = diffuse_exchange(craft, view).responses
+    _ = diffuse_exchange(craft, settings).responses
     setup_s = time.perf_counter() - start
     srp(craft, directions[0], samples=samples, reflections=settings)
     times, rays = [], 0
@@ -172,7 +180,7 @@ def benchmark(
     # in the caches
     times, raw_times, rays = [], [], 0
     for k, u in enumerate(directions):
-        _, origins = craft.sampler.facing_rays(u, level)
+        _, origins = side_sampler(craft).facing_rays(u, level)
         flat = origins.reshape(-1, 3)
         along = np.broadcast_to(u.astype(np.float32), flat.shape)
         for turn in (k % 2, 1 - k % 2):
@@ -198,7 +206,7 @@ def benchmark(
         sides=craft.n_sides,
         attitudes=attitudes,
         samples_per_side=level**2,
-        threads=scene.threads,
+        threads=thread_count(),
         load_s=load_s,
         scene_build_s=scene_build,
         first_call_s=first_call,
@@ -253,55 +261,44 @@ def sweep_benchmark(
     """A whole grid sweep of SRP and drag with full reflections on the generated sample, then the
     speed-up of a local Dask cluster of 2 one-thread workers over 1 on ``dask_attitudes`` of its
     directions (timed once every worker has the model; results checked identical)."""
-    import tempfile
-    from pathlib import Path
-
-    from sunwind.forces.tables.attitudes import direction_grid
-    from sunwind.forces.tables.cluster import timed_on_local_cluster
-    from sunwind.forces.tables.sweep import DragSetup, Job, ModelRecipe, SrpSetup, precompute, run_sweep
-    from sunwind.meshes.samples import write_sample_files
-
     grid = direction_grid(step_deg)
     directions = grid.distinct[0]
     with tempfile.TemporaryDirectory(prefix="sunwind-bench-") as directory:
         files = write_sample_files(Path(directory), triangles)
-        recipe = ModelRecipe(str(files["obj"]), str(files["toml"]))
-        craft = recipe.load()
+        model = load(files["obj"], files["toml"])
+        craft = model.craft
         full = ReflectionSettings("full")
         jobs = [
-            Job("srp", directions, SrpSetup(1361.0, samples=samples, reflections=full)),
+            Job(SrpSetup(flux_W_m2=1361.0, samples=samples, reflections=full), directions),
             Job(
-                "drag",
+                DragSetup(
+                    speed_m_s=circular_speed(400.0),
+                    atmosphere=nrlmsis(400.0),
+                    samples=samples,
+                    reflections=full,
+                ),
                 directions,
-                DragSetup(circular_speed(400.0), nrlmsis(400.0), samples=samples, reflections=full),
             ),
         ]
         start = time.perf_counter()
-        precompute(craft, jobs)
-        evaluate = {job.kind: job.setup.evaluate for job in jobs}
-        evaluate["srp"](craft, directions[0])  # compiles what the first attitude compiles
-        evaluate["drag"](craft, directions[0])
+        precompute(model, jobs)
+        for job in jobs:
+            job.setup.evaluate(model, directions[:1])  # compiles what the first attitude compiles
         precompute_s = time.perf_counter() - start
         total = 2 * len(directions)
         timings: dict[str, float] = {}
         start = time.perf_counter()
         for job in jobs:
             began = time.perf_counter()
-            run_sweep(
-                recipe,
-                [job],
-                craft=craft,
-                progress=progress
-                and (
-                    lambda done, k=job.kind: progress(done + (len(directions) if k == "drag" else 0), total)
-                ),
-            )
+            offset = len(directions) if job.kind == "drag" else 0
+            counted = progress and (lambda done, offset=offset: progress(done + offset, total))
+            run_jobs(model, [job], SweepRun(progress=counted))
             timings[job.kind] = time.perf_counter() - began
         sweep_s = time.perf_counter() - start
-        subset = [Job(job.kind, directions[:dask_attitudes], job.setup) for job in jobs]
+        subset = [Job(job.setup, directions[:dask_attitudes]) for job in jobs]
         pending = [(job, lo, hi) for job in subset for lo, hi in job.chunks(8)]
-        one, first = timed_on_local_cluster(recipe, pending, 1)
-        two, second = timed_on_local_cluster(recipe, pending, 2)
+        one, first = timed_on_local_cluster(model, pending, 1)
+        two, second = timed_on_local_cluster(model, pending, 2)
     return SweepReport(
         triangles=craft.n_facets,
         step_deg=grid.step_deg,
@@ -317,6 +314,8 @@ def sweep_benchmark(
         dask_1_worker_s=one,
         dask_2_workers_s=two,
         dask_speedup=one / two,
-        dask_identical=all(np.array_equal(a, b) for a, b in zip(first, second, strict=True)),
+        dask_identical=all(
+            np.array_equal(a[name], b[name]) for a, b in zip(first, second, strict=True) for name in a
+        ),
         machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
     )

@@ -1,80 +1,118 @@
-"""The result of one attitude: forces, torques, areas and how they were obtained, body frame, SI."""
+"""Results of one attitude and of a batch of attitudes: force, torque, their direct and reflected parts,
+areas and how they were obtained; body frame, SI units (METHOD.md "Outputs and tables").
+
+:class:`SrpResult` and :class:`DragResult` share :class:`AttitudeResult`: the same field names for
+what both have (``force_N``, ``rays``, ``facet_force_N``, ``azel_deg``, ...), and the same JSON keys.
+A batch (:class:`SrpBatch`, :class:`DragBatch`) holds one result per attitude and gives every numeric
+field stacked over them, ``(n,)`` or ``(n, 3)``.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Generic, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.radiation.law import surface_forces
-from sunwind.forces.reflection.plan import PowerBalance, Reflected, ReflectionSettings, interference
+from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings, interference
+from sunwind.geometry.directions import vector_to_azel
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.geometry.views.view_factors import ViewFactors
 
+#: The frame every vector is given in.
 FRAME = "body frame of the mesh"
+#: How every aerodynamic coefficient is normalised (METHOD.md "Outputs and tables").
+NORMALISATION = "C = F / (q A_ref), C_M = M / (q A_ref L_ref), q = rho V^2 / 2 (total density)"
+#: The aerodynamic axes the force coefficients are taken along.
+AXES = (
+    "drag along -v_rel; lift along the body +z axis made normal to v_rel (body +x when v_rel is along z); "
+    "side = lift x drag"
+)
+#: What the panel method is good for, stated in every drag result.
+VALIDITY = (
+    "free-molecular flow (Knudsen number >> 1, above ~150 km); flow shadowing exact on convex shapes "
+    "at any speed ratio, approximate on concave ones below speed ratio 3"
+)
+
+
+@dataclass(frozen=True)
+class GasReflected:
+    """What the exchange of re-emitted molecules between sides adds to the panel law."""
+
+    mode: str
+    force_N: NDArray[np.float64]
+    torque_Nm: NDArray[np.float64]
+    view: ViewFactors | None
+    k_is: float | None
 
 
 @dataclass(frozen=True, eq=False)
-class SrpResult:
-    """Solar-radiation pressure at one attitude; body frame, SI units.
+class AttitudeResult:
+    """What a solar-pressure and a free-molecular result of one attitude share; body frame, SI.
 
     Attributes
     ----------
-    sun_vector : (3,) float64
-        Unit vector from the spacecraft toward the Sun.
-    flux_W_m2 : float
-        Solar flux at the spacecraft.
-    pressure_Pa : float
-        ``P = flux / c``.
-    force_N : (3,) float64
-        Total force: direct plus reflected.
-    torque_Nm : (3,) float64
-        Total torque about ``reference_point_m``: direct plus reflected.
+    force_N, torque_Nm : (3,) float64
+        Totals, direct plus reflected; torque about ``reference_point_m``.
     direct_force_N, direct_torque_Nm : (3,) float64
-        The direct law, eq. (4), on the lit sides: every reflected or transmitted photon escapes.
-    reflected : Reflected
-        What inter-reflection changes: force, torque, power balance, chain and view-factor details.
+        The surface law on every side with shadowing, every reflected photon or re-emitted molecule
+        leaving to infinity.
+    reflected : Reflected or GasReflected
+        What inter-reflection (light) or the exchange of re-emitted molecules changes.
     settings : ReflectionSettings
         The inter-reflection settings asked for.
     reference_point_m : (3,) float64
         Point the torque is taken about.
     reference_point : str
         Where it came from: "user", "volume centroid" or "area centroid".
-    lit_area_m2 : float
-        Area of all lit side parts.
     projected_area_m2 : float
-        Lit area projected on the plane normal to the Sun vector: the shadow the spacecraft casts.
+        Lit area projected on the plane normal to the attitude's direction: the shadow the spacecraft
+        casts in the Sun or in the flow.
     rays : int
         Shadow rays cast.
     sampling : str
         How sides were sampled for shadowing.
     craft : Spacecraft
         The model evaluated.
-    illumination : Illumination
-        Lit share and lit centroid of every side.
 
-    Per-side and per-facet forces and torques (of the direct law) are computed on first access.
+    Both kinds give ``side_force_N`` and ``side_torque_Nm`` (n_sides, 3): the direct force on each side
+    and its torque about the reference point, which :attr:`facet_force_N` and :attr:`facet_torque_Nm`
+    sum onto the facets.
     """
 
-    sun_vector: NDArray[np.float64]
-    flux_W_m2: float
-    pressure_Pa: float
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
     direct_force_N: NDArray[np.float64]
     direct_torque_Nm: NDArray[np.float64]
-    reflected: Reflected
+    reflected: Reflected | GasReflected
     settings: ReflectionSettings
     reference_point_m: NDArray[np.float64]
     reference_point: str
-    lit_area_m2: float
     projected_area_m2: float
     rays: int
     sampling: str
     craft: Spacecraft = field(repr=False)
-    illumination: Illumination = field(repr=False)
+
+    @property
+    def direction(self) -> NDArray[np.float64]:
+        """Unit vector of the attitude, body frame: toward the Sun, or along ``v_rel``."""
+        raise NotImplementedError
+
+    @property
+    def azel_deg(self) -> tuple[float, float]:
+        """Azimuth ``atan2(y, x)`` and elevation ``asin(z)`` of :attr:`direction` [deg]."""
+        return vector_to_azel(self.direction)
+
+    @property
+    def reflections(self) -> str:
+        """The inter-reflection mode applied ("auto" resolved)."""
+        return self.reflected.mode
 
     @property
     def reflected_force_N(self) -> NDArray[np.float64]:
@@ -87,9 +125,71 @@ class SrpResult:
         return self.reflected.torque_Nm
 
     @property
-    def reflections(self) -> str:
-        """Inter-reflection included: "none", "specular" or "full" ("auto" resolved)."""
-        return self.reflected.mode
+    def facet_force_N(self) -> NDArray[np.float64]:
+        """Direct force on each facet, both sides summed [N], (n_facets, 3)."""
+        return _per_facet(self.craft.side_facet, self.side_force_N, self.craft.n_facets)
+
+    @property
+    def facet_torque_Nm(self) -> NDArray[np.float64]:
+        """Torque of each facet's direct force about the reference point [N m], (n_facets, 3)."""
+        return _per_facet(self.craft.side_facet, self.side_torque_Nm, self.craft.n_facets)
+
+    def to_json(self) -> dict:
+        """Plain-JSON summary; keys carry their units."""
+        return {
+            "frame": FRAME,
+            "force_N": self.force_N.tolist(),
+            "torque_Nm": self.torque_Nm.tolist(),
+            "reference_point_m": self.reference_point_m.tolist(),
+            "reference_point": self.reference_point,
+            "direct": {"force_N": self.direct_force_N.tolist(), "torque_Nm": self.direct_torque_Nm.tolist()},
+            "reflected": {
+                "force_N": self.reflected_force_N.tolist(),
+                "torque_Nm": self.reflected_torque_Nm.tolist(),
+            },
+            "reflections": self.reflections,
+            "reflections_requested": self.settings.mode,
+            "projected_area_m2": self.projected_area_m2,
+            "rays": self.rays,
+            "sampling": self.sampling,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class SrpResult(AttitudeResult):
+    """Solar-radiation pressure at one attitude; body frame, SI units (fields of
+    :class:`AttitudeResult`, and those below).
+
+    Attributes
+    ----------
+    sun_vector : (3,) float64
+        Unit vector from the spacecraft toward the Sun.
+    flux_W_m2 : float
+        Solar flux at the spacecraft.
+    pressure_Pa : float
+        ``P = flux / c``.
+    lit_area_m2 : float
+        Area of all lit side parts.
+    illumination : Illumination
+        Lit share and lit centroid of every side.
+
+    Per-side and per-facet forces and torques (of the direct law) are computed on first access.
+    """
+
+    sun_vector: NDArray[np.float64] = field(kw_only=True)
+    flux_W_m2: float = field(kw_only=True)
+    pressure_Pa: float = field(kw_only=True)
+    lit_area_m2: float = field(kw_only=True)
+    illumination: Illumination = field(kw_only=True, repr=False)
+
+    @property
+    def direction(self) -> NDArray[np.float64]:
+        return self.sun_vector
+
+    @property
+    def sun_azel_deg(self) -> tuple[float, float]:
+        """Azimuth and elevation of the Sun vector [deg] (:attr:`azel_deg`)."""
+        return self.azel_deg
 
     @property
     def power(self) -> PowerBalance:
@@ -132,70 +232,259 @@ class SrpResult:
         """Torque of each side's direct force about the reference point [N m], (n_sides, 3)."""
         return np.cross(self.illumination.lit_centroid - self.reference_point_m, self.side_force_N)
 
-    @property
-    def facet_force_N(self) -> NDArray[np.float64]:
-        """Direct force on each facet, both sides summed [N], (n_facets, 3)."""
-        return _per_facet(self.craft.side_facet, self.side_force_N, self.craft.n_facets)
-
-    @property
-    def facet_torque_Nm(self) -> NDArray[np.float64]:
-        """Torque of each facet's direct force about the reference point [N m], (n_facets, 3)."""
-        return _per_facet(self.craft.side_facet, self.side_torque_Nm, self.craft.n_facets)
-
-    @property
-    def sun_azel_deg(self) -> tuple[float, float]:
-        """Azimuth ``atan2(y, x)`` and elevation ``asin(z)`` of the Sun vector [deg]."""
-        x, y, z = self.sun_vector
-        return float(np.degrees(np.arctan2(y, x))), float(np.degrees(np.arcsin(np.clip(z, -1, 1))))
-
     def to_json(self) -> dict:
-        """Plain-JSON summary; keys carry their units."""
-        az, el = self.sun_azel_deg
-        return {
-            "frame": FRAME,
+        """Plain-JSON summary; keys carry their units. ``k_is`` computes the view factors when the
+        reflections asked for did not (``none``, ``specular``)."""
+        az, el = self.azel_deg
+        out = {
+            **super().to_json(),
             "sun_vector": self.sun_vector.tolist(),
             "sun_azimuth_deg": az,
             "sun_elevation_deg": el,
             "flux_W_m2": self.flux_W_m2,
             "pressure_Pa": self.pressure_Pa,
-            "force_N": self.force_N.tolist(),
-            "torque_Nm": self.torque_Nm.tolist(),
-            "direct": {"force_N": self.direct_force_N.tolist(), "torque_Nm": self.direct_torque_Nm.tolist()},
-            "reflected": {
-                "force_N": self.reflected_force_N.tolist(),
-                "torque_Nm": self.reflected_torque_Nm.tolist(),
-            },
-            "reflections": self.reflections,
-            "reflections_requested": self.settings.mode,
             "k_is": self.k_is,
             "power": self.power.to_json(),
-            "reference_point_m": self.reference_point_m.tolist(),
-            "reference_point": self.reference_point,
             "lit_area_m2": self.lit_area_m2,
-            "projected_area_m2": self.projected_area_m2,
-            "rays": self.rays,
-            "sampling": self.sampling,
-            **self._reflection_details(),
         }
-
-    def _reflection_details(self) -> dict:
-        """How the reflected part was computed, for the JSON summary."""
-        details: dict = {}
         chains, view = self.reflected.chains, self.reflected.view
         if chains is not None:
-            details["reflection_rays"] = chains.rays
-            details["reflection_depth"] = chains.depth
-            details["reflection_cutoff"] = self.settings.cutoff
+            out["reflection_rays"] = chains.rays
+            out["reflection_depth"] = chains.depth
+            out["reflection_cutoff"] = self.settings.cutoff
         if view is not None and self.reflections == "full":
-            details["view_factors"] = {
+            out["view_factors"] = {
                 "rays_per_side": view.rays_per_side,
                 "seed": view.seed,
                 "origin": view.origin,
                 "seconds": view.seconds,
             }
-        return details
+        return out
+
+
+def aerodynamic_axes(flow_direction: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Unit drag, side and lift directions (rows) for ``u = v_rel / |v_rel|``; see :data:`AXES`."""
+    drag_axis = -flow_direction
+    up = np.array([0.0, 0.0, 1.0])
+    if abs(up @ flow_direction) > 1 - 1e-9:
+        up = np.array([1.0, 0.0, 0.0])
+    lift = up - (up @ flow_direction) * flow_direction
+    lift /= np.linalg.norm(lift)
+    return np.array([drag_axis, np.cross(lift, drag_axis), lift])
+
+
+@dataclass(frozen=True, eq=False)
+class DragResult(AttitudeResult):
+    """Free-molecular aerodynamics at one attitude; body frame, SI units (fields of
+    :class:`AttitudeResult`, and those below).
+
+    Attributes
+    ----------
+    velocity_m_s : (3,) float64
+        ``v_rel``: the spacecraft's velocity relative to the atmosphere.
+    atmosphere : Atmosphere
+    reference_area_m2, reference_length_m : float
+        Normalisation of the coefficients.
+    side_force_N, side_torque_Nm : (n_sides, 3) float64
+        Panel-law force on each side, and its torque about the reference point.
+    """
+
+    velocity_m_s: NDArray[np.float64] = field(kw_only=True)
+    atmosphere: Atmosphere = field(kw_only=True)
+    reference_area_m2: float = field(kw_only=True)
+    reference_length_m: float = field(kw_only=True)
+    side_force_N: NDArray[np.float64] = field(kw_only=True, repr=False)
+    side_torque_Nm: NDArray[np.float64] = field(kw_only=True, repr=False)
+
+    @property
+    def direction(self) -> NDArray[np.float64]:
+        return self.flow_direction
+
+    @property
+    def flow_azel_deg(self) -> tuple[float, float]:
+        """Azimuth and elevation of ``v_rel`` [deg] (:attr:`azel_deg`)."""
+        return self.azel_deg
+
+    @property
+    def speed_m_s(self) -> float:
+        return float(np.linalg.norm(self.velocity_m_s))
+
+    @property
+    def flow_direction(self) -> NDArray[np.float64]:
+        """``u = v_rel / |v_rel|``: molecules arrive travelling along ``-u``."""
+        return self.velocity_m_s / self.speed_m_s
+
+    @property
+    def dynamic_pressure_Pa(self) -> float:
+        """``q = rho V^2 / 2`` with the total mass density."""
+        return 0.5 * self.atmosphere.density_kg_m3 * self.speed_m_s**2
+
+    @property
+    def speed_ratio(self) -> float:
+        """``S = V / sqrt(2 k T / m_mean)`` with the number-mean molecular mass."""
+        return self.atmosphere.mean_speed_ratio(self.speed_m_s)
+
+    @property
+    def k_is(self) -> float | None:
+        """Molecular interference criterion ``K_IS`` (None when the reflections asked for none)."""
+        return self.reflected.k_is
+
+    @property
+    def force_coefficients(self) -> NDArray[np.float64]:
+        """``(C_D, C_S, C_L)`` along :func:`aerodynamic_axes`, normalised as :data:`NORMALISATION`."""
+        axes = aerodynamic_axes(self.flow_direction)
+        return axes @ self.force_N / (self.dynamic_pressure_Pa * self.reference_area_m2)
+
+    @property
+    def moment_coefficients(self) -> NDArray[np.float64]:
+        """``C_M`` about the reference point along the body axes x, y, z."""
+        scale = self.dynamic_pressure_Pa * self.reference_area_m2 * self.reference_length_m
+        return self.torque_Nm / scale
+
+    @property
+    def CD(self) -> float:
+        """Drag coefficient (:attr:`force_coefficients`)."""
+        return float(self.force_coefficients[0])
+
+    @property
+    def CS(self) -> float:
+        """Side-force coefficient."""
+        return float(self.force_coefficients[1])
+
+    @property
+    def CL(self) -> float:
+        """Lift coefficient."""
+        return float(self.force_coefficients[2])
+
+    @property
+    def CM(self) -> NDArray[np.float64]:
+        """Moment coefficients along the body axes (:attr:`moment_coefficients`)."""
+        return self.moment_coefficients
+
+    def to_json(self) -> dict:
+        """The result as plain JSON types; keys say units, frame and reference point."""
+        az, el = self.azel_deg
+        cd, cs, cl = self.force_coefficients
+        return {
+            **super().to_json(),
+            "velocity_m_s": self.velocity_m_s.tolist(),
+            "flow_azel_deg": [az, el],
+            "speed_m_s": self.speed_m_s,
+            "density_kg_m3": self.atmosphere.density_kg_m3,
+            "temperature_K": self.atmosphere.temperature_K,
+            "dynamic_pressure_Pa": self.dynamic_pressure_Pa,
+            "speed_ratio": self.speed_ratio,
+            "species_speed_ratio": self.atmosphere.speed_ratio(self.speed_m_s),
+            "atmosphere": self.atmosphere.to_json(),
+            "CD": cd,
+            "CL": cl,
+            "CS": cs,
+            "CM": self.moment_coefficients.tolist(),
+            "reference_area_m2": self.reference_area_m2,
+            "reference_length_m": self.reference_length_m,
+            "coefficients": {"normalisation": NORMALISATION, "axes": AXES},
+            "k_is": self.k_is,
+            "validity": VALIDITY,
+        }
+
+
+R = TypeVar("R", bound=AttitudeResult)
+
+
+@dataclass(frozen=True, eq=False)
+class ResultBatch(Generic[R]):
+    """Results of several attitudes, in the order asked; a numeric field of every result stacked is
+    the same name on the batch: ``batch.force_N`` is (n, 3), ``batch.rays`` (n,)."""
+
+    results: tuple[R, ...]
+
+    def __len__(self) -> int:
+        return len(self.results)
+
+    def __getitem__(self, index: int) -> R:
+        return self.results[index]
+
+    def __iter__(self) -> Iterator[R]:
+        return iter(self.results)
+
+    def stacked(self, name: str) -> NDArray:
+        """Field ``name`` of every result, stacked: (n,) for numbers, (n, 3) for vectors."""
+        return np.array([np.asarray(getattr(result, name)) for result in self.results])
+
+    @property
+    def direction(self) -> NDArray[np.float64]:
+        return self.stacked("direction").reshape(-1, 3)
+
+    @property
+    def azel_deg(self) -> NDArray[np.float64]:
+        """Azimuth and elevation of every attitude's direction [deg], (n, 2)."""
+        return self.stacked("azel_deg").reshape(-1, 2)
+
+    @property
+    def force_N(self) -> NDArray[np.float64]:
+        return self.stacked("force_N").reshape(-1, 3)
+
+    @property
+    def torque_Nm(self) -> NDArray[np.float64]:
+        return self.stacked("torque_Nm").reshape(-1, 3)
+
+    @property
+    def direct_force_N(self) -> NDArray[np.float64]:
+        return self.stacked("direct_force_N").reshape(-1, 3)
+
+    @property
+    def direct_torque_Nm(self) -> NDArray[np.float64]:
+        return self.stacked("direct_torque_Nm").reshape(-1, 3)
+
+    @property
+    def reflected_force_N(self) -> NDArray[np.float64]:
+        return self.stacked("reflected_force_N").reshape(-1, 3)
+
+    @property
+    def reflected_torque_Nm(self) -> NDArray[np.float64]:
+        return self.stacked("reflected_torque_Nm").reshape(-1, 3)
+
+    @property
+    def projected_area_m2(self) -> NDArray[np.float64]:
+        return self.stacked("projected_area_m2")
+
+    @property
+    def rays(self) -> NDArray[np.int64]:
+        return self.stacked("rays")
+
+    def to_json(self) -> list[dict]:
+        """One JSON summary per attitude."""
+        return [result.to_json() for result in self.results]
+
+
+class SrpBatch(ResultBatch[SrpResult]):
+    """:class:`SrpResult` of several Sun directions."""
+
+    @property
+    def sun_vector(self) -> NDArray[np.float64]:
+        return self.direction
+
+    @property
+    def lit_area_m2(self) -> NDArray[np.float64]:
+        return self.stacked("lit_area_m2")
+
+
+class DragBatch(ResultBatch[DragResult]):
+    """:class:`DragResult` of several flow velocities."""
+
+    @property
+    def velocity_m_s(self) -> NDArray[np.float64]:
+        return self.stacked("velocity_m_s").reshape(-1, 3)
+
+    @property
+    def force_coefficients(self) -> NDArray[np.float64]:
+        return self.stacked("force_coefficients").reshape(-1, 3)
+
+    @property
+    def moment_coefficients(self) -> NDArray[np.float64]:
+        return self.stacked("moment_coefficients").reshape(-1, 3)
 
 
 def _per_facet(side_facet: NDArray[np.int64], values: NDArray[np.float64], n: int) -> NDArray[np.float64]:
     """Sum per-side vectors (n_sides, 3) onto their facets, (n, 3)."""
-    return np.stack([np.bincount(side_facet, weights=values[:, k], minlength=n) for k in range(3)], axis=1)
+    return np.stack([np.bincount(side_facet, weights=values[:, k], minlength=n) for k in range(3)], axis=-1)

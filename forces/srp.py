@@ -1,4 +1,5 @@
-"""One attitude, end to end: shadow rays, the force law on every lit side, totals about a reference point."""
+"""Solar-radiation pressure at one attitude or a batch: shadow rays, the force law on every lit side,
+inter-reflection, totals about a reference point (METHOD.md "Direct solar pressure", "Inter-reflection")."""
 
 from __future__ import annotations
 
@@ -7,26 +8,19 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.radiation.direct import TOTALS, accumulate_forces, model_block_moments
+from sunwind.forces.model import Model, as_model
+from sunwind.forces.radiation.direct import direct_pass
 from sunwind.forces.radiation.law import radiation_pressure, solar_flux
-from sunwind.forces.reflection.plan import ReflectionSettings, reflected_part, reflection_plan
-from sunwind.forces.results import SrpResult
-from sunwind.geometry.directions import finite_point, unit_vector
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE
+from sunwind.forces.reflection import ReflectionSettings, reflected_part, reflection_plan
+from sunwind.forces.results import SrpBatch, SrpResult
+from sunwind.geometry.directions import unit_vectors
+from sunwind.geometry.parallel import using_threads
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 from sunwind.geometry.spacecraft import Spacecraft
 
 
-def reference_point(
-    craft: Spacecraft, point_m: Sequence[float] | NDArray | None
-) -> tuple[NDArray[np.float64], str]:
-    """The torque reference point [m] and its name: the user's, else the model default."""
-    if point_m is None:
-        return craft.default_reference
-    return finite_point(point_m, "--ref-point"), "user"
-
-
 def srp(
-    craft: Spacecraft,
+    model: Model | Spacecraft,
     sun_vector: Sequence[float] | NDArray,
     *,
     flux_W_m2: float | None = None,
@@ -35,75 +29,80 @@ def srp(
     samples: int | None = None,
     tolerance: float = DEFAULT_TOLERANCE,
     reflections: str | ReflectionSettings = "auto",
-) -> SrpResult:
-    """Solar-radiation force and torque with self-shadowing and inter-reflection, at one attitude.
+) -> SrpResult | SrpBatch:
+    """Solar-radiation force and torque with self-shadowing and inter-reflection.
 
     Parameters
     ----------
-    craft : Spacecraft
-    sun_vector : (3,) array_like
-        Direction from the spacecraft toward the Sun, body frame (normalised here).
+    model : Model or Spacecraft
+        The loaded model (:func:`sunwind.forces.load`); its thread count and reference point apply.
+    sun_vector : (3,) or (n, 3) array_like
+        Direction from the spacecraft toward the Sun, body frame (normalised here); a batch gives a
+        batch of results.
     flux_W_m2 : float, optional
         Solar flux; or ``distance_au`` from the Sun (flux 1361 W/m^2 at 1 au); default 1 au.
     reference_point_m : (3,) array_like, optional
-        Torque reference point [m] (the centre of mass); default the volume centroid of a closed
-        model, else the area centroid.
+        Torque reference point [m] (the centre of mass); default the model's, else the volume
+        centroid of a closed model, else the area centroid.
     samples : int, optional
         Shadow-ray points per side, rounded up to a square; default adaptive.
     tolerance : float
-        Adaptive sampling's convergence threshold on a side's lit share.
+        Adaptive sampling's convergence threshold on a side's lit share, in (0, 1).
     reflections : str or ReflectionSettings
         ``"none"``, ``"specular"``, ``"full"`` or ``"auto"`` (full when ``K_IS >= 0.1``), or settings
         with chain cutoff, depth and view-factor sampling
-        (:class:`sunwind.forces.reflection.plan.ReflectionSettings`).
+        (:class:`~sunwind.forces.reflection.ReflectionSettings`).
 
     Returns
     -------
-    SrpResult
+    SrpResult, or SrpBatch for a batch of Sun vectors
     """
-    settings = reflections if isinstance(reflections, ReflectionSettings) else ReflectionSettings(reflections)
-    u_sun = unit_vector(sun_vector, "sun_vector")
+    model = as_model(model)
+    settings = ReflectionSettings.of(reflections)
+    suns = unit_vectors(sun_vector, "sun_vector")
     flux = solar_flux(flux_W_m2, distance_au)
+    reference = model.reference(reference_point_m)
+    check_sampling(samples, tolerance)
+    with using_threads(model.threads):
+        results = [
+            _one(model.craft, u, flux, reference, samples, tolerance, settings) for u in suns.reshape(-1, 3)
+        ]
+    return results[0] if suns.ndim == 1 else SrpBatch(tuple(results))
+
+
+def _one(
+    craft: Spacecraft,
+    u_sun: NDArray[np.float64],
+    flux: float,
+    reference: tuple[NDArray[np.float64], str],
+    samples: int | None,
+    tolerance: float,
+    settings: ReflectionSettings,
+) -> SrpResult:
+    """One attitude, its arguments checked."""
     pressure = radiation_pressure(flux)
-    ref, ref_name = reference_point(craft, reference_point_m)
+    ref, ref_name = reference
     plan = reflection_plan(craft, settings)
-    sampler = craft.sampler
-    low, high = sampler.block_normal_bounds
-    args = (craft.side_centroids, craft.side_normals, craft.side_areas, craft.side_optics, u_sun, ref)
-    blocks = (
-        sampler.side_block,
-        low,
-        high,
-        model_block_moments(craft),
-        plan.side_weights,
-        plan.block_weights,
-    )
-    partials = np.zeros((sampler.n_blocks, TOTALS + plan.channels))
-
-    def force_sum(sides: NDArray[np.int64], share: NDArray, centroid: NDArray) -> None:
-        accumulate_forces(sides, share, centroid, *args, *blocks, partials)
-
-    light = sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
-    # block sums added in block order: the same bits whatever the threads did; eq. (4) with P = 1
-    totals = partials.sum(axis=0)
-    totals[:6] *= pressure
-    reflected = reflected_part(craft, light, flux, ref, settings, plan, flux * totals[7:])
+    direct = direct_pass(craft, u_sun, ref, samples, tolerance, plan.weights)
+    light = direct.illumination
+    reflected = reflected_part(craft, direct, flux, ref, settings, plan)
+    force, torque = pressure * direct.force, pressure * direct.torque
     return SrpResult(
-        sun_vector=u_sun,
-        flux_W_m2=flux,
-        pressure_Pa=pressure,
-        force_N=totals[0:3] + reflected.force_N,
-        torque_Nm=totals[3:6] + reflected.torque_Nm,
-        direct_force_N=totals[0:3],
-        direct_torque_Nm=totals[3:6],
+        force_N=force + reflected.force_N,
+        torque_Nm=torque + reflected.torque_Nm,
+        direct_force_N=force,
+        direct_torque_Nm=torque,
         reflected=reflected,
         settings=settings,
         reference_point_m=ref,
         reference_point=ref_name,
-        lit_area_m2=float(totals[6]),
-        projected_area_m2=float(totals[7]),
+        projected_area_m2=direct.projected_area_m2,
         rays=light.rays,
         sampling=light.sampling,
         craft=craft,
+        sun_vector=u_sun,
+        flux_W_m2=flux,
+        pressure_Pa=pressure,
+        lit_area_m2=direct.lit_area_m2,
         illumination=light,
     )

@@ -1,4 +1,5 @@
-"""Body-frame directions: checked unit vectors and the azimuth/elevation convention (METHOD.md "Frames").
+"""Body-frame directions: checked unit vectors and the azimuth/elevation convention (METHOD.md "Frames,
+units and signs").
 
 Azimuth ``az = atan2(d_y, d_x)`` is measured in the body x-y plane from +x toward +y; elevation
 ``el = asin(d_z)`` is positive toward +z.
@@ -25,11 +26,33 @@ def unit_vector(vector: Sequence[float] | NDArray, name: str = "vector") -> NDAr
     """
     v = np.asarray(vector, dtype=np.float64).reshape(-1)
     if v.shape != (3,) or not all(map(math.isfinite, v.tolist())):
-        raise InputError(f"{name} {_fmt(v)} must be three finite numbers", hint="e.g. 1 0 0")
+        raise InputError(
+            f"{name} {_fmt(v)} must be three finite numbers", hint="e.g. 1 0 0", parameters=(name,)
+        )
     norm = math.hypot(*v.tolist())
     if norm == 0.0 or not math.isfinite(norm):
-        raise InputError(f"{name} {_fmt(v)} has zero length", hint="give a direction, e.g. 1 0 0")
+        raise InputError(
+            f"{name} {_fmt(v)} has zero length", hint="give a direction, e.g. 1 0 0", parameters=(name,)
+        )
     return v / norm
+
+
+def unit_vectors(vectors: Sequence[Sequence[float]] | NDArray, name: str = "vector") -> NDArray[np.float64]:
+    """One vector (3,) or a batch (n, 3), each row normalised by :func:`unit_vector`: (3,) or (n, 3).
+
+    Raises
+    ------
+    InputError
+        Not of shape (3,) or (n, 3), or a row that :func:`unit_vector` refuses (named by its index).
+    """
+    array = np.asarray(vectors, dtype=np.float64)
+    if array.ndim == 1:
+        return unit_vector(array, name)
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise InputError(
+            f"{name} of shape {array.shape} must be one vector (3,) or a batch (n, 3)", parameters=(name,)
+        )
+    return np.array([unit_vector(row, f"{name}[{k}]") for k, row in enumerate(array)]).reshape(-1, 3)
 
 
 def finite_point(point: Sequence[float] | NDArray, name: str) -> NDArray[np.float64]:
@@ -42,7 +65,11 @@ def finite_point(point: Sequence[float] | NDArray, name: str) -> NDArray[np.floa
     """
     p = np.asarray(point, dtype=np.float64).reshape(-1)
     if p.shape != (3,) or not np.isfinite(p).all():
-        raise InputError(f"{name} {_fmt(p)} must be three finite numbers [m]", hint=f"e.g. {name} 0 0 0.1")
+        raise InputError(
+            f"{name} {_fmt(p)} must be three finite numbers [m]",
+            hint=f"e.g. {name} 0 0 0.1",
+            parameters=(name,),
+        )
     return p
 
 
@@ -55,9 +82,12 @@ def azel_to_vector(azimuth_deg: float, elevation_deg: float, name: str = "direct
         Non-finite angles, or elevation outside [-90, 90].
     """
     if not (math.isfinite(azimuth_deg) and math.isfinite(elevation_deg)):
-        raise InputError(f"{name} azimuth/elevation {azimuth_deg} {elevation_deg} must be finite numbers")
+        raise InputError(
+            f"{name} azimuth/elevation {azimuth_deg} {elevation_deg} must be finite numbers",
+            parameters=(name,),
+        )
     if abs(elevation_deg) > 90:
-        raise InputError(f"{name} elevation {elevation_deg} deg is outside [-90, 90]")
+        raise InputError(f"{name} elevation {elevation_deg} deg is outside [-90, 90]", parameters=(name,))
     return azel_to_vectors(np.array([azimuth_deg]), np.array([elevation_deg]))[0]
 
 

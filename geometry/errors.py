@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import re
+from collections.abc import Mapping
+
 
 class SunwindError(ValueError):
     """A problem with the user's input, reported as one line.
@@ -17,6 +20,9 @@ class SunwindError(ValueError):
         what the part is or has ("is an open surface", "has no material").
     hint : str, optional
         How to fix it.
+    parameters : tuple of str
+        The Python parameters the message names (``"flux_W_m2"``), as written in it: the command line
+        renames them to its flags (:meth:`renamed`).
     """
 
     def __init__(
@@ -26,12 +32,33 @@ class SunwindError(ValueError):
         path: str | None = None,
         part: str | None = None,
         hint: str | None = None,
+        parameters: tuple[str, ...] = (),
     ) -> None:
         self.message = message
         self.path = path
         self.part = part
         self.hint = hint
+        self.parameters = parameters
         super().__init__(str(self))
+
+    def renamed(self, names: Mapping[str, str]) -> SunwindError:
+        """The same error with each of its :attr:`parameters` found in ``names`` written as
+        ``names[parameter]`` (a command-line flag) in the message and the hint."""
+
+        def rename(text: str | None) -> str | None:
+            for parameter in self.parameters:
+                if text is not None and parameter in names:
+                    text = re.sub(rf"(?<![\w-]){re.escape(parameter)}(?![\w-])", names[parameter], text)
+            return text
+
+        kind = type(self)
+        return kind(
+            rename(self.message),
+            path=self.path,
+            part=self.part,
+            hint=rename(self.hint),
+            parameters=self.parameters,
+        )
 
     def __str__(self) -> str:
         where = f"{self.path}: " if self.path else ""

@@ -1,4 +1,4 @@
-"""Optical materials and the TOML file that assigns them to mesh parts (METHOD.md "Surfaces")."""
+"""Optical materials and the TOML file that assigns them to mesh parts (METHOD.md "Surfaces and sides")."""
 
 from __future__ import annotations
 
@@ -274,7 +274,7 @@ def load_materials(path: str | os.PathLike) -> MaterialSpec:
     try:
         text = Path(path).read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise MaterialError("no such file", path=source, hint="check the --materials path") from None
+        raise MaterialError("no such file", path=source, hint="check the materials file's path") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise MaterialError(f"cannot read the file ({exc.__class__.__name__})", path=source) from None
     try:

@@ -9,7 +9,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-#: Optical keys a mesh file may carry per material (USD ``sunwind:*`` attributes), METHOD.md "Surfaces".
+#: Optical keys a mesh file may carry per material (USD ``sunwind:*`` attributes);
+#: METHOD.md "Surfaces and sides".
 OPTICS_KEYS = ("reflectivity", "specular_fraction", "transmissivity")
 
 

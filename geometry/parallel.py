@@ -7,15 +7,22 @@ large, which keeps the per-chunk cost low, and shrink toward the end, so threads
 even when items cost unequal amounts. A call made from inside a chunk runs serially there, so nested
 calls cannot deadlock the pool. Chunk boundaries depend on the number of threads and on timing: a
 caller that sums floating-point results must sum in an order of its own.
+
+The number of threads is a parameter of the public calls (``srp(..., threads=2)``), which run their
+work inside :func:`using_threads`; by default every core is used.
 """
 
 from __future__ import annotations
 
 import os
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor, wait
+from contextlib import contextmanager
+from contextvars import ContextVar
 from typing import TypeVar
+
+from sunwind.geometry.errors import InputError
 
 T = TypeVar("T")
 
@@ -25,11 +32,38 @@ CORES = os.cpu_count() or 1
 _pool: ThreadPoolExecutor | None = None
 _lock = threading.Lock()
 _inside = threading.local()
+#: Threads of the work running in this context (None: every core); set by :func:`using_threads`.
+_threads: ContextVar[int | None] = ContextVar("sunwind_threads", default=None)
+
+
+def checked_threads(threads: int | None) -> int | None:
+    """``threads`` if it is None (every core) or a whole number >= 1.
+
+    Raises
+    ------
+    InputError
+        Anything else.
+    """
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+        raise InputError(f"threads {threads!r} must be a whole number >= 1", parameters=("threads",))
+    return threads
+
+
+@contextmanager
+def using_threads(threads: int | None) -> Iterator[None]:
+    """Run the block's parallel work on ``threads`` threads (None: every core, or what an enclosing
+    block set)."""
+    checked_threads(threads)
+    token = _threads.set(threads if threads is not None else _threads.get())
+    try:
+        yield
+    finally:
+        _threads.reset(token)
 
 
 def thread_count() -> int:
-    """Threads to use: the ``SUNWIND_THREADS`` environment variable, else all cores."""
-    return max(1, int(os.environ.get("SUNWIND_THREADS", 0)) or CORES)
+    """Threads the work running now may use: as :func:`using_threads` set them, else every core."""
+    return _threads.get() or CORES
 
 
 def _executor() -> ThreadPoolExecutor:

@@ -20,7 +20,8 @@ UNIFORM_NAME = "uniform"
 
 _NO_MATERIAL_HINT = (
     "add a [parts] entry or a [materials.{key}] table to the materials file, "
-    "or give a uniform material with --reflectivity/--specular-fraction/--transmissivity"
+    "or give a uniform material (uniform=Material(...); on the command line --reflectivity and "
+    "--specular-fraction)"
 )
 
 

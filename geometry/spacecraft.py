@@ -4,17 +4,14 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-if TYPE_CHECKING:
-    from sunwind.geometry.rays.shadows import SideSampler
-
 from sunwind.geometry import triangles as tri
+from sunwind.geometry.cache import ModelCache
 from sunwind.geometry.checks import MeshCheck, check_mesh
 from sunwind.geometry.errors import MeshError
 from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials
@@ -36,7 +33,8 @@ def _frozen(array: NDArray) -> NDArray:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class Spacecraft:
-    """Triangulated spacecraft in its body frame, SI units (METHOD.md "Frames", "Surfaces").
+    """Triangulated spacecraft in its body frame, SI units (METHOD.md "Frames, units and signs",
+    "Surfaces and sides").
 
     A facet has one or two *sides*. A facet of a closed body, or of a one-sided sheet, has one side
     facing along its outward normal; a two-sided sheet (a solar-array wing of zero thickness) has a
@@ -69,6 +67,10 @@ class Spacecraft:
         Length unit of the file and how it was chosen, e.g. "mm (--unit)".
     notices : tuple of str
         Repairs made on loading (degenerate triangles dropped, winding fixed).
+    cache : ModelCache
+        What is built once for this model and kept (ray scene, shadow-ray origins, view factors,
+        ...): list it with ``cache.entries()``, free it with ``cache.clear()``. A model made from this
+        one (``dataclasses.replace``) starts with an empty cache; a pickled model travels without it.
     """
 
     vertices: NDArray[np.float64]
@@ -84,12 +86,22 @@ class Spacecraft:
     source: str = "<memory>"
     unit: str = "m"
     notices: tuple[str, ...] = ()
+    cache: ModelCache = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for array in (self.vertices, self.faces, self.facet_part, self.facet_kind):
             _frozen(array)
         for array in (self.side_facet, self.side_sign, self.side_material):
             _frozen(array)
+        object.__setattr__(self, "cache", ModelCache())
+
+    def __getstate__(self) -> dict:
+        """Pickled without the cache: Embree scenes do not pickle, and a copy rebuilds what it needs."""
+        return {key: value for key, value in self.__dict__.items() if key != "cache"}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        object.__setattr__(self, "cache", ModelCache())
 
     def __repr__(self) -> str:
         return (
@@ -236,7 +248,7 @@ class Spacecraft:
 
     @cached_property
     def default_reference(self) -> tuple[NDArray[np.float64], str]:
-        """Default torque reference point [m] and its name (METHOD.md "Frames").
+        """Default torque reference point [m] and its name (METHOD.md "Frames, units and signs").
 
         The volume centroid of a closed model, else the area centroid of its facets.
         """
@@ -249,17 +261,10 @@ class Spacecraft:
         """Axis-aligned bounding box [m], (2, 3): min and max corner."""
         return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
 
-    @cached_property
+    @property
     def scene(self) -> RayScene:
-        """The Embree scene of the facets, built on first use and kept."""
-        return RayScene(self.triangles)
-
-    @cached_property
-    def sampler(self) -> SideSampler:
-        """Shadow-ray sampler of the sides, keeping its ray origins across attitudes."""
-        from sunwind.geometry.rays.shadows import SideSampler
-
-        return SideSampler(self)
+        """The Embree scene of the facets, built on first use and kept in :attr:`cache`."""
+        return self.cache.get("ray scene", lambda: RayScene(self.triangles))
 
     def part_area(self) -> dict[str, float]:
         """Area of each part [m^2]."""
@@ -338,7 +343,7 @@ def _undeclared_sheet(check: MeshCheck, source: str) -> MeshError:
         part=part,
         hint=(
             f'declare it a sheet in the materials file ([parts] "{leaf}" = '
-            f'{{ front = "...", back = "..." }}) or with --two-sided "{leaf}"'
+            f'{{ front = "...", back = "..." }}), with two_sided=["{leaf}"] or with --two-sided "{leaf}"'
         ),
     )
 

@@ -2,20 +2,8 @@
 
 from typing import Any
 
-from sunwind.meshes.primitives import (
-    PRIMITIVES,
-    box,
-    box_wing,
-    build,
-    cone,
-    cylinder,
-    dish,
-    label,
-    plate,
-    rotation_matrix,
-    sphere,
-    transform,
-)
+from sunwind.meshes.assembly import label, rotation_matrix, transform
+from sunwind.meshes.primitives import PRIMITIVES, box, box_wing, build, cone, cylinder, dish, plate, sphere
 
 #: Names of :mod:`sunwind.meshes.samples`, imported on first use so ``python -m sunwind.meshes.samples`` runs
 # the

@@ -19,7 +19,8 @@ import numpy as np
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.triangles import normals
-from sunwind.meshes.primitives import box, cone, cylinder, dish, label, plate, rotation_matrix, transform
+from sunwind.meshes.assembly import label, rotation_matrix, transform
+from sunwind.meshes.primitives import box, cone, cylinder, dish, plate
 
 #: Directory of the shipped sample files.
 DATA_DIR = Path(__file__).resolve().parent / "data"
@@ -27,7 +28,7 @@ DATA_DIR = Path(__file__).resolve().parent / "data"
 SAMPLE_NAME = "sample_spacecraft"
 
 #: Solar-band optics of the sample's materials: reflectivity ``rho``, specular share of the
-#: reflected light ``beta`` and transmissivity ``sigma`` (METHOD.md "Surfaces"). Beginning-of-life
+#: reflected light ``beta`` and transmissivity ``sigma`` (METHOD.md "Surfaces and sides"). Beginning-of-life
 #: values; ``rho = 1 - alpha_s`` for an opaque finish, sources and reasoning in
 #: :data:`SAMPLE_OPTICS_NOTES`.
 SAMPLE_OPTICS: dict[str, dict[str, float]] = {

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+
 import pytest
 
 from sunwind.forces.cli.app import main
+from sunwind.geometry.parallel import using_threads
 
 
 @pytest.fixture(autouse=True, scope="session")
@@ -13,6 +16,13 @@ def _private_view_factor_cache(tmp_path_factory):
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("SUNWIND_CACHE_DIR", str(tmp_path_factory.mktemp("view-factor-cache")))
         yield
+
+
+@pytest.fixture
+def limit_threads():
+    """``limit_threads(n)``: the rest of the test runs its parallel work on ``n`` threads."""
+    with contextlib.ExitStack() as stack:
+        yield lambda n: stack.enter_context(using_threads(n))
 
 
 @pytest.fixture

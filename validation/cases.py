@@ -19,15 +19,10 @@ from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
 from sunwind.meshes import primitives
-from sunwind.validation.analytic_srp import (
-    ForceTorque,
-    Optics,
-    cone_srp,
-    cylinder_srp,
-    plate_srp,
-    shadowed_plates_srp,
-    sphere_srp,
-)
+from sunwind.meshes.assembly import label, rotation_matrix, transform
+from sunwind.validation.analytic_shadow import PlatePair, shadowed_plates_srp
+from sunwind.validation.analytic_srp import cone_srp, cylinder_srp, plate_srp, sphere_srp
+from sunwind.validation.analytic_srp_law import ForceTorque, Optics
 
 #: Surface finishes every body is checked with.
 OPTICS: dict[str, Optics] = {
@@ -219,7 +214,7 @@ REFINEMENT_CASES = tuple(c for c in SRP_CASES if c.name.endswith("/mixed") and n
 class ShadowCase:
     """Plate B partly shadowing plate A (both one-sided, finish ``optics``), against the exact answer.
 
-    Geometry as :func:`sunwind.validation.analytic_srp.shadowed_plates_srp`. The error measures are relative
+    Geometry as :class:`sunwind.validation.analytic_shadow.PlatePair`. The error measures are relative
     to the reference magnitude of A's force and of A's torque about A's centre, which the shadow's
     first moment alone sets: the sharp test of where the lit area is.
     """
@@ -248,17 +243,16 @@ class ShadowCase:
 
     def reference(self, u: NDArray[np.float64]):
         """The exact loads, torques about the origin (A's centre)."""
-        return shadowed_plates_srp(
-            self.side_a_m, self.side_b_m, self.centre_b_m, self.gamma_deg, u, self.optics
-        )
+        plates = PlatePair(self.side_a_m, self.side_b_m, self.centre_b_m, self.gamma_deg)
+        return shadowed_plates_srp(plates, u, self.optics)
 
 
 @lru_cache(maxsize=2)
 def _shadow_spacecraft(case: ShadowCase) -> Spacecraft:
-    a = primitives.label(primitives.plate(case.side_a_m, case.side_a_m, case.divisions), "plate_a")
-    b = primitives.transform(
-        primitives.label(primitives.plate(case.side_b_m, case.side_b_m, 4), "plate_b"),
-        rotation=primitives.rotation_matrix("z", case.gamma_deg),
+    a = label(primitives.plate(case.side_a_m, case.side_a_m, case.divisions), "plate_a")
+    b = transform(
+        label(primitives.plate(case.side_b_m, case.side_b_m, 4), "plate_b"),
+        rotation=rotation_matrix("z", case.gamma_deg),
         translation=case.centre_b_m,
     )
     document = {

@@ -7,10 +7,10 @@ the exchange of re-emitted molecules beside it; :func:`drag_table` does every ca
 nothing.
 
 Cases (:data:`DRAG_CASES`): the 90 deg V-groove, the open box and the sample spacecraft's dish of
-:mod:`sunwind.validation.concave`, each a two-sided sheet, in one species (atomic oxygen at 1000 K) at speed
-ratio :data:`SPEED_RATIO`, with diffuse re-emission fully accommodated to the 300 K wall (Sentman,
-``alpha_E = 1``: the kernel the tracer follows exactly) and with specular reflection, at flow
-directions into the opening and across it. Flow directions are the azimuth and elevation of
+:mod:`sunwind.validation.concave_meshes`, each a two-sided sheet, in one species (atomic oxygen at
+1000 K) at speed ratio :data:`SPEED_RATIO`, with diffuse re-emission fully accommodated to the 300 K
+wall (Sentman, ``alpha_E = 1``: the kernel the tracer follows exactly) and with specular reflection,
+at flow directions into the opening and across it. Flow directions are the azimuth and elevation of
 ``v_rel`` (molecules arrive along ``-v_rel``).
 """
 
@@ -27,10 +27,15 @@ from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
 from sunwind.geometry.materials import GasSurface, Material
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
-from sunwind.validation.concave import dish_mesh, open_box_mesh, sun_from_az_el, torque_scale, v_groove_mesh
+from sunwind.validation.concave import sun_from_az_el, torque_scale
+from sunwind.validation.concave_meshes import dish_mesh, open_box_mesh, v_groove_mesh
+from sunwind.validation.sampling import Sampling
 from sunwind.validation.tpmc import TpmcResult, trace_molecules
+from sunwind.validation.tpmc_kernels import WallInteraction
+from sunwind.validation.tpmc_source import SpeciesStream
 
-#: Speed ratio of the comparison (METHOD.md: the panel method's shadowing is built for S >> 1).
+#: Speed ratio of the comparison (the panel method's flow shadow is a quadrature that is good at large S:
+#: METHOD.md "Approximations and limits").
 SPEED_RATIO = 8.0
 #: Free-stream gas: one species, its temperature [K] and number density [m^-3].
 SPECIES, TEMPERATURE_K, NUMBER_DENSITY_M3 = "O", 1000.0, 1e15
@@ -109,17 +114,10 @@ def trace_case(
 ) -> TpmcResult:
     """The tracer's force and torque for one case, law and flow direction."""
     air, speed = free_stream()
+    stream = SpeciesStream(speed, air.temperature_K, NUMBER_DENSITY_M3, SPECIES_MASS_KG[SPECIES])
+    walls = WallInteraction(diffuse_fraction=LAWS[law][1], wall_temperature_K=WALL_TEMPERATURE_K)
     return trace_molecules(
-        case.spacecraft(law),
-        sun_from_az_el(*flow_deg),
-        speed_m_s=speed,
-        temperature_K=air.temperature_K,
-        number_density_m3=NUMBER_DENSITY_M3,
-        mass_kg=SPECIES_MASS_KG[SPECIES],
-        diffuse_fraction=LAWS[law][1],
-        wall_temperature_K=WALL_TEMPERATURE_K,
-        molecules=molecules,
-        seed=seed,
+        case.spacecraft(law), sun_from_az_el(*flow_deg), stream, walls, Sampling(molecules, seed=seed)
     )
 
 

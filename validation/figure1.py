@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.drag import drag
-from sunwind.forces.gas.atmosphere import AtmosphereWarning, circular_speed, nrlmsis
+from sunwind.forces.gas import AtmosphereWarning, circular_speed, nrlmsis
 from sunwind.forces.srp import srp
 from sunwind.geometry.materials import GasSurface, Material
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft

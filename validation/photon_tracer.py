@@ -6,8 +6,8 @@ in an Embree scene of its own. It is slow and simple on purpose, and unbiased.
 
 Notes
 -----
-**Source.** Photons travel along ``s = -u_sun`` (METHOD.md "Frames"). Bundles start upstream of
-the model on the rectangle perpendicular to ``s`` that bounds the projection of its vertices, so
+**Source.** Photons travel along ``s = -u_sun`` (METHOD.md "Frames, units and signs"). Bundles start upstream
+of the model on the rectangle perpendicular to ``s`` that bounds the projection of its vertices, so
 no part of the body is missed and few bundles are wasted on an elongated model.
 The positions are stratified: a jittered ``k1 x k2`` grid (cells as square as the rectangle
 allows), the ``m - k1 k2`` left over uniform; each of the ``m`` bundles of a batch starts with power
@@ -33,10 +33,11 @@ full absorption) and the torque ``(r - r_ref) x J``. Every direction is sampled,
 **Radiosity model.** With ``radiosity_model=True`` the tracer follows the paper's radiosity model
 instead of the physics: a bundle once reflected diffusely is reflected diffusely ever after,
 whatever the ``beta`` of the surfaces it meets, and leaves a sheet it passes through in a Lambertian
-spread, as METHOD.md eq. (12) re-emits the whole ``rho`` and a sheet's ``sigma`` of the diffuse light
-a side receives. The difference between the two runs is that model's error on mixed finishes. The
-solver does not make it (its exchange factors follow mirrored and transmitted diffuse light, see
-:mod:`sunwind.geometry.views.exchange_factors`) and is checked against the physics.
+spread, as the paper's eq. (12) re-emits the whole ``rho`` and a sheet's ``sigma`` of the diffuse light
+a side receives (METHOD.md "The paper's misprints"). The difference between the two runs is that
+model's error on mixed finishes. The solver does not make it (its exchange factors follow mirrored
+and transmitted diffuse light, see :mod:`sunwind.geometry.views.exchange_factors`) and is checked
+against the physics.
 
 **Errors.** The photons are split into independent batches, each with its own stream of random
 numbers; each batch's total is an unbiased estimate, and the standard error of the mean is the
@@ -62,7 +63,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from sunwind.geometry.sides import SOLID
 from sunwind.geometry.spacecraft import Spacecraft
-from sunwind.validation.analytic_srp import SOLAR_FLUX_1AU_W_M2, SPEED_OF_LIGHT_M_S
+from sunwind.validation.analytic_srp_law import SOLAR_FLUX_1AU_W_M2, SPEED_OF_LIGHT_M_S
+from sunwind.validation.sampling import Sampling
 
 __all__ = ["TracerResult", "trace_photons"]
 
@@ -316,13 +318,10 @@ def _lambert(normals: NDArray[np.float64], rng: np.random.Generator) -> NDArray[
 def trace_photons(
     craft: Spacecraft,
     sun_vector: ArrayLike,
+    sampling: Sampling,
     *,
-    photons: int,
     flux_W_m2: float = SOLAR_FLUX_1AU_W_M2,
     reference_point_m: ArrayLike | None = None,
-    seed: int = 0,
-    batches: int = 20,
-    max_bounces: int = 100,
     radiosity_model: bool = False,
 ) -> TracerResult:
     """Solar-radiation-pressure force and torque on ``craft`` by Monte Carlo photon tracing.
@@ -332,21 +331,17 @@ def trace_photons(
     craft : Spacecraft
     sun_vector : (3,) array_like
         Direction spacecraft -> Sun, body frame (normalised here).
-    photons : int
-        Bundles to launch in all; rounded up to a multiple of ``batches``. The share that meets
-        the body is its projected area over the source rectangle's.
+    sampling : Sampling
+        Photon bundles to launch in all (rounded up to a multiple of the batches; the share that
+        meets the body is its projected area over the source rectangle's), the seed, the batches
+        the standard errors come from (>= 2), and the most interactions a bundle may have (the
+        power still travelling then is ``cut_W``).
     flux_W_m2 : float
         Solar flux [W/m^2].
     reference_point_m : (3,) array_like, optional
         Torque reference point [m]; default ``craft.default_reference[0]``.
-    seed : int
-        Seed of the random streams; the same seed gives the same result.
-    batches : int
-        Independent batches the standard errors come from (>= 2).
-    max_bounces : int
-        Most interactions a bundle may have; the power still travelling then is ``cut_W``.
     radiosity_model : bool
-        Trace the paper's radiosity model, METHOD.md eq. (12), instead of the physics: once a bundle
+        Trace the paper's radiosity model, its eq. (12), instead of the physics: once a bundle
         has been reflected diffusely, every later reflection of it is Lambertian (the whole ``rho``
         re-emitted diffusely) and its transmission through a sheet leaves the far side Lambertian.
         Measures what that model misses on mixed finishes.
@@ -355,6 +350,7 @@ def trace_photons(
     -------
     TracerResult
     """
+    photons, batches, max_bounces = sampling.particles, sampling.batches, sampling.max_bounces
     if batches < 2 or photons < batches or max_bounces < 1:
         raise ValueError("need batches >= 2, photons >= batches and max_bounces >= 1")
     start = time.perf_counter()
@@ -365,7 +361,7 @@ def trace_photons(
     )
     tracer = _Tracer(craft)
     per_batch = -(-photons // batches)
-    streams = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(batches)]
+    streams = [np.random.default_rng(s) for s in np.random.SeedSequence(sampling.seed).spawn(batches)]
 
     def run(rng: np.random.Generator) -> _BatchTotals:
         return tracer.batch(sun, per_batch, flux_W_m2, reference, max_bounces, radiosity_model, rng)

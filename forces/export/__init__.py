@@ -1,1 +1,104 @@
-"""forces/export"""
+"""File formats of the sweep table, one module each, every one reading only the table (an
+``xarray.Dataset``) and writing atomically: netCDF and CSV, GMAT/MONTE SPAD, Basilisk's SRP lookup,
+Tudat's aerodynamic coefficient files (METHOD.md "Outputs and tables").
+
+:func:`write` writes any of them; the format is named or read from the file's extension.
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import xarray as xr
+
+from sunwind.forces.export import basilisk, csv, netcdf, spad, tudat
+from sunwind.forces.tables.dataset import kinds_of
+from sunwind.geometry.errors import InputError
+
+
+@dataclass(frozen=True)
+class Format:
+    """One file format: the extension that chooses it (None: only by name), the quantities it holds,
+    and its writer ``write(table, path) -> files written``."""
+
+    extension: str | None
+    kinds: tuple[str, ...]
+    write: Callable[[xr.Dataset, Path], list[Path]]
+
+
+#: Formats by name.
+FORMATS: dict[str, Format] = {
+    name: Format(module.EXTENSION, module.KINDS, module.write)
+    for name, module in (
+        ("nc", netcdf),
+        ("csv", csv),
+        ("spad", spad),
+        ("basilisk", basilisk),
+        ("tudat", tudat),
+    )
+}
+
+
+def format_of(path: str | os.PathLike, given: str | None = None) -> str:
+    """The format ``given`` names, else the one the extension of ``path`` says.
+
+    Raises
+    ------
+    InputError
+        An unknown format name, or an extension that names none.
+    """
+    if given is not None:
+        if given not in FORMATS:
+            raise InputError(
+                f"format {given!r} is not a table format",
+                hint=f"use one of {', '.join(FORMATS)}",
+                parameters=("format",),
+            )
+        return given
+    suffix = Path(path).suffix.lower()
+    by_extension = {spec.extension: name for name, spec in FORMATS.items() if spec.extension}
+    if suffix not in by_extension:
+        listed = ", ".join(f"{ext} ({name})" for ext, name in by_extension.items())
+        raise InputError(
+            f"cannot tell the format from the extension {suffix!r}",
+            path=str(path),
+            hint=f"use {listed}, or name the format: {' | '.join(FORMATS)}",
+            parameters=("format",),
+        )
+    return by_extension[suffix]
+
+
+def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None) -> list[Path]:
+    """Write a sweep table in ``format`` (default: from the extension of ``path``); the files written.
+
+    Raises
+    ------
+    InputError
+        An unknown format, or a table the format cannot hold (none of its quantities, or a list table
+        for a grid format).
+
+    Warns
+    -----
+    UserWarning
+        The table holds a quantity the format has no place for (it is not written).
+    """
+    name = format_of(path, format)
+    spec = FORMATS[name]
+    held = kinds_of(table)
+    refused = [kind for kind in held if kind not in spec.kinds]
+    if len(refused) == len(held):
+        raise InputError(
+            f"format {name} holds {' and '.join(spec.kinds)} only, not {refused[0]}", parameters=("format",)
+        )
+    if refused:
+        warnings.warn(
+            f"format {name} holds {' and '.join(spec.kinds)} only: {refused[0]} is not written", stacklevel=2
+        )
+    return spec.write(table, Path(path))
+
+
+__all__ = ["FORMATS", "Format", "format_of", "write"]

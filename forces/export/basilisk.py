@@ -23,8 +23,8 @@ Conventions (``RadiationPressure::computeLookupModel``, radiationPressure.cpp):
   reference point ``r_ref`` is moved to the origin, ``M_B = M_ref + r_ref x F``.
 
 Sampling: Basilisk picks the entry whose ``sHat_B`` has the largest dot product with the Sun direction (no
-interpolation), so the direction it uses is off by up to half the grid spacing: about ``h / sqrt(2)`` for
-equal azimuth and elevation steps ``h`` (less toward the poles, where azimuths crowd). The force error is
+interpolation), so the direction it uses is off by up to half a grid cell's diagonal: about ``h / sqrt(2)``
+for equal azimuth and elevation steps ``h`` (less toward the poles, where azimuths crowd). The force error is
 that angle times the force's angular rate, ``|dF/dtheta|``, which is of order ``|F|`` per radian for a flat
 plate or a wing (the cosine of incidence) and smaller for rounded bodies. For a relative error ``eps`` choose
 
@@ -43,10 +43,15 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.forces.tables.interpolation import azel_directions, grid_axes
 from sunwind.geometry.errors import InputError
 
+#: File extension that chooses this format.
+EXTENSION = ".xml"
+#: Quantities a Basilisk lookup holds.
+KINDS = ("srp",)
 _ENTRY = (
     '      <{tag} index="%d">\n'
     "         <value_1>%.17g</value_1>\n"
@@ -105,12 +110,17 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
         f"and torque_B [N m] about the body-frame origin B at 1 au ({SOLAR_FLUX_1AU:g} W/m^2), fully lit"
     ).replace("--", "- -")
     out = Path(path)
-    out.write_text(
-        '<?xml version="1.0" encoding="utf-8"?>\n'
-        f"<!-- {note} -->\n<srp_values>\n" + "".join(blocks) + "</srp_values>\n",
-        encoding="utf-8",
-    )
+    with atomic_text(out) as stream:
+        stream.write(
+            '<?xml version="1.0" encoding="utf-8"?>\n'
+            f"<!-- {note} -->\n<srp_values>\n" + "".join(blocks) + "</srp_values>\n"
+        )
     return out
+
+
+def write(table: xr.Dataset, path: str | Path) -> list[Path]:
+    """:func:`write_basilisk`, as the export registry calls it; the file written."""
+    return [write_basilisk(table, path)]
 
 
 def _entries(table: xr.Dataset) -> tuple[NDArray, NDArray, NDArray]:

@@ -35,10 +35,15 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure
+from sunwind.forces.tables.dataset import kinds_of
 from sunwind.forces.tables.interpolation import check_step, grid_axes
 from sunwind.geometry.errors import InputError
 
+#: File extension that chooses this format.
+EXTENSION = ".spo"
+#: Quantities SPAD files hold (one file each).
 KINDS = ("srp", "drag")
 _TITLE = {"srp": "SRP", "drag": "drag"}
 _ROW_FORMAT = "%8.2f %8.2f % .15e % .15e % .15e"
@@ -92,7 +97,8 @@ def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
     if f"{prefix}_azimuth" not in table.dims:
         raise InputError(
             "a SPAD file needs an azimuth/elevation grid, but this table is a list of attitudes",
-            hint="sweep on a grid (e.g. --step 5) to write SPAD files",
+            hint="sweep on a grid (a step_deg such as 5) to write SPAD files",
+            parameters=("step_deg",),
         )
     axes = grid_axes(table, prefix)
     n_az = check_step(axes.azimuth_step_deg, 360.0, f"{prefix} azimuth", whole_degrees=True)
@@ -110,10 +116,17 @@ def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
     az, el = np.meshgrid(axes.azimuth_deg, axes.elevation_deg, indexing="ij")
     rows = np.column_stack([az.ravel(), el.ravel(), area.reshape(-1, 3)])
     out = Path(path)
-    with out.open("w", encoding="ascii", newline="\n") as stream:
+    with atomic_text(out, encoding="ascii") as stream:
         stream.write(_header(table, kind, axes.azimuth_step_deg, axes.elevation_step_deg, len(rows)))
         np.savetxt(stream, rows, fmt=_ROW_FORMAT)
     return out
+
+
+def write(table: xr.Dataset, path: str | Path) -> list[Path]:
+    """Write one SPAD file per quantity of a grid sweep table (:func:`spad_paths`); the files written."""
+    kinds = kinds_of(table)
+    paths = spad_paths(path, kinds)
+    return [write_spad(table, paths[kind], kind) for kind in kinds]
 
 
 def read_spad(path: str | Path) -> xr.Dataset:

@@ -43,9 +43,14 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.tables.interpolation import TableInterpolator, check_step, grid_axes
 from sunwind.geometry.errors import InputError
 
+#: File extension that chooses this format: none (a prefix names six files).
+EXTENSION = None
+#: Quantities Tudat coefficient files hold.
+KINDS = ("drag",)
 _COMPONENTS = "xyz"
 
 
@@ -129,7 +134,7 @@ def write_tudat(
         for index, axis in enumerate(_COMPONENTS):
             path = base.with_name(f"{base.name}_C{kind}{axis}.txt")
             header = f"C{kind}{axis}: {'force' if kind == 'F' else 'moment'} coefficient along +{axis}\n"
-            with path.open("w", encoding="ascii", newline="\n") as stream:
+            with atomic_text(path, encoding="ascii") as stream:
                 stream.write("".join(f"# {line}\n" for line in [header.strip(), *comments]))
                 stream.write("2\n")
                 np.savetxt(stream, alpha[None, :], fmt="%.17g")
@@ -139,6 +144,12 @@ def write_tudat(
     return TudatFiles(
         files["F"], files["M"], reference["reference_area_m2"], reference["reference_length_m"], point
     )
+
+
+def write(table: xr.Dataset, path: str | Path) -> list[Path]:
+    """:func:`write_tudat` with its default grid and interpolation; the six files written."""
+    files = write_tudat(table, path)
+    return [*files.force.values(), *files.moment.values()]
 
 
 def _comments(table: xr.Dataset, reference: dict[str, float], point: tuple, method: str) -> list[str]:

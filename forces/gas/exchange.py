@@ -2,7 +2,7 @@
 "Free-molecular flow", "Inter-reflection").
 
 The paper treats re-emitted molecules as diffuse light with ``rho = 1``: the same view factors ``F``,
-the same escape vectors, the same balance ``(I - F^T) W = E`` in molecules per second. A diffusely
+the same escape vectors, the same balance ``(I - F^T) W = S`` in molecules per second. A diffusely
 re-emitted molecule of mass ``m`` at temperature ``T`` leaves along a cosine-law direction with mean
 speed ``(3 sqrt(pi)/4) sqrt(2 k T / m)``, so a stream of ``N`` molecules per second carries momentum
 ``N m v_mean`` spread like diffuse light: what escapes is ``N m v_mean e_esc`` (``(2/3) N m v_mean n``
@@ -24,7 +24,6 @@ once per model, view factors and wall temperatures (METHOD.md "Speed").
 from __future__ import annotations
 
 import math
-import weakref
 from dataclasses import dataclass
 
 import numba
@@ -34,6 +33,8 @@ from numpy.typing import NDArray
 from sunwind.forces.gas.atmosphere import BOLTZMANN
 from sunwind.forces.radiation.law import LAMBERT_FACTOR
 from sunwind.forces.reflection.diffuse import DiffuseExchange
+from sunwind.forces.reflection.settings import ReflectionSettings
+from sunwind.forces.reflection.views import model_view_factors
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.view_factors import ViewFactors
 
@@ -129,12 +130,10 @@ def gas_interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
     return returning / escaping if escaping > 0 else float("inf")
 
 
-_exchanges: weakref.WeakKeyDictionary[Spacecraft, dict] = weakref.WeakKeyDictionary()
-
-
-def molecular_exchange(craft: Spacecraft, view: ViewFactors) -> MolecularExchange:
-    """The :class:`MolecularExchange` of ``craft`` with ``view``, built once and kept with the model."""
-    kept = _exchanges.setdefault(craft, {})
-    if id(view) not in kept or kept[id(view)].view is not view:
-        kept[id(view)] = MolecularExchange(craft, view)
-    return kept[id(view)]
+def molecular_exchange(craft: Spacecraft, settings: ReflectionSettings) -> MolecularExchange:
+    """The :class:`MolecularExchange` of ``craft`` with its view factors for ``settings``, built once
+    and kept in its cache."""
+    return craft.cache.get(
+        ("molecular exchange", *settings.view_key),
+        lambda: MolecularExchange(craft, model_view_factors(craft, settings)),
+    )

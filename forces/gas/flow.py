@@ -1,111 +1,74 @@
-"""The free stream a user describes on the command line: the flow velocity and the atmosphere.
-
-Either ``--velocity X Y Z`` (``v_rel`` in the body frame, m/s) or ``--flow-azel AZ EL`` with a speed:
-``--speed V``, else the circular-orbit speed at ``--altitude`` (relative to an atmosphere rotating
-with the Earth with ``--corotating``, for the ``--heading`` of the orbit at ``--lat``). Either
-NRLMSIS at ``--altitude`` (place, time and indices optional) or ``--density``, ``--temperature`` and
-``--composition`` together.
-"""
+"""The flow speed: a circular orbit's speed, relative to a still or a co-rotating atmosphere
+(METHOD.md "Atmosphere")."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
+import math
 
-import numpy as np
-from numpy.typing import NDArray
+from sunwind.forces.gas.atmosphere import finite_number
 
-from sunwind.forces.gas.atmosphere import Atmosphere, circular_speed, corotation_speed, explicit, nrlmsis
-from sunwind.geometry.directions import azel_to_vector
-from sunwind.geometry.errors import InputError
-
-
-@dataclass(frozen=True)
-class FlowOptions:
-    """How the flow velocity was given (one of ``velocity`` or ``azel``)."""
-
-    velocity: Sequence[float] | None = None
-    azel_deg: Sequence[float] | None = None
-    speed_m_s: float | None = None
-    corotating: bool = False
-    heading_deg: float = 90.0
+#: Earth's gravitational parameter GM [m^3/s^2] (WGS 84 / IERS Conventions 2010).
+EARTH_GM = 3.986004418e14
+#: Earth's equatorial radius [m] (WGS 84 semi-major axis).
+EARTH_RADIUS = 6378.137e3
+#: Earth's mean angular velocity [rad/s] (WGS 84 nominal value).
+EARTH_ROTATION = 7.292115e-5
 
 
-@dataclass(frozen=True)
-class AtmosphereOptions:
-    """How the atmosphere was given: NRLMSIS inputs, or density, temperature and composition."""
+def circular_speed(altitude_km: float) -> float:
+    """Speed [m/s] of a circular orbit ``sqrt(GM / (R + h))`` at an altitude above a spherical Earth.
 
-    altitude_km: float | None = None
-    latitude_deg: float = 0.0
-    longitude_deg: float = 0.0
-    time: str = "2024-01-01T00:00:00Z"
-    f107: float = 150.0
-    f107a: float = 150.0
-    ap: float = 4.0
-    density_kg_m3: float | None = None
-    temperature_K: float | None = None
-    composition: str | None = None
-    normalise_composition: bool = False
+    ``GM = 3.986004418e14 m^3/s^2`` and ``R = 6378.137 km`` (WGS 84 equatorial radius).
 
-    @property
-    def explicit(self) -> bool:
-        return any(v is not None for v in (self.density_kg_m3, self.temperature_K, self.composition))
+    Raises
+    ------
+    InputError
+        An altitude [km] that is negative or not finite.
+    """
+    altitude = finite_number(altitude_km, "altitude_km", "km", minimum=0.0)
+    return math.sqrt(EARTH_GM / (EARTH_RADIUS + altitude * 1e3))
 
 
-def flow_velocity(flow: FlowOptions, air: AtmosphereOptions) -> NDArray[np.float64]:
-    """``v_rel`` in the body frame [m/s] from the flow options (the altitude gives the default speed)."""
-    if (flow.velocity is None) == (flow.azel_deg is None):
-        raise InputError("give the flow with --velocity X Y Z or --flow-azel AZ EL (one of them)")
-    if flow.corotating and (flow.velocity is not None or flow.speed_m_s is not None):
-        raise InputError(
-            "--corotating changes the circular-orbit speed at --altitude only",
-            hint="drop --speed/--velocity, or give the relative velocity itself",
-        )
-    if flow.velocity is not None:
-        return np.asarray(flow.velocity, dtype=np.float64)
-    direction = azel_to_vector(*flow.azel_deg, "--flow-azel")
-    return flow_speed(flow, air) * direction
+def corotation_speed(
+    altitude_km: float,
+    latitude_deg: float,
+    heading_deg: float,
+    inertial_speed_m_s: float | None = None,
+) -> float:
+    """Speed [m/s] of a spacecraft relative to an atmosphere that rotates with the Earth.
 
+    The spacecraft is at radius ``r = R + h`` and latitude ``phi`` (spherical Earth) with a horizontal
+    inertial velocity of speed ``V`` and heading ``psi`` (clockwise from north: 90 deg is due east, a
+    prograde equatorial orbit). The air moves at ``omega x r``, ``omega r cos(phi)`` due east, so
 
-def flow_speed(flow: FlowOptions, air: AtmosphereOptions) -> float:
-    """``|v_rel|`` [m/s]: ``--speed``, else the circular-orbit speed at ``--altitude`` (relative to a
-    co-rotating atmosphere with ``--corotating``)."""
-    if flow.speed_m_s is not None:
-        speed = float(flow.speed_m_s)
-        if not np.isfinite(speed) or speed <= 0:
-            raise InputError(f"--speed {speed} must be a positive number of m/s")
-        return speed
-    if air.altitude_km is None:
-        raise InputError("a flow direction needs --speed V, or --altitude for the circular-orbit speed")
-    speed = circular_speed(air.altitude_km)
-    if flow.corotating:
-        speed = corotation_speed(air.altitude_km, air.latitude_deg, flow.heading_deg, speed)
-    return speed
+        |v - omega x r| = sqrt(V^2 - 2 V omega r cos(phi) sin(psi) + (omega r cos(phi))^2)
 
+    with ``omega = 7.292115e-5 rad/s``. Winds are not included.
 
-def atmosphere(air: AtmosphereOptions) -> Atmosphere:
-    """The atmosphere the options describe: explicit when any of density, temperature, composition
-    is given (then all three are needed), else NRLMSIS at the altitude."""
-    if air.explicit:
-        missing = [
-            name
-            for name, value in (
-                ("--density", air.density_kg_m3),
-                ("--temperature", air.temperature_K),
-                ("--composition", air.composition),
-            )
-            if value is None
-        ]
-        if missing:
-            raise InputError(
-                f"an explicit atmosphere needs {', '.join(missing)} too",
-                hint='e.g. --density 3e-12 --temperature 1000 --composition "O:0.8,N2:0.2"',
-            )
-        return explicit(air.density_kg_m3, air.temperature_K, air.composition, air.normalise_composition)
-    if air.altitude_km is None:
-        raise InputError(
-            "give the atmosphere: --altitude H [km] for NRLMSIS, or --density, --temperature, --composition"
-        )
-    return nrlmsis(
-        air.altitude_km, air.latitude_deg, air.longitude_deg, air.time, air.f107, air.f107a, air.ap
-    )
+    Parameters
+    ----------
+    altitude_km : float
+        Altitude [km], at least 0.
+    latitude_deg : float
+        Latitude [deg], -90 to 90.
+    heading_deg : float
+        Heading of the inertial velocity [deg], clockwise from north.
+    inertial_speed_m_s : float, optional
+        Inertial speed ``V`` [m/s]; default the circular speed at that altitude.
+
+    Raises
+    ------
+    InputError
+        An argument out of range or not finite.
+    """
+    altitude = finite_number(altitude_km, "altitude_km", "km", minimum=0.0)
+    latitude = math.radians(finite_number(latitude_deg, "latitude_deg", "deg", minimum=-90.0, maximum=90.0))
+    heading = math.radians(finite_number(heading_deg, "heading_deg", "deg"))
+    if inertial_speed_m_s is None:
+        speed = circular_speed(altitude)
+    else:
+        speed = finite_number(inertial_speed_m_s, "inertial speed", "m/s", minimum=0.0)
+    air = EARTH_ROTATION * (EARTH_RADIUS + altitude * 1e3) * math.cos(latitude)
+    north = speed * math.cos(heading)
+    east = speed * math.sin(heading) - air
+    return math.hypot(north, east)

@@ -1,116 +1,99 @@
-"""Sums of the direct SRP force law (eq. 4, :mod:`sunwind.forces.radiation.law`) over the lit sides of a
-model.
+"""The direct pass of one attitude: shadow rays toward the Sun and the sums of eq. (4) over the lit
+sides, with what the direct light hands to inter-reflection (METHOD.md "Direct solar pressure").
 
-Sides come in the fixed blocks of :attr:`sunwind.geometry.rays.shadows.SideSampler.side_block`. Over a block
-whose every side faces the Sun the sum of eq. (4) is a polynomial in ``u_sun``: with ``c = n . u``,
-``alpha = 1 - sigma - rho_s``, ``b = 2 rho_s`` and ``g = (2/3) rho_d``,
-
-    sum A [alpha c u + (b c^2 + g c) n] = (a . u) u + T(u, u) + G u,
-    a = sum A alpha n,   T = sum A b n (x) n (x) n,   G = sum A g n (x) n,
-
-and likewise for the torque about a point of the block, the lit area, the projected area and the
-absorbed projected area. These block moments are made once per model; an attitude then costs one
-contraction per such block plus a correction on its sides that are not wholly lit (their full share
-taken off, their lit share put back), instead of a pass over all its sides. Blocks that face only in
-part are summed side by side.
-
-The same pass sums any per-side weights ``w`` (k of them) times the direct power per unit flux a
-side receives, ``A f (n . u)`` with ``f`` its lit share: over a block that faces, ``W u`` with the
-block moment ``W = sum A w (x) n`` (:func:`weight_moments`). Inter-reflection takes what the direct
-light hands to it this way (:mod:`sunwind.forces.reflection.plan`).
+The shadow pass (:meth:`sunwind.geometry.rays.shadows.SideSampler.illuminate`) calls the sum kernel
+(:func:`~sunwind.forces.radiation.moments.accumulate_forces`) on whole blocks of sides as their lit
+shares become final, from its worker threads; each block's sums land in its own row, and the rows are
+added in block order, so the totals have the same bits whatever the threads did.
 """
 
 from __future__ import annotations
 
-import weakref
+from dataclasses import dataclass
 
-import numba
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.radiation.law import LAMBERT_FACTOR
+from sunwind.forces.radiation.moments import (
+    ABSORBED,
+    FORCE,
+    LIT_AREA,
+    PROJECTED,
+    TORQUE,
+    TOTALS,
+    accumulate_forces,
+    block_moments,
+)
+from sunwind.geometry.rays.shadows import Illumination, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
 
-#: Quantities :func:`accumulate_forces` sums: force, torque, lit area, projected area, absorbed
-#: projected area (projected area weighted by absorptivity: absorbed power over flux).
-TOTALS = 9
-#: Least bound on ``n . u`` over a block for its moments to stand for its sides: far above round-off,
-#: so every side of such a block certainly faces the Sun and is among the sides summed.
-_FACING_MARGIN = 1e-9
-#: Slots of one block's moments: block point (3), a (3), G (9), T (27), R (9), H (9), Q (27),
-#: area (1), projected (3), absorbed (3), number of sides (1).
-MOMENT_SLOTS = 95
+
+@dataclass(frozen=True)
+class DirectPower:
+    """The direct light's power [W]: what meets the spacecraft, what it absorbs at once, and the sums
+    over the reflection plan's channels (:class:`~sunwind.forces.reflection.plan.ReflectionPlan`)."""
+
+    incident_W: float
+    absorbed_W: float
+    channels_W: NDArray[np.float64]  # (k,)
 
 
-def block_moments(
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    optics: NDArray[np.float64],
-    centroids: NDArray[np.float64],
-    side_block: NDArray[np.int64],
-    n_blocks: int,
-) -> NDArray[np.float64]:
-    """The moments of each block's sides, (n_blocks, MOMENT_SLOTS) (module docstring).
+@dataclass(frozen=True, eq=False)
+class DirectTotals:
+    """The direct pass of one attitude, summed with ``P = 1`` (multiply forces by the pressure).
 
-    Per-side arrays as :func:`accumulate_forces` takes them; torques are about each block's area
-    centroid ``o`` (slots 0-2), with ``r = centroid - o``: ``R = sum A alpha r (x) n``,
-    ``H = sum A g (r x n) (x) n``, ``Q = sum A b (r x n) (x) n (x) n``.
+    Attributes
+    ----------
+    illumination : Illumination
+        Lit share and lit centroid of every side.
+    force, torque : (3,) float64
+        Force [N/Pa] and torque about the reference point [N m/Pa] of eq. (4).
+    lit_area_m2, projected_area_m2 : float
+        Lit area, and lit area projected normal to the Sun.
+    absorbed_area_m2 : float
+        Projected area weighted by absorptivity: absorbed power over flux.
+    channels_m2 : (k,) float64
+        The plan's per-side weights summed over the lit projected area: power per unit flux.
     """
-    rho, beta, sigma = optics.T
-    rho_s = rho * beta
-    alpha, b, g = (1.0 - sigma - rho_s) * areas, 2.0 * rho_s * areas, LAMBERT_FACTOR * (rho - rho_s) * areas
 
-    def per_block(values: NDArray[np.float64]) -> NDArray[np.float64]:
-        flat = values.reshape(len(values), -1)
-        out = np.zeros((n_blocks, flat.shape[1]))
-        np.add.at(out, side_block, flat)
-        return out
+    illumination: Illumination
+    force: NDArray[np.float64]
+    torque: NDArray[np.float64]
+    lit_area_m2: float
+    projected_area_m2: float
+    absorbed_area_m2: float
+    channels_m2: NDArray[np.float64]
 
-    block_area = per_block(areas)
-    point = per_block(areas[:, None] * centroids) / np.where(block_area > 0, block_area, 1.0)
-    r = centroids - point[side_block]
-    r_cross_n = np.cross(r, normals)
-    nn = normals[:, :, None] * normals[:, None, :]
-    nnn = normals[:, :, None, None] * nn[:, None]
-    parts = (
-        point,
-        per_block(alpha[:, None] * normals),
-        per_block(g[:, None, None] * nn),
-        per_block(b[:, None, None, None] * nnn),
-        per_block(alpha[:, None, None] * r[:, :, None] * normals[:, None, :]),
-        per_block(g[:, None, None] * r_cross_n[:, :, None] * normals[:, None, :]),
-        per_block(b[:, None, None, None] * r_cross_n[:, :, None, None] * nn[:, None]),
-        block_area,
-        per_block(areas[:, None] * normals),
-        per_block(((1.0 - rho - sigma) * areas)[:, None] * normals),
-        per_block(np.ones(len(areas))),
-    )
-    return np.ascontiguousarray(np.concatenate(parts, axis=1))
+    def power(self, flux_W_m2: float) -> DirectPower:
+        """The powers [W] under ``flux_W_m2``."""
+        return DirectPower(
+            flux_W_m2 * self.projected_area_m2,
+            flux_W_m2 * self.absorbed_area_m2,
+            flux_W_m2 * self.channels_m2,
+        )
 
 
-def weight_moments(
-    weights: NDArray[np.float64],
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    side_block: NDArray[np.int64],
-    n_blocks: int,
-) -> NDArray[np.float64]:
-    """``W = sum A w (x) n`` over each block's sides for per-side ``weights`` (n_sides, k), flattened
-    to (n_blocks, 3 k): ``W[b, 3 j + d]`` (module docstring)."""
-    terms = (areas[:, None, None] * weights[:, :, None] * normals[:, None, :]).reshape(len(areas), -1)
-    out = np.zeros((n_blocks, terms.shape[1]))
-    np.add.at(out, side_block, terms)
-    return out
+@dataclass(frozen=True, eq=False)
+class ChannelWeights:
+    """Per-side weights ``w`` (n_sides, k) the direct pass sums times each side's direct power per
+    unit flux, and their block moments (n_blocks, 3 k)
+    (:func:`~sunwind.forces.radiation.moments.weight_moments`)."""
 
+    side: NDArray[np.float64]
+    block: NDArray[np.float64]
 
-_kept: weakref.WeakKeyDictionary[Spacecraft, NDArray[np.float64]] = weakref.WeakKeyDictionary()
+    @property
+    def channels(self) -> int:
+        return self.side.shape[1]
 
 
 def model_block_moments(craft: Spacecraft) -> NDArray[np.float64]:
-    """:func:`block_moments` of ``craft``'s sides in its sampler's blocks, made once and kept."""
-    if craft not in _kept:
-        sampler = craft.sampler
-        _kept[craft] = block_moments(
+    """:func:`~sunwind.forces.radiation.moments.block_moments` of ``craft``'s sides in its sampler's
+    blocks, made once and kept in its cache."""
+
+    def build() -> NDArray[np.float64]:
+        sampler = side_sampler(craft)
+        return block_moments(
             craft.side_normals,
             craft.side_areas,
             craft.side_optics,
@@ -118,158 +101,39 @@ def model_block_moments(craft: Spacecraft) -> NDArray[np.float64]:
             sampler.side_block,
             sampler.n_blocks,
         )
-    return _kept[craft]
+
+    return craft.cache.get("block moments", build)
 
 
-@numba.njit(cache=True, nogil=True, fastmath=True)
-def _add_side(
-    s: int,
-    lit_area: float,
-    point: NDArray[np.float64],
-    reference: NDArray[np.float64],
-    normals: NDArray[np.float64],
-    optics: NDArray[np.float64],
-    u: NDArray[np.float64],
-    weights: NDArray[np.float64] | None,
-    scale: float,
-    row: NDArray[np.float64],
-) -> None:
-    """Add ``scale`` times side ``s``'s eq. (4) force over ``lit_area`` [m^2] with ``P = 1``, acting at
-    ``point`` [m], its torque about ``reference`` [m], its areas and its ``weights`` times its
-    projected area, to the totals ``row``."""
-    r0, r1, r2 = point[0] - reference[0], point[1] - reference[1], point[2] - reference[2]
-    u0, u1, u2 = u[0], u[1], u[2]
-    n0, n1, n2 = normals[s, 0], normals[s, 1], normals[s, 2]
-    cos = n0 * u0 + n1 * u1 + n2 * u2
-    rho = optics[s, 0]
-    rho_s = rho * optics[s, 1]
-    area = scale * lit_area
-    a = -area * cos * (1.0 - optics[s, 2] - rho_s)
-    b = -area * cos * (2.0 * rho_s * cos + LAMBERT_FACTOR * (rho - rho_s))
-    f0, f1, f2 = a * u0 + b * n0, a * u1 + b * n1, a * u2 + b * n2
-    row[0] += f0
-    row[1] += f1
-    row[2] += f2
-    row[3] += r1 * f2 - r2 * f1
-    row[4] += r2 * f0 - r0 * f2
-    row[5] += r0 * f1 - r1 * f0
-    row[6] += area
-    row[7] += area * cos
-    row[8] += area * cos * (1.0 - rho - optics[s, 2])
-    if weights is not None:
-        for j in range(weights.shape[1]):
-            row[TOTALS + j] += area * cos * weights[s, j]
-
-
-@numba.njit(cache=True, nogil=True, fastmath=True)
-def _add_moments(m: NDArray[np.float64], u: NDArray[np.float64], ref: NDArray[np.float64], row) -> None:
-    """Add one block's totals from its moments ``m`` (``P = 1``, torque about ``ref``) to ``row``."""
-    au = m[3] * u[0] + m[4] * u[1] + m[5] * u[2]
-    force = np.empty(3)
-    local = np.empty(3)
-    for k in range(3):
-        gu = ru = hu = 0.0
-        tuu = quu = 0.0
-        for i in range(3):
-            gu += m[6 + 3 * k + i] * u[i]
-            ru += m[42 + 3 * k + i] * u[i]
-            hu += m[51 + 3 * k + i] * u[i]
-            for j in range(3):
-                tuu += m[15 + 9 * k + 3 * i + j] * u[i] * u[j]
-                quu += m[60 + 9 * k + 3 * i + j] * u[i] * u[j]
-        force[k] = -(au * u[k] + tuu + gu)
-        local[k] = ru  # R u for now; crossed with u below
-        row[3 + k] -= quu + hu
-    # (R u) x u
-    row[3] -= local[1] * u[2] - local[2] * u[1]
-    row[4] -= local[2] * u[0] - local[0] * u[2]
-    row[5] -= local[0] * u[1] - local[1] * u[0]
-    d0, d1, d2 = m[0] - ref[0], m[1] - ref[1], m[2] - ref[2]
-    row[0] += force[0]
-    row[1] += force[1]
-    row[2] += force[2]
-    row[3] += d1 * force[2] - d2 * force[1]
-    row[4] += d2 * force[0] - d0 * force[2]
-    row[5] += d0 * force[1] - d1 * force[0]
-    row[6] += m[87]
-    row[7] += m[88] * u[0] + m[89] * u[1] + m[90] * u[2]
-    row[8] += m[91] * u[0] + m[92] * u[1] + m[93] * u[2]
-
-
-@numba.njit(cache=True, nogil=True, fastmath=True)
-def _add_weight_moments(w: NDArray[np.float64], u: NDArray[np.float64], row: NDArray[np.float64]) -> None:
-    """Add one block's weighted sums from its weight moments ``w`` (3 k,) to ``row``."""
-    for j in range(w.shape[0] // 3):
-        row[TOTALS + j] += w[3 * j] * u[0] + w[3 * j + 1] * u[1] + w[3 * j + 2] * u[2]
-
-
-@numba.njit(cache=True, nogil=True, fastmath=True)
-def accumulate_forces(
-    sides: NDArray[np.int64],
-    lit_share: NDArray[np.float64],
-    lit_centroid: NDArray[np.float64],
-    side_centroid: NDArray[np.float64],
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    optics: NDArray[np.float64],
-    sun_vector: NDArray[np.float64],
+def direct_pass(
+    craft: Spacecraft,
+    u_sun: NDArray[np.float64],
     reference_m: NDArray[np.float64],
-    side_block: NDArray[np.int64],
-    block_low: NDArray[np.float64],
-    block_high: NDArray[np.float64],
-    moments: NDArray[np.float64],
-    side_weights: NDArray[np.float64] | None,
-    block_weights: NDArray[np.float64] | None,
-    partials: NDArray[np.float64],
-) -> None:
-    """Sums of eq. (4) with ``P = 1`` over the facing ``sides``, with torque about ``reference_m``,
-    and of the ``side_weights`` times the direct power, per block.
+    samples: int | None,
+    tolerance: float,
+    weights: ChannelWeights | None = None,
+) -> DirectTotals:
+    """Cast the shadow rays toward ``u_sun`` (sampled as ``samples`` and ``tolerance`` say: see
+    :meth:`~sunwind.geometry.rays.shadows.SideSampler.illuminate`) and sum eq. (4) with torques about
+    ``reference_m`` [m], and the ``weights`` (none: a kernel compiled without them)."""
+    sampler = side_sampler(craft)
+    low, high = sampler.block_normal_bounds
+    sides = (craft.side_centroids, craft.side_normals, craft.side_areas, craft.side_optics)
+    blocks = (sampler.side_block, low, high, model_block_moments(craft))
+    channel = (None, None) if weights is None else (weights.side, weights.block)
+    partials = np.zeros((sampler.n_blocks, TOTALS + (0 if weights is None else weights.channels)))
 
-    ``lit_share[k]`` is the lit share of side ``sides[k]`` (float, or bool: lit or not). Per-side
-    arrays are indexed by side: ``lit_centroid`` (n, 3) [m] where each side's force acts
-    (``side_centroid`` on wholly lit sides), ``normals`` (n, 3), ``areas`` (n,) [m^2], ``optics``
-    (n, 3) holding ``(rho, beta, sigma)``. A block holds consecutive side numbers and its facing
-    sides come together in ``sides``, in ascending order. A block whose normal bounds
-    ``block_low``/``block_high`` (n_blocks, 3) show that all its sides face is added from its
-    ``moments`` (:func:`block_moments`), corrected on sides not wholly lit; the others side by side.
-    Each side's ``[Fx, Fy, Fz, Mx, My, Mz, lit area, projected area, absorbed projected area]``
-    [N/Pa, N m/Pa, m^2, m^2, m^2], then its ``side_weights`` (n, k) times its lit projected area, land
-    in row ``side_block[s]`` of ``partials`` (n_blocks, TOTALS + k); ``block_weights`` (n_blocks, 3 k)
-    are the weights' :func:`weight_moments`; both None for no weights (a kernel compiled without them).
-    Summing the rows in order gives a total that does not depend on how the blocks were split
-    between calls. (fastmath lets the compiler fuse multiply-adds; the sums keep their order, so
-    results repeat from run to run.)
-    """
-    u, ref = sun_vector, reference_m
-    u0, u1, u2 = u[0], u[1], u[2]
-    n = sides.shape[0]
-    k = 0
-    while k < n:
-        block = side_block[sides[k]]
-        row = partials[block]
-        lower = 0.0
-        for d, component in enumerate((u0, u1, u2)):
-            lower += min(block_low[block, d] * component, block_high[block, d] * component)
-        if lower > _FACING_MARGIN:
-            # every side of the block faces: the moments, then the sides not wholly lit
-            _add_moments(moments[block], u, ref, row)
-            if block_weights is not None:
-                _add_weight_moments(block_weights[block], u, row)
-            end = k + int(moments[block, 94])
-            while k < end:
-                f = lit_share[k]
-                if f != 1.0:
-                    s = sides[k]
-                    _add_side(s, areas[s], side_centroid[s], ref, normals, optics, u, side_weights, -1.0, row)
-                    if f != 0.0:
-                        _add_side(
-                            s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, side_weights, 1.0, row
-                        )
-                k += 1
-            continue
-        while k < n and side_block[sides[k]] == block:
-            s = sides[k]
-            f = lit_share[k]
-            k += 1
-            if f != 0.0:
-                _add_side(s, areas[s] * f, lit_centroid[s], ref, normals, optics, u, side_weights, 1.0, row)
+    def force_sum(facing: NDArray[np.int64], share: NDArray, centroid: NDArray) -> None:
+        accumulate_forces(facing, share, centroid, *sides, u_sun, reference_m, *blocks, *channel, partials)
+
+    light = sampler.illuminate(u_sun, samples, tolerance, reduce=force_sum)
+    totals = partials.sum(axis=0)  # block sums added in block order
+    return DirectTotals(
+        illumination=light,
+        force=totals[FORCE : FORCE + 3],
+        torque=totals[TORQUE : TORQUE + 3],
+        lit_area_m2=float(totals[LIT_AREA]),
+        projected_area_m2=float(totals[PROJECTED]),
+        absorbed_area_m2=float(totals[ABSORBED]),
+        channels_m2=totals[TOTALS:],
+    )

@@ -1,4 +1,5 @@
-"""The solar-radiation-pressure force law on a flat lit surface, eqs. (1)-(4) of the paper (METHOD.md).
+"""The solar-radiation-pressure force law on a flat lit surface, eqs. (1)-(4) of the paper (METHOD.md
+"Direct solar pressure").
 
 Notes
 -----
@@ -40,16 +41,22 @@ def solar_flux(flux_W_m2: float | None = None, distance_au: float | None = None)
         Both given, or a value that is not a finite positive number.
     """
     if flux_W_m2 is not None and distance_au is not None:
-        raise InputError("give --flux or --distance-au, not both")
+        raise InputError("give flux_W_m2 or distance_au, not both", parameters=("flux_W_m2", "distance_au"))
     if flux_W_m2 is not None:
         if not math.isfinite(flux_W_m2) or flux_W_m2 < 0:
             raise InputError(
-                f"--flux {flux_W_m2} is not a finite non-negative number", hint="e.g. --flux 1361"
+                f"flux_W_m2 {flux_W_m2} is not a finite non-negative number",
+                hint="e.g. 1361 (1 au)",
+                parameters=("flux_W_m2",),
             )
         return float(flux_W_m2)
     if distance_au is not None:
         if not math.isfinite(distance_au) or distance_au <= 0:
-            raise InputError(f"--distance-au {distance_au} is not a finite positive number", hint="e.g. 1.0")
+            raise InputError(
+                f"distance_au {distance_au} is not a finite positive number",
+                hint="e.g. 1.0",
+                parameters=("distance_au",),
+            )
         return SOLAR_FLUX_1AU / distance_au**2
     return SOLAR_FLUX_1AU
 

@@ -21,20 +21,15 @@ neighbour is sampled again at twice the level, until its split converges or the 
 split beams together is below ``TOLERANCE`` of the power of all first beams. Each lit point carries an
 equal share of the side's beam power, so the beam powers equal those of the direct law exactly.
 
-With fixed sampling, first beams known to escape are not cast. Coplanar sides form patches; a
-patch's first beams of one kind leave its box along one direction, away from its plane, so they can
-meet only facets reaching off the plane on that side. The patch's box swept along the beam is
-tested against a tree of boxes of the facets, going down only into nodes that reach off the plane
-on the beam's side; where it misses every leaf that does, its beams escape, as a ray cast would find.
+With fixed sampling, first beams known to escape are not cast (:mod:`~sunwind.forces.reflection.escape`).
 Adaptive sampling casts them all: it compares every side's outcome with its neighbours'.
 
-Rays are cast in float32 scene coordinates (:mod:`sunwind.geometry.rays.scene`); the point a beam meets a side
-is found again in float64 on the facet's plane.
+Rays are cast in float32 scene coordinates (:mod:`sunwind.geometry.rays.scene`); the point a beam meets
+a side is found again in float64 on the facet's plane.
 """
 
 from __future__ import annotations
 
-import weakref
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -43,16 +38,13 @@ from numpy.typing import NDArray
 
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
 from sunwind.forces.reflection import beam_kernels as kernels
+from sunwind.forces.reflection.escape import escape_test
+from sunwind.forces.reflection.settings import DEFAULT_CUTOFF, DEFAULT_DEPTH
 from sunwind.geometry import triangles as tri
-from sunwind.geometry.rays.box_tree import BoxTree, box_tree
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.sides import SOLID
 from sunwind.geometry.spacecraft import ESCAPED, Spacecraft
 
-#: Default end of a chain: a beam below this share of the power its chain started with.
-DEFAULT_CUTOFF = 1e-6
-#: Default end of a chain: this many surfaces met after the first.
-DEFAULT_DEPTH = 32
 #: Finest sampling of a side's first beam: 4096 points.
 MAX_LEVEL = 64
 #: First beams cast at the starting level when a model is small: the starting level is the largest
@@ -85,7 +77,7 @@ class ChainTotals:
     rays : int
         Rays cast (first beams, their re-sampling and every later generation).
     depth : int
-        Most surfaces any chain met.
+        Most surfaces any chain met beyond the side that sent it (the generations of beams cast).
     """
 
     force_N: NDArray[np.float64]
@@ -110,123 +102,14 @@ class ChainModel:
     facet_offsets: NDArray[np.float64]  # (n_facets,) ``n . x`` of the facet's plane [m]
 
 
-@dataclass(frozen=True)
-class _EscapeTest:
-    """Patches of coplanar sides and a tree of facet boxes for
-    :func:`sunwind.forces.reflection.beam_kernels.escaping_patches`.
-
-    Patches hold up to ``_PATCH_SIDES`` sides of one plane, with their box [m] grown by ``_margin`` and
-    their plane; the tree's boxes are tight round the facets.
-    """
-
-    side_patch: NDArray[np.int64]  # (n_sides,) patch of each side, -1 for none
-    patch_low: NDArray[np.float64]  # (n_patches, 3)
-    patch_high: NDArray[np.float64]  # (n_patches, 3)
-    patch_normal: NDArray[np.float64]  # (n_patches, 3) unit normal of the plane
-    patch_offset: NDArray[np.float64]  # (n_patches,) ``n . x`` of the plane [m]
-    tree: BoxTree
-    margin_m: float  # growth of the nodes' boxes for the sweep, as ``_margin``
-    reach_m: float  # a node reaches off a plane where its box does by more than this
-
-
-#: Most sides in a patch whose first beams are tested for escape together.
-_PATCH_SIDES = 64
-#: Sides within this share of the origin offset of one plane form patches; facets reach off a
-#: patch's plane where they rise more than ``_REACH`` offsets from it (rays start one offset off).
-_FLAT, _REACH = 0.1, 0.5
-
-_kept: weakref.WeakKeyDictionary[Spacecraft, dict[type, object]] = weakref.WeakKeyDictionary()
-
-
 def chain_model(craft: Spacecraft) -> ChainModel:
-    """The :class:`ChainModel` of ``craft``, built once and kept with the model."""
-    kept = _kept.setdefault(craft, {})
-    if ChainModel not in kept:
-        kept[ChainModel] = ChainModel(
+    """The :class:`ChainModel` of ``craft``, built once and kept in its cache."""
+    return craft.cache.get(
+        "beam chain model",
+        lambda: ChainModel(
             side_sheet=craft.facet_kind[craft.side_facet] != SOLID,
             facet_offsets=np.einsum("nd,nd->n", craft.facet_normals, craft.triangles[:, 0]),
-        )
-    return kept[ChainModel]
-
-
-def _escape_test(craft: Spacecraft) -> _EscapeTest:
-    """The :class:`_EscapeTest` of ``craft``, built once (~0.5 s for 10^5 facets) and kept."""
-    kept = _kept.setdefault(craft, {})
-    if _EscapeTest not in kept:
-        side_patch, low, high, normal, offset = _patches(craft)
-        tree = box_tree(craft.triangles)
-        kept[_EscapeTest] = _EscapeTest(
-            side_patch=side_patch,
-            patch_low=low,
-            patch_high=high,
-            patch_normal=normal,
-            patch_offset=offset,
-            tree=tree,
-            margin_m=_margin(craft),
-            reach_m=_REACH * craft.scene.offset_m,
-        )
-    return kept[_EscapeTest]
-
-
-def _margin(craft: Spacecraft) -> float:
-    """Growth of the escape test's boxes [m]: the origin offset, and the float32 round-off of the
-    scene with room to spare."""
-    return craft.scene.offset_m + 1e-6 * craft.scene.half_size
-
-
-def _halves(points: NDArray[np.float64], members: NDArray[np.int64], depth: int) -> list[NDArray[np.int64]]:
-    """``members`` split ``depth`` times in two at the median of their ``points`` along the longest
-    extent: ``2**depth`` sets, in the left-to-right order of the binary tree."""
-    parts = [members]
-    for _ in range(depth):
-        halves = []
-        for part in parts:
-            p = points[part]
-            order = part[np.argsort(p[:, np.argmax(np.ptp(p, axis=0))], kind="stable")]
-            halves += [order[: len(order) // 2], order[len(order) // 2 :]]
-        parts = halves
-    return parts
-
-
-def _bounds(craft: Spacecraft, facets: NDArray[np.int64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Box of ``facets`` grown by the margin [m]."""
-    corners = craft.triangles[facets].reshape(-1, 3)
-    return corners.min(axis=0) - _margin(craft), corners.max(axis=0) + _margin(craft)
-
-
-def _patches(craft: Spacecraft) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
-    """Patches of coplanar sides facing the same way: the patch of each side (-1 for none), each
-    patch's box (n_patches, 3) twice, and its plane's unit normal (n_patches, 3) and offset [m]."""
-    normals = craft.side_normals
-    offsets = np.einsum("nd,nd->n", normals, craft.side_centroids)
-    flat = _FLAT * craft.scene.offset_m
-    key = np.column_stack([np.round(normals * 1e9), np.round(offsets / flat)])
-    _, group = np.unique(key, axis=0, return_inverse=True)
-    order = np.argsort(group.reshape(-1), kind="stable")
-    runs = np.split(order, np.flatnonzero(np.diff(group.reshape(-1)[order])) + 1)
-    side_patch = np.full(craft.n_sides, -1, dtype=np.int64)
-    low, high, patch_normal, patch_offset = [], [], [], []
-    for run in runs:
-        if len(run) < 2:
-            continue
-        depth = int(np.ceil(np.log2(len(run) / _PATCH_SIDES))) if len(run) > _PATCH_SIDES else 0
-        for patch in _halves(craft.side_centroids, run, depth):
-            corners = craft.triangles[craft.side_facet[patch]].reshape(-1, 3)
-            n, c = normals[patch[0]], offsets[patch[0]]
-            if np.abs(corners @ n - c).max() > flat:  # not one plane after all
-                continue
-            side_patch[patch] = len(low)
-            box = _bounds(craft, craft.side_facet[patch])
-            low.append(box[0])
-            high.append(box[1])
-            patch_normal.append(n)
-            patch_offset.append(c)
-    return (
-        side_patch,
-        np.reshape(low, (-1, 3)),
-        np.reshape(high, (-1, 3)),
-        np.reshape(patch_normal, (-1, 3)),
-        np.asarray(patch_offset, dtype=np.float64),
+        ),
     )
 
 
@@ -288,7 +171,7 @@ def _emitters(craft: Spacecraft, light: Illumination, flux_W_m2: float, cull: bo
     escape are left out and their power is counted in :attr:`_Emitters.escaping_W`."""
     side_patch = escapes = None
     if cull:
-        test = _escape_test(craft)
+        test = escape_test(craft)
         side_patch = test.side_patch
         escapes = kernels.escaping_patches(
             light.facing,
@@ -484,7 +367,7 @@ def follow_chains(
     cutoff : float
         A beam is dropped below this share of the power its chain started with.
     depth : int
-        A chain is dropped after meeting this many surfaces after the first.
+        A chain is dropped after meeting this many surfaces beyond the side that sent it.
     level : int or None
         The shadow pass's fixed sampling level (``level**2`` points per side): first beams leave from
         the same points. None: the shadows were sampled adaptively, and so are the first beams.
@@ -495,16 +378,16 @@ def follow_chains(
         batches: Iterator[_FirstBeams] | list[_FirstBeams] = _fixed_first_beams(craft, light, emitters, level)
     else:
         batches = [_first_beams(craft, light, emitters)] if len(emitters.side) else []
-    totals = np.zeros(kernels.N_TOTALS)
-    totals[kernels.ESCAPED_W] = emitters.escaping_W
-    diffuse_W = np.zeros(craft.n_sides)
+    sums = _Sums(np.zeros(kernels.N_TOTALS), np.zeros(craft.n_sides))
+    sums.totals[kernels.ESCAPED_W] = emitters.escaping_W
     rays = generations = 0
     for beams, sides, points, cast in batches:
         more_rays, chain_generations = _trace(
-            craft, beams, sides, points, reference_m, cutoff, depth, totals, diffuse_W
+            craft, (beams, sides, points), reference_m, (cutoff, depth), sums
         )
         rays += cast + more_rays
         generations = max(generations, chain_generations)
+    totals, diffuse_W = sums.totals, sums.diffuse_W
     momentum, open_sky = kernels.MOMENTUM, kernels.OPEN_SKY
     return ChainTotals(
         force_N=totals[momentum : momentum + 3] / SPEED_OF_LIGHT,
@@ -521,21 +404,27 @@ def follow_chains(
     )
 
 
+@dataclass(frozen=True, eq=False)
+class _Sums:
+    """What every chain of an attitude adds to: the kernel's running sums (slots of
+    :mod:`~sunwind.forces.reflection.beam_kernels`) and the diffuse source of each side [W]."""
+
+    totals: NDArray[np.float64]  # (N_TOTALS,)
+    diffuse_W: NDArray[np.float64]  # (n_sides,)
+
+
 def _trace(
     craft: Spacecraft,
-    beams: _Beams,
-    sides: NDArray[np.int64],
-    points: NDArray[np.float64],
+    first: tuple[_Beams, NDArray[np.int64], NDArray[np.float64]],
     reference_m: NDArray[np.float64],
-    cutoff: float,
-    depth: int,
-    totals: NDArray[np.float64],
-    diffuse_W: NDArray[np.float64],
+    ends: tuple[float, int],
+    sums: _Sums,
 ) -> tuple[int, int]:
-    """Follow first ``beams``, already cast (meeting ``sides`` at ``points``), and all they lead to;
-    add to ``totals`` (slots of :mod:`sunwind.forces.reflection.beam_kernels`) and ``diffuse_W``. Returns the
-    rays cast
-    after the first beams and the generations of beams cast."""
+    """Follow ``first`` beams, already cast (the beams, the side each meets and the point it meets it),
+    and all they lead to, until the chains end (``ends``: cutoff and depth); add to ``sums``. Returns
+    the rays cast after the first beams and the generations of beams cast."""
+    beams, sides, points = first
+    cutoff, depth = ends
     model = chain_model(craft)
     rays = generation = 0
     while len(beams):
@@ -556,8 +445,8 @@ def _trace(
                 model.side_sheet,
                 LAMBERT_FACTOR,
                 reference_m,
-                totals,
-                diffuse_W,
+                sums.totals,
+                sums.diffuse_W,
             )
         )
         if len(beams):

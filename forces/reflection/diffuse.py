@@ -27,7 +27,6 @@ Molecules (``re_emit_all``) use the view factors with every side re-emitting all
 from __future__ import annotations
 
 import os
-import weakref
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -38,6 +37,8 @@ import scipy.sparse.linalg
 from numpy.typing import NDArray
 
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
+from sunwind.forces.reflection.settings import ReflectionSettings
+from sunwind.forces.reflection.views import model_view_factors
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.spacecraft import Spacecraft
@@ -48,9 +49,10 @@ from sunwind.geometry.views.view_factors import ViewFactors
 SOLVER_TOLERANCE = 1e-13
 #: Fixed-point sweeps before the solver turns to GMRES.
 _SWEEPS = 400
-#: Columns of :attr:`DiffuseExchange.responses`: escaping momentum (3), its moment about the origin
-#: (3), escaped power, absorbed power.
-_RESPONSES = 8
+#: Columns of :attr:`DiffuseExchange.functionals` and :attr:`DiffuseExchange.responses`: escaping
+#: momentum rate (3) and its moment about the origin (3), together ``MOMENTA``; escaped power, absorbed
+#: power.
+MOMENTUM, MOMENT, MOMENTA, ESCAPED, ABSORBED = slice(0, 3), slice(3, 6), slice(0, 6), 6, 7
 #: Sides per block of the weighted sums of :func:`_weighted`.
 _BLOCK_SIDES = 4096
 
@@ -76,12 +78,12 @@ class DiffuseTotals:
     def from_sums(cls, values: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """The totals from the eight sums of :attr:`DiffuseExchange.functionals` over a diffuse
         emission (or of its responses over the sources) [W], torque about ``reference_m``."""
-        momentum, moment = values[0:3], values[3:6]
+        momentum, moment = values[MOMENTUM], values[MOMENT]
         return cls(
             force_N=-momentum / SPEED_OF_LIGHT,
             torque_Nm=-(moment - np.cross(reference_m, momentum)) / SPEED_OF_LIGHT,
-            escaped_W=float(values[6]),
-            absorbed_W=float(values[7]),
+            escaped_W=float(values[ESCAPED]),
+            absorbed_W=float(values[ABSORBED]),
         )
 
 
@@ -95,7 +97,8 @@ class DiffuseExchange:
         View factors of ``craft``'s sides.
     re_emit_all : bool
         Rarefied gas: every molecule that lands is re-emitted diffusely (``rho_d = 1``, ``E = F``,
-        nothing absorbed, nothing passes a sheet).
+        nothing passes a sheet); only molecules reaching a side the model does not have (``BLIND``)
+        count as absorbed.
     cache_dir : path, bool or None
         Where exchange factors are kept on disk
         (:func:`sunwind.geometry.views.exchange_factors.exchange_factors`);
@@ -161,7 +164,7 @@ class DiffuseExchange:
         return x
 
     def solve(self, source_W: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Diffuse power ``W`` leaving each side [W], (n_sides,), for diffuse sources ``E`` [W]."""
+        """Diffuse power ``W`` leaving each side [W], (n_sides,), for diffuse sources ``S`` [W]."""
         return self._solve(self.coupling, np.asarray(source_W, dtype=np.float64))
 
     @cached_property
@@ -174,16 +177,16 @@ class DiffuseExchange:
         return np.column_stack([factors.escape_vector, moment, factors.escape_fraction, absorbed])
 
     def adjoint(self, weights: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T E`` for every source ``E``."""
+        """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T S`` for every source ``S``."""
         return self._solve(self.coupling.T.tocsr(), np.asarray(weights, dtype=np.float64))
 
     @cached_property
     def responses(self) -> NDArray[np.float64]:
-        """``g = M^-T w`` for the :attr:`functionals`, (n_sides, 8): totals are ``g^T E``."""
+        """``g = M^-T w`` for the :attr:`functionals`, (n_sides, 8): totals are ``g^T S``."""
         return np.ascontiguousarray(self.adjoint(self.functionals))
 
     def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
-        """Escaping force and torque about ``reference_m`` and the power split, for sources ``E`` [W]."""
+        """Escaping force and torque about ``reference_m`` and the power split, for sources ``S`` [W]."""
         return DiffuseTotals.from_sums(_weighted(self.responses, source_W), reference_m)
 
     @cached_property
@@ -201,33 +204,13 @@ class DiffuseExchange:
         return DiffuseTotals.from_sums(_weighted(self.functionals, emitted_W), reference_m)
 
 
-def interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
-    """``K_IS`` of eq. (7): reflected light that meets the spacecraft again over light that escapes.
-
-    ``Omega_inf / 2 pi`` is taken as the cosine-weighted open-sky share ``f_esc``, the share of a
-    side's diffusely reflected light that escapes, which is the ratio eq. (7) describes. 0 for a
-    convex body or a black one.
-    """
-    rho_area = craft.side_optics[:, 0] * craft.side_areas
-    escaping = float(rho_area @ view.escape_fraction)
-    returning = float(rho_area @ (1.0 - view.escape_fraction))
-    if returning == 0.0:
-        return 0.0
-    return returning / escaping if escaping > 0 else float("inf")
-
-
-_exchanges: weakref.WeakKeyDictionary[Spacecraft, dict] = weakref.WeakKeyDictionary()
-
-
-def diffuse_exchange(
-    craft: Spacecraft, view: ViewFactors, cache_dir: str | os.PathLike | bool | None = False
-) -> DiffuseExchange:
-    """The :class:`DiffuseExchange` of ``craft`` with ``view``, built once and kept with the model;
-    ``cache_dir`` as for :class:`DiffuseExchange`."""
-    kept = _exchanges.setdefault(craft, {})
-    if id(view) not in kept or kept[id(view)].view is not view:
-        kept[id(view)] = DiffuseExchange(craft, view, cache_dir=cache_dir)
-    return kept[id(view)]
+def diffuse_exchange(craft: Spacecraft, settings: ReflectionSettings) -> DiffuseExchange:
+    """The :class:`DiffuseExchange` of ``craft`` with its view factors for ``settings``, its
+    exchange factors kept on disk where they are; built once and kept in the model's cache."""
+    return craft.cache.get(
+        ("diffuse exchange", *settings.view_key),
+        lambda: DiffuseExchange(craft, model_view_factors(craft, settings), cache_dir=settings.cache_dir),
+    )
 
 
 def _weighted(columns: NDArray[np.float64], weights: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -1,8 +1,9 @@
 """Attitude sets of a sweep: body-frame Sun and flow directions on an az/el grid or from a CSV list.
 
-Conventions (METHOD.md "Frames"): directions are unit vectors in the body frame; the Sun vector points
-from the spacecraft to the Sun, the flow vector ``u = v_rel / |v_rel|`` along the spacecraft's velocity
-relative to the atmosphere; azimuth ``az = atan2(y, x)`` from +x toward +y, elevation ``el = asin(z)``.
+Conventions (METHOD.md "Frames, units and signs"): directions are unit vectors in the body frame; the
+Sun vector points from the spacecraft to the Sun, the flow vector ``u = v_rel / |v_rel|`` along the
+spacecraft's velocity relative to the atmosphere; azimuth ``az = atan2(y, x)`` from +x toward +y,
+elevation ``el = asin(z)``.
 
 **Grid.** Azimuth from -180 to 180 deg and elevation from -90 to 90 deg, both ends present, in steps
 that divide 180 deg: the layout simulators' tables use (SPAD, for one). Its 73 x 37 = 2701 nodes at
@@ -75,7 +76,7 @@ class DirectionGrid:
         return flat[first[order]], rank[inverse.reshape(-1)]
 
 
-def direction_grid(step_deg: float, name: str = "--step") -> DirectionGrid:
+def direction_grid(step_deg: float, name: str = "step_deg") -> DirectionGrid:
     """A :class:`DirectionGrid` of ``step_deg``, checked.
 
     Raises
@@ -84,13 +85,16 @@ def direction_grid(step_deg: float, name: str = "--step") -> DirectionGrid:
         A step that is not positive or does not divide 180 deg.
     """
     if not math.isfinite(step_deg) or step_deg <= 0 or step_deg > 90:
-        raise InputError(f"{name} {step_deg} deg must be a positive angle of at most 90 deg")
+        raise InputError(
+            f"{name} {step_deg} deg must be a positive angle of at most 90 deg", parameters=(name,)
+        )
     count = round(180.0 / step_deg)
     if abs(count * step_deg - 180.0) > 1e-9 * 180.0:
         divisors = [d for d in (1, 2, 2.5, 3, 5, 6, 7.5, 9, 10, 15, 18, 20, 30, 45) if abs(d - step_deg) < 6]
         raise InputError(
             f"{name} {step_deg:g} deg does not divide the azimuth and elevation ranges (-180..180, -90..90)",
             hint=f"grids (SPAD among them) need a divisor of 180 deg, e.g. {', '.join(map(str, divisors))}",
+            parameters=(name,),
         )
     return DirectionGrid(180.0 / count)
 
@@ -117,6 +121,20 @@ class AttitudeList:
     def __len__(self) -> int:
         present = self.sun_vectors if self.sun_vectors is not None else self.flow_vectors
         return len(present)
+
+    def directions(self, kind: str) -> NDArray[np.float64]:
+        """The Sun (``kind`` "srp") or flow ("drag") directions of every row.
+
+        Raises
+        ------
+        InputError
+            The file has no columns for them.
+        """
+        directions = self.sun_vectors if kind == "srp" else self.flow_vectors
+        if directions is None:
+            column = ", ".join(SUN_COLUMNS if kind == "srp" else FLOW_COLUMNS)
+            raise InputError(f"the attitude list has no {column} columns for {kind}", path=self.source)
+        return directions
 
 
 def read_attitude_csv(path: str | Path) -> AttitudeList:

@@ -1,39 +1,59 @@
-"""Sweep chunks as tasks on a Dask distributed cluster (``sunwind sweep --scheduler``).
+"""Sweep chunks as tasks on a Dask distributed cluster.
 
-Each worker process loads the model once from the recipe's files (so they must be readable at the
-same paths on every worker: a shared file system, or the same checkout) and keeps it for every task
-it is given; view factors come from the disk cache the submitting process fills first (point
-``SUNWIND_CACHE_DIR`` at a shared directory on a real cluster, or each worker computes them once). A
-task runs its attitudes on one thread, so start workers with one thread each and one worker per
-core: ``dask scheduler`` on one machine, ``dask worker tcp://HOST:8786 --nworkers auto --nthreads 1``
-on every machine. Results do not depend on where or on how many threads they were computed.
+Each worker process loads the model once from its :class:`~sunwind.forces.model.ModelSource` (so the
+files must be readable at the same paths on every worker: a shared file system, or the same checkout)
+and keeps it for every task it is given; view factors come from the disk cache the submitting process
+fills first (point ``SUNWIND_CACHE_DIR`` at a shared directory on a real cluster, or each worker
+computes them once). A task runs its attitudes on one thread, so start workers with one thread each and
+one worker per core: ``dask scheduler`` on one machine, ``dask worker tcp://HOST:8786 --nworkers auto
+--nthreads 1`` on every machine. Results do not depend on where or on how many threads they were
+computed.
 """
 
 from __future__ import annotations
 
-import os
+import time
 from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.tables.sweep import Job, ModelRecipe, Setup, evaluate_chunk, precompute
+from sunwind.forces.model import Model, ModelSource
+from sunwind.forces.tables.jobs import Job, Records, Setup
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import CORES
-from sunwind.geometry.spacecraft import Spacecraft
 
 #: Seconds to wait for a scheduler before giving up.
 CONNECT_TIMEOUT_S = 10
-#: Models loaded in this worker process, by recipe.
-_MODELS: dict[ModelRecipe, Spacecraft] = {}
+#: A chunk to run: the job, and the range of its directions.
+Pending = tuple[Job, int, int]
 
 
-def _remote_chunk(recipe: ModelRecipe, setup: Setup, directions: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Records of one chunk, in a worker: the model loaded once per process, one thread per task."""
-    os.environ["SUNWIND_THREADS"] = "1"
-    if recipe not in _MODELS:
-        _MODELS[recipe] = recipe.load()
-    return evaluate_chunk(_MODELS[recipe], setup, directions)
+def _worker_model(source: ModelSource, references: dict) -> Model:
+    """The model of ``source`` in this worker process, loaded on its first task and kept there (on the
+    Dask worker object, so it lives as long as the worker), on one thread."""
+    from dask.distributed import get_worker
+
+    kept = get_worker().__dict__.setdefault("sunwind_models", {})
+    key = (source, tuple(sorted((k, str(v)) for k, v in references.items())))
+    if key not in kept:
+        kept[key] = Model(source.load(), source, threads=1, **references)
+    return kept[key]
+
+
+def _remote_chunk(
+    source: ModelSource, references: dict, setup: Setup, directions: NDArray[np.float64]
+) -> Records:
+    """Records of one chunk, in a worker."""
+    return setup.evaluate(_worker_model(source, references), directions)
+
+
+def _references(model: Model) -> dict:
+    return {
+        "reference_point_m": model.reference_point_m,
+        "reference_area_m2": model.reference_area_m2,
+        "reference_length_m": model.reference_length_m,
+    }
 
 
 def connect(scheduler: str, workers: int | None):
@@ -48,7 +68,9 @@ def connect(scheduler: str, workers: int | None):
         from dask.distributed import Client, LocalCluster
     except ImportError:
         raise InputError(
-            "--scheduler needs Dask distributed", hint="install it: python -m pip install 'sunwind[dask]'"
+            "scheduler needs Dask distributed",
+            hint="install it: python -m pip install 'sunwind[dask]'",
+            parameters=("scheduler",),
         ) from None
     if scheduler == "local":
         cluster = LocalCluster(
@@ -62,49 +84,55 @@ def connect(scheduler: str, workers: int | None):
         raise InputError(
             f"cannot reach the Dask scheduler at {scheduler}: {reason}",
             hint="start one with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`, "
-            "or give --scheduler alone for a local cluster",
+            "or run on a local cluster",
         ) from None
 
 
+def _source_of(model: Model) -> ModelSource:
+    if model.source is None:
+        raise InputError(
+            "a model built in memory cannot go to Dask workers: they load it from its files",
+            hint="load it with sunwind.forces.load, or run the sweep without a scheduler",
+            parameters=("scheduler",),
+        )
+    return model.source
+
+
 def run_on_dask(
-    recipe: ModelRecipe,
-    craft: Spacecraft | None,
-    pending: list[tuple[Job, int, int]],
+    model: Model,
+    pending: list[Pending],
     scheduler: str,
     workers: int | None,
-    finished: Callable[[Job, int, int, NDArray[np.float64]], None],
+    finished: Callable[[Job, int, int, Records], None],
 ) -> None:
     """Submit every pending chunk; hand each result to ``finished`` as it arrives."""
     from dask.distributed import as_completed
 
+    source, references = _source_of(model), _references(model)
     client = connect(scheduler, workers)
     try:
-        # fill the view-factor cache once here, so that workers read it instead of each computing it
-        precompute(recipe.load() if craft is None else craft, [job for job, _, _ in pending])
         futures = {
-            client.submit(_remote_chunk, recipe, job.setup, job.directions[lo:hi], pure=False): (job, lo, hi)
+            client.submit(_remote_chunk, source, references, job.setup, job.directions[lo:hi], pure=False): (
+                job,
+                lo,
+                hi,
+            )
             for job, lo, hi in pending
         }
         for future in as_completed(futures):
             job, lo, hi = futures[future]
             finished(job, lo, hi, future.result())
     finally:
-        cluster = client.cluster
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        _close(client)
 
 
-def timed_on_local_cluster(
-    recipe: ModelRecipe, pending: list[tuple[Job, int, int]], workers: int
-) -> tuple[float, list[NDArray[np.float64]]]:
+def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -> tuple[float, list[Records]]:
     """Seconds a local cluster of ``workers`` one-thread workers takes for ``pending`` chunks once every
     worker has the model and what each job's first attitude makes (one-attitude chunks of every job run
     on each worker first), and the chunks' records."""
-    import time
-
     from dask.distributed import wait
 
+    source, references = _source_of(model), _references(model)
     client = connect("local", workers)
     try:
         firsts: dict[int, tuple[Job, int]] = {}
@@ -112,7 +140,13 @@ def timed_on_local_cluster(
             firsts.setdefault(id(job), (job, lo))
         warm = [
             client.submit(
-                _remote_chunk, recipe, job.setup, job.directions[lo : lo + 1], pure=False, workers=[w]
+                _remote_chunk,
+                source,
+                references,
+                job.setup,
+                job.directions[lo : lo + 1],
+                pure=False,
+                workers=[w],
             )
             for w in client.scheduler_info()["workers"]
             for job, lo in firsts.values()
@@ -120,12 +154,17 @@ def timed_on_local_cluster(
         wait(warm)
         start = time.perf_counter()
         futures = [
-            client.submit(_remote_chunk, recipe, job.setup, job.directions[lo:hi], pure=False)
+            client.submit(_remote_chunk, source, references, job.setup, job.directions[lo:hi], pure=False)
             for job, lo, hi in pending
         ]
         results = client.gather(futures)
         return time.perf_counter() - start, results
     finally:
-        cluster = client.cluster
-        client.close()
+        _close(client)
+
+
+def _close(client) -> None:
+    cluster = client.cluster
+    client.close()
+    if cluster is not None:
         cluster.close()

@@ -1,4 +1,5 @@
-"""Sweep results as a table: an xarray Dataset with units, frame and provenance, in netCDF or CSV.
+"""Sweep results as a table: an ``xarray.Dataset`` with units, frame and provenance (METHOD.md "Outputs
+and tables"); the writers of its file formats are :mod:`sunwind.forces.export`.
 
 **Grid tables** have the dimensions ``sun_azimuth, sun_elevation`` for SRP and ``flow_azimuth,
 flow_elevation`` for drag (degrees, -180..180 and -90..90 with both ends), and ``component`` (x, y, z)
@@ -9,8 +10,6 @@ projected area, ``sun_vector``) and ``drag_*`` (the same parts, the coefficients
 the frame, conventions, reference point, solar flux, atmosphere, coefficient references, mesh and
 materials digests and the sunwind version.
 
-netCDF is written with xarray, CSV as ``#`` comment lines with the attributes and a header row whose
-column names carry their units. Files are written to a temporary name and renamed into place.
 """
 
 from __future__ import annotations
@@ -18,14 +17,17 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Mapping
+from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from sunwind.forces.model import Model
+from sunwind.forces.results import FRAME
 from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid
-from sunwind.forces.tables.sweep import FIELDS, records_by_field
+from sunwind.forces.tables.jobs import FIELDS, Records, Setup
 from sunwind.geometry.errors import InputError
 
 #: Variable units by field name.
@@ -70,11 +72,9 @@ GRID_DIMS = {"srp": ("sun_azimuth", "sun_elevation"), "drag": ("flow_azimuth", "
 DIRECTION = {"srp": "sun_vector", "drag": "flow_vector"}
 
 
-def _variables(
-    kind: str, records: NDArray[np.float64], dims: tuple[str, ...], shape: tuple[int, ...]
-) -> dict:
+def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[int, ...]) -> dict:
     out = {}
-    for name, values in records_by_field(kind, records).items():
+    for name, values in records.items():
         vector = values.ndim == 2
         data = values.reshape((*shape, 3) if vector else shape)
         attrs = {"units": UNITS[name], "long_name": f"{kind.upper()} {LONG_NAMES[name]}"}
@@ -88,12 +88,10 @@ def _direction_variable(kind: str, vectors: NDArray[np.float64], dims: tuple[str
 
 
 def grid_table(
-    records: Mapping[str, NDArray[np.float64]],
-    grids: Mapping[str, DirectionGrid],
-    attrs: Mapping[str, object],
+    records: Mapping[str, Records], grids: Mapping[str, DirectionGrid], attrs: Mapping[str, object]
 ) -> xr.Dataset:
-    """The grid table of sweep records: ``records[kind]`` (distinct directions, width) in the order of
-    ``grids[kind].distinct``."""
+    """The grid table of sweep records: ``records[kind]`` of the distinct directions of
+    ``grids[kind]``, in their order (:attr:`~sunwind.forces.tables.attitudes.DirectionGrid.distinct`)."""
     variables, coords = {}, {"component": ["x", "y", "z"]}
     for kind, values in records.items():
         grid = grids[kind]
@@ -101,20 +99,20 @@ def grid_table(
         coords[az_dim] = (az_dim, grid.azimuth_deg, {"units": "degree", "long_name": f"{kind} azimuth"})
         coords[el_dim] = (el_dim, grid.elevation_deg, {"units": "degree", "long_name": f"{kind} elevation"})
         shape = (len(grid.azimuth_deg), len(grid.elevation_deg))
-        nodes = values[grid.distinct[1]]
+        nodes = {name: column[grid.distinct[1]] for name, column in values.items()}
         variables.update(_variables(kind, nodes, (az_dim, el_dim), shape))
         variables[DIRECTION[kind]] = _direction_variable(kind, grid.vectors, (az_dim, el_dim))
     return xr.Dataset(variables, coords=coords, attrs=_attributes(attrs))
 
 
 def list_table(
-    records: Mapping[str, NDArray[np.float64]], attitudes: AttitudeList, attrs: Mapping[str, object]
+    records: Mapping[str, Records], attitudes: AttitudeList, attrs: Mapping[str, object]
 ) -> xr.Dataset:
     """The list table of sweep records, one row per attitude of ``attitudes``."""
     variables = {}
     directions = {"srp": attitudes.sun_vectors, "drag": attitudes.flow_vectors}
     for kind, values in records.items():
-        variables.update(_variables(kind, values, ("attitude",), (len(values),)))
+        variables.update(_variables(kind, values, ("attitude",), (len(attitudes),)))
         variables[DIRECTION[kind]] = _direction_variable(kind, directions[kind], ("attitude",))
     if attitudes.quaternions is not None:
         variables["quaternion"] = xr.Variable(
@@ -143,70 +141,36 @@ def _attributes(attrs: Mapping[str, object]) -> dict:
 
 
 def kinds_of(table: xr.Dataset) -> list[str]:
-    """The quantities a table holds, in :data:`sunwind.forces.tables.sweep.KINDS` order."""
+    """The quantities a table holds, in :data:`sunwind.forces.tables.jobs.KINDS` order."""
     return [kind for kind in FIELDS if f"{kind}_force_N" in table]
 
 
-def write_netcdf(table: xr.Dataset, path: Path) -> Path:
-    """Write ``table`` to netCDF at ``path``, atomically."""
-    temporary = path.with_name(f".{path.name}.tmp")
-    table.to_netcdf(temporary)
-    os.replace(temporary, path)
-    return path
-
-
-def csv_paths(path: Path, table: xr.Dataset) -> dict[str, Path]:
-    """CSV file of each quantity: ``path`` itself for a list table or one quantity, else
-    ``NAME.srp.csv`` and ``NAME.drag.csv`` (SRP and drag are on different grids)."""
-    kinds = kinds_of(table)
-    if "attitude" in table.dims or len(kinds) == 1:
-        return {"all": path}
-    return {kind: path.with_name(f"{path.stem}.{kind}{path.suffix}") for kind in kinds}
-
-
-def write_csv(table: xr.Dataset, path: Path) -> list[Path]:
-    """Write ``table`` as CSV (see :func:`csv_paths`), atomically; returns the files written."""
-    written = []
-    for kind, target in csv_paths(path, table).items():
-        part = table if kind == "all" else table[[name for name in table.data_vars if name.startswith(kind)]]
-        if kind != "all":
-            part[DIRECTION[kind]] = table[DIRECTION[kind]]
-        written.append(_write_csv_part(part, table.attrs, target))
-    return written
-
-
-def _write_csv_part(table: xr.Dataset, attrs: Mapping[str, object], path: Path) -> Path:
-    dims = [d for d in table[next(iter(table.data_vars))].dims if d != "component"]
-    index = np.stack(np.meshgrid(*(table[d].values for d in dims), indexing="ij"), axis=-1).reshape(
-        -1, len(dims)
-    )
-    names = [f"{d}_deg" if d.endswith(("azimuth", "elevation")) else d for d in dims]
-    columns = [index.astype(np.float64)]
-    for name, variable in table.data_vars.items():
-        if any(d not in (*dims, "component", "quaternion_component") for d in variable.dims):
-            continue
-        values = variable.transpose(*dims, ...).values.reshape(len(index), -1)
-        unit = variable.attrs.get("units", "1").replace(" ", "").replace("^", "")
-        if values.shape[1] == 1:
-            names.append(f"{name}[{unit}]")
-        else:
-            suffixes = "wxyz" if "quaternion_component" in variable.dims else "xyz"
-            names += [f"{name}_{c}[{unit}]" for c in suffixes]
-        columns.append(values)
-    lines = [f"# {key}: {_text(value)}" for key, value in attrs.items()]
-    body = np.hstack(columns)
-    temporary = path.with_name(f".{path.name}.tmp")
-    with temporary.open("w") as handle:
-        handle.write("\n".join(lines) + "\n" + ",".join(names) + "\n")
-        np.savetxt(handle, body, delimiter=",", fmt="%.17g")
-    os.replace(temporary, path)
-    return path
-
-
-def _text(value: object) -> str:
-    if isinstance(value, np.ndarray):
-        return " ".join(f"{v:.17g}" for v in value)
-    return str(value)
+def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) -> dict:
+    """A table's global attributes: frame, reference point, sampling, environment, provenance."""
+    first = setups[0]
+    point, name = model.reference(first.reference_point_m)
+    source = model.source.attributes() if model.source else {"mesh": model.craft.source}
+    attrs: dict = {
+        "title": f"sunwind attitude table of {Path(str(source['mesh'])).name}",
+        "frame": FRAME,
+        "reference_point_m": point,
+        "reference_point": name,
+        "grid_step_deg": step_deg,
+        "samples": "adaptive" if first.samples is None else first.samples,
+        "tolerance": first.tolerance,
+        "reflections": first.settings.mode,
+        "mesh": source.pop("mesh"),
+        "materials": source.pop("materials", None),
+        "unit": source.pop("unit", None),
+        "length_unit": model.craft.unit,
+        "two_sided": source.pop("two_sided", ""),
+        **model.digests(),
+        "sunwind_version": version("sunwind"),
+        **source,  # the uniform material and gas overrides, where given
+    }
+    for setup in setups:
+        attrs |= setup.attributes(model)
+    return attrs
 
 
 def open_table(path: str | os.PathLike) -> xr.Dataset:

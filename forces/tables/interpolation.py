@@ -1,8 +1,9 @@
 """Interpolation of sweep tables over the sphere of directions, periodic in azimuth and across the poles.
 
 A grid table holds a quantity ``f(az, el)`` at azimuths -180..180 and elevations -90..90 (both ends, regular
-steps; METHOD.md "Frames": ``az = atan2(d_y, d_x)``, ``el = asin(d_z)``). :class:`TableInterpolator` evaluates
-it at any body-frame direction by tensor-product interpolation in (az, el):
+steps; METHOD.md "Frames, units and signs": ``az = atan2(d_y, d_x)``, ``el = asin(d_z)``).
+:class:`TableInterpolator` evaluates it at any body-frame direction by tensor-product interpolation in
+(az, el):
 
 - ``"bilinear"``: 2 x 2 nodes, error O(h^2) in the grid step h;
 - ``"bicubic"``: 4 x 4 nodes with the Catmull-Rom (Keys, a = -1/2) kernel, C1, error O(h^3).

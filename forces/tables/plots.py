@@ -6,6 +6,7 @@ no display needed.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -16,8 +17,13 @@ from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 from numpy.typing import ArrayLike, NDArray
 
+from sunwind.forces.drag import drag
+from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.model import Model, ModelSource
+from sunwind.forces.srp import srp
+from sunwind.forces.tables.dataset import DIRECTION, kinds_of
 from sunwind.forces.tables.interpolation import PREFIX
-from sunwind.geometry.directions import unit_vector
+from sunwind.geometry.directions import unit_vector, vector_to_azel
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -163,3 +169,40 @@ def _conditions(table: xr.Dataset, prefix: str) -> str:
 def _limits(values: NDArray[np.float64]) -> tuple[float, float]:
     low, high = float(values.min()), float(values.max())
     return (low, high) if high > low else (low - 0.5, high + 0.5)
+
+
+def plot_pressure_view(
+    table: xr.Dataset, directory: str | Path, name: str, direction: NDArray[np.float64] | None = None
+) -> Path:
+    """A 3-D view of the table's model coloured by facet pressure at one attitude of the table's first
+    quantity: ``direction`` (a unit vector), default where the table's force is largest. The model is
+    loaded again from the files the table names; the PNG is ``NAME.KIND.pressure_azAZ_elEL.png``.
+
+    Raises
+    ------
+    InputError
+        The table's mesh file is not there.
+    """
+    kind = kinds_of(table)[0]
+    if not Path(table.attrs["mesh"]).exists():
+        raise InputError(
+            f"the table's mesh {table.attrs['mesh']} is not there for the 3-D view",
+            hint="draw the maps without the 3-D view",
+        )
+    reference = np.asarray(table.attrs["reference_point_m"], dtype=np.float64)
+    source = ModelSource.from_attributes(table.attrs)
+    model = Model(source.load(), source, reference_point_m=reference)
+    if direction is None:
+        force = np.linalg.norm(table[f"{kind}_force_N"].values, axis=-1)
+        at = np.unravel_index(int(np.argmax(force)), force.shape)
+        direction = table[DIRECTION[kind]].values[at]
+    if kind == "srp":
+        result = srp(model, direction, flux_W_m2=float(table.attrs["flux_W_m2"]), reflections="none")
+    else:
+        air = Atmosphere.from_json(json.loads(table.attrs["atmosphere"]))
+        result = drag(model, float(table.attrs["speed_m_s"]) * direction, air, reflections="none")
+    craft = model.craft
+    pressure = np.linalg.norm(result.facet_force_N, axis=1) / craft.facet_areas
+    az, el = vector_to_azel(direction)
+    path = Path(directory) / f"{name}.{kind}.pressure_az{az:+.0f}_el{el:+.0f}.png"
+    return plot_facet_pressure(craft, pressure, direction, path)

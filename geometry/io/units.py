@@ -1,6 +1,6 @@
 """Length units of mesh files: the names users may give and which unit a load ends up using.
 
-A mesh is converted to metres on load (METHOD.md "Frames"). The unit comes from the user when
+A mesh is converted to metres on load (METHOD.md "Frames, units and signs"). The unit comes from the user when
 given, else from the file when the format declares one (USD ``metersPerUnit``, glTF by
 specification), else it is metres, and the choice is always written down as a short string.
 """

@@ -19,7 +19,6 @@ is the highest, so the cost per side is a few steps on meshes whose nearby sides
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numba
@@ -63,14 +62,9 @@ class Clearance:
     box_high: NDArray[np.float64]
 
 
-_kept: weakref.WeakKeyDictionary[Spacecraft, Clearance] = weakref.WeakKeyDictionary()
-
-
 def clearance(craft: Spacecraft) -> Clearance:
-    """The :class:`Clearance` of ``craft``, made once and kept with the model."""
-    if craft not in _kept:
-        _kept[craft] = _clearance(craft)
-    return _kept[craft]
+    """The :class:`Clearance` of ``craft``, made once and kept in its cache."""
+    return craft.cache.get("hull clearance", lambda: _clearance(craft))
 
 
 def _clearance(craft: Spacecraft) -> Clearance:

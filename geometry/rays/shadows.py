@@ -1,6 +1,6 @@
 """Which share of each side a distant source lights, by shadow rays from quadrature points.
 
-METHOD.md "Shadowing".
+METHOD.md "Shadowing and sampling".
 
 A side has one sample point in each of its ``level**2`` congruent sub-triangles (the centroid at
 level 1, a seeded stratified point above: :func:`sunwind.geometry.triangles.subdivision_barycentric`). A
@@ -27,7 +27,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
-import numba
 import numpy as np
 import scipy.sparse
 from numpy.typing import NDArray
@@ -35,6 +34,13 @@ from numpy.typing import NDArray
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_ranges
+from sunwind.geometry.rays.shadow_kernels import (
+    BLOCK,
+    facing_origins,
+    lit_centroids,
+    lit_shares,
+    sample_origins,
+)
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.triangles import STRATIFIED_SEED
 
@@ -55,8 +61,6 @@ _BATCH_RAYS = 1 << 21
 #: ``lit_centroid`` indexed by side. It may be called from several threads at once, each time on
 #: whole blocks of :attr:`SideSampler.side_block`, each block's sides in ascending order.
 Reduction = Callable[[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]], None]
-#: Sides per block of the balanced order.
-BLOCK = 512
 #: Fewest blocks in a chunk of an attitude's parallel work.
 _MIN_BLOCKS_PER_CHUNK = 8
 #: Largest origin array (points) kept per level for reuse across attitudes.
@@ -125,10 +129,41 @@ def _joined(runs: tuple[NDArray, ...]) -> NDArray:
 
 
 def level_for_samples(samples: int) -> int:
-    """Subdivision level whose ``level**2`` points per side are at least ``samples``."""
-    if samples < 1:
-        raise InputError(f"--samples {samples} must be at least 1", hint="give a positive count per facet")
-    return math.isqrt(samples - 1) + 1
+    """Subdivision level whose ``level**2`` points per side are at least ``samples``.
+
+    Raises
+    ------
+    InputError
+        ``samples`` is not a whole number, or is above ``MAX_LEVEL**2`` (the finest adaptive level).
+    """
+    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
+        raise InputError(
+            f"samples {samples!r} must be a whole number >= 1",
+            hint="give a count of points per facet side",
+            parameters=("samples",),
+        )
+    return math.isqrt(int(samples) - 1) + 1
+
+
+def check_sampling(samples: int | None, tolerance: float) -> None:
+    """Check the sampling arguments of :meth:`SideSampler.illuminate`.
+
+    Raises
+    ------
+    InputError
+        ``samples`` refused by :func:`level_for_samples`, or ``tolerance`` outside (0, 1).
+    """
+    if samples is not None:
+        level_for_samples(samples)
+    if isinstance(tolerance, bool) or not isinstance(tolerance, int | float) or not 0 < tolerance < 1:
+        raise InputError(
+            f"tolerance {tolerance!r} must lie in (0, 1)", hint="default 1e-3", parameters=("tolerance",)
+        )
+
+
+def side_sampler(craft: Spacecraft) -> SideSampler:
+    """The :class:`SideSampler` of ``craft``, made once and kept in its cache with the origins it keeps."""
+    return craft.cache.get("side sampler", lambda: SideSampler(craft))
 
 
 class SideSampler:
@@ -156,7 +191,7 @@ class SideSampler:
     def _origins_of(self, sides: NDArray[np.int64], level: int) -> NDArray[np.float32]:
         """Ray origins of ``sides`` at ``level`` in scene coordinates, (len(sides), level**2, 3)."""
         scene = self.scene
-        return _sample_origins(
+        return sample_origins(
             self.craft.triangles,
             self.craft.side_facet,
             self.craft.side_normals,
@@ -187,7 +222,7 @@ class SideSampler:
     ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
         """Sides of blocks ``first`` to ``last - 1`` facing ``direction``, and their kept origins."""
         low, high = self.block_normal_bounds
-        return _facing_origins(
+        return facing_origins(
             self.craft.side_normals,
             direction,
             self._kept_origins(level),
@@ -312,8 +347,8 @@ class SideSampler:
             return lit.reshape(-1)
         craft = self.craft
         barycentric = tri.subdivision_barycentric(level)
-        _lit_centroids(sides, lit, barycentric, craft.triangles, craft.side_facet, centroid)
-        return _lit_shares(lit)
+        lit_centroids(sides, lit, barycentric, craft.triangles, craft.side_facet, centroid)
+        return lit_shares(lit)
 
     @cached_property
     def _adjacency(self) -> scipy.sparse.csr_matrix:
@@ -388,118 +423,3 @@ class SideSampler:
         if not batches:
             return np.zeros((0, level**2), dtype=bool)
         return np.concatenate([self._lit(self._origins_of(batch, level), direction) for batch in batches])
-
-
-@numba.njit(cache=True, nogil=True)
-def _facing_origins(
-    normals: NDArray[np.float64],
-    direction: NDArray[np.float64],
-    ordered_origins: NDArray[np.float32],
-    order: NDArray[np.int64],
-    block_low: NDArray[np.float64],
-    block_high: NDArray[np.float64],
-    first: int,
-    last: int,
-) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
-    """Sides of ``order[first * BLOCK:last * BLOCK]`` with ``normals . direction > 0``, and their
-    origins (``ordered_origins[k]`` belongs to side ``order[k]``). The bounds of each block's normal
-    components bound ``n . direction`` over it: a block that cannot face is skipped unread, one that
-    must face is copied whole without reading normals."""
-    d0, d1, d2 = direction[0], direction[1], direction[2]
-    start, stop = first * BLOCK, min(last * BLOCK, order.shape[0])
-    width = ordered_origins.shape[1] * 3  # float32 values per side
-    facing = np.empty(stop - start, dtype=np.int64)
-    out = np.empty((stop - start, ordered_origins.shape[1], 3), dtype=np.float32)
-    source, target = ordered_origins.reshape(-1), out.reshape(-1)
-    count = 0
-    for b in range(first, last):
-        upper = lower = 0.0
-        for d, component in enumerate((d0, d1, d2)):
-            a, c = block_low[b, d] * component, block_high[b, d] * component
-            upper += max(a, c)
-            lower += min(a, c)
-        if upper <= 0.0:
-            continue
-        low, high = b * BLOCK, min((b + 1) * BLOCK, stop)
-        if lower > 0.0:  # every side of the block faces the source: one contiguous copy
-            for j in range(high - low):
-                facing[count + j] = order[low + j]
-            for j in range((high - low) * width):
-                target[count * width + j] = source[low * width + j]
-            count += high - low
-            continue
-        for k in range(low, high):
-            s = order[k]
-            if normals[s, 0] * d0 + normals[s, 1] * d1 + normals[s, 2] * d2 > 0.0:
-                facing[count] = s
-                for j in range(width):
-                    target[count * width + j] = source[k * width + j]
-                count += 1
-    return facing[:count], out[:count]
-
-
-@numba.njit(cache=True, nogil=True)
-def _sample_origins(
-    triangles: NDArray[np.float64],
-    side_facet: NDArray[np.int64],
-    normals: NDArray[np.float64],
-    sides: NDArray[np.int64],
-    barycentric: NDArray[np.float64],
-    centre: NDArray[np.float64],
-    half_size: float,
-    offset_m: float,
-) -> NDArray[np.float32]:
-    """Sample points of ``sides`` pushed ``offset_m`` along their normals, in float32 scene
-    coordinates ``(p - centre) / half_size``, (len(sides), n_points, 3)."""
-    points = barycentric.shape[0]
-    out = np.empty((sides.shape[0], points, 3), dtype=np.float32)
-    for k in range(sides.shape[0]):
-        s = sides[k]
-        f = side_facet[s]
-        for p in range(points):
-            w0, w1, w2 = barycentric[p, 0], barycentric[p, 1], barycentric[p, 2]
-            for d in range(3):
-                x = w0 * triangles[f, 0, d] + w1 * triangles[f, 1, d] + w2 * triangles[f, 2, d]
-                out[k, p, d] = (x + offset_m * normals[s, d] - centre[d]) / half_size
-    return out
-
-
-@numba.njit(cache=True, nogil=True)
-def _lit_shares(lit: NDArray[np.bool_]) -> NDArray[np.float64]:
-    """Share of each row of lit flags (n, points) that is lit, (n,)."""
-    n, points = lit.shape
-    share = np.empty(n)
-    for k in range(n):
-        count = 0
-        for p in range(points):
-            count += lit[k, p]
-        share[k] = count / points
-    return share
-
-
-@numba.njit(cache=True, nogil=True)
-def _lit_centroids(
-    sides: NDArray[np.int64],
-    lit: NDArray[np.bool_],
-    barycentric: NDArray[np.float64],
-    triangles: NDArray[np.float64],
-    side_facet: NDArray[np.int64],
-    centroid: NDArray[np.float64],
-) -> None:
-    """Write the mean of the lit points of each part-lit side of ``sides`` (lit flags (n, points) of
-    its points at ``barycentric``) into ``centroid[s]``: the triangle at their mean barycentric."""
-    n, points = lit.shape
-    for k in range(n):
-        count = 0
-        w0 = w1 = w2 = 0.0
-        for p in range(points):
-            if lit[k, p]:
-                count += 1
-                w0 += barycentric[p, 0]
-                w1 += barycentric[p, 1]
-                w2 += barycentric[p, 2]
-        if 0 < count < points:
-            f = side_facet[sides[k]]
-            for d in range(3):
-                corner = w0 * triangles[f, 0, d] + w1 * triangles[f, 1, d] + w2 * triangles[f, 2, d]
-                centroid[sides[k], d] = corner / count

@@ -13,10 +13,13 @@ import json
 import os
 import tempfile
 import zipfile
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
+import scipy.sparse
 from numpy.typing import NDArray
 
 from sunwind.geometry.spacecraft import Spacecraft
@@ -27,6 +30,7 @@ FORMAT_VERSION = 1
 CACHE_ENV = "SUNWIND_CACHE_DIR"
 
 _KEY, _CHECKSUM = "key", "checksum"
+T = TypeVar("T")
 
 
 class CacheEntryError(Exception):
@@ -129,3 +133,68 @@ def write_entry(path: Path, key: str, arrays: Mapping[str, NDArray]) -> None:
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def kept_on_disk(
+    directory: Path,
+    name: str,
+    key: str,
+    compute: Callable[[], T],
+    encode: Callable[[T], Mapping[str, NDArray]],
+    decode: Callable[[Mapping[str, NDArray], str], T],
+) -> T:
+    """The value the entry ``name-KEY.npz`` in ``directory`` holds (``decode(arrays, origin)``), else
+    ``compute()``, stored there (``encode(value)``). ``origin`` says what happened: "cache <path>",
+    "computed (stored in cache <path>)", or "computed (...)" naming a corrupt or stale entry that was
+    rebuilt or a cache that could not be written; cache trouble is never an error (``value`` is a
+    dataclass with an ``origin`` field)."""
+    path = directory / f"{name}-{key[:32]}.npz"
+    notes = []
+    try:
+        return decode(read_entry(path, key), f"cache {path}")
+    except FileNotFoundError:
+        pass
+    except CacheEntryError as problem:
+        notes.append(f"cache entry {path} {problem}: rebuilt")
+    value = compute()
+    try:
+        write_entry(path, key, encode(value))
+        notes.append(f"stored in cache {path}")
+    except OSError as error:
+        notes.append(f"cache {directory} not writable ({error}): not stored")
+    return replace(value, origin=f"computed ({'; '.join(notes)})")
+
+
+def factor_arrays(
+    factors: object, columns: Mapping[str, int], numbers: tuple[str, ...]
+) -> dict[str, NDArray]:
+    """The arrays of a set of factors (its sparse ``matrix``, the per-side ``columns`` of widths 1 or 3,
+    and the ``numbers``) for :func:`write_entry`."""
+    matrix = factors.matrix  # type: ignore[attr-defined]
+    arrays = {"data": matrix.data, "indices": matrix.indices, "indptr": matrix.indptr}
+    arrays |= {column: getattr(factors, column) for column in columns}
+    return arrays | {number: np.array(getattr(factors, number)) for number in numbers}
+
+
+def factor_fields(
+    arrays: Mapping[str, NDArray], n_sides: int, columns: Mapping[str, int], numbers: tuple[str, ...]
+) -> dict[str, object]:
+    """The fields :func:`factor_arrays` stored, checked to fit ``n_sides`` sides: ``matrix`` (CSR), the
+    columns, and the numbers as Python scalars.
+
+    Raises
+    ------
+    CacheEntryError
+        A missing array, or one of the wrong shape.
+    """
+    try:
+        indptr, indices, data = arrays["indptr"], arrays["indices"], arrays["data"]
+        shapes = {column: (n_sides,) if width == 1 else (n_sides, width) for column, width in columns.items()}
+        fits = indptr.shape == (n_sides + 1,) and indices.shape == data.shape == (indptr[-1],)
+        if not fits or any(arrays[column].shape != shape for column, shape in shapes.items()):
+            raise CacheEntryError("was corrupt (arrays of the wrong shape)")
+        matrix = scipy.sparse.csr_matrix((data, indices, indptr), shape=(n_sides, n_sides))
+        fields: dict[str, object] = {"matrix": matrix, **{column: arrays[column] for column in columns}}
+        return fields | {number: arrays[number].item() for number in numbers}
+    except (KeyError, IndexError, ValueError) as error:
+        raise CacheEntryError(f"was corrupt ({type(error).__name__}: {error})") from error

@@ -6,10 +6,12 @@ import warnings
 import numpy as np
 import pytest
 
+from sunwind import meshes
 from sunwind.forces.drag import LowSpeedRatioWarning, drag
-from sunwind.forces.drag_result import aerodynamic_axes
 from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
-from sunwind.forces.gas.laws import panel_coefficients
+from sunwind.forces.gas.laws import GasSurfaces, panel_coefficients
+from sunwind.forces.model import Model
+from sunwind.forces.results import aerodynamic_axes
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GasSurface, Material
 from sunwind.geometry.mesh_data import MeshData
@@ -39,14 +41,12 @@ def per_side_law(craft, velocity, air, reference):
     along = u - gamma[:, None] * n
     length = np.linalg.norm(along, axis=1)
     tangent = np.where(length[:, None] > 1e-12, -along / np.maximum(length, 1e-300)[:, None], 0.0)
-    gas = craft.side_gas
-    law = [gas[k] for k in ("code", "energy_accommodation", "normal_accommodation")]
-    law += [gas["tangential_accommodation"], gas["wall_temperature_K"]]
+    law = GasSurfaces.of(craft.side_gas)
     force = np.zeros((craft.n_sides, 3))
     for species, density in air.number_density_m3.items():
         mass = SPECIES_MASS_KG[species]
         ratio = speed / math.sqrt(2 * BOLTZMANN * air.temperature_K / mass)
-        c_n, c_t = panel_coefficients(*law, gamma, ratio, air.temperature_K, "full")
+        c_n, c_t = panel_coefficients(law, gamma, ratio, air.temperature_K, "full")
         q = 0.5 * density * mass * speed**2
         force += (q * craft.side_areas)[:, None] * (-c_n[:, None] * n + c_t[:, None] * tangent)
     torque = np.cross(craft.side_centroids - reference, force)
@@ -104,9 +104,9 @@ def test_sphere_drag_does_not_depend_on_flow_direction_and_has_no_torque_about_i
 
 def test_shadowed_plate_keeps_only_its_thermal_flux():
     """A plate hidden behind a larger one in a hyperthermal beam gets only the thermal part."""
-    front = primitives.transform(primitives.plate(2.0, 2.0, 8), translation=(0.0, 0.0, 1.0))
-    back = primitives.label(primitives.plate(1.0, 1.0, 8), "back")
-    craft = craft_of(MeshData.concatenate([primitives.label(front, "front"), back]), two_sided=["*"])
+    front = meshes.transform(primitives.plate(2.0, 2.0, 8), translation=(0.0, 0.0, 1.0))
+    back = meshes.label(primitives.plate(1.0, 1.0, 8), "back")
+    craft = craft_of(MeshData.concatenate([meshes.label(front, "front"), back]), two_sided=["*"])
     velocity = speed_for(15.0) * np.array([0.0, 0.0, 1.0])
     shielded = drag(craft, velocity, AIR, reflections="none")
     alone = craft_of(back, two_sided=["*"])
@@ -120,7 +120,8 @@ def test_shadowed_plate_keeps_only_its_thermal_flux():
 def test_coefficients_use_the_stated_axes_and_normalisation():
     craft = craft_of(primitives.sphere(1.0, subdivisions=16))
     velocity = speed_for(8.0) * np.array([0.0, 1.0, 0.0])
-    result = drag(craft, velocity, AIR, reflections="none", reference_area_m2=2.0, reference_length_m=3.0)
+    model = Model(craft, reference_area_m2=2.0, reference_length_m=3.0)
+    result = drag(model, velocity, AIR, reflections="none")
     q = 0.5 * AIR.density_kg_m3 * np.linalg.norm(velocity) ** 2
     axes = aerodynamic_axes(result.flow_direction)
     assert np.allclose(axes @ axes.T, np.eye(3))
@@ -161,7 +162,7 @@ def test_re_emission_exchange_adds_drag_on_a_cavity_facing_the_flow():
     """Molecules the walls of an open box re-emit can leave only through its opening, upstream, so
     more of their momentum leaves against the flow than the open-plate law lets the walls send
     sideways: the exchange adds drag, and keeps the force on the axis of a symmetric box."""
-    from sunwind.validation.concave import open_box_mesh
+    from sunwind.validation.concave_meshes import open_box_mesh
 
     craft = craft_of(open_box_mesh(1.0, 6), two_sided=["*"])
     velocity = speed_for(8.0) * np.array([0.0, 0.0, 1.0])

@@ -1,4 +1,4 @@
-"""The direct SRP force law and its evaluation on meshes: limits, twins and invariances."""
+"""Solar-radiation pressure on meshes: invariances, shadowing, sheets, bad input, threads and batches."""
 
 import numpy as np
 import pytest
@@ -8,161 +8,16 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from helpers import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
-from sunwind.forces.radiation.direct import TOTALS, accumulate_forces, block_moments, weight_moments
-from sunwind.forces.radiation.law import (
-    SOLAR_FLUX_1AU,
-    SPEED_OF_LIGHT,
-    radiation_pressure,
-    solar_flux,
-    surface_forces,
-)
+from sunwind.forces.model import Model
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, SPEED_OF_LIGHT
+from sunwind.forces.results import SrpBatch
 from sunwind.forces.srp import srp
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
-from sunwind.geometry.rays.shadows import BLOCK
 from sunwind.geometry.spacecraft import build_spacecraft
 
 P = SOLAR_FLUX_1AU / SPEED_OF_LIGHT
-
-
-def plate_force(rho, beta, sigma, cos):
-    """Force on a unit plate with normal +z, Sun in the x-z plane at incidence angle acos(cos)."""
-    u = np.array([np.sqrt(1 - cos**2), 0.0, cos])
-    one = np.ones(1)
-    return surface_forces(
-        np.array([[0.0, 0, 1]]), one, np.array([cos]), rho * one, beta * one, sigma * one, u, P
-    )[0], u
-
-
-@pytest.mark.parametrize("cos", [1.0, 0.8, 0.3, 0.01])
-def test_force_law_limits(cos):
-    n = np.array([0.0, 0, 1])
-    absorbed, u = plate_force(0.0, 0.0, 0.0, cos)
-    assert np.allclose(absorbed, -P * cos * u)  # all momentum along the beam
-    mirror, _ = plate_force(1.0, 1.0, 0.0, cos)
-    assert np.allclose(mirror, -2 * P * cos**2 * n)  # normal only: no tangential force
-    lambert, _ = plate_force(1.0, 0.0, 0.0, cos)
-    assert np.allclose(lambert, -P * cos * (u + 2 / 3 * n))
-    clear, _ = plate_force(0.0, 0.0, 1.0, cos)
-    assert np.allclose(clear, 0.0)  # fully transmitted light passes unchanged
-    # momentum balance of the mixed case: incident - transmitted - specular - diffuse momentum out
-    rho, beta, sigma = MIXED.reflectivity, MIXED.specular_fraction, MIXED.transmissivity
-    mixed, _ = plate_force(rho, beta, sigma, cos)
-    s = -u
-    mirror_dir = s - 2 * (s @ n) * n
-    expected = P * cos * (s - sigma * s - rho * beta * mirror_dir - rho * (1 - beta) * 2 / 3 * n)
-    assert np.allclose(mixed, expected, rtol=1e-13, atol=0)
-
-
-def test_flux_from_distance_and_pressure():
-    assert solar_flux() == SOLAR_FLUX_1AU
-    assert np.isclose(solar_flux(distance_au=2.0), SOLAR_FLUX_1AU / 4)
-    assert solar_flux(flux_W_m2=1000.0) == 1000.0
-    assert np.isclose(radiation_pressure(SOLAR_FLUX_1AU), 4.5398e-6, rtol=1e-4)
-    for bad in (
-        {"flux_W_m2": np.nan},
-        {"flux_W_m2": -1.0},
-        {"distance_au": 0.0},
-        {"distance_au": np.inf},
-        {"flux_W_m2": 1.0, "distance_au": 1.0},
-    ):
-        with pytest.raises(InputError):
-            solar_flux(**bad)
-
-
-def _direct_sums_twin(u, spread, shares, flags, weighted):
-    """The kernel's block sums and the numpy sums of eq. (4) over the same random sides.
-
-    Normals of even blocks lie within ``spread`` of ``u`` (1 or more: any direction); each side is
-    dark, wholly lit or lit in part with the probabilities ``shares``, a part-lit side's force acting
-    at a point off its centroid. Blocks are runs of ``BLOCK`` sides, as the sampler's. With
-    ``flags`` (and no part-lit side) the kernel gets lit flags instead of shares. ``weighted``: two
-    random weights per side are summed with the lit projected area, as inter-reflection's channels are.
-    """
-    rng = np.random.default_rng(5)
-    n_blocks = 10
-    n = n_blocks * BLOCK - 7  # the last block is short, as the sampler's may be
-    block = np.arange(n) // BLOCK
-    # odd blocks take any direction, so blocks summed side by side come between the others
-    normals = rng.normal(size=(n, 3)) + u / np.where(block % 2 == 0, spread, 10.0)[:, None]
-    normals /= np.linalg.norm(normals, axis=1)[:, None]
-    state = rng.choice(3, size=n, p=shares)
-    fraction = np.select([state == 0, state == 1], [0.0, 1.0], rng.random(n))
-    areas, centroids = rng.random(n), rng.normal(size=(n, 3))
-    lit_centroid = np.where((state == 2)[:, None], centroids + 0.1 * rng.normal(size=(n, 3)), centroids)
-    material = rng.integers(0, 3, n)
-    rho, beta, sigma = np.array([0.1, 0.6, 0.9]), np.array([0.0, 0.5, 1.0]), np.array([0.0, 0.1, 0.05])
-    optics = np.stack([rho[material], beta[material], sigma[material]], axis=1)
-    cos = normals @ u
-    facing = np.flatnonzero(cos > 0)
-    ref = np.array([0.1, 0.2, -0.3])
-    low = np.array([normals[block == b].min(axis=0) for b in range(n_blocks)])
-    high = np.array([normals[block == b].max(axis=0) for b in range(n_blocks)])
-    moments = block_moments(normals, areas, optics, centroids, block, n_blocks)
-    weights = rng.normal(size=(n, 2 if weighted else 0))
-    partials = np.zeros((n_blocks, TOTALS + weights.shape[1]))
-    accumulate_forces(
-        facing,
-        fraction[facing] > 0 if flags else fraction[facing],
-        lit_centroid,
-        centroids,
-        normals,
-        areas,
-        optics,
-        u,
-        ref,
-        block,
-        low,
-        high,
-        moments,
-        weights if weighted else None,
-        weight_moments(weights, normals, areas, block, n_blocks) if weighted else None,
-        partials,
-    )
-    lit = facing[fraction[facing] > 0]
-    m = material[lit]
-    lit_area = areas[lit] * fraction[lit]
-    forces = surface_forces(normals[lit], lit_area, cos[lit], rho[m], beta[m], sigma[m], u, 1.0)
-    twin = np.concatenate(
-        [
-            forces.sum(axis=0),
-            np.cross(lit_centroid[lit] - ref, forces).sum(axis=0),
-            [
-                lit_area.sum(),
-                (lit_area * cos[lit]).sum(),
-                (lit_area * cos[lit] * (1 - rho[m] - sigma[m])).sum(),
-            ],
-            (lit_area * cos[lit]) @ weights[lit],
-        ]
-    )
-    whole = np.minimum(low * u, high * u).sum(axis=1) > 0
-    return partials.sum(axis=0), twin, whole
-
-
-@pytest.mark.parametrize(
-    "spread, shares, flags",
-    [
-        (10.0, (0.3, 0.4, 0.3), False),
-        (0.2, (0.3, 0.4, 0.3), False),
-        (0.2, (0.0, 1.0, 0.0), False),
-        (0.2, (0.8, 0.1, 0.1), False),
-        (0.2, (0.4, 0.6, 0.0), True),
-    ],
-    ids=["any-normals", "whole-blocks-mixed-light", "whole-blocks-all-lit", "whole-blocks-dark", "flags"],
-)
-@pytest.mark.parametrize("weighted", [False, True], ids=["", "weighted"])
-def test_direct_sums_equal_their_numpy_twin(spread, shares, flags, weighted):
-    """Side by side, and from block moments with corrections for sides not wholly lit: the same sums
-    to round-off (1e-12 of the largest total of each kind)."""
-    u = np.array([0.2, -0.5, 0.84])
-    u /= np.linalg.norm(u)
-    totals, twin, whole = _direct_sums_twin(u, spread, shares, flags, weighted)
-    assert whole.any() == (spread < 1)  # the moment path is taken where it should be
-    assert len(totals) == len(twin) == TOTALS + (2 if weighted else 0)
-    for kind in (slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 10), slice(10, 11))[: len(twin) - 6]:
-        scale = np.abs(twin[kind]).max()
-        assert np.allclose(totals[kind], twin[kind], rtol=0, atol=1e-12 * scale)
 
 
 @pytest.fixture(scope="module")
@@ -263,25 +118,58 @@ def test_bad_directions_and_reference_points_are_input_errors(dumbbell):
     for bad in ([0, 0, 0], [np.nan, 0, 1], [np.inf, 0, 0], [1, 0]):
         with pytest.raises(InputError):
             srp(dumbbell, bad)
-    with pytest.raises(InputError, match="ref-point"):
+    with pytest.raises(InputError, match="reference_point_m"):
         srp(dumbbell, [1, 0, 0], reference_point_m=[0, np.nan, 0])
     with pytest.raises(InputError, match="samples"):
         srp(dumbbell, [1, 0, 0], samples=0)
 
 
-def test_results_are_the_same_bits_whatever_the_number_of_threads(monkeypatch):
+@pytest.mark.slow
+def test_results_are_the_same_bits_whatever_the_number_of_threads():
     """Force sums run in blocks added in a fixed order, so threads cannot change the last bit."""
     from sunwind.meshes.samples import sample_spacecraft
 
     craft = build_spacecraft(sample_spacecraft(30_000))
     u = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
     results = {}
-    for threads in ("1", "2", "3"):
-        monkeypatch.setenv("SUNWIND_THREADS", threads)
+    for threads in (1, 2, 3):
+        model = Model(craft, threads=threads)
         results[threads] = [
             np.concatenate([r.force_N, r.torque_Nm, [r.lit_area_m2, r.projected_area_m2]])
-            for r in (srp(craft, u, samples=1), srp(craft, u, samples=4), srp(craft, u))
+            for r in (srp(model, u, samples=1), srp(model, u, samples=4), srp(model, u))
         ]
-    for threads in ("2", "3"):
-        for a, b in zip(results["1"], results[threads], strict=True):
+    for threads in (2, 3):
+        for a, b in zip(results[1], results[threads], strict=True):
             assert np.array_equal(a, b)
+
+
+def test_a_batch_is_its_attitudes_one_by_one(dumbbell):
+    """A batch of Sun vectors gives, attitude by attitude, the bits of one call each, and every field
+    stacked under the same name."""
+    suns = np.array([[1.0, 0.2, 0.3], [-0.3, 0.9, 0.1], [0.0, 0.0, -1.0]])
+    batch = srp(dumbbell, suns, samples=4, reflections="none")
+    assert isinstance(batch, SrpBatch) and len(batch) == 3
+    assert batch.force_N.shape == batch.torque_Nm.shape == batch.sun_vector.shape == (3, 3)
+    assert batch.lit_area_m2.shape == batch.rays.shape == batch.azel_deg.shape[:1] == (3,)
+    for k, sun in enumerate(suns):
+        one = srp(dumbbell, sun, samples=4, reflections="none")
+        assert np.array_equal(batch[k].force_N, one.force_N)
+        assert np.array_equal(batch.torque_Nm[k], one.torque_Nm)
+        assert batch.rays[k] == one.rays
+    with pytest.raises(InputError, match=r"sun_vector\[1\]"):
+        srp(dumbbell, [[1, 0, 0], [0, 0, 0]])
+    with pytest.raises(InputError, match="shape"):
+        srp(dumbbell, np.ones((2, 2)))
+
+
+def test_the_model_reference_point_applies_unless_the_call_gives_one(dumbbell):
+    point = np.array([0.1, -0.2, 0.3])
+    model = Model(dumbbell, reference_point_m=point)
+    own = srp(model, [1.0, 0.2, 0.3], samples=1, reflections="none")
+    given = srp(dumbbell, [1.0, 0.2, 0.3], samples=1, reflections="none", reference_point_m=point)
+    assert own.reference_point == given.reference_point == "user"
+    assert np.array_equal(own.torque_Nm, given.torque_Nm)
+    other = srp(model, [1.0, 0.2, 0.3], samples=1, reflections="none", reference_point_m=[0, 0, 0])
+    assert np.array_equal(other.reference_point_m, [0, 0, 0])
+    with pytest.raises(InputError, match="threads"):
+        Model(dumbbell, threads=0)

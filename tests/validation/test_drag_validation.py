@@ -5,6 +5,7 @@ import pytest
 from sunwind.validation.concave_drag import DRAG_CASES, TOLERANCE, compare
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", DRAG_CASES, ids=lambda c: c.name)
 def test_diffuse_concave_shapes_match_the_tracer_within_two_per_cent(case):
     for flow in case.flows_deg:

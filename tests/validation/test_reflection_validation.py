@@ -21,7 +21,8 @@ import numpy as np
 import pytest
 
 from sunwind.forces.srp import srp
-from sunwind.validation.analytic_srp import Optics
+from sunwind.validation.analytic_srp_law import Optics
+from sunwind.validation.analytic_v_groove import v_groove_srp
 from sunwind.validation.concave import (
     CONCAVE_CASES,
     FINISHES,
@@ -32,7 +33,6 @@ from sunwind.validation.concave import (
     sun_from_az_el,
     torque_scale,
     trace_case,
-    v_groove_srp,
 )
 
 #: The tracer's standard error may be at most this share of the tolerance.
@@ -47,6 +47,7 @@ COMPARISONS = [
 CASE = {case.name: case for case in CONCAVE_CASES}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("case", "finish", "sun"), COMPARISONS)
 def test_full_reflection_matches_the_photon_tracer(case, finish, sun):
     row = compare(case, finish, sun, photons=MC_PHOTONS)
@@ -61,7 +62,7 @@ def test_full_reflection_matches_the_photon_tracer(case, finish, sun):
 @pytest.mark.parametrize("rho", [1.0, 0.9])
 @pytest.mark.parametrize("psi", [0.0, 20.0, -35.0])
 def test_v_groove_solver_matches_the_closed_form(rho, psi):
-    """Mirror groove lit across its axis (sunwind.validation.concave Notes); exact, so no tracer noise."""
+    """Mirror groove lit across its axis (validation.analytic_v_groove Notes); exact, so no tracer noise."""
     case = CASE["v-groove"]
     mirror = Optics(rho, 1.0, 0.0)
     craft = finished_spacecraft(case.mesh(), {"*": (mirror, mirror)}, f"v-groove/mirror {rho}")

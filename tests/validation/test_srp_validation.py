@@ -6,8 +6,11 @@ import pytest
 from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES
 from sunwind.validation.runner import refinement_study, run_shadow_case, run_srp_case
 
+#: Plates (exact at any resolution) in the quick run; the curved bodies (seconds each) in the full one.
+CONVEX = [pytest.param(c, marks=() if c.name.startswith("plate") else pytest.mark.slow) for c in SRP_CASES]
 
-@pytest.mark.parametrize("case", SRP_CASES, ids=lambda c: c.name)
+
+@pytest.mark.parametrize("case", CONVEX, ids=lambda c: c.name)
 def test_convex_body_matches_its_closed_form_at_every_sun_angle(case):
     rows = run_srp_case(case)
     assert len(rows) == len(case.alphas_deg)
@@ -17,6 +20,7 @@ def test_convex_body_matches_its_closed_form_at_every_sun_angle(case):
     assert worst_torque <= case.rel_tol, (case.reason, rows)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", REFINEMENT_CASES, ids=lambda c: c.name)
 def test_error_falls_with_mesh_refinement_at_second_order(case):
     errors = refinement_study(case)

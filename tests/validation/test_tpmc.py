@@ -36,21 +36,17 @@ import math
 
 import numpy as np
 import pytest
-from scipy import stats
 from scipy.special import erfc
 
 from sunwind.geometry.materials import Material
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
 from sunwind.meshes import primitives
-from sunwind.validation.concave import open_box_mesh
-from sunwind.validation.tpmc import (
-    BOLTZMANN_J_K,
-    cll_reemission,
-    flux_normal_speeds,
-    inflow_flux,
-    maxwell_reemission,
-    trace_molecules,
-)
+from sunwind.meshes.assembly import transform
+from sunwind.validation.concave_meshes import open_box_mesh
+from sunwind.validation.sampling import Sampling
+from sunwind.validation.tpmc import trace_molecules
+from sunwind.validation.tpmc_kernels import WallInteraction
+from sunwind.validation.tpmc_source import BOLTZMANN_J_K, SpeciesStream
 
 #: Standard errors an estimate may lie from the exact value. The standard error comes from 20 batches,
 #: so ``gap / se`` follows Student's t with 19 degrees of freedom, whose tails are heavier than the
@@ -163,13 +159,14 @@ def plate_loads(u, speed_ratio: float, diffuse_front: bool, diffuse_back: bool):
 def test_closed_forms_agree_with_analytic_drag(speed_ratio):
     """The references above equal :mod:`sunwind.validation.analytic_drag` (derived apart) to round-off."""
     analytic = pytest.importorskip("sunwind.validation.analytic_drag")
+    gas_law = pytest.importorskip("sunwind.validation.analytic_gas_law")
     q = dynamic_pressure(speed_ratio)
     u_sphere = np.array([0.3, -0.5, 0.8]) / math.sqrt(0.98)
     for diffuse in (True, False):
         surface = (
-            analytic.GasLaw("schaaf-chambre", wall_temperature_K=T_WALL)
+            gas_law.GasLaw("schaaf-chambre", wall_temperature_K=T_WALL)
             if diffuse
-            else analytic.GasLaw("specular")
+            else gas_law.GasLaw("specular")
         )
         for alpha in (0.0, 20.0, 50.0, 90.0):
             u = flow(alpha)
@@ -177,47 +174,17 @@ def test_closed_forms_agree_with_analytic_drag(speed_ratio):
             load = analytic.plate_drag(
                 2.0,
                 1.0,
-                u,
+                gas_law.FreeStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=q),
                 surface,
-                speed_ratio,
-                T_INF,
                 one_sided=False,
-                dynamic_pressure_Pa=q,
                 ref_point_m=REFERENCE,
             )
             np.testing.assert_allclose(load.force_N, force, rtol=0, atol=1e-12 * q)
             np.testing.assert_allclose(load.torque_Nm, torque, rtol=0, atol=1e-12 * q)
-        sphere = analytic.sphere_drag(1.0, u_sphere, surface, speed_ratio, T_INF)
+        sphere = analytic.sphere_drag(1.0, gas_law.FreeStream(u_sphere, speed_ratio, T_INF), surface)
         assert sphere.drag_coefficient == pytest.approx(
             sphere_drag_coefficient(speed_ratio, diffuse), rel=1e-12
         )
-
-
-# ------------------------------------------------------------------------------------ source
-@pytest.mark.parametrize("s", [-4.0, -1.5, -1.0, -0.4, 0.0, 0.7, 3.0])
-def test_flux_normal_sampler_has_the_exact_distribution(s):
-    """Kolmogorov-Smirnov against the exact CDF of ``p(x) ~ x exp(-(x - s)^2)``, x > 0."""
-    norm = (math.exp(-s * s) + math.sqrt(math.pi) * s * erfc(-s)) / 2
-
-    def cdf(x):
-        x = np.asarray(x)
-        return (
-            (math.exp(-s * s) - np.exp(-((x - s) ** 2))) / 2
-            + s * math.sqrt(math.pi) / 2 * (erfc(-s) - erfc(x - s))
-        ) / norm
-
-    x = flux_normal_speeds(s, 100_000, np.random.default_rng(7))
-    assert len(x) == 100_000 and np.all(x > 0)
-    assert stats.kstest(x, cdf).pvalue > 1e-3
-
-
-def test_inflow_flux_limits():
-    """One-sided flux: ``1/(2 sqrt(pi))`` at rest; net ``Gamma(s) - Gamma(-s) = s``; ``~ s`` for s >> 1."""
-    assert inflow_flux(0.0) == pytest.approx(1 / (2 * math.sqrt(math.pi)), rel=1e-15)
-    for s in (0.3, 1.0, 2.5, 8.0):
-        assert inflow_flux(s) - inflow_flux(-s) == pytest.approx(s, rel=1e-12)
-    assert inflow_flux(8.0) == pytest.approx(8.0, rel=1e-10)
-    assert 0 < inflow_flux(-8.0) < 1e-29
 
 
 # ------------------------------------------------------------------------------------ closed forms
@@ -231,13 +198,10 @@ def test_flat_plate_matches_schaaf_chambre(plate, speed_ratio, diffuse):
         result = trace_molecules(
             plate,
             u,
-            speed_m_s=speed_ratio * C_M,
-            **GAS,
-            diffuse_fraction=float(diffuse),
-            wall_temperature_K=T_WALL,
-            molecules=PLATE_MOLECULES,
+            SpeciesStream(speed_ratio * C_M, **GAS),
+            WallInteraction(diffuse_fraction=float(diffuse), wall_temperature_K=T_WALL),
+            Sampling(PLATE_MOLECULES, seed=seed),
             reference_point_m=REFERENCE,
-            seed=seed,
         )
         force, torque = plate_loads(u, speed_ratio, diffuse, diffuse)
         scale = max(float(np.linalg.norm(force)), q_area)  # specular edge-on: F = 0 exactly
@@ -254,12 +218,9 @@ def test_edge_on_plate_drag_coefficient(plate, speed_ratio):
         result = trace_molecules(
             plate,
             u,
-            speed_m_s=speed_ratio * C_M,
-            **GAS,
-            diffuse_fraction=1.0,
-            wall_temperature_K=wall_K,
-            molecules=PLATE_MOLECULES,
-            seed=seed,
+            SpeciesStream(speed_ratio * C_M, **GAS),
+            WallInteraction(diffuse_fraction=1.0, wall_temperature_K=wall_K),
+            Sampling(PLATE_MOLECULES, seed=seed),
         )
         q_area = dynamic_pressure(speed_ratio) * 2.0
         drag = -float(result.force_N @ u) / q_area
@@ -272,14 +233,15 @@ def test_plate_sides_take_their_own_kernel_and_wall_temperature(plate):
     """Per-side arrays: front diffuse at 300 K, back specular, at S = 3 and 35 deg (flow on both sides)."""
     front = plate.side_sign > 0
     u = flow(35.0)
+    walls = WallInteraction(
+        diffuse_fraction=np.where(front, 1.0, 0.0), wall_temperature_K=np.where(front, 300.0, 5000.0)
+    )
     result = trace_molecules(
         plate,
         u,
-        speed_m_s=3.0 * C_M,
-        **GAS,
-        diffuse_fraction=np.where(front, 1.0, 0.0),
-        wall_temperature_K=np.where(front, 300.0, 5000.0),
-        molecules=PLATE_MOLECULES,
+        SpeciesStream(3.0 * C_M, **GAS),
+        walls,
+        Sampling(PLATE_MOLECULES),
         reference_point_m=REFERENCE,
     )
     force, torque = plate_loads(u, 3.0, True, False)
@@ -295,11 +257,9 @@ def test_sphere_matches_the_closed_form(speed_ratio, diffuse):
     result = trace_molecules(
         craft,
         u,
-        speed_m_s=speed_ratio * C_M,
-        **GAS,
-        diffuse_fraction=float(diffuse),
-        wall_temperature_K=T_WALL,
-        molecules=SPHERE_MOLECULES,
+        SpeciesStream(speed_ratio * C_M, **GAS),
+        WallInteraction(diffuse_fraction=float(diffuse), wall_temperature_K=T_WALL),
+        Sampling(SPHERE_MOLECULES),
         reference_point_m=np.zeros(3),
     )
     force = -sphere_drag_coefficient(speed_ratio, diffuse) * dynamic_pressure(speed_ratio) * math.pi * u
@@ -322,17 +282,19 @@ def _sphere() -> Spacecraft:
 def test_cll_limits_are_diffuse_and_specular(plate, alpha_n, sigma_t, diffuse):
     """CLL with full accommodation is diffuse at T_w, with none specular: plate at S = 2, 35 deg."""
     u = flow(35.0)
-    result = trace_molecules(
-        plate,
-        u,
-        speed_m_s=2.0 * C_M,
-        **GAS,
+    walls = WallInteraction(
         kernel="cll",
         diffuse_fraction=None,
         normal_accommodation=alpha_n,
         tangential_accommodation=sigma_t,
         wall_temperature_K=T_WALL,
-        molecules=PLATE_MOLECULES,
+    )
+    result = trace_molecules(
+        plate,
+        u,
+        SpeciesStream(2.0 * C_M, **GAS),
+        walls,
+        Sampling(PLATE_MOLECULES),
         reference_point_m=REFERENCE,
     )
     force, torque = plate_loads(u, 2.0, diffuse, diffuse)
@@ -342,56 +304,17 @@ def test_cll_limits_are_diffuse_and_specular(plate, alpha_n, sigma_t, diffuse):
 def test_cll_shear_is_sigma_t_of_the_incident_shear(plate):
     """CLL keeps ``1 - sigma_t`` of each molecule's tangential momentum: shear = sigma_t x incident."""
     u, sigma_t = flow(35.0), 0.4
-    result = trace_molecules(
-        plate,
-        u,
-        speed_m_s=2.0 * C_M,
-        **GAS,
+    walls = WallInteraction(
         kernel="cll",
         diffuse_fraction=None,
         normal_accommodation=0.6,
         tangential_accommodation=sigma_t,
         wall_temperature_K=T_WALL,
-        molecules=PLATE_MOLECULES,
     )
+    result = trace_molecules(plate, u, SpeciesStream(2.0 * C_M, **GAS), walls, Sampling(PLATE_MOLECULES))
     shear = sigma_t * (incident_shear((0, 0, 1), u, 2.0, 2.0) + incident_shear((0, 0, -1), u, 2.0, 2.0))
     gap = np.linalg.norm(result.force_N[:2] - shear[:2])
     assert gap <= Z * np.linalg.norm(result.force_se_N[:2]) and gap <= PLATE_TOL * np.linalg.norm(shear)
-
-
-# ------------------------------------------------------------------------------------ kernels
-def test_maxwell_energy_accommodation_per_molecule():
-    """Diffuse re-emission leaves with ``alpha_E 2 k T_w + (1 - alpha_E) E_in`` per molecule, outward."""
-    rng = np.random.default_rng(3)
-    k = 400_000
-    normal = np.tile([0.0, 0.0, 1.0], (k, 1))
-    v_in = np.tile([3000.0, 1000.0, -6000.0], (k, 1))
-    wall_c2 = np.full(k, 2 * BOLTZMANN_J_K * T_WALL / MASS)
-    e_in = 0.5 * MASS * float(v_in[0] @ v_in[0])
-    for alpha in (1.0, 0.6, 0.0):
-        out = maxwell_reemission(v_in, normal, np.ones(k), wall_c2, np.full(k, alpha), rng)
-        energy = 0.5 * MASS * np.einsum("ij,ij->i", out, out)
-        expected = alpha * 2 * BOLTZMANN_J_K * T_WALL + (1 - alpha) * e_in
-        assert np.all(out[:, 2] > 0)
-        assert energy.mean() == pytest.approx(expected, abs=Z * energy.std() / math.sqrt(k))
-    specular = maxwell_reemission(v_in, normal, np.zeros(k), wall_c2, np.ones(k), rng)
-    np.testing.assert_array_equal(specular, np.tile([3000.0, 1000.0, 6000.0], (k, 1)))
-
-
-def test_cll_moments():
-    """Lord's CLL: ``E[u_n^2] = alpha_n + (1 - alpha_n) u_i^2`` and ``E[v_t] = (1 - sigma_t) v_t,in``."""
-    rng = np.random.default_rng(4)
-    k, alpha_n, sigma_t = 400_000, 0.35, 0.7
-    normal = np.tile([0.0, 0.0, 1.0], (k, 1))
-    c_w2 = 2 * BOLTZMANN_J_K * T_WALL / MASS
-    v_in = np.tile([3000.0, 1000.0, -6000.0], (k, 1))
-    out = cll_reemission(v_in, normal, np.full(k, c_w2), np.full(k, alpha_n), np.full(k, sigma_t), rng)
-    assert np.all(out[:, 2] >= 0)
-    un2 = out[:, 2] ** 2 / c_w2
-    assert un2.mean() == pytest.approx(alpha_n + (1 - alpha_n) * 6000.0**2 / c_w2, abs=Z * un2.std() / k**0.5)
-    for axis, v_t in ((0, 3000.0), (1, 1000.0)):
-        component = out[:, axis]
-        assert component.mean() == pytest.approx((1 - sigma_t) * v_t, abs=Z * component.std() / k**0.5)
 
 
 # ------------------------------------------------------------------------------------ concave, balance
@@ -420,7 +343,11 @@ def test_concave_body_in_gas_at_rest_feels_nothing(open_box, kernel):
     if isinstance(kernel.get("diffuse_fraction"), str):
         kernel = {**kernel, "diffuse_fraction": np.linspace(0.0, 1.0, open_box.n_sides)}
     result = trace_molecules(
-        open_box, (0.2, 0.1, 1.0), speed_m_s=0.0, **GAS, molecules=PLATE_MOLECULES, max_bounces=1000, **kernel
+        open_box,
+        (0.2, 0.1, 1.0),
+        SpeciesStream(0.0, **GAS),
+        WallInteraction(**kernel),
+        Sampling(PLATE_MOLECULES, max_bounces=1000),
     )
     scale = DENSITY * BOLTZMANN_J_K * T_INF * 5.0
     assert_close(result, np.zeros(3), np.zeros(3), scale, 0.5, PLATE_TOL)
@@ -429,19 +356,14 @@ def test_concave_body_in_gas_at_rest_feels_nothing(open_box, kernel):
 
 def test_concave_molecules_bounce_and_the_bounce_limit_counts(open_box):
     """Flow into the open box at S = 4: molecules meet it several times; a limit of 2 drops some."""
-    args = {
-        "speed_m_s": 4.0 * C_M,
-        **GAS,
-        "diffuse_fraction": 1.0,
-        "wall_temperature_K": T_WALL,
-        "molecules": 100_000,
-    }
-    full = trace_molecules(open_box, (0.2, 0.1, 1.0), **args)
+    stream = SpeciesStream(4.0 * C_M, **GAS)
+    walls = WallInteraction(diffuse_fraction=1.0, wall_temperature_K=T_WALL)
+    full = trace_molecules(open_box, (0.2, 0.1, 1.0), stream, walls, Sampling(100_000))
     assert full.dropped == 0 and full.absorbed == 0
     assert full.hits > 2 * full.struck and full.bounces[3:].sum() > 0.2 * full.struck
     assert full.bounces.sum() == full.molecules
     assert full.hits == int((np.arange(len(full.bounces)) * full.bounces).sum())
-    cut = trace_molecules(open_box, (0.2, 0.1, 1.0), **args, max_bounces=2)
+    cut = trace_molecules(open_box, (0.2, 0.1, 1.0), stream, walls, Sampling(100_000, max_bounces=2))
     assert cut.struck == full.struck  # same seed: same first strikes
     assert 0 < cut.dropped <= cut.bounces[2]
     assert cut.hits == cut.bounces[1] + 2 * cut.bounces[2]
@@ -450,42 +372,37 @@ def test_concave_molecules_bounce_and_the_bounce_limit_counts(open_box):
 def test_closed_body_interior_is_never_struck_and_default_reference():
     """A closed box: no molecule reaches its inside; the torque is about its volume centroid."""
     craft = build_spacecraft(
-        primitives.transform(primitives.box((1.0, 2.0, 0.5)), translation=(1.0, 0.0, 0.0)), uniform=NEUTRAL
+        transform(primitives.box((1.0, 2.0, 0.5)), translation=(1.0, 0.0, 0.0)), uniform=NEUTRAL
     )
     result = trace_molecules(
         craft,
         (1.0, 0.3, -0.2),
-        speed_m_s=2.0 * C_M,
-        **GAS,
-        diffuse_fraction=0.5,
-        wall_temperature_K=T_WALL,
-        molecules=40_000,
+        SpeciesStream(2.0 * C_M, **GAS),
+        WallInteraction(diffuse_fraction=0.5, wall_temperature_K=T_WALL),
+        Sampling(40_000),
     )
     assert result.absorbed == 0 and result.dropped == 0
     np.testing.assert_allclose(result.reference_point_m, [1.0, 0.0, 0.0], atol=1e-12)
 
 
 def test_same_seed_same_bits_and_bad_input(plate):
-    args = {
-        "speed_m_s": 2.0 * C_M,
-        **GAS,
-        "diffuse_fraction": 0.7,
-        "wall_temperature_K": T_WALL,
-        "molecules": 20_000,
-        "batches": 4,
-    }
-    a = trace_molecules(plate, flow(30.0), **args, seed=5)
-    b = trace_molecules(plate, flow(30.0), **args, seed=5)
-    c = trace_molecules(plate, flow(30.0), **args, seed=6)
+    stream = SpeciesStream(2.0 * C_M, **GAS)
+    walls = {"diffuse_fraction": 0.7, "wall_temperature_K": T_WALL}
+    sampling = {"particles": 20_000, "batches": 4}
+    a = trace_molecules(plate, flow(30.0), stream, WallInteraction(**walls), Sampling(**sampling, seed=5))
+    b = trace_molecules(plate, flow(30.0), stream, WallInteraction(**walls), Sampling(**sampling, seed=5))
+    c = trace_molecules(plate, flow(30.0), stream, WallInteraction(**walls), Sampling(**sampling, seed=6))
     np.testing.assert_array_equal(a.force_N, b.force_N)
     np.testing.assert_array_equal(a.torque_se_Nm, b.torque_se_Nm)
     assert a.hits == b.hits and not np.array_equal(a.force_N, c.force_N)
     assert a.molecules == 20_000 and a.batches == 4
     with pytest.raises(ValueError, match="one value per side"):
-        trace_molecules(plate, flow(30.0), **{**args, "diffuse_fraction": np.ones(3)})
+        walls_3 = WallInteraction(**{**walls, "diffuse_fraction": np.ones(3)})
+        trace_molecules(plate, flow(30.0), stream, walls_3, Sampling(**sampling))
     with pytest.raises(ValueError, match="CLL"):
-        trace_molecules(
-            plate, flow(30.0), **args, kernel="cll", normal_accommodation=1.0, tangential_accommodation=1.0
-        )
+        cll = WallInteraction(**walls, kernel="cll", normal_accommodation=1.0, tangential_accommodation=1.0)
+        trace_molecules(plate, flow(30.0), stream, cll, Sampling(**sampling))
     with pytest.raises(ValueError, match="batches"):
-        trace_molecules(plate, flow(30.0), **{**args, "batches": 1})
+        trace_molecules(
+            plate, flow(30.0), stream, WallInteraction(**walls), Sampling(**{**sampling, "batches": 1})
+        )

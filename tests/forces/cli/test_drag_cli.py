@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from sunwind.forces.gas.atmosphere import nrlmsis
+from sunwind.forces.gas import nrlmsis
 
 SPHERE_ARGS = ["--gsi", "sentman", "--wall-temperature", "300"]
 EXPLICIT_AIR = ["--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:0.2"]

@@ -159,7 +159,8 @@ def test_sweep_of_a_sphere_writes_the_analytic_sphere(run_cli, tmp_path):
     """End to end: ``sunwind sweep`` of a meshed sphere to SPAD; the strict reader takes the file and
     its areas are the analytic sphere's ``A = pi R^2 (1 - sigma + 4 rho (1 - beta) / 9) (-u)`` to the
     mesh's own accuracy (48 latitude bands: ~0.1 %)."""
-    from sunwind.validation.analytic_srp import Optics, sphere_srp
+    from sunwind.validation.analytic_srp import sphere_srp
+    from sunwind.validation.analytic_srp_law import Optics
 
     mesh = tmp_path / "sphere.stl"
     assert run_cli("mesh", "sphere", "--radius", "1", "--subdivisions", "48", "-o", mesh)[0] == 0

@@ -13,13 +13,11 @@ from sunwind.forces.gas.atmosphere import (
     SPECIES_MASS_KG,
     Atmosphere,
     AtmosphereWarning,
-    circular_speed,
-    corotation_speed,
     explicit,
-    nrlmsis,
-    parse_time,
     species_name,
 )
+from sunwind.forces.gas.flow import circular_speed, corotation_speed
+from sunwind.forces.gas.nrlmsis import nrlmsis, parse_time
 from sunwind.geometry.errors import InputError
 
 pymsis = pytest.importorskip("pymsis")
@@ -291,26 +289,27 @@ def test_corotation_matches_the_vector_form(altitude, latitude, heading, speed):
 @pytest.mark.parametrize(
     ("kwargs", "names"),
     [
-        (dict(altitude_km=-1.0), "--altitude"),
-        (dict(altitude_km=2500.0), "--altitude"),
-        (dict(altitude_km=math.nan), "--altitude"),
-        (dict(altitude_km=400.0, latitude_deg=91.0), "--lat"),
-        (dict(altitude_km=400.0, latitude_deg=-90.5), "--lat"),
-        (dict(altitude_km=400.0, longitude_deg=math.inf), "--lon"),
-        (dict(altitude_km=400.0, time="2024-13-01"), "--time"),
-        (dict(altitude_km=400.0, time="yesterday"), "--time"),
-        (dict(altitude_km=400.0, time="1957-12-31"), "--time year 1957"),
-        (dict(altitude_km=400.0, time=datetime(2101, 1, 1)), "--time year 2101"),
-        (dict(altitude_km=400.0, f107=-1.0), "--f107 "),
-        (dict(altitude_km=400.0, f107=math.nan), "--f107 "),
-        (dict(altitude_km=400.0, f107a=-5.0), "--f107a"),
-        (dict(altitude_km=400.0, f107a=math.inf), "--f107a"),
-        (dict(altitude_km=400.0, ap=-1.0), "--ap"),
-        (dict(altitude_km=400.0, ap=math.inf), "--ap"),
-        (dict(altitude_km=400.0, version=3), "--msis-version"),
+        (dict(altitude_km=-1.0), "altitude_km"),
+        (dict(altitude_km=2500.0), "altitude_km"),
+        (dict(altitude_km=math.nan), "altitude_km"),
+        (dict(altitude_km=400.0, latitude_deg=91.0), "latitude_deg"),
+        (dict(altitude_km=400.0, latitude_deg=-90.5), "latitude_deg"),
+        (dict(altitude_km=400.0, longitude_deg=math.inf), "longitude_deg"),
+        (dict(altitude_km=400.0, time="2024-13-01"), "time"),
+        (dict(altitude_km=400.0, time="yesterday"), "time"),
+        (dict(altitude_km=400.0, time="1957-12-31"), "time year 1957"),
+        (dict(altitude_km=400.0, time=datetime(2101, 1, 1)), "time year 2101"),
+        (dict(altitude_km=400.0, f107=-1.0), "f107 "),
+        (dict(altitude_km=400.0, f107=math.nan), "f107 "),
+        (dict(altitude_km=400.0, f107a=-5.0), "f107a"),
+        (dict(altitude_km=400.0, f107a=math.inf), "f107a"),
+        (dict(altitude_km=400.0, ap=-1.0), "ap"),
+        (dict(altitude_km=400.0, ap=math.inf), "ap"),
+        (dict(altitude_km=400.0, version=3), "version"),
     ],
 )
 def test_nrlmsis_errors_name_the_parameter(kwargs, names):
+    """Library errors name the Python parameter (the command line writes its flag instead)."""
     with pytest.raises(InputError) as error:
         nrlmsis(**kwargs)
     assert names in str(error.value)
@@ -328,21 +327,21 @@ def test_date_errors_say_why():
     ("args", "kwargs", "pattern"),
     [
         ((1e-12, 1000.0, "O:0.5,CO2:0.5"), {}, r"unknown species 'CO2'; known species are O, N2, O2, He"),
-        ((1e-12, 1000.0, "O:-0.1,N2:1.1"), {}, r"--composition fraction of O is -0\.1"),
-        ((1e-12, 1000.0, "O:nan,N2:1"), {}, r"--composition fraction of O is nan"),
-        ((1e-12, 1000.0, "O:inf"), {"normalise": True}, r"--composition fraction of O is inf"),
-        ((1e-12, 1000.0, "O:0.6,N2:0.3"), {}, r"sum to 0\.9, not 1.*--normalise-composition"),
-        ((1e-12, 1000.0, "O:0.7,N2:0.3000011"), {}, r"sum to 1\.0000011.*normalise=True"),
-        ((1e-12, 1000.0, "O:0,N2:0"), {"normalise": True}, r"--composition fractions sum to 0"),
-        ((1e-12, 1000.0, "O0.7,N2:0.3"), {}, r"--composition entry 'O0\.7'"),
-        ((1e-12, 1000.0, "O:lots"), {}, r"--composition fraction of O 'lots' is not a number"),
-        ((1e-12, 1000.0, "O:0.5,o:0.5"), {}, r"--composition gives O twice"),
-        ((1e-12, 1000.0, " , "), {}, r"--composition is empty"),
-        ((0.0, 1000.0, "O:1"), {}, r"--density 0\.0 kg/m\^3 is not positive"),
-        ((-1e-12, 1000.0, "O:1"), {}, r"--density"),
-        ((math.nan, 1000.0, "O:1"), {}, r"--density nan kg/m\^3 is not a finite number"),
-        ((1e-12, 0.0, "O:1"), {}, r"--temperature 0\.0 K is not positive"),
-        ((1e-12, math.inf, "O:1"), {}, r"--temperature inf K is not a finite number"),
+        ((1e-12, 1000.0, "O:-0.1,N2:1.1"), {}, r"composition fraction of O is -0\.1"),
+        ((1e-12, 1000.0, "O:nan,N2:1"), {}, r"composition fraction of O is nan"),
+        ((1e-12, 1000.0, "O:inf"), {"normalise": True}, r"composition fraction of O is inf"),
+        ((1e-12, 1000.0, "O:0.6,N2:0.3"), {}, r"sum to 0\.9, not 1.*set normalise"),
+        ((1e-12, 1000.0, "O:0.7,N2:0.3000011"), {}, r"sum to 1\.0000011.*set normalise"),
+        ((1e-12, 1000.0, "O:0,N2:0"), {"normalise": True}, r"composition fractions sum to 0"),
+        ((1e-12, 1000.0, "O0.7,N2:0.3"), {}, r"composition entry 'O0\.7'"),
+        ((1e-12, 1000.0, "O:lots"), {}, r"composition fraction of O 'lots' is not a number"),
+        ((1e-12, 1000.0, "O:0.5,o:0.5"), {}, r"composition gives O twice"),
+        ((1e-12, 1000.0, " , "), {}, r"composition is empty"),
+        ((0.0, 1000.0, "O:1"), {}, r"density_kg_m3 0\.0 kg/m\^3 is not positive"),
+        ((-1e-12, 1000.0, "O:1"), {}, r"density_kg_m3"),
+        ((math.nan, 1000.0, "O:1"), {}, r"density_kg_m3 nan kg/m\^3 is not a finite number"),
+        ((1e-12, 0.0, "O:1"), {}, r"temperature_K 0\.0 K is not positive"),
+        ((1e-12, math.inf, "O:1"), {}, r"temperature_K inf K is not a finite number"),
     ],
 )
 def test_explicit_errors(args, kwargs, pattern):
@@ -351,11 +350,11 @@ def test_explicit_errors(args, kwargs, pattern):
 
 
 def test_flow_errors_name_the_parameter():
-    with pytest.raises(InputError, match="--altitude"):
+    with pytest.raises(InputError, match="altitude_km"):
         circular_speed(-10.0)
-    with pytest.raises(InputError, match="--lat"):
+    with pytest.raises(InputError, match="latitude_deg"):
         corotation_speed(400.0, 95.0, 90.0)
-    with pytest.raises(InputError, match="--heading"):
+    with pytest.raises(InputError, match="heading_deg"):
         corotation_speed(400.0, 0.0, math.nan)
     with pytest.raises(InputError, match="inertial speed"):
         corotation_speed(400.0, 0.0, 90.0, -1.0)

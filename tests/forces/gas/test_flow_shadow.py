@@ -11,7 +11,8 @@ import pytest
 
 from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
-from sunwind.forces.gas.laws import panel_coefficients
+from sunwind.forces.gas.laws import GasSurfaces, panel_coefficients
+from sunwind.forces.model import Model
 from sunwind.geometry.materials import GasSurface, Material, MaterialTable
 from sunwind.geometry.rays.hull import Clearance
 from sunwind.geometry.spacecraft import build_spacecraft
@@ -77,14 +78,12 @@ def test_every_side_of_a_convex_body_is_its_own_gas_surface_law():
     n, gamma = craft.side_normals, craft.side_normals @ u
     along = u - gamma[:, None] * n
     tangent = -along / np.linalg.norm(along, axis=1)[:, None]
-    gas = craft.side_gas
-    law = [gas[k] for k in ("code", "energy_accommodation", "normal_accommodation")]
-    law += [gas["tangential_accommodation"], gas["wall_temperature_K"]]
+    law = GasSurfaces.of(craft.side_gas)
     expected = np.zeros((craft.n_sides, 3))
     for species, density in AIR.number_density_m3.items():
         mass = SPECIES_MASS_KG[species]
         ratio = SPEED / math.sqrt(2 * BOLTZMANN * AIR.temperature_K / mass)
-        c_n, c_t = panel_coefficients(*law, gamma, ratio, AIR.temperature_K, "full")
+        c_n, c_t = panel_coefficients(law, gamma, ratio, AIR.temperature_K, "full")
         q = 0.5 * density * mass * SPEED**2
         expected += (q * craft.side_areas)[:, None] * (-c_n[:, None] * n + c_t[:, None] * tangent)
     error = np.linalg.norm(result.side_force_N - expected, axis=1)
@@ -104,7 +103,7 @@ def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, sa
         np.zeros((0, 3)),
     )
     monkeypatch.setattr(
-        importlib.import_module("sunwind.forces.drag"), "clearance", lambda craft: nothing_cleared
+        importlib.import_module("sunwind.forces.gas.shadow"), "clearance", lambda craft: nothing_cleared
     )
     for u, result in zip(FLOWS, fast, strict=True):
         slow = drag(sample, SPEED * u, AIR, **kwargs)
@@ -114,11 +113,10 @@ def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, sa
     assert sum(batches) > 0
 
 
-def test_results_do_not_depend_on_the_thread_count(monkeypatch, sample):
+def test_results_do_not_depend_on_the_thread_count(sample):
     results = [drag(sample, SPEED * u, AIR, samples=1, reflections="full") for u in FLOWS]
-    monkeypatch.setenv("SUNWIND_THREADS", "1")
     for u, result in zip(FLOWS, results, strict=True):
-        alone = drag(sample, SPEED * u, AIR, samples=1, reflections="full")
+        alone = drag(Model(sample, threads=1), SPEED * u, AIR, samples=1, reflections="full")
         assert np.array_equal(result.force_N, alone.force_N)
         assert np.array_equal(result.torque_Nm, alone.torque_Nm)
         assert np.array_equal(result.side_force_N, alone.side_force_N)

@@ -9,18 +9,20 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import i0e, i1e
 
-from sunwind.forces.gas.laws import (
+from sunwind.forces.gas import (
     BOLTZMANN,
-    GSI_MODELS,
+    GSI_LAWS,
     GSI_PARAMS,
     MODEL_CODES,
     STREAMS,
+    GasSurfaces,
     diffuse_emission,
     incident_number_flux,
     panel_coefficients,
 )
 from sunwind.forces.radiation.law import surface_forces
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import GSI_MODELS
 
 SQRT_PI = math.sqrt(math.pi)
 T_INF = 1000.0  # free-stream temperature [K]
@@ -39,20 +41,23 @@ def coefficients(
     stream="full",
     temperature=T_INF,
 ):
-    """``panel_coefficients`` for one model, scalars broadcast to the elements of ``gamma``."""
+    """``panel_coefficients`` for one model, scalars broadcast to the elements of ``gamma``; checked
+    equal to the model's own law function with its named parameters (the dispatcher only dispatches)."""
     gamma = np.atleast_1d(np.asarray(gamma, dtype=float))
     n = len(gamma)
-    return panel_coefficients(
-        np.full(n, MODEL_CODES[model], dtype=np.int8),
-        np.full(n, alpha_e),
-        np.full(n, normal),
-        np.full(n, tangential),
-        np.full(n, t_wall),
-        gamma,
-        speed_ratio,
-        temperature,
-        stream,
-    )
+    columns = {
+        "code": MODEL_CODES[model],
+        "energy_accommodation": alpha_e,
+        "normal_accommodation": normal,
+        "tangential_accommodation": tangential,
+        "wall_temperature_K": t_wall,
+    }
+    surfaces = GasSurfaces.of({name: np.full(n, value) for name, value in columns.items()})
+    mixed = panel_coefficients(surfaces, gamma, speed_ratio, temperature, stream)
+    named = {parameter: columns[key] for parameter, key in GSI_PARAMS[model].items()}
+    own = GSI_LAWS[model](speed_ratio, temperature, **named).coefficients(gamma, stream)
+    np.testing.assert_array_equal(own, mixed)
+    return mixed
 
 
 def incident(gamma, speed_ratio, stream="full"):
@@ -259,16 +264,16 @@ def test_diffuse_term_matches_diffuse_emission(stream, model, kw, specular_share
         c_n, _ = coefficients(model, gamma, speed_ratio, stream=stream, **kw)
         c_n_inc = incident(gamma, speed_ratio, stream)[0]
         diffuse = c_n - (1.0 + specular_share) * c_n_inc
-        code = np.full(n, MODEL_CODES[model], np.int8)
-        share, t_r = diffuse_emission(
-            code,
-            np.full(n, kw.get("alpha_e", 1.0)),
-            np.full(n, kw.get("normal", 1.0)),
-            np.full(n, kw.get("tangential", 1.0)),
-            np.full(n, kw["t_wall"]),
-            speed_ratio,
-            T_INF,
+        surfaces = GasSurfaces.of(
+            {
+                "code": np.full(n, MODEL_CODES[model]),
+                "energy_accommodation": kw.get("alpha_e", 1.0),
+                "normal_accommodation": kw.get("normal", 1.0),
+                "tangential_accommodation": kw.get("tangential", 1.0),
+                "wall_temperature_K": kw["t_wall"],
+            }
         )
+        share, t_r = diffuse_emission(surfaces, speed_ratio, T_INF)
         number_flux = incident_number_flux(gamma, speed_ratio, stream) * density * speed
         expected = share * number_flux * mass * np.sqrt(np.pi * BOLTZMANN * t_r / (2 * mass)) / q
         np.testing.assert_allclose(diffuse, expected, rtol=1e-12, atol=1e-12 * np.max(np.abs(c_n)))
@@ -276,14 +281,13 @@ def test_diffuse_term_matches_diffuse_emission(stream, model, kw, specular_share
 
 def test_diffuse_emission_values():
     names = list(GSI_MODELS)
-    code = np.array([MODEL_CODES[m] for m in names], np.int8)
-    n = len(code)
-    share, t_r = diffuse_emission(
-        code, np.full(n, 0.9), np.full(n, 0.8), np.full(n, 0.7), np.full(n, 300.0), 5.0, T_INF
-    )
+    code = np.array([MODEL_CODES[m] for m in names])
+    surfaces = GasSurfaces(code, *(np.full(len(code), value) for value in (0.9, 0.8, 0.7, 300.0)))
+    share, t_r = diffuse_emission(surfaces, 5.0, T_INF)
     np.testing.assert_allclose(share, [1.0, 1.0, 0.8, 0.7, 0.0])
+    # a specular surface re-emits nothing diffusely: no temperature of its own (0 K)
     np.testing.assert_allclose(
-        t_r, [0.9 * 300 + 0.1 * (2 / 3) * 25 * T_INF, 0.9 * 300 + 0.1 * 0.5 * 25 * T_INF, 300, 300, 300]
+        t_r, [0.9 * 300 + 0.1 * (2 / 3) * 25 * T_INF, 0.9 * 300 + 0.1 * 0.5 * 25 * T_INF, 300, 300, 0]
     )
 
 
@@ -369,13 +373,14 @@ def test_large_negative_s_keeps_relative_accuracy(s):
 
 
 def test_bad_input():
-    with pytest.raises(InputError, match="unknown stream"):
+    with pytest.raises(InputError, match="stream 'cold' is unknown"):
         coefficients("sentman", [0.5], 2.0, stream="cold")
     with pytest.raises(InputError, match="model code"):
-        panel_coefficients(np.array([9], np.int8), 1, 1, 1, 300, np.array([0.5]), 2.0, T_INF)
-    with pytest.raises(InputError, match="speed ratio"):
+        unknown = dict(code=9, energy_accommodation=1, normal_accommodation=1, tangential_accommodation=1)
+        panel_coefficients({**unknown, "wall_temperature_K": 300}, [0.5], 2.0, T_INF)
+    with pytest.raises(InputError, match="speed_ratio"):
         coefficients("sentman", [0.5], 0.0)
-    with pytest.raises(InputError, match="energy accommodation"):
+    with pytest.raises(InputError, match="energy_accommodation outside"):
         coefficients("sentman", [0.5], 2.0, alpha_e=1.2)
     with pytest.raises(InputError, match="temperature"):
         coefficients("sentman", [0.5], 2.0, temperature=-1.0)

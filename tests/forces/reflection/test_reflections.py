@@ -7,12 +7,13 @@ import tomllib
 from helpers import MIXED, quad_sheet
 from helpers.shapes import MIRROR, SHEER, WHITE, P, groove, open_box
 from sunwind.forces.radiation.law import SPEED_OF_LIGHT
+from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.reflection.diffuse import diffuse_exchange
-from sunwind.forces.reflection.plan import ReflectionSettings, model_view_factors
 from sunwind.forces.srp import srp
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes import primitives
 
@@ -105,8 +106,7 @@ def test_light_a_sheet_transmits_lands_on_what_is_behind_it():
 
 def test_the_adjoint_totals_equal_a_full_solve():
     craft = open_box(MIXED)
-    view = model_view_factors(craft, full())
-    exchange = diffuse_exchange(craft, view)
+    exchange = diffuse_exchange(craft, full())
     source = np.random.default_rng(1).random(craft.n_sides)
     ref = np.array([0.3, 0.2, 0.1])
     by_adjoint = exchange.totals(source, ref)
@@ -127,16 +127,17 @@ def test_k_is_of_an_l_of_one_sided_squares_is_the_hottel_view_factor_ratio():
     assert srp(craft, [1, 1, 1], reflections="none").k_is == pytest.approx(hottel / (1 - hottel), rel=0.02)
 
 
-def test_results_with_reflections_are_the_same_bits_whatever_the_threads(monkeypatch):
+def test_results_with_reflections_are_the_same_bits_whatever_the_threads(monkeypatch, limit_threads):
     craft = open_box(MIXED)
     runs = []
     for threads in ("1", "2"):
-        monkeypatch.setenv("SUNWIND_THREADS", threads)
+        limit_threads(int(threads))
         result = srp(craft, [0.3, 0.2, 1.0], reflections=full())
         runs.append(np.r_[result.force_N, result.torque_Nm])
     assert np.array_equal(runs[0], runs[1])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("samples", [1, None], ids=["one-point", "adaptive"])
 def test_the_diffuse_light_the_direct_pass_hands_on_equals_the_side_by_side_sums(samples):
     """The direct pass sums what each lit side hands the diffuse balance from block moments
@@ -144,7 +145,7 @@ def test_the_diffuse_light_the_direct_pass_hands_on_equals_the_side_by_side_sums
     reflection through the adjoint totals, the result is the same to 1e-10."""
     craft = open_box(MIXED, 24)
     u = np.array([0.3, 0.2, 1.0]) / np.linalg.norm([0.3, 0.2, 1.0])
-    low, high = craft.sampler.block_normal_bounds
+    low, high = side_sampler(craft).block_normal_bounds
     assert (np.minimum(low * u, high * u).sum(axis=1) > 0).any()  # blocks summed from their moments
     ref = np.array([0.2, 0.7, 0.4])
     result = srp(craft, u, reflections=full(), samples=samples, reference_point_m=ref)
@@ -155,9 +156,7 @@ def test_the_diffuse_light_the_direct_pass_hands_on_equals_the_side_by_side_sums
     power[facing] = result.flux_W_m2 * craft.side_areas[facing] * light.lit_fraction[facing]
     power[facing] *= craft.side_normals[facing] @ u
     first = rho * (1 - beta) * power
-    balance = diffuse_exchange(craft, model_view_factors(craft, full())).totals(
-        first + chains.diffuse_source_W, ref
-    )
+    balance = diffuse_exchange(craft, full()).totals(first + chains.diffuse_source_W, ref)
     open_plate = -(2 / 3) * first[:, None] * craft.side_normals / SPEED_OF_LIGHT  # what eq. (4) took
     force = result.direct_force_N + chains.force_N + balance.force_N - open_plate.sum(axis=0)
     torque = result.direct_torque_Nm + chains.torque_Nm + balance.torque_Nm

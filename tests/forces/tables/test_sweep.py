@@ -4,20 +4,35 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 import xarray as xr
 
+from sunwind.forces import export
 from sunwind.forces.drag import drag
+from sunwind.forces.model import Model, load
+from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.srp import srp
-from sunwind.forces.tables.attitudes import direction_grid, read_attitude_csv
-from sunwind.forces.tables.dataset import grid_table, open_table, write_netcdf
-from sunwind.forces.tables.sweep import DragSetup, Job, ModelRecipe, SrpSetup, records_by_field, run_sweep
+from sunwind.forces.tables import (
+    DragSetup,
+    Job,
+    SrpSetup,
+    SweepRun,
+    direction_grid,
+    grid_table,
+    open_table,
+    read_attitude_csv,
+    run_jobs,
+    sweep,
+)
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import Material
+from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes.primitives import sphere
-from sunwind.validation.analytic_srp import Optics, sphere_srp
+from sunwind.validation.analytic_srp import sphere_srp
+from sunwind.validation.analytic_srp_law import Optics
 
 OPTICS = Material("paint", 0.4, 0.5, 0.1)
 #: Meshed sphere against the analytic sphere: the inscribed mesh's area error, ~2.5 / bands^2.
@@ -25,35 +40,36 @@ SPHERE_BANDS, SPHERE_TOLERANCE = 48, 2e-3
 
 
 @pytest.fixture(scope="module")
-def model(tmp_path_factory):
-    """The box-wing written by ``sunwind mesh``, and its recipe (uniform material, wings two-sided)."""
+def model(tmp_path_factory) -> Model:
+    """The box-wing written by ``sunwind mesh``, loaded with a uniform material and two-sided wings."""
     from sunwind.forces.cli.app import main
 
     path = tmp_path_factory.mktemp("sweep") / "box_wing.obj"
     main(["mesh", "box_wing", "-o", str(path)])
-    recipe = ModelRecipe(str(path), uniform=OPTICS, two_sided=("wing*",))
-    return recipe, recipe.load()
+    return load(path, uniform=OPTICS, two_sided=("wing*",))
 
 
 @pytest.fixture(scope="module")
 def air():
-    from sunwind.forces.gas.atmosphere import explicit
+    from sunwind.forces.gas import explicit
 
     return explicit(3e-12, 900.0, "O:0.8,N2:0.2")
 
 
-def _jobs(craft, air, step=45.0, reflections="full"):
+def _setups(air, reflections="full"):
+    settings = _settings(reflections)
+    return (
+        SrpSetup(flux_W_m2=1361.0, samples=4, reflections=settings),
+        DragSetup(speed_m_s=7600.0, atmosphere=air, samples=4, reflections=settings),
+    )
+
+
+def _jobs(air, step=45.0, reflections="full"):
     grid = direction_grid(step)
-    directions = grid.distinct[0]
-    return grid, [
-        Job("srp", directions, SrpSetup(1361.0, samples=4, reflections=_settings(reflections))),
-        Job("drag", directions, DragSetup(7600.0, air, samples=4, reflections=_settings(reflections))),
-    ]
+    return grid, [Job(setup, grid.distinct[0]) for setup in _setups(air, reflections)]
 
 
 def _settings(mode):
-    from sunwind.forces.reflection.plan import ReflectionSettings
-
     return ReflectionSettings(mode, rays_per_side=64)
 
 
@@ -75,7 +91,7 @@ def test_grid_has_both_ends_and_shares_directions_exactly():
 
 @pytest.mark.parametrize("step", [7.0, 0.0, -5.0, 100.0, math.nan])
 def test_a_step_that_does_not_divide_the_range_is_refused(step):
-    with pytest.raises(InputError, match="--step"):
+    with pytest.raises(InputError, match="step_deg"):
         direction_grid(step)
 
 
@@ -83,15 +99,14 @@ def test_a_step_that_does_not_divide_the_range_is_refused(step):
 
 
 def test_every_table_entry_equals_the_single_attitude_result(model, air):
-    recipe, craft = model
-    grid, jobs = _jobs(craft, air)
-    records = run_sweep(recipe, jobs, craft=craft, chunk=7)
-    table = grid_table(records, dict.fromkeys(("srp", "drag"), grid), {})
+    light_setup, drag_setup = _setups(air)
+    table = sweep(model, srp=light_setup, drag=drag_setup, step_deg=45.0, run=SweepRun(chunk=7))
+    grid = direction_grid(45.0)
     for i, az in enumerate(grid.azimuth_deg):
         for j, el in enumerate(grid.elevation_deg):
             u = grid.vectors[i, j]
-            light = srp(craft, u, samples=4, reflections=_settings("full"))
-            gas = drag(craft, 7600.0 * u, air, samples=4, reflections=_settings("full"))
+            light = srp(model, u, samples=4, reflections=_settings("full"))
+            gas = drag(model, 7600.0 * u, air, samples=4, reflections=_settings("full"))
             at = {"sun_azimuth": az, "sun_elevation": el}
             np.testing.assert_array_equal(table.srp_force_N.sel(at).values, light.force_N)
             np.testing.assert_array_equal(table.srp_torque_Nm.sel(at).values, light.torque_Nm)
@@ -101,25 +116,34 @@ def test_every_table_entry_equals_the_single_attitude_result(model, air):
             np.testing.assert_array_equal(table.drag_torque_Nm.sel(flow).values, gas.torque_Nm)
             assert table.drag_CD.sel(flow).item() == gas.force_coefficients[0]
     assert np.abs(table.srp_reflected_force_N.values).max() > 0  # the concave model does reflect
+    for key in (
+        "frame",
+        "reference_point_m",
+        "flux_W_m2",
+        "mesh_sha256",
+        "dynamic_pressure_Pa",
+        "grid_step_deg",
+    ):
+        assert key in table.attrs  # the Python sweep carries the provenance the command line writes
 
 
 def test_table_entry_equals_the_command_line(model, run_cli, tmp_path):
-    recipe, _ = model
+    mesh = model.source.mesh
     table_path = tmp_path / "t.nc"
     flags = ["--reflectivity", "0.4", "--specular-fraction", "0.5", "--transmissivity", "0.1"]
     flags += ["--two-sided", "wing*", "--samples", "4", "--reflections", "full"]
     air_flags = ["--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:0.2"]
     code, out, err = run_cli(
-        "sweep", recipe.mesh, *flags, *air_flags, "--speed", "7600", "--step", "45", "-o", table_path
+        "sweep", mesh, *flags, *air_flags, "--speed", "7600", "--step", "45", "-o", table_path
     )
     assert code == 0, err
     table = open_table(table_path)
-    code, out, err = run_cli("srp", recipe.mesh, *flags, "--sun-azel", "-135", "45", "--json")
+    code, out, err = run_cli("srp", mesh, *flags, "--sun-azel", "-135", "45", "--json")
     single = json.loads(out)
     value = table.srp_force_N.sel(sun_azimuth=-135, sun_elevation=45).values
     assert value.tolist() == single["force_N"]
     code, out, err = run_cli(
-        "drag", recipe.mesh, *flags, *air_flags, "--speed", "7600", "--flow-azel", "90", "-45", "--json"
+        "drag", mesh, *flags, *air_flags, "--speed", "7600", "--flow-azel", "90", "-45", "--json"
     )
     single = json.loads(out)
     value = table.drag_torque_Nm.sel(flow_azimuth=90, flow_elevation=-45).values
@@ -138,19 +162,12 @@ def test_table_entry_equals_the_command_line(model, run_cli, tmp_path):
 
 def test_sphere_table_equals_the_analytic_sphere():
     craft_optics = Optics(0.4, 0.5, 0.1)
-    from sunwind.geometry.spacecraft import build_spacecraft
-
     craft = build_spacecraft(sphere(1.0, SPHERE_BANDS), uniform=OPTICS)
     grid = direction_grid(30)
-    jobs = [
-        Job(
-            "srp",
-            grid.distinct[0],
-            SrpSetup(1361.0, reference_point_m=(0.0, 0.0, 0.0), samples=1, reflections=_settings("none")),
-        )
-    ]
-    records = run_sweep(ModelRecipe("<memory>"), jobs, craft=craft)
-    table = grid_table(records, {"srp": grid}, {})
+    setup = SrpSetup(
+        flux_W_m2=1361.0, reference_point_m=(0.0, 0.0, 0.0), samples=1, reflections=_settings("none")
+    )
+    table = sweep(craft, srp=setup, step_deg=30)  # a model built in memory
     forces = table.srp_force_N.values.reshape(-1, 3)
     expected = np.array([sphere_srp(1.0, u, craft_optics).force_N for u in grid.vectors.reshape(-1, 3)])
     error = np.linalg.norm(forces - expected, axis=1) / np.linalg.norm(expected, axis=1)
@@ -165,9 +182,8 @@ class _Stop(Exception):
 
 
 def test_an_interrupted_sweep_resumes_to_the_same_table(model, air, tmp_path):
-    recipe, craft = model
-    grid, jobs = _jobs(craft, air, reflections="none")
-    whole = run_sweep(recipe, jobs, craft=craft, chunk=5)
+    grid, jobs = _jobs(air, reflections="none")
+    whole = run_jobs(model, jobs, SweepRun(chunk=5))
     checkpoint = tmp_path / "t.nc.checkpoint"
     seen = []
 
@@ -177,24 +193,24 @@ def test_an_interrupted_sweep_resumes_to_the_same_table(model, air, tmp_path):
             raise _Stop
 
     with pytest.raises(_Stop):
-        run_sweep(recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint, progress=stop_after_two_chunks)
-    assert len(list(checkpoint.glob("*.npy"))) == 2
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, progress=stop_after_two_chunks))
+    assert len(list(checkpoint.glob("*.npz"))) == 2
     progress = []
-    resumed = run_sweep(
-        recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint, resume=True, progress=progress.append
+    resumed = run_jobs(
+        model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True, progress=progress.append)
     )
     assert progress[0] == 10  # the two chunks kept are not recomputed
     for kind in whole:
-        np.testing.assert_array_equal(resumed[kind], whole[kind])
+        for name in whole[kind]:
+            np.testing.assert_array_equal(resumed[kind][name], whole[kind][name])
     assert not checkpoint.exists()  # removed once finished
-    a = write_netcdf(grid_table(whole, dict.fromkeys(whole, grid), {}), tmp_path / "a.nc")
-    b = write_netcdf(grid_table(resumed, dict.fromkeys(whole, grid), {}), tmp_path / "b.nc")
+    (a,) = export.write(grid_table(whole, dict.fromkeys(whole, grid), {}), tmp_path / "a.nc")
+    (b,) = export.write(grid_table(resumed, dict.fromkeys(whole, grid), {}), tmp_path / "b.nc")
     xr.testing.assert_identical(xr.load_dataset(a), xr.load_dataset(b))
 
 
 def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
-    recipe, craft = model
-    _, jobs = _jobs(craft, air, reflections="none")
+    _, jobs = _jobs(air, reflections="none")
     checkpoint = tmp_path / "c"
 
     def stop(done: int) -> None:
@@ -202,17 +218,23 @@ def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
             raise _Stop
 
     with pytest.raises(_Stop):
-        run_sweep(recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint, progress=stop)
-    with pytest.raises(InputError, match="--resume"):
-        run_sweep(recipe, jobs, craft=craft, chunk=5, checkpoint=checkpoint)
-    other = [Job(j.kind, j.directions, type(j.setup)(**{**j.setup.__dict__, "samples": 9})) for j in jobs]
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, progress=stop))
+    with pytest.raises(InputError, match="resume"):
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint))
+    other = [Job(replace(j.setup, samples=9), j.directions) for j in jobs]
     with pytest.raises(InputError, match="srp_settings"):
-        run_sweep(recipe, other, craft=craft, chunk=5, checkpoint=checkpoint, resume=True)
-    paint = ModelRecipe(recipe.mesh, uniform=Material("paint", 0.2, 0.5, 0.1), two_sided=recipe.two_sided)
+        run_jobs(model, other, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
+    paint = load(
+        model.source.mesh, uniform=Material("paint", 0.2, 0.5, 0.1), two_sided=model.source.two_sided
+    )
     with pytest.raises(InputError, match="model"):
-        run_sweep(paint, jobs, craft=craft, chunk=5, checkpoint=checkpoint, resume=True)
+        run_jobs(paint, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
+    moved = replace(model, reference_point_m=np.array([0.0, 0.0, 0.5]))
+    with pytest.raises(InputError, match="references"):
+        run_jobs(moved, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
 
 
+@pytest.mark.slow
 def test_killed_command_line_sweep_resumes_to_the_same_file(model, tmp_path):
     """A real process killed after its first checkpoint chunk, then resumed, writes the same CSV."""
     import os
@@ -221,13 +243,12 @@ def test_killed_command_line_sweep_resumes_to_the_same_file(model, tmp_path):
     import sys
     import time
 
-    recipe, _ = model
     args = [
         sys.executable,
-        "-c",
-        "from sunwind.forces.cli.app import main; main()",
+        "-m",
+        "sunwind",
         "sweep",
-        recipe.mesh,
+        model.source.mesh,
         "--reflectivity",
         "0.4",
         "--specular-fraction",
@@ -250,11 +271,11 @@ def test_killed_command_line_sweep_resumes_to_the_same_file(model, tmp_path):
     process = subprocess.Popen([*args, "-o", target], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     checkpoint = tmp_path / "killed.csv.checkpoint"
     deadline = time.monotonic() + 120
-    while not list(checkpoint.glob("*.npy")) and time.monotonic() < deadline and process.poll() is None:
+    while not list(checkpoint.glob("*.npz")) and time.monotonic() < deadline and process.poll() is None:
         time.sleep(0.05)
     process.send_signal(signal.SIGKILL)
     process.wait()
-    assert not target.exists() and list(checkpoint.glob("*.npy"))
+    assert not target.exists() and list(checkpoint.glob("*.npz"))
     subprocess.run([*args, "-o", target, "--resume"], check=True, capture_output=True)
     assert target.read_bytes() == reference.read_bytes()
 
@@ -291,13 +312,12 @@ def test_bad_attitude_lists_are_refused(tmp_path, text, match):
 
 
 def test_list_sweep_from_the_command_line(model, run_cli, tmp_path):
-    recipe, craft = model
     path = tmp_path / "list.csv"
     path.write_text("sun_x,sun_y,sun_z,flow_x,flow_y,flow_z\n1,0,0,0,1,0\n0,0,1,-1,0,0\n")
     out_path = tmp_path / "list.csv.nc"
     code, _out, err = run_cli(
         "sweep",
-        recipe.mesh,
+        model.source.mesh,
         "--reflectivity",
         "0.4",
         "--specular-fraction",
@@ -326,7 +346,7 @@ def test_list_sweep_from_the_command_line(model, run_cli, tmp_path):
     assert code == 0, err
     table = open_table(out_path)
     assert table.sizes["attitude"] == 2
-    single = srp(craft, [0, 0, 1], samples=4, reflections="none")
+    single = srp(model, [0, 0, 1], samples=4, reflections="none")
     np.testing.assert_array_equal(table.srp_force_N.values[1], single.force_N)
 
 
@@ -345,12 +365,12 @@ def test_unknown_extension_and_wrong_format_are_refused(run_cli, tmp_path):
     assert code == 1 and "basilisk holds srp only" in err
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_is_reported(model, run_cli, tmp_path):
     pytest.importorskip("dask.distributed")
-    recipe, _ = model
     code, _, err = run_cli(
         "sweep",
-        recipe.mesh,
+        model.source.mesh,
         "--reflectivity",
         "0.4",
         "--specular-fraction",
@@ -368,15 +388,16 @@ def test_unreachable_scheduler_is_reported(model, run_cli, tmp_path):
     assert code == 1 and "cannot reach the Dask scheduler" in err
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_the_local_result(model, air):
     pytest.importorskip("dask.distributed")
-    recipe, craft = model
-    _grid, jobs = _jobs(craft, air, step=45.0)
-    local = run_sweep(recipe, jobs, craft=craft, chunk=9)
-    distributed = run_sweep(recipe, jobs, chunk=9, scheduler="local", workers=2)
+    _grid, jobs = _jobs(air, step=45.0)
+    local = run_jobs(model, jobs, SweepRun(chunk=9))
+    distributed = run_jobs(model, jobs, SweepRun(chunk=9, scheduler="local", workers=2))
     for kind in local:
-        np.testing.assert_array_equal(distributed[kind], local[kind])
-    assert set(records_by_field("drag", local["drag"])) >= {"force_N", "CD", "CM"}
+        for name in local[kind]:
+            np.testing.assert_array_equal(distributed[kind][name], local[kind][name])
+    assert set(local["drag"]) >= {"force_N", "CD", "CM"}
 
 
 # ----------------------------------------------------------------------------------- formats, plots
@@ -396,10 +417,9 @@ AIR = ("--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:
     ],
 )
 def test_every_format_is_written_and_named(model, run_cli, tmp_path, name, extra, written):
-    recipe, _ = model
     code, out, err = run_cli(
         "sweep",
-        recipe.mesh,
+        model.source.mesh,
         *FLAGS,
         *AIR,
         "--reflections",
@@ -417,10 +437,9 @@ def test_every_format_is_written_and_named(model, run_cli, tmp_path, name, extra
 
 
 def test_plot_writes_maps_and_a_pressure_view(model, run_cli, tmp_path):
-    recipe, _ = model
     table = tmp_path / "t.nc"
     code, _, err = run_cli(
-        "sweep", recipe.mesh, *FLAGS, *AIR, "--reflections", "none", "--step", "45", "-o", table
+        "sweep", model.source.mesh, *FLAGS, *AIR, "--reflections", "none", "--step", "45", "-o", table
     )
     assert code == 0, err
     code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")

@@ -5,10 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sunwind.forces.gas.kernels import may_be_blocked
+from sunwind import meshes
+from sunwind.forces.gas.shadow_kernels import may_be_blocked
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.rays.hull import HULL_TOLERANCE, MAX_PARTS, clearance, supporting_planes
+from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes import primitives
 from sunwind.meshes.samples import sample_spacecraft
@@ -94,9 +96,7 @@ def test_part_hulls_and_boxes(sample):
 
 def test_a_model_of_many_parts_is_cleared_by_its_hull_only():
     boxes = [
-        primitives.label(
-            primitives.transform(primitives.box((0.5, 0.5, 0.5)), translation=(k, 0.0, 0.0)), f"b{k}"
-        )
+        meshes.label(meshes.transform(primitives.box((0.5, 0.5, 0.5)), translation=(k, 0.0, 0.0)), f"b{k}")
         for k in range(MAX_PARTS + 1)
     ]
     craft = craft_of(MeshData.concatenate(boxes))
@@ -117,7 +117,7 @@ def test_rays_found_clear_meet_nothing(sample, seed):
     directions *= np.sign(np.einsum("ij,ij->i", directions, normals))[:, None]
     directions = directions.astype(np.float32)
     sides = np.arange(sample.n_sides)
-    origins = sample.sampler.origins(2)
+    origins = side_sampler(sample).origins(2)
     clear = clearance(sample)
     arrays = (clear.open_sky, clear.own_part_clear, clear.blockers, clear.box_low, clear.box_high)
     maybe = np.empty((sample.n_sides, 1, origins.shape[1]), dtype=bool)
@@ -136,7 +136,7 @@ def test_rays_along_shared_directions_found_clear_meet_nothing(sample, seed):
     clear = clearance(sample)
     arrays = (clear.open_sky, clear.own_part_clear, clear.blockers, clear.box_low, clear.box_high)
     sides = np.arange(sample.n_sides)
-    origins = sample.sampler.origins(2)
+    origins = side_sampler(sample).origins(2)
     maybe = np.empty((sample.n_sides, 3, origins.shape[1]), dtype=bool)
     may_be_blocked(sides, origins, directions[None], sample.side_normals, arrays, maybe, 0, sample.n_sides)
     for j, direction in enumerate(directions):

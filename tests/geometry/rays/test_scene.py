@@ -25,8 +25,8 @@ def clutter():
 
 
 @pytest.mark.parametrize("threads", ["1", "2"])
-def test_embree_and_brute_force_agree(clutter, threads, monkeypatch):
-    monkeypatch.setenv("SUNWIND_THREADS", threads)
+def test_embree_and_brute_force_agree(clutter, threads, monkeypatch, limit_threads):
+    limit_threads(int(threads))
     embree, brute = RayScene(clutter), BruteForceScene(clutter)
     rng = np.random.default_rng(3)
     n = 40_000  # large enough to be split over threads

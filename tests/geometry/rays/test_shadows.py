@@ -7,7 +7,7 @@ import trimesh
 from helpers import ABSORBER, mesh_from_trimesh, quad_sheet
 from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
-from sunwind.geometry.rays.shadows import BASE_LEVEL, level_for_samples
+from sunwind.geometry.rays.shadows import BASE_LEVEL, level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft
 
 
@@ -17,7 +17,7 @@ def test_a_convex_body_has_no_shadow_on_any_side_facing_the_sun(samples):
     rng = np.random.default_rng(11)
     for u in rng.normal(size=(5, 3)):
         u /= np.linalg.norm(u)
-        light = craft.sampler.illuminate(u, samples)
+        light = side_sampler(craft).illuminate(u, samples)
         facing = light.cos_incidence > 0
         assert np.array_equal(light.lit_fraction, facing.astype(float))
         assert np.array_equal(np.sort(light.facing), np.flatnonzero(facing))
@@ -57,7 +57,7 @@ def test_partial_shadow_lit_area_and_lit_centroid_are_exact_to_sampling_precisio
     shadow_centroid = (np.clip(lo, 0, 1) + np.clip(hi, 0, 1)) / 2
     exact_centroid = (np.array([0.5, 0.5]) - shadow * shadow_centroid) / (1 - shadow)
     floor = (craft.facet_part[craft.side_facet] == craft.part_names.index("floor")) & (craft.side_sign > 0)
-    light = craft.sampler.illuminate(u)
+    light = side_sampler(craft).illuminate(u)
     areas = craft.side_areas[floor] * light.lit_fraction[floor]
     centroid = areas @ light.lit_centroid[floor][:, :2] / areas.sum()
     # ~24 sides on the shadow edge, each refined until its lit share is within ~1e-3: 1e-4 of the area
@@ -66,17 +66,17 @@ def test_partial_shadow_lit_area_and_lit_centroid_are_exact_to_sampling_precisio
     # only sides near the shadow edge are refined: far fewer rays than the finest level everywhere
     assert light.rays < 0.3 * (light.cos_incidence > 0).sum() * 64**2
     # with one sample per facet the error is that of the facet size, far larger
-    coarse = craft.sampler.illuminate(u, samples=1)
+    coarse = side_sampler(craft).illuminate(u, samples=1)
     assert abs(craft.side_areas[floor] @ coarse.lit_fraction[floor] - (1 - shadow)) > 1e-3
 
 
 def test_adaptive_refinement_converges_as_the_tolerance_tightens():
     craft, _, _ = shaded_floor(n=8)
     u = np.array([0.1, 0.25, 1.0]) / np.linalg.norm([0.1, 0.25, 1.0])
-    reference = craft.sampler.illuminate(u, samples=64**2)  # the finest level on every side
+    reference = side_sampler(craft).illuminate(u, samples=64**2)  # the finest level on every side
     errors = []
     for tolerance in (0.1, 1e-2, 1e-3):
-        light = craft.sampler.illuminate(u, tolerance=tolerance)
+        light = side_sampler(craft).illuminate(u, tolerance=tolerance)
         errors.append(np.abs(craft.side_areas @ (light.lit_fraction - reference.lit_fraction)))
     assert errors[2] < errors[1] < errors[0]
     assert errors[2] < 1e-4
@@ -86,7 +86,7 @@ def test_a_two_sided_sheet_is_lit_on_the_side_facing_the_sun():
     sheet = quad_sheet(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float), "wing", 2)
     craft = build_spacecraft(sheet, uniform=ABSORBER, two_sided=["wing"])
     for u, lit_sign in (([0.2, 0.1, 1.0], 1), ([0.2, 0.1, -1.0], -1)):
-        light = craft.sampler.illuminate(np.array(u) / np.linalg.norm(u))
+        light = side_sampler(craft).illuminate(np.array(u) / np.linalg.norm(u))
         assert np.array_equal(light.lit_fraction, (craft.side_sign == lit_sign).astype(float))
 
 
@@ -98,7 +98,7 @@ def test_models_too_large_to_keep_origins_give_the_same_lit_shares(samples, monk
 
     craft, _, _ = shaded_floor(n=6)
     u = np.array([0.2, 0.3, 1.0]) / np.linalg.norm([0.2, 0.3, 1.0])
-    kept = craft.sampler.illuminate(u, samples)
+    kept = side_sampler(craft).illuminate(u, samples)
     monkeypatch.setattr(illumination, "_KEEP_POINTS", 10)
     streamed = illumination.SideSampler(craft).illuminate(u, samples)
     assert np.array_equal(kept.lit_fraction, streamed.lit_fraction)
@@ -115,4 +115,4 @@ def test_sampler_origins_equal_the_scene_transform_of_the_sample_points():
     for level in (1, 2, 5):
         points = tri.sample_points(craft.triangles[craft.side_facet], level)
         expected = craft.scene.origins(points, craft.side_normals[:, None, :])
-        assert np.allclose(craft.sampler._origins_of(sides, level), expected, rtol=0, atol=2e-7)
+        assert np.allclose(side_sampler(craft)._origins_of(sides, level), expected, rtol=0, atol=2e-7)

@@ -7,7 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-import sunwind.geometry.views.view_factors as vf_module
+import sunwind.geometry.views.hemisphere as hemisphere
 from helpers import quad_sheet
 from helpers.shapes import parallel_squares
 from sunwind.forces.radiation.law import SPEED_OF_LIGHT
@@ -191,13 +191,13 @@ def test_a_closed_specular_cavity_lets_nothing_out():
     assert np.linalg.norm(totals.force_N) < 3e-3 * source.sum() / SPEED_OF_LIGHT
 
 
-def test_the_same_bits_whatever_the_threads_and_batches(monkeypatch):
+def test_the_same_bits_whatever_the_threads_and_batches(monkeypatch, limit_threads):
     craft = open_box((0.2, 0.5, 0.3))  # mirrors and sheets: chains pick one at random
     view = compute_view_factors(craft, 256)
     runs = []
     for threads, batch in (("1", 256 * 8), ("2", 256 * 8), ("2", 256 * 3)):
-        monkeypatch.setenv("SUNWIND_THREADS", threads)
-        monkeypatch.setattr(vf_module, "_BATCH_RAYS", batch)
+        limit_threads(int(threads))
+        monkeypatch.setattr(hemisphere, "_BATCH_RAYS", batch)
         runs.append(compute_exchange_factors(craft, view))
     first = runs[0]
     assert first.chains > 0

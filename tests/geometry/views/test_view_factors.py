@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 import trimesh
 
+import sunwind.geometry.views.hemisphere as hemisphere
 import sunwind.geometry.views.view_factors as vf_module
 from helpers import ABSORBER, mesh_from_trimesh, quad_sheet
 from helpers.shapes import parallel_squares
@@ -17,11 +18,11 @@ from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.geometry.triangles import normals
 from sunwind.geometry.views.disk_cache import geometry_key, write_entry
+from sunwind.geometry.views.near_field import edge_pair_view_factors
 from sunwind.geometry.views.view_factors import (
     VIEW_SEED,
     compute_view_factors,
     default_rays_per_side,
-    edge_pair_view_factors,
     resolve_rays_per_side,
     view_factors,
 )
@@ -234,12 +235,12 @@ def test_escape_vector_and_moment_of_a_side_of_an_l_match_quadrature():
         assert np.linalg.norm(vector - (2 / 3) * craft.side_normals[side]) > 0.05  # the wall matters
 
 
-def test_results_are_the_same_bits_whatever_the_threads_and_batches(monkeypatch):
+def test_results_are_the_same_bits_whatever_the_threads_and_batches(monkeypatch, limit_threads):
     craft = sheets(dish(1.2, 0.35, segments=12), two_sided=True)
     runs = []  # 8 or 3 sides per batch: many batches, and chunks of work for each thread
     for threads, batch in (("1", 256 * 8), ("2", 256 * 8), ("2", 256 * 3)):
-        monkeypatch.setenv("SUNWIND_THREADS", threads)
-        monkeypatch.setattr(vf_module, "_BATCH_RAYS", batch)
+        limit_threads(int(threads))
+        monkeypatch.setattr(hemisphere, "_BATCH_RAYS", batch)
         runs.append(compute_view_factors(craft, 256))
     first = runs[0]
     for other in runs[1:]:

@@ -1,0 +1,98 @@
+"""``sunwind srp``, ``sunwind drag`` and ``sunwind forces``: one attitude, printed as text or JSON."""
+
+from __future__ import annotations
+
+import click
+
+from sunwind.forces.cli.free_stream import FreeStream, flow_options
+from sunwind.forces.cli.options import (
+    Sun,
+    json_option,
+    loaded,
+    model_options,
+    reference_options,
+    reflection_options,
+    sampling_options,
+    sun_options,
+)
+from sunwind.forces.cli.report import forces_document, print_drag, print_forces, print_json, print_srp
+from sunwind.forces.drag import drag as drag_of
+from sunwind.forces.model import ModelSource
+from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.srp import srp as srp_of
+
+
+@click.command()
+@model_options()
+@sun_options()
+@reference_options()
+@sampling_options
+@reflection_options("light")
+@json_option
+def srp(
+    source: ModelSource,
+    sun: Sun,
+    references: dict,
+    sampling: dict,
+    reflections: ReflectionSettings,
+    as_json: bool,
+) -> None:
+    """Solar-radiation force and torque for one Sun direction, with self-shadowing and inter-reflection."""
+    model = loaded(source, **references)
+    result = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
+    if as_json:
+        print_json(model.craft, result.to_json())
+    else:
+        print_srp(result)
+
+
+@click.command()
+@model_options(gas=True)
+@flow_options(directed=True)
+@reference_options(sizes=True)
+@sampling_options
+@reflection_options("gas")
+@json_option
+def drag(
+    source: ModelSource,
+    flow: FreeStream,
+    references: dict,
+    sampling: dict,
+    reflections: ReflectionSettings,
+    as_json: bool,
+) -> None:
+    """Free-molecular force and torque for one flow direction: gas-surface law, shadowing, re-emission."""
+    model = loaded(source, **references)
+    result = drag_of(model, flow.velocity_m_s, flow.atmosphere, reflections=reflections, **sampling)
+    craft = model.craft
+    if as_json:
+        print_json(craft, result.to_json())
+    else:
+        print_drag(result, f"sunwind drag: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+
+
+@click.command()
+@model_options(gas=True)
+@sun_options()
+@flow_options(directed=True)
+@reference_options(sizes=True)
+@sampling_options
+@reflection_options("both")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object: srp, drag, total.")
+def forces(
+    source: ModelSource,
+    sun: Sun,
+    flow: FreeStream,
+    references: dict,
+    sampling: dict,
+    reflections: ReflectionSettings,
+    as_json: bool,
+) -> None:
+    """Solar-radiation pressure and free-molecular drag together for one attitude, and their total."""
+    model = loaded(source, **references)
+    light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
+    gas = drag_of(model, flow.velocity_m_s, flow.atmosphere, reflections=reflections, **sampling)
+    if as_json:
+        print_json(model.craft, forces_document(light, gas))
+    else:
+        print_forces(light, gas)

@@ -1,0 +1,170 @@
+"""The free stream as the command line gives it: the flow velocity and the atmosphere.
+
+Either ``--velocity X Y Z`` (``v_rel`` in the body frame, m/s) or ``--flow-azel AZ EL`` with a speed:
+``--speed V``, else the circular-orbit speed at ``--altitude`` (relative to an atmosphere rotating
+with the Earth with ``--corotating``, for the ``--heading`` of the orbit at ``--lat``). Either
+NRLMSIS at ``--altitude`` (place, time and indices optional) or ``--density``, ``--temperature`` and
+``--composition`` together. A sweep takes the flow directions from its grid or list: it needs only the
+speed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import click
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.cli.options import group
+from sunwind.forces.drag import checked_velocities
+from sunwind.forces.gas import Atmosphere, circular_speed, corotation_speed, explicit, nrlmsis
+from sunwind.geometry.directions import azel_to_vector
+from sunwind.geometry.errors import InputError
+
+
+@dataclass(frozen=True)
+class FreeStream:
+    """The flow of a command: ``v_rel`` [m/s] (None for a sweep, which has only the speed), its speed
+    [m/s] and the atmosphere; all None where the command computes no drag."""
+
+    velocity_m_s: NDArray[np.float64] | None
+    speed_m_s: float | None
+    atmosphere: Atmosphere | None
+
+
+_FLOW = [
+    click.option(
+        "--velocity",
+        nargs=3,
+        type=float,
+        default=None,
+        metavar="X Y Z",
+        help="v_rel: spacecraft velocity relative to the atmosphere, body frame [m/s].",
+    ),
+    click.option(
+        "--flow-azel",
+        nargs=2,
+        type=float,
+        default=None,
+        metavar="AZ EL",
+        help="Direction of v_rel [deg], az = atan2(y, x), el = asin(z); with --speed or --altitude.",
+    ),
+]
+_SPEED = [
+    click.option("--speed", type=float, help="|v_rel| [m/s] [default: circular orbit at --altitude]."),
+    click.option(
+        "--corotating", is_flag=True, help="Subtract the Earth-rotating atmosphere from the orbit speed."
+    ),
+    click.option(
+        "--heading",
+        type=float,
+        default=90.0,
+        show_default=True,
+        help="With --corotating: direction of motion [deg from north, 90 = east].",
+    ),
+]
+_AIR = [
+    click.option("--altitude", type=float, help="Altitude [km] for NRLMSIS 2.1 (and the orbit speed)."),
+    click.option("--lat", type=float, default=0.0, show_default=True, help="Geodetic latitude [deg]."),
+    click.option("--lon", type=float, default=0.0, show_default=True, help="Longitude [deg]."),
+    click.option("--time", default="2024-01-01T00:00:00Z", show_default=True, help="UTC time, ISO 8601."),
+    click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
+    click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
+    click.option("--ap", type=float, default=4.0, show_default=True, help="Daily Ap index."),
+    click.option("--density", type=float, help="Explicit atmosphere: mass density [kg/m^3]."),
+    click.option("--temperature", type=float, help="Explicit atmosphere: temperature [K]."),
+    click.option("--composition", help='Explicit atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),
+    click.option(
+        "--normalise-composition", is_flag=True, help="Rescale mole fractions that do not sum to 1."
+    ),
+]
+
+
+def flow_options(directed: bool) -> Callable:
+    """The flow and atmosphere flags: keyword ``flow``.
+
+    ``directed``: the command takes the flow's direction (``--velocity`` or ``--flow-azel``), and
+    ``flow`` is a :class:`FreeStream`; else (a sweep) only its speed, and ``flow`` is a function
+    ``flow(drag_wanted) -> FreeStream``: a sweep of SRP alone needs no atmosphere.
+    """
+
+    def build(values: dict):
+        if directed:
+            return _free_stream(values, directed)
+        return lambda drag_wanted: (
+            _free_stream(values, directed) if drag_wanted else FreeStream(None, None, None)
+        )
+
+    return group("flow", _FLOW + _SPEED + _AIR, build)
+
+
+def _free_stream(values: dict, directed: bool) -> FreeStream:
+    velocity, azel = values["velocity"], values["flow_azel"]
+    if not directed:
+        if velocity is not None or azel is not None:
+            raise InputError(
+                "a sweep takes its flow directions from the grid or the attitude list",
+                hint="drop --velocity/--flow-azel; give --speed or --altitude for the speed",
+            )
+        if values["corotating"] and values["speed"] is not None:
+            raise InputError(
+                "--corotating changes the circular-orbit speed at --altitude only", hint="drop --speed"
+            )
+        return FreeStream(None, _speed(values), _atmosphere(values))
+    if (velocity is None) == (azel is None):
+        raise InputError("give the flow with --velocity X Y Z or --flow-azel AZ EL (one of them)")
+    if values["corotating"] and (velocity is not None or values["speed"] is not None):
+        raise InputError(
+            "--corotating changes the circular-orbit speed at --altitude only",
+            hint="drop --speed/--velocity, or give the relative velocity itself",
+        )
+    if velocity is not None:
+        v = checked_velocities(velocity)
+        return FreeStream(v, float(np.linalg.norm(v)), _atmosphere(values))
+    direction = azel_to_vector(*azel, "--flow-azel")
+    speed = _speed(values)
+    return FreeStream(speed * direction, speed, _atmosphere(values))
+
+
+def _speed(values: dict) -> float:
+    """``|v_rel|`` [m/s]: ``--speed``, else the circular-orbit speed at ``--altitude`` (relative to a
+    co-rotating atmosphere with ``--corotating``)."""
+    if values["speed"] is not None:
+        speed = float(values["speed"])
+        if not np.isfinite(speed) or speed <= 0:
+            raise InputError(f"--speed {speed} must be a positive number of m/s")
+        return speed
+    if values["altitude"] is None:
+        raise InputError("a flow direction needs --speed V, or --altitude for the circular-orbit speed")
+    speed = circular_speed(values["altitude"])
+    if values["corotating"]:
+        speed = corotation_speed(values["altitude"], values["lat"], values["heading"], speed)
+    return speed
+
+
+def _atmosphere(values: dict) -> Atmosphere:
+    """Explicit when any of density, temperature, composition is given (then all three are needed),
+    else NRLMSIS at the altitude."""
+    given = {
+        "--density": values["density"],
+        "--temperature": values["temperature"],
+        "--composition": values["composition"],
+    }
+    if any(value is not None for value in given.values()):
+        missing = [flag for flag, value in given.items() if value is None]
+        if missing:
+            raise InputError(
+                f"an explicit atmosphere needs {', '.join(missing)} too",
+                hint='e.g. --density 3e-12 --temperature 1000 --composition "O:0.8,N2:0.2"',
+            )
+        return explicit(
+            values["density"], values["temperature"], values["composition"], values["normalise_composition"]
+        )
+    if values["altitude"] is None:
+        raise InputError(
+            "give the atmosphere: --altitude H [km] for NRLMSIS, or --density, --temperature, --composition"
+        )
+    keys = ("altitude", "lat", "lon", "time", "f107", "f107a", "ap")
+    return nrlmsis(*(values[key] for key in keys))

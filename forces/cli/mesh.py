@@ -1,0 +1,149 @@
+"""``sunwind info`` and ``sunwind mesh``: describe a mesh file, or write a parametric one."""
+
+from __future__ import annotations
+
+import inspect
+import json
+from pathlib import Path
+
+import click
+import numpy as np
+
+from sunwind import meshes
+from sunwind.forces.cli.options import json_option, model_options, view_factor_options
+from sunwind.forces.model import ModelSource
+from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.reflection.views import view_factor_summary
+from sunwind.geometry.errors import InputError, SunwindError
+from sunwind.geometry.io import save_mesh
+from sunwind.geometry.summary import describe
+
+
+@click.command()
+@model_options()
+@view_factor_options
+@click.option("--no-k-is", is_flag=True, help="Skip the view factors and K_IS (quick look at a large mesh).")
+@json_option
+def info(source: ModelSource, reflections: ReflectionSettings, no_k_is: bool, as_json: bool) -> None:
+    """Describe a mesh: triangles, parts, materials, area, bounds, closed or not, checks, and K_IS."""
+    report = describe(source.mesh, source.materials, source.unit, source.uniform, source.two_sided)
+    if not no_k_is:
+        try:
+            craft = source.load()
+        except SunwindError:
+            report["k_is"] = "not available until the checks pass"
+        else:
+            report.update(view_factor_summary(craft, reflections))
+    if as_json:
+        print(json.dumps(report, indent=2))
+        return
+    print(f"sunwind info: {report['mesh']}")
+    for key in ("unit", "triangles", "area_m2", "volume_m3", "closed", "reference_point", "k_is"):
+        if key in report:
+            print(f"  {key:<17}{report[key]}")
+    if "view_factors" in report:
+        view = report["view_factors"]
+        print(
+            f"  {'open sky':<17}{view['open_sky_share']:.4f} of diffusely reflected light escapes "
+            f"(area-weighted); view factors: {view['rays_per_side']} rays per side, {view['origin']}"
+        )
+    low, high = report["bounds_m"]
+    print(f"  {'bounds_m':<17}min {np.round(low, 6).tolist()}  max {np.round(high, 6).tolist()}")
+    print("  checks:")
+    for line in report["checks"]:
+        print(f"    {line}")
+    print("  parts:")
+    for part in report["parts"]:
+        print(
+            f"    {part['name']:<28} {part['triangles']:>7} tri {part['area_m2']:>10.4f} m^2  "
+            f"{part['surface']:<16}  {part['materials']}"
+        )
+    if report["materials"]:
+        print(f"  materials:{'':<18}rho    beta   sigma  alpha")
+        for m in report["materials"]:
+            print(
+                f"    {m['name']:<24}{m['reflectivity']:.3f}  {m['specular_fraction']:.3f}  "
+                f"{m['transmissivity']:.3f}  {m['absorptivity']:.3f}"
+            )
+
+
+def builder_params(kind: str, builder, words: list[str]) -> dict:
+    """``--name value`` words after ``sunwind mesh KIND`` as keyword arguments of ``builder``.
+
+    Types follow the builder's defaults: numbers, ``--flag/--no-flag`` for booleans, and several
+    numbers for a sequence (``--size 1 2 3``).
+    """
+    signature = inspect.signature(builder).parameters
+    params: dict = {}
+    i = 0
+    while i < len(words):
+        word = words[i]
+        if not word.startswith("--"):
+            raise InputError(f"unexpected '{word}' for mesh {kind}", hint="give parameters as --name value")
+        name = word[2:].replace("-", "_")
+        negated = name.startswith("no_") and name[3:] in signature
+        key = name[3:] if negated else name
+        if key not in signature:
+            valid = ", ".join("--" + p.replace("_", "-") for p in signature)
+            raise InputError(f"mesh {kind} has no parameter --{name.replace('_', '-')}", hint=f"use {valid}")
+        values = []
+        i += 1
+        while i < len(words) and not words[i].startswith("--"):
+            values.append(words[i])
+            i += 1
+        params[key] = _parameter(kind, key, signature[key].default, values, negated)
+    return params
+
+
+def _parameter(kind: str, key: str, default: object, values: list[str], negated: bool) -> object:
+    """One builder parameter from its words, typed as its default."""
+    try:
+        if isinstance(default, bool):
+            if values:
+                raise ValueError
+            return not negated
+        if isinstance(default, tuple | list) or len(values) > 1:
+            return tuple(float(v) if "." in v or "e" in v.lower() else int(v) for v in values)
+        if len(values) == 1:
+            return int(values[0]) if isinstance(default, int) else float(values[0])
+        raise ValueError
+    except ValueError:
+        raise InputError(
+            f"mesh {kind}: bad value for --{key.replace('_', '-')}: {' '.join(values)!r}",
+            hint="give a number (or several for a size)",
+        ) from None
+
+
+@click.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True})
+@click.argument("kind")
+@click.option(
+    "--output",
+    "-o",
+    type=click.Path(path_type=Path),
+    required=True,
+    help="File to write: .obj .stl .ply .glb .gltf .usda .usdc",
+)
+@click.pass_context
+def mesh(ctx: click.Context, kind: str, output: Path) -> None:
+    """Write a parametric mesh: plate, sphere, cylinder, cone, dish, box, box_wing, or sample.
+
+    Parameters follow the kind, e.g. `sunwind mesh cylinder --radius 0.5 --length 2 --no-caps -o c.obj`,
+    `sunwind mesh sample --triangles 100000 -o big.usda`. Frames: METHOD.md "Frames, units and signs".
+    """
+    if kind == "sample":
+        built = meshes.sample_spacecraft(**builder_params(kind, meshes.sample_spacecraft, ctx.args))
+    elif kind in meshes.PRIMITIVES:
+        built = meshes.build(kind, **builder_params(kind, meshes.PRIMITIVES[kind], ctx.args))
+    else:
+        kinds = ", ".join([*meshes.PRIMITIVES, "sample"])
+        raise InputError(f"unknown mesh kind '{kind}'", hint=f"choose one of {kinds}")
+    save_mesh(built, output)
+    print(f"wrote {output}: {built.n_faces} triangles, parts {', '.join(built.part_names)}")
+    if kind == "sample" and not output.suffix.lower().startswith(".usd"):
+        materials = output.with_suffix(".toml")
+        materials.write_text(meshes.materials_toml(built))
+        print(f"wrote {materials}: its materials and two-sided sheets (use with --materials)")
+    elif built.two_sided_parts:
+        print(
+            f"two-sided sheets: {', '.join(sorted(built.two_sided_parts))} (declare them, e.g. --two-sided)"
+        )

@@ -1,0 +1,352 @@
+"""Option groups of the commands: each adds its flags and hands the command one checked library object
+built from them (a :class:`~sunwind.forces.model.ModelSource`, a Sun direction and flux, sampling,
+reflection settings, ...), so every command takes a few arguments and nothing is checked twice.
+
+Checks are the library's own, made when the group builds its object, before any mesh is loaded; the
+Python parameter names in their messages become the flags here (:data:`FLAGS`).
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import click
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.model import Model, ModelSource
+from sunwind.forces.radiation import solar_flux
+from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.reflection.settings import DEFAULT_CUTOFF, DEFAULT_DEPTH
+from sunwind.geometry.directions import azel_to_vector, finite_point, unit_vector
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import GSI_MODELS, GasSurface, Material
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+
+#: The flag of each Python parameter the library names in its messages.
+FLAGS = {
+    "flux_W_m2": "--flux",
+    "distance_au": "--distance-au",
+    "reference_point_m": "--ref-point",
+    "reference_area_m2": "--ref-area",
+    "reference_length_m": "--ref-length",
+    "samples": "--samples",
+    "tolerance": "--tolerance",
+    "reflections": "--reflections",
+    "cutoff": "--reflection-cutoff",
+    "depth": "--reflection-depth",
+    "rays_per_side": "--view-rays",
+    "velocity_m_s": "--velocity",
+    "speed_m_s": "--speed",
+    "altitude_km": "--altitude",
+    "latitude_deg": "--lat",
+    "longitude_deg": "--lon",
+    "time": "--time",
+    "f107": "--f107",
+    "f107a": "--f107a",
+    "ap": "--ap",
+    "density_kg_m3": "--density",
+    "temperature_K": "--temperature",
+    "composition": "--composition",
+    "normalise": "--normalise-composition",
+    "heading_deg": "--heading",
+    "step_deg": "--step",
+    "chunk": "--chunk",
+    "workers": "--workers",
+    "scheduler": "--scheduler",
+    "resume": "--resume",
+    "format": "--format",
+}
+
+
+def group(name: str, options: list[Callable], build: Callable[[dict], object] | None = None) -> Callable:
+    """A decorator adding ``options`` to a command and handing it, instead of their values, the keyword
+    argument ``name``: ``build(values)`` (or the values themselves as a dict)."""
+
+    def decorate(command: Callable) -> Callable:
+        @functools.wraps(command)
+        def run(**kwargs):
+            values = {key: kwargs.pop(key) for key in names}
+            kwargs[name] = values if build is None else build(values)
+            return command(**kwargs)
+
+        run.__click_params__ = list(getattr(command, "__click_params__", []))
+        before = len(run.__click_params__)
+        for option in reversed(options):
+            run = option(run)
+        names = [param.name for param in run.__click_params__[before:]]
+        return run
+
+    return decorate
+
+
+# --------------------------------------------------------------------------------------------- model
+_GAS_OPTIONS = [
+    click.option(
+        "--gsi",
+        type=click.Choice(GSI_MODELS),
+        help="Gas-surface model [default sentman, or the materials file's].",
+    ),
+    click.option("--energy-accommodation", type=float, help="alpha_E of sentman and dria [default 1]."),
+    click.option(
+        "--normal-accommodation", type=float, help="sigma_n of schaaf-chambre, alpha_n of cll [default 1]."
+    ),
+    click.option(
+        "--tangential-accommodation", type=float, help="sigma_t of schaaf-chambre and cll [default 1]."
+    ),
+    click.option("--wall-temperature", type=float, help="Wall temperature T_w [K] [default 300]."),
+]
+_GAS_KEYS = (
+    "gsi",
+    "energy_accommodation",
+    "normal_accommodation",
+    "tangential_accommodation",
+    "wall_temperature",
+)
+_MODEL_OPTIONS = [
+    click.argument("mesh", type=click.Path(path_type=Path)),
+    click.option("--materials", "-m", type=click.Path(path_type=Path), help="Materials TOML file."),
+    click.option(
+        "--reflectivity", type=float, help="Uniform material for parts without one: reflectivity rho."
+    ),
+    click.option("--specular-fraction", type=float, help="Uniform material: specular share beta."),
+    click.option("--transmissivity", type=float, help="Uniform material: transmissivity sigma [default 0]."),
+    click.option(
+        "--two-sided", multiple=True, metavar="GLOB", help="Treat matching parts as two-sided sheets."
+    ),
+    click.option("--unit", help="Mesh length unit: m, mm, cm, in [default: the file's own, else m]."),
+]
+
+
+def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
+    """The command-line uniform material, or None when no flag gives one.
+
+    ``gas`` holds the gas-surface flags given (keys of a materials file); a drag-only run may give them
+    without optics, and the optics are then not used (all zero).
+    """
+    rho, beta, sigma = values["reflectivity"], values["specular_fraction"], values["transmissivity"]
+    if rho is None and beta is None and sigma is None:
+        if not gas:
+            return None
+        return Material.checked(
+            "uniform", {"reflectivity": 0.0, "specular_fraction": 0.0, **gas}, "command line"
+        )
+    if rho is None or beta is None:
+        raise InputError(
+            "a uniform material needs --reflectivity and --specular-fraction",
+            hint="e.g. --reflectivity 0.3 --specular-fraction 0.5 [--transmissivity 0]",
+        )
+    optics = {"reflectivity": rho, "specular_fraction": beta, "transmissivity": sigma or 0.0}
+    return Material.checked("uniform", {**optics, **(gas or {})}, source="command line")
+
+
+def _source(values: dict) -> ModelSource:
+    """The model source of the mesh, material and gas flags: the gas flags make the uniform material's
+    gas law and override the gas law of every material of a materials file."""
+    gas = {key: values.pop(key) for key in _GAS_KEYS if key in values}
+    gas = {key: value for key, value in gas.items() if value is not None}
+    if gas:
+        GasSurface.checked("command line", gas)
+    materials = values["materials"]
+    return ModelSource(
+        mesh=str(values["mesh"]),
+        materials=None if materials is None else str(materials),
+        unit=values["unit"],
+        uniform=uniform_material(values, gas),
+        two_sided=tuple(values["two_sided"]),
+        gas=tuple(gas.items()),
+    )
+
+
+def model_options(gas: bool = False) -> Callable:
+    """The mesh and its materials (with the gas-surface flags when ``gas``): keyword ``source``."""
+    return group("source", _MODEL_OPTIONS + (_GAS_OPTIONS if gas else []), _source)
+
+
+def loaded(source: ModelSource, **model: object) -> Model:
+    """The model of ``source`` (with ``model``'s references), its repair notices printed on stderr."""
+    craft = source.load()
+    for notice in craft.notices:
+        print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
+    return Model(craft, source, **model)
+
+
+# ----------------------------------------------------------------------------------------- reference
+def _references(values: dict) -> dict:
+    point = values.pop("ref_point")
+    out = {"reference_point_m": None if point is None else finite_point(point, "--ref-point")}
+    if "ref_area" in values:
+        out |= {"reference_area_m2": values["ref_area"], "reference_length_m": values["ref_length"]}
+        Model.check_sizes(out["reference_area_m2"], out["reference_length_m"])
+    return out
+
+
+def reference_options(sizes: bool = False) -> Callable:
+    """The torque reference point (and with ``sizes`` the coefficient references): keyword ``references``,
+    the :class:`~sunwind.forces.model.Model` fields they set."""
+    options = [
+        click.option(
+            "--ref-point",
+            nargs=3,
+            type=float,
+            default=None,
+            metavar="X Y Z",
+            help="Torque reference point [m] [default: volume centroid if closed, else area centroid].",
+        )
+    ]
+    if sizes:
+        options += [
+            click.option(
+                "--ref-area", type=float, help="Coefficient reference area [m^2] [default total area / 4]."
+            ),
+            click.option(
+                "--ref-length",
+                type=float,
+                help="Moment-coefficient reference length [m] [default largest extent].",
+            ),
+        ]
+    return group("references", options, _references)
+
+
+# ------------------------------------------------------------------------------------------------ sun
+@dataclass(frozen=True)
+class Sun:
+    """The Sun of a command: direction (spacecraft to Sun, body frame; None when not asked for) and flux."""
+
+    vector: NDArray[np.float64] | None
+    flux_W_m2: float
+
+
+_FLUX_OPTIONS = [
+    click.option("--flux", type=float, help="Solar flux [W/m^2] [default 1361, i.e. 1 au]."),
+    click.option("--distance-au", type=float, help="Distance from the Sun [au]: flux = 1361 / r^2."),
+]
+
+
+def _sun(values: dict) -> Sun:
+    flux = solar_flux(values["flux"], values["distance_au"])
+    if "sun" not in values:
+        return Sun(None, flux)
+    sun, azel = values["sun"], values["sun_azel"]
+    if (sun is None) == (azel is None):
+        raise InputError("give the Sun direction with --sun X Y Z or --sun-azel AZ EL (one of them)")
+    vector = unit_vector(sun, "--sun") if sun is not None else azel_to_vector(*azel, "--sun-azel")
+    return Sun(vector, flux)
+
+
+def sun_options(direction: bool = True) -> Callable:
+    """The Sun direction (when ``direction``) and the flux: keyword ``sun``, a :class:`Sun`."""
+    options = [
+        click.option(
+            "--sun",
+            nargs=3,
+            type=float,
+            default=None,
+            metavar="X Y Z",
+            help="Sun direction in the body frame, spacecraft to Sun.",
+        ),
+        click.option(
+            "--sun-azel",
+            nargs=2,
+            type=float,
+            default=None,
+            metavar="AZ EL",
+            help="Sun azimuth and elevation [deg]: az = atan2(y, x), el = asin(z).",
+        ),
+    ]
+    return group("sun", (options if direction else []) + _FLUX_OPTIONS, _sun)
+
+
+# ------------------------------------------------------------------------------------------- sampling
+def _sampling(values: dict) -> dict:
+    check_sampling(values["samples"], values["tolerance"])
+    return values
+
+
+def sampling_options(command: Callable) -> Callable:
+    """Shadow-ray sampling: keyword ``sampling``, the ``samples`` and ``tolerance`` arguments."""
+    options = [
+        click.option(
+            "--samples",
+            type=int,
+            help="Shadow-ray points per facet side, rounded up to a square [default: adaptive].",
+        ),
+        click.option(
+            "--tolerance",
+            type=float,
+            default=DEFAULT_TOLERANCE,
+            show_default=True,
+            help="Adaptive sampling: convergence threshold on a side's lit share.",
+        ),
+    ]
+    return group("sampling", options, _sampling)(command)
+
+
+# ---------------------------------------------------------------------------------------- reflections
+_MODE_HELP = {
+    "light": "Inter-reflection: none; specular beams only; full (beams and diffuse balance); "
+    "auto = full when K_IS >= 0.1, else none.",
+    "gas": "Re-emitted molecules striking other sides: none; full; auto = full when K_IS >= 0.1.",
+    "both": "Inter-reflection of light and of re-emitted molecules (auto: each by its own K_IS).",
+}
+_VIEW_FACTOR_OPTIONS = [
+    click.option(
+        "--view-rays",
+        type=int,
+        help="Hemisphere rays per side for view factors [default: more on small models, at least 256].",
+    ),
+    click.option(
+        "--cache-dir",
+        type=click.Path(path_type=Path, file_okay=False),
+        help="Where view factors are kept [default: $SUNWIND_CACHE_DIR, else the user cache].",
+    ),
+    click.option("--no-cache", is_flag=True, help="Neither read nor write the view-factor cache."),
+]
+
+
+def _settings(values: dict) -> ReflectionSettings:
+    cache = False if values["no_cache"] else values["cache_dir"]
+    cutoff = values.get("reflection_cutoff", DEFAULT_CUTOFF)
+    depth = values.get("reflection_depth", DEFAULT_DEPTH)
+    return ReflectionSettings(values.get("reflections", "full"), cutoff, depth, values["view_rays"], cache)
+
+
+def reflection_options(of: str) -> Callable:
+    """Inter-reflection of ``of`` ("light", "gas", "both") and view-factor sampling: keyword
+    ``reflections``, a :class:`~sunwind.forces.reflection.ReflectionSettings`."""
+    modes = ["none", "specular", "full", "auto"] if of == "light" else ["none", "full", "auto"]
+    options = [
+        click.option(
+            "--reflections", type=click.Choice(modes), default="auto", show_default=True, help=_MODE_HELP[of]
+        )
+    ]
+    if of == "light":
+        options += [
+            click.option(
+                "--reflection-cutoff",
+                type=float,
+                default=DEFAULT_CUTOFF,
+                show_default=True,
+                help="Drop a reflected beam below this share of the power its chain started with.",
+            ),
+            click.option(
+                "--reflection-depth",
+                type=int,
+                default=DEFAULT_DEPTH,
+                show_default=True,
+                help="Most surfaces a beam chain meets.",
+            ),
+        ]
+    return group("reflections", options + _VIEW_FACTOR_OPTIONS, _settings)
+
+
+def view_factor_options(command: Callable) -> Callable:
+    """View-factor sampling and cache alone (for K_IS): keyword ``reflections``, full settings."""
+    return group("reflections", _VIEW_FACTOR_OPTIONS, _settings)(command)
+
+
+json_option = click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")

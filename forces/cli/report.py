@@ -1,0 +1,115 @@
+"""What the single-attitude commands print: a text report, or one JSON document with the same facts."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from sunwind.forces.results import FRAME, VALIDITY, DragResult, SrpResult
+from sunwind.geometry.spacecraft import Spacecraft
+
+
+def vector(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
+    """A vector as ``[a  b  c]``."""
+    return "[" + "  ".join(fmt.format(x) for x in v) + "]"
+
+
+def header(craft: Spacecraft) -> dict:
+    """What every JSON document says of the model."""
+    return {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
+
+
+def print_json(craft: Spacecraft, document: dict) -> None:
+    """One JSON object: the model, the ``document``, the repair notices."""
+    print(json.dumps({**header(craft), **document, "notices": list(craft.notices)}, indent=2))
+
+
+def print_srp(result: SrpResult) -> None:
+    """The human-readable SRP report."""
+    craft = result.craft
+    az, el = result.sun_azel_deg
+    parts = f"{craft.n_facets} triangles, {len(craft.part_names)} parts, unit {craft.unit}"
+    print(f"sunwind srp: {craft.source} ({parts})")
+    print("  frame            body frame of the mesh; SI units")
+    print(f"  sun vector       {vector(result.sun_vector, '{:+.6f}')}  az {az:.3f} deg  el {el:.3f} deg")
+    print(f"  flux             {result.flux_W_m2:.6g} W/m^2   pressure P = {result.pressure_Pa:.6e} Pa")
+    print(f"  force   [N]      {vector(result.force_N)}  |F| = {np.linalg.norm(result.force_N):.6e}")
+    print(f"    direct         {vector(result.direct_force_N)}")
+    print(f"    reflected      {vector(result.reflected_force_N)}")
+    print(f"  torque  [N m]    {vector(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
+    print(f"    direct         {vector(result.direct_torque_Nm)}")
+    print(f"    reflected      {vector(result.reflected_torque_Nm)}")
+    print(f"  about   [m]      {vector(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
+    print(f"  lit area         {result.lit_area_m2:.6f} m^2")
+    print(f"  projected area   {result.projected_area_m2:.6f} m^2")
+    print(f"  shadow rays      {result.rays} ({result.sampling})")
+    print(
+        f"  reflections      {result.reflections} (asked: {result.settings.mode}); "
+        f"K_IS = {result.k_is:.4f} (eq. 7; inter-reflection matters from 0.1)"
+    )
+    power = result.power
+    print(
+        f"  power   [W]      incident {power.incident_W:.6g}, absorbed {power.absorbed_W:.6g}, "
+        f"escaped {power.escaped_W:.6g}, cut off {power.truncated_W:.3g} (imbalance {power.imbalance:.1e})"
+    )
+    chains, view = result.reflected.chains, result.reflected.view
+    if chains is not None:
+        print(f"  beam rays        {chains.rays}, chains up to {chains.depth} surfaces")
+    if view is not None and result.reflections == "full":
+        print(f"  view factors     {view.rays_per_side} rays per side, {view.origin}")
+
+
+def print_drag(result: DragResult, heading: str) -> None:
+    """The human-readable drag report under ``heading``."""
+    air = result.atmosphere
+    cd, cs, cl = result.force_coefficients
+    az, el = result.flow_azel_deg
+    print(heading)
+    print("  frame            body frame of the mesh; SI units")
+    print(f"  v_rel   [m/s]    {vector(result.velocity_m_s, '{:+.3f}')}  az {az:.3f} deg  el {el:.3f} deg")
+    print(f"  atmosphere       {air.source}")
+    print(
+        f"                   rho {air.density_kg_m3:.6e} kg/m^3, T {air.temperature_K:.1f} K, "
+        f"q = {result.dynamic_pressure_Pa:.6e} Pa, speed ratio {result.speed_ratio:.3f}"
+    )
+    print(f"  force   [N]      {vector(result.force_N)}  |F| = {np.linalg.norm(result.force_N):.6e}")
+    print(f"    panel law      {vector(result.direct_force_N)}")
+    print(f"    re-emission    {vector(result.reflected_force_N)}")
+    print(f"  torque  [N m]    {vector(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
+    print(f"  about   [m]      {vector(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
+    print(
+        f"  coefficients     CD {cd:.6f}  CL {cl:+.6f}  CS {cs:+.6f}  CM {vector(result.moment_coefficients)}"
+    )
+    print(
+        f"{'':19}A_ref {result.reference_area_m2:.6g} m^2, L_ref {result.reference_length_m:.6g} m; "
+        "C = F/(q A_ref), C_M = M/(q A_ref L_ref)"
+    )
+    print(f"  projected area   {result.projected_area_m2:.6f} m^2 (normal to the flow)")
+    k_is = "n/a" if result.k_is is None else f"{result.k_is:.4f}"
+    print(f"  re-emission      {result.reflections} (asked: {result.settings.mode}); molecular K_IS = {k_is}")
+    print(f"  shadow rays      {result.rays} ({result.sampling})")
+    print(f"  validity         {VALIDITY}")
+
+
+def forces_document(light: SrpResult, gas: DragResult) -> dict:
+    """The JSON document of ``sunwind forces``: both results and their total."""
+    total = {
+        "force_N": (light.force_N + gas.force_N).tolist(),
+        "torque_Nm": (light.torque_Nm + gas.torque_Nm).tolist(),
+        "reference_point_m": light.reference_point_m.tolist(),
+        "frame": FRAME,
+    }
+    return {"srp": light.to_json(), "drag": gas.to_json(), "total": total}
+
+
+def print_forces(light: SrpResult, gas: DragResult) -> None:
+    """The human-readable report of ``sunwind forces``."""
+    craft = light.craft
+    force, torque = light.force_N + gas.force_N, light.torque_Nm + gas.torque_Nm
+    print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+    print(f"  total force  [N]    {vector(force)}  |F| = {np.linalg.norm(force):.6e}")
+    print(f"  total torque [N m]  {vector(torque)}  about {vector(light.reference_point_m, '{:+.6f}')} m")
+    print(f"  srp force    [N]    {vector(light.force_N)}  (sun {vector(light.sun_vector, '{:+.4f}')})")
+    print(f"  srp torque   [N m]  {vector(light.torque_Nm)}")
+    print_drag(gas, "  drag:")

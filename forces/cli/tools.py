@@ -1,0 +1,160 @@
+"""``sunwind bench`` and ``sunwind validate``: how fast, and how right, on this machine."""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import click
+from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+from sunwind.forces.bench import benchmark, sweep_benchmark
+from sunwind.forces.tables import direction_grid
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.spacecraft import build_spacecraft, load_spacecraft
+from sunwind.meshes.samples import sample_spacecraft
+
+
+@click.command()
+@click.option(
+    "--mesh",
+    "mesh_path",
+    type=click.Path(path_type=Path),
+    help="Benchmark this mesh instead of the generated sample (give its materials too).",
+)
+@click.option("--materials", "-m", type=click.Path(path_type=Path), help="Materials file for --mesh.")
+@click.option(
+    "--triangles",
+    type=int,
+    default=100_000,
+    show_default=True,
+    help="Size of the generated sample spacecraft.",
+)
+@click.option("--attitudes", type=int, default=50, show_default=True, help="Sun directions timed.")
+@click.option("--samples", type=int, default=1, show_default=True, help="Shadow-ray points per side.")
+@click.option(
+    "--sweep",
+    is_flag=True,
+    help="Time a whole grid sweep (SRP and drag, full reflections) and Dask 2 workers over 1 instead.",
+)
+@click.option("--step", type=float, default=5.0, show_default=True, help="Grid step of --sweep [deg].")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_json) -> None:
+    """Time SRP per attitude (direct against raw Embree on the same rays, then with full reflections)
+    and free-molecular drag per attitude against SRP with the same reflection setting; or, with
+    --sweep, a whole attitude sweep of the generated sample."""
+    if attitudes < 1:
+        raise InputError(f"--attitudes {attitudes} must be at least 1")
+    if sweep:
+        _bench_sweep(triangles, step, samples, as_json)
+        return
+    start = time.perf_counter()
+    if mesh_path is not None:
+        craft = load_spacecraft(mesh_path, materials)
+    else:
+        craft = build_spacecraft(sample_spacecraft(triangles))
+    load_s = time.perf_counter() - start
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, transient=True, disable=as_json) as bar:
+        task = bar.add_task("timing attitudes", total=attitudes)
+        report = benchmark(
+            craft, attitudes, samples, load_s=load_s, progress=lambda done: bar.update(task, completed=done)
+        )
+    if as_json:
+        print(json.dumps({"mesh": craft.source, **report.to_json()}, indent=2))
+        return
+    print(f"sunwind bench: {craft.source} ({report.triangles} triangles, {report.sides} sides)")
+    print(f"  machine                 {report.machine}; Embree on {report.threads} threads")
+    print(f"  load / scene build      {report.load_s:.2f} s / {report.scene_build_s:.3f} s")
+    print(f"  first call (compile)    {report.first_call_s:.2f} s")
+    print(
+        f"  direct SRP, {report.samples_per_side} pt/side   {report.per_attitude_ms:.2f} ms per attitude "
+        f"(median {report.per_attitude_median_ms:.2f}), {report.attitudes} attitudes"
+    )
+    print(
+        f"  rays                    {report.rays_per_attitude:.0f} per attitude, "
+        f"{report.rays_per_s / 1e6:.2f} M rays/s"
+    )
+    print(
+        f"  raw Embree, same rays   {report.raw_embree_ms:.2f} ms per attitude, "
+        f"{report.raw_embree_rays_per_s / 1e6:.2f} M rays/s"
+    )
+    print(f"  overhead                {report.overhead:.2f}x raw Embree")
+    print(
+        f"  view factors            {report.view_factor_s:.1f} s once per model "
+        f"({report.view_factor_rays_per_side} rays per side), {report.view_factor_MB:.0f} MB, "
+        f"peak memory {report.view_factor_peak_MB:.0f} MB"
+    )
+    print(f"  diffuse balance setup   {report.exchange_setup_s:.2f} s once per model and materials")
+    print(
+        f"  full reflections        {report.full_per_attitude_ms:.2f} ms per attitude "
+        f"(median {report.full_per_attitude_median_ms:.2f}), {report.full_over_direct:.2f}x direct-only, "
+        f"{report.beam_rays_per_attitude:.0f} beam rays"
+    )
+    print(
+        f"  drag, no re-emission    {report.drag_per_attitude_ms:.2f} ms per attitude (median), "
+        f"{report.drag_over_srp:.2f}x SRP direct-only"
+    )
+    print(
+        f"  drag, full re-emission  {report.drag_full_per_attitude_ms:.2f} ms per attitude (median), "
+        f"{report.drag_full_over_srp_full:.2f}x SRP with full reflections"
+    )
+    print(
+        f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "
+        f"{report.adaptive_rays_per_attitude:.0f} rays; with full reflections "
+        f"{report.adaptive_full_per_attitude_ms:.1f} ms, {report.adaptive_full_over_direct:.2f}x"
+    )
+    print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
+
+
+def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> None:
+    """``sunwind bench --sweep``: run and print :func:`forces.bench.sweep_benchmark`."""
+    direction_grid(step)
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, transient=True, disable=as_json) as bar:
+        task = bar.add_task("sweeping", total=None)
+        report = sweep_benchmark(
+            triangles,
+            step,
+            samples=samples,
+            progress=lambda done, total: bar.update(task, completed=done, total=total),
+        )
+    if as_json:
+        print(json.dumps(report.to_json(), indent=2))
+        return
+    print(f"sunwind bench --sweep: generated sample, {report.triangles} triangles; {report.machine}")
+    print(
+        f"  grid                    {report.step_deg:g} deg: {report.grid_nodes} nodes, "
+        f"{report.distinct_directions} distinct directions, {report.samples_per_side} pt/side, "
+        f"reflections {report.reflections}"
+    )
+    print(f"  precompute              {report.precompute_s:.1f} s (view factors, exchange, first calls)")
+    print(
+        f"  sweep SRP + drag        {report.sweep_s:.1f} s ({report.srp_per_attitude_ms:.1f} ms SRP, "
+        f"{report.drag_per_attitude_ms:.1f} ms drag per attitude)"
+    )
+    print(
+        f"  Dask, {report.dask_attitudes} attitudes      1 worker {report.dask_1_worker_s:.1f} s, "
+        f"2 workers {report.dask_2_workers_s:.1f} s: speed-up {report.dask_speedup:.2f}x "
+        f"(results identical: {report.dask_identical})"
+    )
+
+
+@click.command()
+def validate() -> None:
+    """Run the validation cases against closed forms and print case, reference, computed, error."""
+    from sunwind.validation.runner import main as run_validation  # the validation sits above forces
+
+    if run_validation():
+        raise SystemExit(1)

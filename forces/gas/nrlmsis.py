@@ -1,0 +1,226 @@
+"""The atmosphere of NRLMSIS at one place and time, through ``pymsis`` (METHOD.md "Atmosphere").
+
+NRLMSIS computes its own total mass density with slightly different masses (CIPM 2007 molar masses of
+N2, O2, Ar, halved for N and O, and the rounded values 4.0 for He and 1.0 for H). Here the density is
+always ``sum n_k m_k`` with the masses of :mod:`.atmosphere`. It differs from NRLMSIS's own total by
+the mass-weighted mean of the mass ratios (default inputs): 2e-5 at 400 km, 0.1 % at 1000 km, 0.4 %
+at 2000 km where H and He dominate. NRLMSIS's own total is kept as
+:attr:`~sunwind.forces.gas.atmosphere.Atmosphere.model_density_kg_m3`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from datetime import date, datetime, timezone
+
+import numpy as np
+
+from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning, finite_number
+from sunwind.geometry.errors import InputError
+
+#: Years NRLMSIS dates are accepted for.
+YEAR_RANGE = (1958, 2100)
+#: Altitudes [km] NRLMSIS is accepted for; above the fitted limit a warning names the extrapolation.
+MSIS_MAX_ALTITUDE_KM = 2000.0
+MSIS_FITTED_ALTITUDE_KM = 1000.0
+#: Below this altitude [km] a warning says free-molecular flow no longer holds for a metre-sized body.
+FREE_MOLECULAR_MIN_ALTITUDE_KM = 150.0
+#: Model versions ``pymsis.calculate`` accepts -> the model's name.
+_MSIS_VERSIONS = {"2.1": "NRLMSIS 2.1", "2.0": "NRLMSIS 2.0", "0": "NRLMSISE-00"}
+#: Member of ``pymsis.Variable`` (the output columns of ``pymsis.calculate``, pymsis >= 0.10) per species.
+_MSIS_VARIABLES = {
+    "N2": "N2",
+    "O2": "O2",
+    "O": "O",
+    "He": "HE",
+    "H": "H",
+    "Ar": "AR",
+    "N": "N",
+    "O*": "ANOMALOUS_O",
+}
+
+
+def nrlmsis(
+    altitude_km: float,
+    latitude_deg: float = 0.0,
+    longitude_deg: float = 0.0,
+    time: str | datetime | date | np.datetime64 = "2024-01-01T00:00:00Z",
+    f107: float = 150.0,
+    f107a: float = 150.0,
+    ap: float = 4.0,
+    version: float | str = 2.1,
+) -> Atmosphere:
+    """The atmosphere of NRLMSIS (through ``pymsis.calculate``) at one place and time.
+
+    Number densities, temperature and NRLMSIS's own total mass density are passed through unchanged
+    (``pymsis`` returns them in single precision). Species NRLMSIS leaves undefined (NaN: in NRLMSIS 2.1
+    O below 55 km, H below 80 km, N below 95 km, anomalous O in the lower thermosphere) or zero are left
+    out. NO, which NRLMSIS 2.1 also gives and leaves out of its total mass density, is not one of the
+    species summed and is dropped.
+
+    Parameters
+    ----------
+    altitude_km : float
+        Geodetic altitude [km] above the WGS 84 ellipsoid, 0 to 2000. A warning is given below 150 km
+        (free-molecular flow no longer holds for a metre-sized body) and above 1000 km (NRLMSIS is fitted
+        to about 1000 km; above, its exosphere is extrapolated).
+    latitude_deg, longitude_deg : float
+        Geodetic latitude [deg], -90 to 90, and longitude [deg] east. Default 0, 0.
+    time : str, datetime, date or numpy.datetime64
+        UTC time. A string is ISO 8601 ("2024-01-01", "2024-01-01T12:00:00Z", "...+02:00"); a naive
+        datetime is taken as UTC. Years 1958 to 2100. Default 2024-01-01T00:00:00Z, which is local
+        midnight at longitude 0 (NRLMSIS uses the day of year and the time of day; the year itself is
+        only checked).
+    f107 : float
+        Daily F10.7 solar radio flux of the previous day [sfu = 1e-22 W m^-2 Hz^-1]. Default 150.
+    f107a : float
+        81-day centred average of F10.7 [sfu]. Default 150.
+    ap : float
+        Daily geomagnetic Ap index. Default 4.
+    version : float or str
+        NRLMSIS version: 2.1 (default), 2.0, or 0 for NRLMSISE-00.
+
+    Returns
+    -------
+    Atmosphere
+
+    Notes
+    -----
+    The default indices F10.7 = F10.7a = 150 sfu, Ap = 4 are the reference inputs of NRLMSIS's own check
+    values: moderate solar activity, quiet geomagnetic conditions. Space-weather files are never read
+    or downloaded: the indices are always passed to ``pymsis``. For mean conditions as ECSS-E-ST-10-04C
+    defines them use F10.7 = F10.7a = 140, Ap = 15.
+
+    Raises
+    ------
+    InputError
+        An altitude, latitude, date, index or version outside the ranges above.
+    """
+    altitude = finite_number(altitude_km, "altitude_km", "km", minimum=0.0)
+    if altitude > MSIS_MAX_ALTITUDE_KM:
+        raise InputError(
+            f"altitude_km {altitude:g} km is above {MSIS_MAX_ALTITUDE_KM:g} km, where NRLMSIS's extrapolated "
+            "exosphere cannot be trusted",
+            hint="give the density, temperature and composition explicitly instead",
+            parameters=("altitude_km",),
+        )
+    latitude = finite_number(latitude_deg, "latitude_deg", "deg", minimum=-90.0, maximum=90.0)
+    longitude = finite_number(longitude_deg, "longitude_deg", "deg")
+    when = parse_time(time)
+    f107 = finite_number(f107, "f107", "sfu", minimum=0.0)
+    f107a = finite_number(f107a, "f107a", "sfu", minimum=0.0)
+    ap = finite_number(ap, "ap", "", minimum=0.0)
+    version_key = _msis_version(version)
+
+    if altitude > MSIS_FITTED_ALTITUDE_KM:
+        warnings.warn(
+            f"altitude {altitude:g} km is above {MSIS_FITTED_ALTITUDE_KM:g} km, the top of the data "
+            "NRLMSIS is fitted to: its exosphere is an extrapolation there",
+            AtmosphereWarning,
+            stacklevel=2,
+        )
+
+    import pymsis
+
+    row = pymsis.calculate(
+        np.datetime64(when.replace(tzinfo=None)),
+        longitude,
+        latitude,
+        altitude,
+        f107,
+        f107a,
+        ap,
+        version=version_key,
+    ).reshape(-1)
+    column = pymsis.Variable
+    densities = {k: float(row[column[member]]) for k, member in _MSIS_VARIABLES.items()}
+    densities = {k: n for k, n in densities.items() if not math.isnan(n) and n > 0}
+    model_name = _MSIS_VERSIONS[version_key]
+    stamp = when.strftime("%Y-%m-%dT%H:%M:%S") + "Z"
+    source = (
+        f"{model_name} (pymsis {pymsis.__version__}): {altitude:g} km, lat {latitude:g}, lon {longitude:g}, "
+        f"{stamp}, F10.7 {f107:g}, F10.7a {f107a:g}, Ap {ap:g}"
+    )
+    atmosphere = Atmosphere(
+        densities,
+        float(row[column.TEMPERATURE]),
+        source,
+        altitude_km=altitude,
+        inputs={
+            "model": model_name,
+            "latitude_deg": latitude,
+            "longitude_deg": longitude,
+            "time_utc": stamp,
+            "f107_sfu": f107,
+            "f107a_sfu": f107a,
+            "ap": ap,
+        },
+        model_density_kg_m3=float(row[column.MASS_DENSITY]),
+    )
+    if altitude < FREE_MOLECULAR_MIN_ALTITUDE_KM:
+        warnings.warn(
+            f"altitude {altitude:g} km is below {FREE_MOLECULAR_MIN_ALTITUDE_KM:g} km, the free-molecular "
+            f"limit: the mean free path is {atmosphere.mean_free_path_m:.3g} m, so the Knudsen number of a "
+            "metre-sized spacecraft is below about 10 and free-molecular forces no longer hold",
+            AtmosphereWarning,
+            stacklevel=2,
+        )
+    return atmosphere
+
+
+def parse_time(time: str | datetime | date | np.datetime64) -> datetime:
+    """A UTC time (timezone-aware) from an ISO 8601 string, a datetime (naive = UTC), a date or datetime64.
+
+    Raises
+    ------
+    InputError
+        A string that does not parse, or a year outside 1958 to 2100.
+    """
+    if isinstance(time, np.datetime64):
+        if np.isnat(time):
+            raise InputError(
+                "time is NaT",
+                hint="give an ISO 8601 UTC time such as 2024-01-01T00:00:00Z",
+                parameters=("time",),
+            )
+        text = str(time.astype("datetime64[us]"))
+        when = datetime.fromisoformat(text)
+    elif isinstance(time, datetime):
+        when = time
+    elif isinstance(time, date):
+        when = datetime(time.year, time.month, time.day)
+    else:
+        text = str(time).strip()
+        iso = text[:-1] + "+00:00" if text[-1:] in ("Z", "z") else text
+        try:
+            when = datetime.fromisoformat(iso)
+        except ValueError:
+            raise InputError(
+                f"time '{text}' is not an ISO 8601 date or time",
+                hint="e.g. 2024-01-01 or 2024-01-01T12:00:00Z (UTC unless an offset is given)",
+                parameters=("time",),
+            ) from None
+    when = when.replace(tzinfo=timezone.utc) if when.tzinfo is None else when.astimezone(timezone.utc)
+    low, high = YEAR_RANGE
+    if not low <= when.year <= high:
+        raise InputError(
+            f"time year {when.year} is outside {low}-{high}: NRLMSIS is fitted to space-age data (since "
+            "1958) and has no long-term trend, so a date outside that span is taken as a mistake",
+            hint="give a UTC date between 1958 and 2100",
+            parameters=("time",),
+        )
+    return when
+
+
+def _msis_version(version: float | str) -> str:
+    """The ``_MSIS_VERSIONS`` key of a version as given (2.1, "2.1", 2.0, 0, "00")."""
+    text = str(version).strip()
+    try:
+        number = float(text)
+    except ValueError:
+        number = math.nan
+    for key in _MSIS_VERSIONS:
+        if math.isclose(number, float(key), abs_tol=1e-9):
+            return key
+    raise InputError(f"version {version} is not one of 2.1, 2.0, 0 (NRLMSISE-00)", parameters=("version",))

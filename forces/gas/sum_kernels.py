@@ -1,0 +1,174 @@
+"""Numba kernels of the gas-surface laws summed over species, and the force and torque they give each
+side (:mod:`sunwind.forces.gas.sums`, :mod:`sunwind.forces.gas.panel`).
+
+:func:`species_sums` is the fast twin of :func:`sunwind.forces.gas.laws.panel_coefficients` for every
+law but the reflected normal momentum of CLL, in the form each law reduces to (its
+:class:`~sunwind.forces.gas.laws.Reemission`)::
+
+    c_n = a c_n_inc + b N / (n_k V),    c_t = c c_t_inc,
+
+with ``a``, ``c`` per law and ``b`` per law and species. :func:`group_stresses` and
+:func:`side_forces` turn the summed coefficients into force and torque on each side. Kernels taking
+``lo, hi`` write rows ``lo:hi`` of their outputs only, so threads given disjoint ranges produce the
+same bits as one.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+_SQRT_PI = math.sqrt(math.pi)
+_INV_SQRT_PI = 1.0 / _SQRT_PI
+#: Above this ``s``, ``erfc(-s) = 2 - erfc(s)`` rounds to 2: ``erfc(6) = 2.2e-17`` is below half the
+#: spacing of doubles at 2.
+_ERFC_IS_TWO = 6.0
+
+
+@numba.njit(cache=True, nogil=True)
+def species_sums(
+    law: NDArray[np.int64],
+    gamma: NDArray[np.float64],
+    speed_ratio: NDArray[np.float64],
+    weight: NDArray[np.float64],
+    pressure_scale: NDArray[np.float64],
+    diffuse: NDArray[np.float64],
+    shear_scale: NDArray[np.float64],
+    flux_weight: NDArray[np.float64],
+    out: NDArray[np.float64],
+    lo: int,
+    hi: int,
+) -> None:
+    """Species sums of the directed and thermal coefficients of elements ``lo:hi``, into ``out``.
+
+    Parameters
+    ----------
+    law : (n,) int64
+        Law of each element, a row of the per-law arrays.
+    gamma : (n,) float64
+        ``n . u`` [-], in [-1, 1].
+    speed_ratio, weight : (n_species,) float64
+        ``S_k`` [-] and the weight ``w_k`` of each species' coefficients.
+    pressure_scale, shear_scale : (n_laws,) float64
+        ``a`` and ``c`` of each law [-].
+    diffuse : (n_laws, n_species) float64
+        ``b``: normal momentum of the diffuse re-emission per incident molecule, over ``q / (n_k V)``.
+    flux_weight : (n_laws, n_species, m) float64
+        Weights of the full stream's number flux ``N / (n_k V)``.
+    out : (n, 4 + m) float64
+        ``sum_k w_k (c_n, c_t)`` of the directed stream, the same of the thermal stream, and
+        ``sum_k flux_weight[law, k] N_k / (n_k V)`` of the full stream.
+    """
+    n_species, m = speed_ratio.shape[0], flux_weight.shape[2]
+    # the divisions of the incident stream (module Notes of sunwind.forces.gas.laws), as factors
+    pressure_factor = 1.0 / (speed_ratio * speed_ratio)
+    flux_factor = 1.0 / (2.0 * _SQRT_PI * speed_ratio)
+    shear_factor = 1.0 / (speed_ratio * _SQRT_PI)
+    for i in range(lo, hi):
+        g, row = gamma[i], law[i]
+        t = math.sqrt(max(1.0 - g * g, 0.0))
+        w = max(g, 0.0)
+        a, c = pressure_scale[row], shear_scale[row]
+        directed_n_sum = directed_t_sum = thermal_n_sum = thermal_t_sum = 0.0
+        for j in range(m):
+            out[i, 4 + j] = 0.0
+        for k in range(n_species):
+            b, q = diffuse[row, k], weight[k]
+            directed_n = a * (2.0 * w * w) + b * w
+            directed_t = c * (2.0 * w * t)
+            s = speed_ratio[k] * g
+            gauss = math.exp(-s * s)
+            one_plus_erf = 2.0 if s > _ERFC_IS_TWO else math.erfc(-s)
+            chi = max(gauss + _SQRT_PI * s * one_plus_erf, 0.0)
+            pressure = max(s * _INV_SQRT_PI * gauss + (0.5 + s * s) * one_plus_erf, 0.0)
+            flux = chi * flux_factor[k]
+            full_n = a * (pressure * pressure_factor[k]) + b * flux
+            full_t = c * (t * chi * shear_factor[k])
+            directed_n_sum += q * directed_n
+            directed_t_sum += q * directed_t
+            thermal_n_sum += q * (full_n - directed_n)
+            thermal_t_sum += q * (full_t - directed_t)
+            for j in range(m):
+                out[i, 4 + j] += flux_weight[row, k, j] * flux
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = (
+            directed_n_sum,
+            directed_t_sum,
+            thermal_n_sum,
+            thermal_t_sum,
+        )
+
+
+@numba.njit(cache=True, nogil=True)
+def group_stresses(
+    gamma: NDArray[np.float64],
+    sums: NDArray[np.float64],
+    normals: NDArray[np.float64],
+    u: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Force per unit area [Pa] of the directed and the thermal stream on each group, (n_groups, 6).
+
+    Group ``g`` of normal ``normals[g]`` and ``gamma[g] = n . u`` takes ``-c_n n + c_t t_hat`` with its
+    :func:`species_sums` row ``sums[g]`` (weights ``q_k`` [Pa]); ``t_hat = -(u - gamma n) / |...|``, none
+    where that length is below 1e-12.
+    """
+    out = np.empty((gamma.shape[0], 6))
+    for g in range(gamma.shape[0]):
+        n0, n1, n2 = normals[g, 0], normals[g, 1], normals[g, 2]
+        a0, a1, a2 = u[0] - gamma[g] * n0, u[1] - gamma[g] * n1, u[2] - gamma[g] * n2
+        length = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+        t0 = t1 = t2 = 0.0
+        if length > 1e-12:
+            t0, t1, t2 = -a0 / length, -a1 / length, -a2 / length
+        pn, pt, hn, ht = sums[g, 0], sums[g, 1], sums[g, 2], sums[g, 3]
+        out[g, 0], out[g, 1], out[g, 2] = -pn * n0 + pt * t0, -pn * n1 + pt * t1, -pn * n2 + pt * t2
+        out[g, 3], out[g, 4], out[g, 5] = -hn * n0 + ht * t0, -hn * n1 + ht * t1, -hn * n2 + ht * t2
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def side_forces(
+    side_group: NDArray[np.int64],
+    stresses: NDArray[np.float64],
+    flux_sums: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    visible: NDArray[np.float64],
+    centroids: NDArray[np.float64],
+    lit_centroids: NDArray[np.float64],
+    reference: NDArray[np.float64],
+    force: NDArray[np.float64],
+    torque: NDArray[np.float64],
+    emitted: NDArray[np.float64],
+    lo: int,
+    hi: int,
+) -> None:
+    """Force [N] and torque [N m] (columns of ``force``, ``torque``: (3, n_sides)) and first
+    re-emission of sides ``lo:hi``.
+
+    Side ``i`` takes the :func:`group_stresses` of group ``side_group[i]`` on ``visible * area``; the
+    directed force acts at the lit centroid, the thermal one at the centroid. ``emitted[:, i]`` is
+    ``visible * area`` times the group's ``flux_sums`` (n_groups, m).
+    """
+    for i in range(lo, hi):
+        group = side_group[i]
+        scale = visible[i] * areas[i]
+        d0, d1, d2 = scale * stresses[group, 0], scale * stresses[group, 1], scale * stresses[group, 2]
+        h0, h1, h2 = scale * stresses[group, 3], scale * stresses[group, 4], scale * stresses[group, 5]
+        force[0, i], force[1, i], force[2, i] = d0 + h0, d1 + h1, d2 + h2
+        l0, l1, l2 = (
+            lit_centroids[i, 0] - reference[0],
+            lit_centroids[i, 1] - reference[1],
+            lit_centroids[i, 2] - reference[2],
+        )
+        c0, c1, c2 = (
+            centroids[i, 0] - reference[0],
+            centroids[i, 1] - reference[1],
+            centroids[i, 2] - reference[2],
+        )
+        torque[0, i] = (l1 * d2 - l2 * d1) + (c1 * h2 - c2 * h1)
+        torque[1, i] = (l2 * d0 - l0 * d2) + (c2 * h0 - c0 * h2)
+        torque[2, i] = (l0 * d1 - l1 * d0) + (c0 * h1 - c1 * h0)
+        for j in range(emitted.shape[0]):
+            emitted[j, i] = scale * flux_sums[group, j]

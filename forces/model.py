@@ -1,0 +1,290 @@
+"""A loaded model: the spacecraft, how it was loaded, its torque reference point and its thread count.
+
+:func:`load` reads a mesh and its materials once; :func:`~sunwind.forces.srp.srp`,
+:func:`~sunwind.forces.drag.drag` and :func:`~sunwind.forces.tables.sweep.sweep` take the
+:class:`Model` (or a bare :class:`~sunwind.geometry.spacecraft.Spacecraft`) and every attitude reuses
+what the model keeps in its cache (``model.cache``: ray scene, shadow-ray origins, view and exchange
+factors, the adjoint of the diffuse balance). :class:`ModelSource` says how to load it again, which
+is what Dask workers and a table's provenance need.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.geometry.cache import ModelCache
+from sunwind.geometry.directions import finite_point
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.materials import GAS_DEFAULTS, GasSurface, Material
+from sunwind.geometry.parallel import checked_threads
+from sunwind.geometry.spacecraft import Spacecraft, load_spacecraft
+
+#: Where a materials-file gas key lands on :class:`~sunwind.geometry.materials.GasSurface`.
+_GAS_FIELDS = {"gsi": "model", "wall_temperature": "wall_temperature_K"}
+
+
+@dataclass(frozen=True)
+class ModelSource:
+    """How to load a spacecraft: enough to load it again in another process.
+
+    Attributes
+    ----------
+    mesh : str
+        Mesh file (STL, OBJ, PLY, glTF/GLB, USD).
+    materials : str or None
+        Materials TOML file.
+    unit : str or None
+        Length unit of the mesh file (m, mm, cm, in); None: the file's own, else m.
+    uniform : Material or None
+        Material of parts the materials leave without one.
+    two_sided : tuple of str
+        Part globs treated as two-sided sheets.
+    gas : tuple of (str, value)
+        Gas-surface keys of a materials file (``gsi``, ``energy_accommodation``,
+        ``normal_accommodation``, ``tangential_accommodation``, ``wall_temperature``) that override
+        every material's gas law.
+    """
+
+    mesh: str
+    materials: str | None = None
+    unit: str | None = None
+    uniform: Material | None = None
+    two_sided: tuple[str, ...] = ()
+    gas: tuple[tuple[str, object], ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.gas:
+            GasSurface.checked("gas", dict(self.gas))
+
+    def load(self) -> Spacecraft:
+        """The spacecraft, with the gas overrides applied."""
+        craft = load_spacecraft(
+            self.mesh, self.materials, unit=self.unit, uniform=self.uniform, two_sided=self.two_sided
+        )
+        if not self.gas:
+            return craft
+        surface = GasSurface.checked("gas", dict(self.gas))
+        changes = {
+            _GAS_FIELDS.get(key, key): getattr(surface, _GAS_FIELDS.get(key, key)) for key, _ in self.gas
+        }
+        return replace(craft, materials=craft.materials.with_gas(**changes))
+
+    def digests(self) -> dict[str, str | None]:
+        """SHA-256 of the mesh file and of the materials file."""
+        return {
+            "mesh_sha256": file_digest(self.mesh),
+            "materials_sha256": None if self.materials is None else file_digest(self.materials),
+        }
+
+    def resolved(self) -> ModelSource:
+        """The same source with absolute file paths (for other processes and for provenance)."""
+        materials = None if self.materials is None else os.path.abspath(self.materials)
+        return replace(self, mesh=os.path.abspath(self.mesh), materials=materials)
+
+    def attributes(self) -> dict[str, object]:
+        """The source as table attributes (None dropped by the writers), read back by
+        :meth:`from_attributes`."""
+        attrs: dict[str, object] = {
+            "mesh": self.mesh,
+            "materials": self.materials,
+            "unit": self.unit,
+            "two_sided": ",".join(self.two_sided),
+        }
+        if self.uniform is not None:
+            attrs["uniform_material"] = {
+                "reflectivity": self.uniform.reflectivity,
+                "specular_fraction": self.uniform.specular_fraction,
+                "transmissivity": self.uniform.transmissivity,
+            }
+        if self.gas:
+            attrs["gas_override"] = dict(self.gas)
+        return attrs
+
+    @classmethod
+    def from_attributes(cls, attrs: Mapping[str, object]) -> ModelSource:
+        """The source a table's attributes record (dicts may come back as JSON text)."""
+        import json
+
+        def mapping(value: object) -> dict:
+            return json.loads(value) if isinstance(value, str) else dict(value)  # type: ignore[arg-type]
+
+        uniform = None
+        if "uniform_material" in attrs:
+            uniform = Material.checked("uniform", mapping(attrs["uniform_material"]), "table")
+        two_sided = tuple(glob for glob in str(attrs.get("two_sided", "")).split(",") if glob)
+        gas = tuple(mapping(attrs["gas_override"]).items()) if "gas_override" in attrs else ()
+        materials = attrs.get("materials")
+        unit = attrs.get("unit")
+        return cls(
+            str(attrs["mesh"]),
+            None if materials is None else str(materials),
+            None if unit is None else str(unit),
+            uniform,
+            two_sided,
+            gas,
+        )
+
+
+def file_digest(path: str | os.PathLike) -> str:
+    """SHA-256 of a file's bytes, hex."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    """A spacecraft ready for attitudes: what does not change from one attitude to the next.
+
+    Attributes
+    ----------
+    craft : Spacecraft
+        The checked mesh with its sides and materials; owns the :attr:`cache`.
+    source : ModelSource or None
+        How it was loaded (None for a model built in memory: it cannot go to Dask workers).
+    reference_point_m : (3,) float64 or None
+        Torque reference point [m], body frame (the centre of mass); None: the volume centroid of a
+        closed model, else the area centroid (METHOD.md "Frames, units and signs").
+    reference_area_m2, reference_length_m : float or None
+        Normalisation of the aerodynamic coefficients; None: a quarter of the total area (the mean
+        projected area of a convex body: ``pi R^2`` for a sphere) and the largest extent of the
+        bounding box.
+    threads : int or None
+        Threads each attitude uses; None: every core.
+
+    ``dataclasses.replace(model, reference_point_m=...)`` gives the same model (and cache) with other
+    references or threads.
+    """
+
+    craft: Spacecraft
+    source: ModelSource | None = None
+    reference_point_m: NDArray[np.float64] | None = None
+    reference_area_m2: float | None = None
+    reference_length_m: float | None = None
+    threads: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.reference_point_m is not None:
+            point = finite_point(self.reference_point_m, "reference_point_m")
+            object.__setattr__(self, "reference_point_m", point)
+        self.check_sizes(self.reference_area_m2, self.reference_length_m)
+        checked_threads(self.threads)
+
+    @staticmethod
+    def check_sizes(area_m2: float | None, length_m: float | None) -> None:
+        """Refuse coefficient reference sizes that are given but not positive numbers."""
+        for name, value in (("reference_area_m2", area_m2), ("reference_length_m", length_m)):
+            if value is not None and not (
+                isinstance(value, int | float) and math.isfinite(value) and value > 0
+            ):
+                raise InputError(f"{name} {value} must be a positive number", parameters=(name,))
+
+    @property
+    def cache(self) -> ModelCache:
+        """What is built once for this model and kept: ``cache.entries()``, ``cache.clear()``."""
+        return self.craft.cache
+
+    def reference(self, point_m: Sequence[float] | NDArray | None = None) -> tuple[NDArray[np.float64], str]:
+        """The torque reference point [m] and where it came from: ``point_m``, else the model's own
+        point ("user"), else the model default ("volume centroid" or "area centroid")."""
+        point = self.reference_point_m if point_m is None else point_m
+        if point is None:
+            return self.craft.default_reference
+        return finite_point(point, "reference_point_m"), "user"
+
+    def digests(self) -> dict[str, str | None]:
+        """SHA-256 of the mesh and materials files, or of the model's arrays when built in memory."""
+        if self.source is not None:
+            return self.source.digests()
+        craft, digest = self.craft, hashlib.sha256()
+        gas = [craft.side_gas[name] for name in sorted(craft.side_gas)]
+        for array in (craft.vertices, craft.faces, craft.side_facet, craft.side_optics, *gas):
+            digest.update(np.ascontiguousarray(array).tobytes())
+        return {"mesh_sha256": digest.hexdigest(), "materials_sha256": None}
+
+    @property
+    def reference_sizes(self) -> tuple[float, float]:
+        """Coefficient reference area [m^2] and length [m] (:attr:`reference_area_m2`,
+        :attr:`reference_length_m`, or their defaults)."""
+        craft = self.craft
+        area = craft.total_area / 4 if self.reference_area_m2 is None else float(self.reference_area_m2)
+        length = self.reference_length_m
+        return area, float(np.ptp(craft.bounds, axis=0).max()) if length is None else float(length)
+
+
+def as_model(model: Model | Spacecraft) -> Model:
+    """``model`` itself, or a :class:`Model` of a bare spacecraft (sharing its cache)."""
+    if isinstance(model, Model):
+        return model
+    if isinstance(model, Spacecraft):
+        return Model(model)
+    raise InputError(
+        f"model must be a Model (sunwind.forces.load) or a Spacecraft, not {type(model).__name__}",
+        parameters=("model",),
+    )
+
+
+def load(
+    mesh: str | os.PathLike,
+    materials: str | os.PathLike | None = None,
+    *,
+    unit: str | None = None,
+    uniform: Material | None = None,
+    two_sided: Sequence[str] = (),
+    gas: Mapping[str, object] | None = None,
+    reference_point_m: Sequence[float] | NDArray | None = None,
+    threads: int | None = None,
+) -> Model:
+    """Load a mesh file and its materials as a :class:`Model`.
+
+    Parameters
+    ----------
+    mesh : path
+        STL, OBJ, PLY, glTF/GLB or USD file.
+    materials : path, optional
+        Materials TOML file (parts, materials, sheets).
+    unit : str, optional
+        Length unit of the file: m, mm, cm, in; default the file's own, else m.
+    uniform : Material, optional
+        Material of every part the materials leave without one.
+    two_sided : sequence of str
+        Part globs to treat as two-sided sheets.
+    gas : mapping, optional
+        Gas-surface keys of a materials file that override every material's gas law, e.g.
+        ``{"gsi": "cll", "normal_accommodation": 0.3}``; unknown keys are refused (defaults:
+        :data:`~sunwind.geometry.materials.GAS_DEFAULTS`).
+    reference_point_m : (3,) array_like, optional
+        Torque reference point [m] (the centre of mass); default as :class:`Model`.
+    threads : int, optional
+        Threads each attitude uses; default every core.
+
+    Raises
+    ------
+    SunwindError
+        The file cannot be read, a part has no material, or a value is out of range.
+    """
+    unknown = sorted(set(gas or {}) - set(GAS_DEFAULTS))
+    if unknown:
+        raise InputError(
+            f"gas has no key {unknown[0]!r}",
+            hint=f"the keys are {', '.join(GAS_DEFAULTS)}",
+            parameters=("gas",),
+        )
+    source = ModelSource(
+        str(mesh),
+        None if materials is None else str(materials),
+        unit,
+        uniform,
+        tuple(two_sided),
+        tuple((gas or {}).items()),
+    )
+    return Model(source.load(), source, reference_point_m, threads)

@@ -1,0 +1,149 @@
+"""Finished chunks of a sweep kept on disk, so that an interrupted sweep resumes where it stopped.
+
+A checkpoint directory holds ``manifest.json`` — what the sweep is, field by field (:func:`fingerprint`:
+the mesh and materials digests, every setting, the attitudes, the sunwind version and a digest of its
+code) — and one ``.npz`` file per finished chunk with its records by field name. Every file is
+written to a temporary name and renamed into place. A checkpoint of a different sweep is refused with
+the fields that differ, never mixed in.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+from dataclasses import asdict
+from importlib.metadata import version
+from pathlib import Path
+
+import numpy as np
+
+from sunwind.forces.model import Model
+from sunwind.forces.tables.jobs import FIELDS, Job, Records
+from sunwind.geometry.errors import InputError
+
+
+def code_digest() -> str:
+    """SHA-256 over the source of the packages that compute forces: a checkpoint made by other code
+    (an upgrade, a local edit) is not resumed."""
+    top = Path(__file__).resolve().parents[2]  # the sunwind package: this is forces/tables/checkpoint.py
+    digest = hashlib.sha256()
+    for package in ("geometry", "forces"):
+        for path in sorted((top / package).rglob("*.py")):
+            digest.update(path.relative_to(top).as_posix().encode())
+            digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def jsonable(value):
+    """Settings as plain JSON types (paths and arrays as text and lists)."""
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, float | int | str | bool) or value is None:
+        return value
+    return str(value)
+
+
+def fingerprint(model: Model, jobs: list[Job], chunk: int) -> dict:
+    """What a sweep is, field by field: a checkpoint is resumed only by a sweep with the same one."""
+    out: dict = {"sunwind_version": version("sunwind"), "code_sha256": code_digest(), **model.digests()}
+    out["chunk"] = chunk
+    source = {} if model.source is None else asdict(model.source)
+    out["model"] = jsonable({key: value for key, value in source.items() if key not in ("mesh", "materials")})
+    out["references"] = jsonable(
+        {"reference_point_m": model.reference_point_m, "reference_sizes": model.reference_sizes}
+    )
+    for job in jobs:
+        out[f"{job.kind}_settings"] = jsonable(job.setup.describe())
+        out[f"{job.kind}_attitudes_sha256"] = hashlib.sha256(job.directions.tobytes()).hexdigest()
+    return out
+
+
+class Checkpoint:
+    """Finished chunks of one sweep on disk: ``manifest.json`` and one ``.npz`` per chunk."""
+
+    def __init__(self, directory: Path, manifest: dict) -> None:
+        self.directory = directory
+        self.manifest = manifest
+
+    @classmethod
+    def open(cls, directory: Path, manifest: dict, resume: bool) -> Checkpoint:
+        """Start a checkpoint, or take up the one there when ``resume``.
+
+        Raises
+        ------
+        InputError
+            A checkpoint is there and ``resume`` is off; or it is of a different sweep, or unreadable.
+        """
+        found = directory / "manifest.json"
+        if directory.exists() and not resume:
+            raise InputError(
+                "a checkpoint of an unfinished sweep is there",
+                path=str(directory),
+                hint="continue it with resume, or delete the directory to start over",
+                parameters=("resume",),
+            )
+        if resume and found.exists():
+            try:
+                previous = json.loads(found.read_text())
+            except (OSError, ValueError) as error:
+                raise InputError(
+                    f"the checkpoint manifest cannot be read ({error})",
+                    path=str(found),
+                    hint="delete the checkpoint directory to start over",
+                ) from None
+            differ = [
+                key for key in sorted(set(manifest) | set(previous)) if manifest.get(key) != previous.get(key)
+            ]
+            if differ:
+                raise InputError(
+                    f"the checkpoint is of a different sweep: {', '.join(differ)} differ",
+                    path=str(directory),
+                    hint="resume with the same mesh, materials, settings and attitudes, or delete it",
+                )
+            return cls(directory, manifest)
+        directory.mkdir(parents=True, exist_ok=True)
+        write_atomic(found, json.dumps(manifest, indent=1).encode())
+        return cls(directory, manifest)
+
+    def _path(self, kind: str, lo: int) -> Path:
+        return self.directory / f"{kind}-{lo:08d}.npz"
+
+    def load(self, kind: str, lo: int, hi: int) -> Records | None:
+        """The records of a finished chunk, None when it is not there (or is damaged)."""
+        path = self._path(kind, lo)
+        if not path.exists():
+            return None
+        try:
+            with np.load(path, allow_pickle=False) as kept:
+                records = {name: kept[name] for name in kept.files}
+        except (OSError, ValueError, KeyError):
+            return None
+        for name, width in FIELDS[kind].items():
+            shape = (hi - lo, 3) if width == 3 else (hi - lo,)
+            if name not in records or records[name].shape != shape or records[name].dtype != np.float64:
+                return None
+        return records
+
+    def save(self, kind: str, lo: int, records: Records) -> None:
+        """Keep a finished chunk (written to a temporary file, then renamed into place)."""
+        path = self._path(kind, lo)
+        temporary = path.with_name(f".{path.stem}.tmp.npz")
+        np.savez(temporary, **records)
+        os.replace(temporary, path)
+
+    def remove(self) -> None:
+        """Delete the checkpoint once the table is written."""
+        shutil.rmtree(self.directory, ignore_errors=True)
+
+
+def write_atomic(path: Path, data: bytes) -> None:
+    """Write ``data`` to a temporary file beside ``path`` and rename it into place."""
+    temporary = path.with_name(f".{path.name}.tmp")
+    temporary.write_bytes(data)
+    os.replace(temporary, path)

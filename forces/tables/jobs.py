@@ -1,0 +1,184 @@
+"""What a sweep computes: the settings of every SRP or drag attitude, the quantities recorded at each,
+and a job (one quantity over its list of directions).
+
+Every attitude is :func:`~sunwind.forces.srp.srp` or :func:`~sunwind.forces.drag.drag` called exactly as
+the single-attitude commands call them, so a table entry is the same bits as ``sunwind srp`` or
+``sunwind drag`` at that attitude (results do not depend on the thread count). A chunk of attitudes
+gives *records*: one array per recorded field, named as the result's attribute, rows in the order of
+the directions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import ClassVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.drag import drag
+from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.model import Model
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure, solar_flux
+from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.srp import srp
+from sunwind.geometry.directions import finite_point
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+
+#: Quantities a sweep can tabulate, each over its own direction.
+KINDS = ("srp", "drag")
+#: Fields recorded at every attitude: the result attribute and its width (1: a number, 3: a vector).
+SRP_FIELDS: dict[str, int] = {
+    "force_N": 3,
+    "torque_Nm": 3,
+    "direct_force_N": 3,
+    "direct_torque_Nm": 3,
+    "reflected_force_N": 3,
+    "reflected_torque_Nm": 3,
+    "lit_area_m2": 1,
+    "projected_area_m2": 1,
+}
+DRAG_FIELDS: dict[str, int] = {
+    "force_N": 3,
+    "torque_Nm": 3,
+    "direct_force_N": 3,
+    "direct_torque_Nm": 3,
+    "reflected_force_N": 3,
+    "reflected_torque_Nm": 3,
+    "CD": 1,
+    "CS": 1,
+    "CL": 1,
+    "CM": 3,
+}
+FIELDS = {"srp": SRP_FIELDS, "drag": DRAG_FIELDS}
+#: Records of some attitudes: field name -> (n,) or (n, 3) float64.
+Records = dict[str, NDArray[np.float64]]
+
+
+def empty_records(kind: str, n: int) -> Records:
+    """Records of ``n`` attitudes of ``kind``, not yet filled."""
+    return {name: np.empty((n, 3) if width == 3 else n) for name, width in FIELDS[kind].items()}
+
+
+@dataclass(frozen=True)
+class _Setup:
+    """What the SRP and drag settings share: sampling, inter-reflection and the reference point."""
+
+    kind: ClassVar[str]
+    reference_point_m: tuple[float, float, float] | None = field(default=None, kw_only=True)
+    samples: int | None = field(default=None, kw_only=True)
+    tolerance: float = field(default=DEFAULT_TOLERANCE, kw_only=True)
+    reflections: ReflectionSettings | str = field(default="auto", kw_only=True)
+
+    def __post_init__(self) -> None:
+        check_sampling(self.samples, self.tolerance)
+        ReflectionSettings.of(self.reflections)
+        if self.reference_point_m is not None:
+            finite_point(self.reference_point_m, "reference_point_m")
+
+    @property
+    def settings(self) -> ReflectionSettings:
+        """:attr:`reflections` as settings."""
+        return ReflectionSettings.of(self.reflections)
+
+    def options(self) -> dict:
+        """The keyword arguments every attitude's call takes."""
+        return {
+            "reference_point_m": self.reference_point_m,
+            "samples": self.samples,
+            "tolerance": self.tolerance,
+            "reflections": self.settings,
+        }
+
+    def describe(self) -> dict:
+        """JSON-ready settings (the view-factor cache's place left out: it does not change results)."""
+        out = asdict(self)
+        out["reflections"] = asdict(self.settings)
+        out["reflections"].pop("cache_dir")
+        return out
+
+
+@dataclass(frozen=True)
+class SrpSetup(_Setup):
+    """Settings of every SRP attitude (see :func:`~sunwind.forces.srp.srp`)."""
+
+    kind: ClassVar[str] = "srp"
+    flux_W_m2: float = SOLAR_FLUX_1AU
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        solar_flux(self.flux_W_m2)
+
+    def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
+        """The records of Sun directions ``directions`` (n, 3)."""
+        batch = srp(model, directions, flux_W_m2=self.flux_W_m2, **self.options())
+        return {name: batch.stacked(name) for name in SRP_FIELDS}
+
+    def attributes(self, model: Model) -> dict:
+        """What a table of this setup states about its environment."""
+        return {"flux_W_m2": self.flux_W_m2, "pressure_Pa": radiation_pressure(self.flux_W_m2)}
+
+
+@dataclass(frozen=True)
+class DragSetup(_Setup):
+    """Settings of every drag attitude (see :func:`~sunwind.forces.drag.drag`); ``v_rel = speed * u``."""
+
+    kind: ClassVar[str] = "drag"
+    speed_m_s: float = field(kw_only=True)
+    atmosphere: Atmosphere = field(kw_only=True)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if not (
+            isinstance(self.speed_m_s, int | float) and np.isfinite(self.speed_m_s) and self.speed_m_s > 0
+        ):
+            raise InputError(
+                f"speed_m_s {self.speed_m_s} must be a positive number of m/s", parameters=("speed_m_s",)
+            )
+
+    def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
+        """The records of flow directions ``u`` (n, 3)."""
+        batch = drag(model, self.speed_m_s * directions, self.atmosphere, **self.options())
+        return {name: batch.stacked(name) for name in DRAG_FIELDS}
+
+    def describe(self) -> dict:
+        """JSON-ready settings, the atmosphere in full."""
+        out = super().describe()
+        out["atmosphere"] = self.atmosphere.to_json()
+        return out
+
+    def attributes(self, model: Model) -> dict:
+        """What a table of this setup states about its environment and coefficients."""
+        air = self.atmosphere
+        area, length = model.reference_sizes
+        return {
+            "speed_m_s": self.speed_m_s,
+            "density_kg_m3": air.density_kg_m3,
+            "temperature_K": air.temperature_K,
+            "dynamic_pressure_Pa": 0.5 * air.density_kg_m3 * self.speed_m_s**2,
+            "atmosphere": air.to_json(),
+            "reference_area_m2": area,
+            "reference_length_m": length,
+        }
+
+
+Setup = SrpSetup | DragSetup
+
+
+@dataclass(frozen=True, eq=False)
+class Job:
+    """One quantity over its directions: the ``setup`` of every attitude, ``directions`` (n, 3) unit
+    vectors (Sun directions for SRP, flow directions for drag)."""
+
+    setup: Setup
+    directions: NDArray[np.float64]
+
+    @property
+    def kind(self) -> str:
+        return self.setup.kind
+
+    def chunks(self, size: int) -> list[tuple[int, int]]:
+        """Index ranges ``[lo, hi)`` of the chunks."""
+        n = len(self.directions)
+        return [(lo, min(n, lo + size)) for lo in range(0, n, size)]

@@ -1,0 +1,57 @@
+"""One call writes any format: chosen by name or extension, refused where the table does not fit."""
+
+import warnings
+
+import pytest
+import xarray as xr
+
+from helpers.tables import grid_table, list_table
+from sunwind.forces.export import FORMATS, format_of, write
+from sunwind.forces.tables import open_table
+from sunwind.geometry.errors import InputError
+
+
+def test_every_format_has_its_extension_and_quantities():
+    assert {name: spec.extension for name, spec in FORMATS.items()} == {
+        "nc": ".nc",
+        "csv": ".csv",
+        "spad": ".spo",
+        "basilisk": ".xml",
+        "tudat": None,
+    }
+    assert FORMATS["basilisk"].kinds == ("srp",) and FORMATS["tudat"].kinds == ("drag",)
+    assert format_of("a/b.SPO") == "spad" and format_of("t.dat", "csv") == "csv"
+    with pytest.raises(InputError, match=r"cannot tell the format from the extension '\.dat'"):
+        format_of("t.dat")
+    with pytest.raises(InputError, match="format 'xls' is not a table format"):
+        format_of("t.nc", "xls")
+
+
+@pytest.mark.parametrize(
+    ("name", "fmt", "written"),
+    [
+        ("t.nc", None, ["t.nc"]),
+        ("t.csv", None, ["t.srp.csv", "t.drag.csv"]),
+        ("t.spo", None, ["t.srp.spo", "t.drag.spo"]),
+        ("aero", "tudat", [f"aero_C{k}{a}.txt" for k in "FM" for a in "xyz"]),
+    ],
+)
+def test_a_grid_table_is_written_whole_in_every_format(tmp_path, name, fmt, written):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        if fmt == "tudat":
+            warnings.simplefilter("ignore")  # a drag-only format: SRP is not written, and says so
+        files = write(grid_table(15.0), tmp_path / name, fmt)
+    assert sorted(files) == sorted(tmp_path / w for w in written)
+    assert not list(tmp_path.glob(".*.tmp"))  # written under temporary names, renamed into place
+    if fmt is None and name.endswith(".nc"):
+        xr.testing.assert_identical(open_table(files[0]), grid_table(15.0).load())
+
+
+def test_a_quantity_the_format_cannot_hold_is_said_and_none_at_all_is_refused(tmp_path):
+    with pytest.warns(UserWarning, match="basilisk holds srp only: drag is not written"):
+        write(grid_table(15.0), tmp_path / "t.xml")
+    with pytest.raises(InputError, match="format tudat holds drag only, not srp"):
+        write(grid_table(15.0, kinds=("srp",)), tmp_path / "aero", "tudat")
+    with pytest.raises(InputError, match="grid"):
+        write(list_table(kinds=("srp",)), tmp_path / "t.spo")

@@ -1,0 +1,124 @@
+"""Meshes of the concave validation shapes: flat sheets, a V-groove, an L, an open box and a dish.
+
+Every plate is a sheet meshed in cells (:func:`sheet`); the dish is the sample spacecraft's. None has
+materials: :func:`sunwind.validation.concave.finished_spacecraft` gives them their finishes.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from sunwind.geometry.mesh_data import MeshData
+from sunwind.meshes.samples import sample_spacecraft
+from sunwind.meshes.triangulation import grid_faces
+
+__all__ = ["dish_mesh", "l_mesh", "open_box_mesh", "sheet", "v_groove_mesh"]
+
+
+def sheet(
+    corner: ArrayLike, edge_u: ArrayLike, edge_v: ArrayLike, divisions: tuple[int, int], part: str
+) -> MeshData:
+    """Flat parallelogram ``corner + a edge_u + b edge_v``, ``a, b`` in [0, 1], front along ``u x v``.
+
+    Parameters
+    ----------
+    corner, edge_u, edge_v : (3,) array_like
+        A corner and the two edges from it [m].
+    divisions : (int, int)
+        Cells along ``edge_u`` and ``edge_v``.
+    part : str
+
+    Returns
+    -------
+    MeshData
+        ``2 nu nv`` triangles, no material.
+    """
+    nu, nv = divisions
+    a, b = np.meshgrid(np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1), indexing="ij")
+    vertices = (
+        np.asarray(corner, dtype=np.float64)
+        + a.reshape(-1, 1) * np.asarray(edge_u, dtype=np.float64)
+        + b.reshape(-1, 1) * np.asarray(edge_v, dtype=np.float64)
+    )
+    faces = grid_faces(nu, nv)
+    n = len(faces)
+    return MeshData(vertices, faces, np.zeros(n, np.int32), (part,), np.full(n, -1, np.int32))
+
+
+def v_groove_mesh(
+    width_m: float = 1.0, length_m: float = 3.0, divisions: tuple[int, int] = (8, 16)
+) -> MeshData:
+    """90 deg V-groove: two plates ``width_m`` (slant) by ``length_m``, apex on the y axis, open to +z.
+
+    The plates run from the apex (the y axis, ``|y| <= length / 2``) up to ``x = -+ w / sqrt(2)``,
+    ``z = w / sqrt(2)``; fronts face into the groove. Parts ``"wall_left"`` (x < 0) and
+    ``"wall_right"``; ``divisions`` cells across and along each.
+    """
+    h = width_m / math.sqrt(2)
+    apex = (0.0, -length_m / 2, 0.0)
+    along = (0.0, length_m, 0.0)
+    left = sheet(apex, along, (-h, 0.0, h), divisions[::-1], "wall_left")
+    right = sheet(apex, (h, 0.0, h), along, divisions, "wall_right")
+    return MeshData.concatenate([left, right], source="<v-groove>")
+
+
+def l_mesh(
+    floor_m: tuple[float, float] = (1.0, 1.2), wall_height_m: float = 0.6, divisions: int = 8
+) -> MeshData:
+    """An L of two plates at 90 deg: a floor in z = 0 and a wall in x = 0 along its edge.
+
+    The floor spans ``0 <= x <= floor_m[0]``, ``|y| <= floor_m[1] / 2``, front +z; the wall
+    ``|y| <= floor_m[1] / 2``, ``0 <= z <= wall_height_m``, front +x. Parts ``"floor"``, ``"wall"``.
+    """
+    a, b = floor_m
+    corner = (0.0, -b / 2, 0.0)
+    floor = sheet(corner, (a, 0.0, 0.0), (0.0, b, 0.0), (divisions, divisions), "floor")
+    wall = sheet(corner, (0.0, b, 0.0), (0.0, 0.0, wall_height_m), (divisions, divisions), "wall")
+    return MeshData.concatenate([floor, wall], source="<L>")
+
+
+def open_box_mesh(edge_m: float = 1.0, divisions: int = 8) -> MeshData:
+    """A cube centred at the origin without its top face (z = +edge / 2): five sheets, fronts inward.
+
+    Parts ``"floor"``, ``"wall_+x"``, ``"wall_-x"``, ``"wall_+y"``, ``"wall_-y"``.
+    """
+    e, g = edge_m / 2, (divisions, divisions)
+    pieces = [sheet((-e, -e, -e), (edge_m, 0.0, 0.0), (0.0, edge_m, 0.0), g, "floor")]
+    for axis, name in ((0, "x"), (1, "y")):
+        other = 1 - axis
+        for sign in (1.0, -1.0):
+            corner = np.full(3, -e)
+            corner[axis] = sign * e
+            across = np.zeros(3)
+            across[other] = edge_m
+            up = np.array([0.0, 0.0, edge_m])
+            # front = edge_u x edge_v must point inward, along -sign on this axis
+            inward = np.cross(across, up)[axis] * sign < 0
+            edges = (across, up) if inward else (up, across)
+            pieces.append(sheet(corner, *edges, g, f"wall_{'+' if sign > 0 else '-'}{name}"))
+    return MeshData.concatenate(pieces, source="<open box>")
+
+
+@lru_cache(maxsize=2)
+def dish_mesh(triangles: int = 20_000) -> MeshData:
+    """The ``"dish"`` part of :func:`sunwind.meshes.samples.sample_spacecraft` alone, where it sits in the
+    sample.
+
+    A paraboloid of diameter 1.2 m and f/D 0.35, concave side +z (its front), vertex at z = 0.904 m.
+    """
+    sample = sample_spacecraft(triangles)
+    keep = sample.face_part == sample.part_names.index("dish")
+    used, faces = np.unique(sample.faces[keep], return_inverse=True)
+    n = int(keep.sum())
+    return MeshData(
+        sample.vertices[used],
+        faces.reshape(-1, 3),
+        np.zeros(n, np.int32),
+        ("dish",),
+        np.full(n, -1, np.int32),
+        source="<sample dish>",
+    )
