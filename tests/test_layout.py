@@ -12,7 +12,9 @@ from pathlib import Path
 import pytest
 import tomllib
 
-ROOT = Path(__file__).resolve().parents[1]
+from helpers import REPO
+
+ROOT = REPO
 PACKAGES = ("forces", "geometry", "meshes", "validation")
 #: Longest module [lines] and most parameters of a function outside the numba kernels.
 MAX_LINES, MAX_PARAMETERS = 500, 8

@@ -1,11 +1,12 @@
 """The README's quick-start command and Python example run as written."""
 
 import re
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from helpers import REPO
+
+ROOT = REPO
 README = (ROOT / "README.md").read_text()
 
 

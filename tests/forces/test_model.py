@@ -1,10 +1,9 @@
 """A loaded model: how it was loaded, its references and threads, and what load refuses."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
+from helpers import REPO
 from sunwind.forces import Model, ModelSource, drag, explicit, load, srp
 from sunwind.geometry.errors import InputError, MaterialError
 from sunwind.geometry.materials import Material
@@ -14,8 +13,7 @@ SAMPLE = "meshes/data/sample_spacecraft"
 
 @pytest.fixture(scope="module")
 def sample():
-    root = Path(__file__).resolve().parents[2]
-    return load(root / f"{SAMPLE}.obj", root / f"{SAMPLE}.toml")
+    return load(REPO / f"{SAMPLE}.obj", REPO / f"{SAMPLE}.toml")
 
 
 def test_load_keeps_the_source_and_the_source_loads_the_same_model(sample):

@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import trimesh
 
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
+
+#: The repository's root: README.md, METHOD.md, meshes/data/.
+REPO = Path(__file__).resolve().parents[2]
 
 
 def mesh_from_trimesh(mesh: trimesh.Trimesh, part: str = "body", source: str = "<memory>") -> MeshData:

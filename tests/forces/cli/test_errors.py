@@ -2,6 +2,7 @@
 
 import pytest
 
+from helpers import REPO
 from sunwind.forces.cli.options import FLAGS
 from sunwind.forces.radiation import solar_flux
 from sunwind.geometry.errors import InputError
@@ -39,9 +40,7 @@ def test_an_error_renamed_writes_the_flags_of_its_parameters_only():
     ],
 )
 def test_the_command_line_names_its_flags(run_cli, monkeypatch, tmp_path, args, expected):
-    from pathlib import Path
-
-    monkeypatch.chdir(Path(__file__).resolve().parents[3])
+    monkeypatch.chdir(REPO)
     code, _out, err = run_cli(*(a.format(tmp=tmp_path) for a in args))
     assert code == 1, err
     assert err.startswith("sunwind: error: ") and err.count("\n") == 1
