@@ -114,7 +114,7 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
 
 
 def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> None:
-    """``sunwind bench --sweep``: run and print :func:`forces.bench.sweep_benchmark`."""
+    """``sunwind bench --sweep``: run and print :func:`sunwind.forces.bench.sweep_benchmark`."""
     direction_grid(step)
     columns = (
         TextColumn("{task.description}"),

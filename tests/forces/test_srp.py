@@ -156,6 +156,7 @@ def test_a_batch_is_its_attitudes_one_by_one(dumbbell):
         assert np.array_equal(batch[k].force_N, one.force_N)
         assert np.array_equal(batch.torque_Nm[k], one.torque_Nm)
         assert batch.rays[k] == one.rays
+        assert batch.to_json()[k]["force_N"] == one.to_json()["force_N"]
     with pytest.raises(InputError, match=r"sun_vector\[1\]"):
         srp(dumbbell, [[1, 0, 0], [0, 0, 0]])
     with pytest.raises(InputError, match="shape"):
