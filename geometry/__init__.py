@@ -1,4 +1,6 @@
-"""The spacecraft model: mesh and material loading, checks, ray casting and shadow sampling."""
+"""The spacecraft model and what it is made from and made into: mesh and material files (``io``), checks,
+sides, the model and its cache, ray casting and shadow sampling (``rays``), view and exchange factors
+(``views``). Knows nothing of forces."""
 
 from sunwind.geometry.errors import InputError, MaterialError, MeshError, SunwindError
 from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials, parse_materials
