@@ -27,7 +27,7 @@ from sunwind.forces.reflection.diffuse import diffuse_exchange
 from sunwind.forces.srp import srp
 from sunwind.forces.tables import DragSetup, Job, SrpSetup, SweepRun, direction_grid, run_jobs
 from sunwind.forces.tables.cluster import timed_on_local_cluster
-from sunwind.forces.tables.sweep import precompute
+from sunwind.forces.tables.engine import precompute
 from sunwind.geometry.parallel import thread_count
 from sunwind.geometry.rays.shadows import level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft

@@ -1,7 +1,7 @@
 """A loaded model: the spacecraft, how it was loaded, its torque reference point and its thread count.
 
 :func:`load` reads a mesh and its materials once; :func:`~sunwind.forces.srp.srp`,
-:func:`~sunwind.forces.drag.drag` and :func:`~sunwind.forces.tables.sweep.sweep` take the
+:func:`~sunwind.forces.drag.drag` and :func:`~sunwind.forces.tables.engine.sweep` take the
 :class:`Model` (or a bare :class:`~sunwind.geometry.spacecraft.Spacecraft`) and every attitude reuses
 what the model keeps in its cache (``model.cache``: ray scene, shadow-ray origins, view and exchange
 factors, the adjoint of the diffuse balance). :class:`ModelSource` says how to load it again, which

@@ -210,3 +210,21 @@ def test_every_cited_method_section_exists():
                 found += 1
                 assert name in sections, f"{path.name} cites METHOD.md {name!r}, not a section there"
     assert found > 20
+
+
+#: Functions a package exports under its own submodule's name, on purpose: ``from sunwind.forces import
+#: srp, drag`` (the submodules stay importable as ``sunwind.forces.srp`` by ``from ... import``).
+SHADOWING = {"sunwind.forces.srp", "sunwind.forces.drag"}
+
+
+def test_no_package_hides_a_submodule_behind_another_name():
+    import importlib
+
+    for name, path in modules().items():
+        if path.name != "__init__.py" or name == "sunwind":
+            continue
+        package = importlib.import_module(name)
+        for child in modules():
+            if child.rsplit(".", 1)[0] == name and child not in SHADOWING:
+                value = getattr(package, child.rsplit(".", 1)[1], None)
+                assert value is None or value is sys.modules.get(child), f"{child} is hidden by {value!r}"

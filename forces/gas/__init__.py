@@ -28,7 +28,7 @@ from sunwind.forces.gas.laws import (
     sentman,
     specular,
 )
-from sunwind.forces.gas.nrlmsis import nrlmsis
+from sunwind.forces.gas.msis import nrlmsis
 from sunwind.forces.gas.sums import diffuse_emission, summed_coefficients
 
 __all__ = [

@@ -1,5 +1,5 @@
 """The free-stream gas for free-molecular forces: its species, their masses, and an :class:`Atmosphere`
-of number densities and temperature, from NRLMSIS (:mod:`.nrlmsis`) or given explicitly (METHOD.md
+of number densities and temperature, from NRLMSIS (:mod:`.msis`) or given explicitly (METHOD.md
 "Atmosphere").
 
 Notes
@@ -10,7 +10,7 @@ the elements whose standard weight is an interval: H 1.008, N 14.007, O 15.999, 
 4.002602) times the atomic mass constant (CODATA 2018). Anomalous oxygen ("O*": hot O and O+ that
 NRLMSIS lumps together for drag) has the mass of O. The density is always ``sum n_k m_k`` with these
 masses, so that the force summed over species and the dynamic pressure ``rho V^2 / 2`` used for
-coefficients agree (:mod:`.nrlmsis` says how that differs from NRLMSIS's own total).
+coefficients agree (:mod:`.msis` says how that differs from NRLMSIS's own total).
 """
 
 from __future__ import annotations

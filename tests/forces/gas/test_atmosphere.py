@@ -17,7 +17,7 @@ from sunwind.forces.gas.atmosphere import (
     species_name,
 )
 from sunwind.forces.gas.flow import circular_speed, corotation_speed
-from sunwind.forces.gas.nrlmsis import nrlmsis, parse_time
+from sunwind.forces.gas.msis import nrlmsis, parse_time
 from sunwind.geometry.errors import InputError
 
 pymsis = pytest.importorskip("pymsis")
