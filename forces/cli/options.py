@@ -24,7 +24,7 @@ from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.reflection.settings import DEFAULT_CUTOFF, DEFAULT_DEPTH
 from sunwind.geometry.directions import azel_to_vector, finite_point, unit_vector
 from sunwind.geometry.errors import InputError
-from sunwind.geometry.materials import GSI_MODELS, GasSurface, Material
+from sunwind.geometry.materials import GAS_DEFAULTS, GSI_MODELS, GasSurface, Material
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 
 #: The flag of each Python parameter the library names in its messages.
@@ -100,13 +100,6 @@ _GAS_OPTIONS = [
     ),
     click.option("--wall-temperature", type=float, help="Wall temperature T_w [K] [default 300]."),
 ]
-_GAS_KEYS = (
-    "gsi",
-    "energy_accommodation",
-    "normal_accommodation",
-    "tangential_accommodation",
-    "wall_temperature",
-)
 _MODEL_OPTIONS = [
     click.argument("mesh", type=click.Path(path_type=Path)),
     click.option("--materials", "-m", type=click.Path(path_type=Path), help="Materials TOML file."),
@@ -147,7 +140,7 @@ def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
 def _source(values: dict) -> ModelSource:
     """The model source of the mesh, material and gas flags: the gas flags make the uniform material's
     gas law and override the gas law of every material of a materials file."""
-    gas = {key: values.pop(key) for key in _GAS_KEYS if key in values}
+    gas = {key: values.pop(key) for key in GAS_DEFAULTS if key in values}
     gas = {key: value for key, value in gas.items() if value is not None}
     if gas:
         GasSurface.checked("command line", gas)
