@@ -36,8 +36,9 @@ _inside = threading.local()
 _threads: ContextVar[int | None] = ContextVar("sunwind_threads", default=None)
 
 
-def checked_threads(threads: int | None) -> int | None:
-    """``threads`` if it is None (every core) or a whole number >= 1.
+def checked_threads(threads: int | None, name: str = "threads") -> int | None:
+    """``threads`` if it is None (every core) or a whole number >= 1; ``name`` is the parameter's in
+    the message.
 
     Raises
     ------
@@ -45,7 +46,7 @@ def checked_threads(threads: int | None) -> int | None:
         Anything else.
     """
     if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
-        raise InputError(f"threads {threads!r} must be a whole number >= 1", parameters=("threads",))
+        raise InputError(f"{name} {threads!r} must be a whole number >= 1", parameters=(name,))
     return threads
 
 

@@ -64,12 +64,7 @@ class SweepRun:
     def __post_init__(self) -> None:
         if isinstance(self.chunk, bool) or not isinstance(self.chunk, int) or self.chunk < 1:
             raise InputError(f"chunk {self.chunk} must be a whole number >= 1", parameters=("chunk",))
-        try:
-            checked_threads(self.workers)
-        except InputError:
-            raise InputError(
-                f"workers {self.workers} must be a whole number >= 1", parameters=("workers",)
-            ) from None
+        checked_threads(self.workers, "workers")
 
 
 def sweep(

@@ -37,6 +37,10 @@ def test_an_error_renamed_writes_the_flags_of_its_parameters_only():
         (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "400", "--time", "soon"], "--time 'soon'"),
         (["sweep", SAMPLE, "--srp", "--step", "7", "-o", "{tmp}/t.nc"], "--step 7 deg does not divide"),
         (["sweep", SAMPLE, "--srp", "--step", "90", "--chunk", "0", "-o", "{tmp}/t.nc"], "--chunk 0 must be"),
+        (
+            ["sweep", SAMPLE, "--srp", "--step", "90", "--workers", "0", "-o", "{tmp}/t.nc"],
+            "--workers 0 must be a whole number >= 1",
+        ),
     ],
 )
 def test_the_command_line_names_its_flags(run_cli, monkeypatch, tmp_path, args, expected):

@@ -95,6 +95,15 @@ def test_a_step_that_does_not_divide_the_range_is_refused(step):
         direction_grid(step)
 
 
+@pytest.mark.parametrize(
+    ("field", "value"), [("chunk", 0), ("chunk", 2.5), ("workers", 0), ("workers", True)]
+)
+def test_a_run_with_no_whole_chunk_or_worker_count_is_refused(field, value):
+    with pytest.raises(InputError, match=f"^{field} {value!r} must be a whole number >= 1") as caught:
+        SweepRun(**{field: value})
+    assert caught.value.parameters == (field,)
+
+
 # ----------------------------------------------------------------------------------- table entries
 
 
