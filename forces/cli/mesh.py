@@ -15,7 +15,6 @@ from sunwind.forces.model import ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.reflection.views import view_factor_summary
 from sunwind.geometry.errors import InputError, SunwindError
-from sunwind.geometry.io import save_mesh
 from sunwind.geometry.summary import describe
 
 
@@ -130,6 +129,8 @@ def mesh(ctx: click.Context, kind: str, output: Path) -> None:
     Parameters follow the kind, e.g. `sunwind mesh cylinder --radius 0.5 --length 2 --no-caps -o c.obj`,
     `sunwind mesh sample --triangles 100000 -o big.usda`. Frames: METHOD.md "Frames, units and signs".
     """
+    from sunwind.geometry.io import save_mesh  # its readers load trimesh and USD: when a mesh is written
+
     if kind == "sample":
         built = meshes.sample_spacecraft(**builder_params(kind, meshes.sample_spacecraft, ctx.args))
     elif kind in meshes.PRIMITIVES:
