@@ -32,7 +32,7 @@ from scipy.spatial import ConvexHull, Delaunay
 
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.mesh_data import MeshData
-from sunwind.meshes.arguments import check_count, check_positive, per_axis
+from sunwind.meshes.arguments import HULL_TRIANGLE_BYTES, check_count, check_positive, check_triangles, per_axis
 from sunwind.meshes.assembly import assemble, label, transform
 from sunwind.meshes.triangulation import (
     box_surface,
@@ -92,6 +92,7 @@ def plate(
     """
     check_positive(size_x=size_x, size_y=size_y)
     nx, ny = per_axis("divisions", divisions, 2)
+    check_triangles(2 * nx * ny, "lower divisions", ("divisions",))
     x, y = np.meshgrid(
         np.linspace(-size_x / 2, size_x / 2, nx + 1),
         np.linspace(-size_y / 2, size_y / 2, ny + 1),
@@ -134,6 +135,7 @@ def sphere(radius: float = 1.0, subdivisions: int = SPHERE_SUBDIVISIONS) -> Mesh
     """
     check_positive(radius=radius)
     check_count(2, subdivisions=subdivisions)
+    check_triangles(26 * int(subdivisions) ** 2 // 10, "lower subdivisions", ("subdivisions",), HULL_TRIANGLE_BYTES)
     theta = np.linspace(np.pi, 0.0, subdivisions + 1)
     r = radius * np.sin(theta)
     r[[0, -1]] = 0.0
@@ -304,6 +306,7 @@ def dish(diameter: float = 1.2, focal_ratio: float = 0.35, segments: int = DISH_
     fine = np.linspace(0.0, diameter / 2, 4097)
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(fine), np.diff(fine**2) / (4 * focal)))])
     pieces = equal_pieces(arc[-1], np.pi * diameter / segments)
+    check_triangles(int(segments) * pieces, "lower segments", ("segments",), HULL_TRIANGLE_BYTES)
     r = np.interp(np.linspace(0.0, arc[-1], pieces + 1), arc, fine)
     vertices, _ = ring_vertices(r, r**2 / (4 * focal), ring_counts(r, segments))
     faces = oriented(Delaunay(vertices[:, :2]).simplices, np.array([0.0, 0.0, 1.0]), vertices)
@@ -339,6 +342,8 @@ def box(size: Sequence[float] = (1.0, 1.0, 1.0), divisions: int | Sequence[int] 
         raise InputError(f"size = {size!r} must be three edge lengths")
     check_positive(**{f"size[{i}]": s for i, s in enumerate(size)})
     cells = per_axis("divisions", divisions, 3)
+    nx, ny, nz = cells
+    check_triangles(4 * (nx * ny + ny * nz + nz * nx), "lower divisions", ("divisions",))
     vertices, faces = box_surface(size, cells)
     metadata = {"shape": "box", "size": size, "divisions": cells}
     return assemble(vertices, faces, np.zeros(len(faces)), ["box"], metadata)
@@ -379,10 +384,11 @@ def box_wing(
     check_positive(wing_span=wing_span, wing_width=wing_width, wing_gap=wing_gap, facet_size=facet_size)
     bus_size = tuple(float(s) for s in bus_size)
     cells = tuple(equal_pieces(s, facet_size) for s in bus_size)
+    span, width = equal_pieces(wing_span, facet_size), equal_pieces(wing_width, facet_size)
+    nx, ny, nz = cells
+    check_triangles(4 * (nx * ny + ny * nz + nz * nx + span * width), "raise facet_size", ("facet_size",))
     bus = label(box(bus_size, cells), "bus")
-    sheet = plate(
-        wing_span, wing_width, (equal_pieces(wing_span, facet_size), equal_pieces(wing_width, facet_size))
-    )
+    sheet = plate(wing_span, wing_width, (span, width))
     # Plate (x, y, z) -> body (y, z, x): span along y, width along z, front normal +x.
     to_body = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
     centre = bus_size[1] / 2 + wing_gap + wing_span / 2

@@ -19,6 +19,7 @@ import numpy as np
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.triangles import normals
+from sunwind.meshes.arguments import check_triangles
 from sunwind.meshes.assembly import label, rotation_matrix, transform
 from sunwind.meshes.primitives import box, cone, cylinder, dish, plate
 
@@ -167,6 +168,7 @@ def sample_spacecraft(triangles: int = 20_000, array_angle_deg: float = 0.0) -> 
         )
     if not math.isfinite(array_angle_deg):
         raise InputError(f"array_angle_deg = {array_angle_deg!r} must be finite")
+    check_triangles(triangles, "lower triangles", ("triangles",))
     facet = math.sqrt(2 * 21.0 / triangles)  # two triangles per h^2 over ~21 m^2 of surface
     best: tuple[float, MeshData] | None = None
     for _ in range(12):

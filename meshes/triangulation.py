@@ -19,6 +19,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.errors import InputError
+from sunwind.meshes.arguments import check_triangles
 from sunwind.meshes.assembly import assemble
 
 __all__ = [
@@ -199,6 +201,12 @@ def revolved_parts(
         planar strips of the inscribed pyramid (a cone's side); other rings get
         :func:`ring_counts`.
     """
+    widest = max(r for r, _ in corners)
+    triangles = 0  # two per ring vertex of each band; a leg's rings have vertices in proportion to r
+    for k, piece in enumerate(pieces):
+        share = 1.0 if k in generator_legs else (corners[k][0] + corners[k + 1][0]) / (2 * widest)
+        triangles += 2 * int(segments) * int(piece) * math.ceil(1000 * share) // 1000
+    check_triangles(triangles, "lower segments or rings", ("segments", "rings"))
     points = np.asarray(corners, dtype=np.float64)
     pieces_arr = np.asarray(pieces, dtype=np.int64)
     leg = np.repeat(np.arange(len(pieces_arr)), pieces_arr)
@@ -220,8 +228,17 @@ def oriented(faces: NDArray[np.int64], normals: ArrayLike, vertices: NDArray) ->
 
 
 def equal_pieces(length: float, step: float) -> int:
-    """Fewest equal pieces of ``length`` no longer than ``step`` (at least one)."""
-    return max(1, math.ceil(length / step - 1e-9))
+    """Fewest equal pieces of ``length`` no longer than ``step`` (at least one).
+
+    Raises
+    ------
+    InputError
+        More pieces than a float counts (``step`` far too small).
+    """
+    pieces = length / step - 1e-9
+    if not math.isfinite(pieces):
+        raise InputError(f"{length:g} m in pieces of {step:g} m are too many to count")
+    return max(1, math.ceil(pieces))
 
 
 def box_surface(size: Sequence[float], cells: tuple[int, int, int]) -> tuple[NDArray, NDArray]:

@@ -19,6 +19,7 @@ from sunwind.forces.cli.options import FLAGS
 from sunwind.forces.cli.tables import plot, sweep_command
 from sunwind.forces.cli.tools import bench, validate
 from sunwind.geometry.errors import SunwindError
+from sunwind.geometry.memory import LIMIT_VARIABLE
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
@@ -55,6 +56,13 @@ def main(argv: list[str] | None = None) -> None:
         command = error.ctx.command_path if error.ctx else "sunwind"
         print(f"{command}: error: {error.format_message()} (see --help)", file=sys.stderr)
         sys.exit(2)
+    except MemoryError:  # a last resort: every size a user gives is checked before its arrays are made
+        print(
+            "sunwind: error: out of memory; lower the sizes asked for (--samples, --view-rays, a finer --step, "
+            f"mesh resolution) or set {LIMIT_VARIABLE} to refuse such runs before they start",
+            file=sys.stderr,
+        )
+        sys.exit(1)
     except click.exceptions.Abort:
         print("sunwind: aborted", file=sys.stderr)
         sys.exit(130)

@@ -104,7 +104,8 @@ def _parameter(kind: str, key: str, default: object, values: list[str], negated:
         if isinstance(default, tuple | list) or len(values) > 1:
             return tuple(float(v) if "." in v or "e" in v.lower() else int(v) for v in values)
         if len(values) == 1:
-            return int(values[0]) if isinstance(default, int) else float(values[0])
+            whole = isinstance(default, int) or (default is None and values[0].lstrip("+-").isdigit())
+            return int(values[0]) if whole else float(values[0])
         raise ValueError
     except ValueError:
         raise InputError(

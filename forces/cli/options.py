@@ -60,6 +60,12 @@ FLAGS = {
     "scheduler": "--scheduler",
     "resume": "--resume",
     "format": "--format",
+    "triangles": "--triangles",
+    "divisions": "--divisions",
+    "subdivisions": "--subdivisions",
+    "segments": "--segments",
+    "rings": "--rings",
+    "facet_size": "--facet-size",
 }
 
 

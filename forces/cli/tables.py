@@ -42,6 +42,7 @@ from sunwind.forces.tables import (
     read_attitude_csv,
     sweep,
 )
+from sunwind.forces.tables.engine import check_table_memory
 from sunwind.forces.tables.dataset import open_table
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
@@ -147,7 +148,7 @@ def _table(values: dict) -> TableRequest:
     if step is None and values["attitude_csv"] is None:
         step = DEFAULT_STEP
     if step is not None:
-        direction_grid(step, "--step")
+        check_table_memory(direction_grid(step, "--step"), kinds, "--step")
     return TableRequest(kinds, step, values["attitude_csv"], output, fmt)
 
 

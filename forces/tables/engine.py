@@ -19,10 +19,11 @@ import xarray as xr
 
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.reflection import model_view_factors
-from sunwind.forces.tables.attitudes import AttitudeList, direction_grid
+from sunwind.forces.tables.attitudes import GRID_BYTES, AttitudeList, DirectionGrid, direction_grid
 from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
 from sunwind.forces.tables.dataset import grid_table, list_table, table_attributes
-from sunwind.forces.tables.jobs import DragSetup, Job, Records, SrpSetup, empty_records
+from sunwind.forces.tables.jobs import FIELDS, DragSetup, Job, Records, SrpSetup, empty_records
+from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import checked_threads
 from sunwind.geometry.spacecraft import Spacecraft
@@ -67,6 +68,19 @@ class SweepRun:
         checked_threads(self.workers, "workers")
 
 
+#: Bytes per node of the direction variable of a grid table.
+_DIRECTION_BYTES = 24
+
+
+def check_table_memory(grid: DirectionGrid, kinds: tuple[str, ...], name: str = "step_deg") -> None:
+    """Refuse a grid sweep of ``kinds`` whose grid, records and table (float64, each field at every
+    distinct direction and again at every node) exceed the memory limit, before any is made."""
+    per_node = sum(2 * 8 * sum(FIELDS[kind].values()) + _DIRECTION_BYTES for kind in kinds)
+    nodes = grid.nodes
+    what = f"a table of {memory.count(nodes)} grid nodes ({', '.join(kinds)})"
+    memory.require((GRID_BYTES + per_node) * nodes, what, f"raise {name}", (name,))
+
+
 def sweep(
     model: Model | Spacecraft,
     *,
@@ -106,6 +120,7 @@ def sweep(
         raise InputError("give step_deg or attitudes, not both", parameters=("step_deg", "attitudes"))
     if attitudes is None:
         grid = direction_grid(DEFAULT_STEP if step_deg is None else step_deg, "step_deg")
+        check_table_memory(grid, tuple(setup.kind for setup in setups))
         jobs = [Job(setup, grid.distinct[0]) for setup in setups]
     else:
         grid = None

@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.memory import count, require
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.rays.shadow_kernels import (
     BLOCK,
@@ -65,6 +66,12 @@ Reduction = Callable[[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64
 _MIN_BLOCKS_PER_CHUNK = 8
 #: Largest origin array (points) kept per level for reuse across attitudes.
 _KEEP_POINTS = 1 << 22
+#: Peak bytes per point of a level's barycentric sample points while they are made (measured 178).
+_BARYCENTRIC_BYTES = 180
+#: Bytes per ray of a batch cast from origins made on the fly: origins, Embree's answers, lit flags.
+_BATCH_BYTES = 21
+#: Bytes per point of the lit flags of all facing sides (the batches' and their concatenation).
+_LIT_BYTES = 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -173,6 +180,22 @@ class SideSampler:
         self.craft = craft
         self.scene = craft.scene
         self._kept: dict[int, NDArray[np.float32]] = {}
+        self._sized: set[int] = set()
+
+    def check_memory(self, level: int) -> None:
+        """Refuse fixed sampling at ``level`` before allocating when its peak memory (the sample points,
+        a batch of rays, the lit flags of every side) exceeds :func:`sunwind.geometry.memory.require`."""
+        if level in self._sized:
+            return
+        n, points = self.craft.n_sides, level**2
+        if self._keeps(level):
+            need = _BARYCENTRIC_BYTES * points + 3 * 4 * n * points
+        else:
+            batch = max(1, _BATCH_RAYS // points) * points
+            need = _BARYCENTRIC_BYTES * points + _BATCH_BYTES * batch + _LIT_BYTES * n * points
+        what = f"{count(points)} points per side x {n} sides"
+        require(need, what, "lower samples (points per side), or leave it out for adaptive sampling", ("samples",))
+        self._sized.add(level)
 
     def origins(self, level: int) -> NDArray[np.float32]:
         """Ray origins of every side at ``level`` in scene coordinates, (n_sides, level**2, 3)."""
@@ -213,6 +236,7 @@ class SideSampler:
     ) -> tuple[NDArray[np.int64], NDArray[np.float32] | None]:
         """The sides facing ``direction`` and their ray origins at ``level`` (n_facing, level**2, 3)
         when kept for reuse, else None."""
+        self.check_memory(level)
         if not self._keeps(level):
             return np.flatnonzero(self.craft.side_normals @ direction > 0), None
         return self._facing_origins(direction, level, 0, self.n_blocks)
@@ -310,6 +334,7 @@ class SideSampler:
         craft = self.craft
         fixed = samples is not None
         level = level_for_samples(samples) if fixed else BASE_LEVEL
+        self.check_memory(level)
         # the lit centroid differs from the side centroid only on partly lit sides, which level 1 has not
         centroid = craft.side_centroids if level == 1 else craft.side_centroids.copy()
         if self._keeps(level):

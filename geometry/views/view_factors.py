@@ -34,6 +34,7 @@ import scipy.sparse
 from numpy.typing import NDArray
 
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.memory import count, require
 from sunwind.geometry.spacecraft import BLIND, ESCAPED, Spacecraft
 from sunwind.geometry.triangles import STRATIFIED_SEED
 from sunwind.geometry.views.disk_cache import (
@@ -43,7 +44,7 @@ from sunwind.geometry.views.disk_cache import (
     geometry_key,
     kept_on_disk,
 )
-from sunwind.geometry.views.hemisphere import emission_rays, map_side_batches
+from sunwind.geometry.views.hemisphere import batch_bytes, emission_rays, map_side_batches
 from sunwind.geometry.views.near_field import (
     CONCAVE_TOLERANCE,
     NEAR_LEVELS_EDGE,
@@ -164,6 +165,8 @@ def compute_view_factors(
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**64:
         raise InputError(f"seed = {seed!r} must be an integer from 0 to 2**64 - 1")
     n = craft.n_sides
+    what = f"{count(rays)} view-factor rays per side x {n} sides"
+    require(batch_bytes(n, rays), what, "lower rays_per_side", ("rays_per_side",))
     nnz, cols, hits, blind, blocked, sum_w, sum_m = _sample(craft, math.isqrt(rays), seed)
     matrix = scipy.sparse.csr_matrix((hits / rays, cols, np.r_[0, np.cumsum(nnz)]), shape=(n, n))
     escape = (rays - blocked) / rays

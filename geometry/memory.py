@@ -1,0 +1,116 @@
+"""The memory a request needs, against the memory it may use: sized before anything is allocated.
+
+Every user-given size that drives an allocation (shadow points per side, view-factor rays, the grid
+step of a sweep, mesh resolutions) is turned into an estimate of the peak bytes of its dominant
+arrays and checked with :func:`require` before the arrays are made. The limit is
+``SUNWIND_MAX_MEMORY`` (bytes, or with a suffix: ``500M``, ``4G``, ``1.5T``; powers of 1024) when
+set, else the memory the system reports available (``MemAvailable`` of ``/proc/meminfo``, else
+free pages by ``os.sysconf``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+
+from sunwind.geometry.errors import InputError
+
+#: The environment variable that sets the memory limit [bytes, or a number with K, M, G or T].
+LIMIT_VARIABLE = "SUNWIND_MAX_MEMORY"
+_UNITS = {"": 1, "K": 2**10, "M": 2**20, "G": 2**30, "T": 2**40, "P": 2**50}
+_SETTING = re.compile(r"\s*(\d+(?:\.\d*)?|\.\d+)(?:e([+-]?\d+))?\s*([KMGTP]?)(?:I?B)?\s*", re.IGNORECASE)
+
+
+def parse_size(text: str) -> int:
+    """Bytes of a size written as ``123``, ``500M``, ``4G``, ``1.5GiB`` (suffixes are powers of 1024).
+
+    Raises
+    ------
+    InputError
+        Not a size of at least one byte.
+    """
+    match = _SETTING.fullmatch(text)
+    if match is not None:
+        number, exponent, unit = match.groups()
+        value = float(number) * 10.0 ** int(exponent or 0) * _UNITS[unit.upper()]
+        if math.isfinite(value) and value >= 1:
+            return int(value)
+    raise InputError(
+        f"{LIMIT_VARIABLE}={text!r} is not a memory size",
+        hint=f"give bytes or a number with K, M, G or T, e.g. {LIMIT_VARIABLE}=4G, or unset it",
+    )
+
+
+def available_memory() -> int:
+    """Memory the system can give without swapping [bytes]: ``MemAvailable``, else free pages."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as meminfo:
+            for line in meminfo:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, AttributeError):  # no such query here: no limit known
+        return 2**62
+
+
+def memory_limit() -> tuple[int, str]:
+    """The memory a request may use [bytes], and where the limit comes from, in words."""
+    setting = os.environ.get(LIMIT_VARIABLE)
+    if setting is not None and setting.strip():
+        return parse_size(setting), f"{LIMIT_VARIABLE}={setting.strip()}"
+    return available_memory(), f"available memory; set {LIMIT_VARIABLE} to change it"
+
+
+def human(nbytes: float) -> str:
+    """A byte count in binary units, three significant digits: ``22.4 GiB``."""
+    for unit in ("B", "KiB", "MiB", "GiB", "TiB", "PiB"):
+        if nbytes < 1000 or unit == "PiB":
+            break
+        nbytes /= 1024
+    return f"{nbytes:.3g} {unit}"
+
+
+def count(n: float) -> str:
+    """A count in three significant digits, ``1e+09``; a Python int past the largest float too."""
+    try:
+        return f"{n:.3g}"
+    except OverflowError:
+        return f"~1e+{int(n.bit_length() * math.log10(2))}"
+
+
+def require(nbytes: float, what: str, fix: str, parameters: tuple[str, ...] = ()) -> None:
+    """Refuse a request whose estimated peak ``nbytes`` exceeds :func:`memory_limit`.
+
+    Parameters
+    ----------
+    nbytes : float
+        Estimated peak memory of the request's dominant arrays [bytes] (a Python number: sizes past
+        int64 are fine).
+    what : str
+        What the memory is for, e.g. ``"1e+09 points per side x 12 sides"``.
+    fix : str
+        The remedy, e.g. ``"lower samples"``, naming the Python parameters of ``parameters``.
+    parameters : tuple of str
+        The parameters ``fix`` names, for :meth:`~sunwind.geometry.errors.SunwindError.renamed`.
+
+    Raises
+    ------
+    InputError
+        ``nbytes`` is above the limit, or ``SUNWIND_MAX_MEMORY`` is malformed.
+    """
+    limit, source = memory_limit()
+    if nbytes <= limit:
+        return
+    try:
+        size = f"~{human(float(nbytes))}"
+    except OverflowError:  # a Python int past the largest float
+        size = "more than 1e308 B"
+    raise InputError(
+        f"not enough memory: needs {size} for {what}; limit {human(limit)} ({source})",
+        hint=fix,
+        parameters=parameters,
+    )
