@@ -33,7 +33,7 @@ def parse_size(text: str) -> int:
     match = _SETTING.fullmatch(text)
     if match is not None:
         number, exponent, unit = match.groups()
-        value = float(number) * 10.0 ** int(exponent or 0) * _UNITS[unit.upper()]
+        value = float(f"{number}e{exponent or 0}") * _UNITS[unit.upper()]
         if math.isfinite(value) and value >= 1:
             return int(value)
     raise InputError(

@@ -32,7 +32,13 @@ from scipy.spatial import ConvexHull, Delaunay
 
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.mesh_data import MeshData
-from sunwind.meshes.arguments import HULL_TRIANGLE_BYTES, check_count, check_positive, check_triangles, per_axis
+from sunwind.meshes.arguments import (
+    HULL_TRIANGLE_BYTES,
+    check_count,
+    check_positive,
+    check_triangles,
+    per_axis,
+)
 from sunwind.meshes.assembly import assemble, label, transform
 from sunwind.meshes.triangulation import (
     box_surface,
@@ -135,7 +141,9 @@ def sphere(radius: float = 1.0, subdivisions: int = SPHERE_SUBDIVISIONS) -> Mesh
     """
     check_positive(radius=radius)
     check_count(2, subdivisions=subdivisions)
-    check_triangles(26 * int(subdivisions) ** 2 // 10, "lower subdivisions", ("subdivisions",), HULL_TRIANGLE_BYTES)
+    check_triangles(
+        26 * int(subdivisions) ** 2 // 10, "lower subdivisions", ("subdivisions",), HULL_TRIANGLE_BYTES
+    )
     theta = np.linspace(np.pi, 0.0, subdivisions + 1)
     r = radius * np.sin(theta)
     r[[0, -1]] = 0.0

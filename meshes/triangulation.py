@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.mesh_data import MeshData
 from sunwind.meshes.arguments import check_triangles
 from sunwind.meshes.assembly import assemble
 

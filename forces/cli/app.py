@@ -58,8 +58,8 @@ def main(argv: list[str] | None = None) -> None:
         sys.exit(2)
     except MemoryError:  # a last resort: every size a user gives is checked before its arrays are made
         print(
-            "sunwind: error: out of memory; lower the sizes asked for (--samples, --view-rays, a finer --step, "
-            f"mesh resolution) or set {LIMIT_VARIABLE} to refuse such runs before they start",
+            "sunwind: error: out of memory; lower the sizes asked for (--samples, --view-rays, a finer "
+            f"--step, mesh resolution) or set {LIMIT_VARIABLE} to refuse such runs before they start",
             file=sys.stderr,
         )
         sys.exit(1)

@@ -42,8 +42,8 @@ from sunwind.forces.tables import (
     read_attitude_csv,
     sweep,
 )
-from sunwind.forces.tables.engine import check_table_memory
 from sunwind.forces.tables.dataset import open_table
+from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
 

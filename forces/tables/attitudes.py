@@ -30,9 +30,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
+from sunwind.geometry import memory
 from sunwind.geometry.directions import azel_to_vectors
 from sunwind.geometry.errors import InputError
-from sunwind.geometry import memory
 
 #: Peak bytes per node of a grid's vectors and distinct directions while they are made (measured 129).
 GRID_BYTES = 130

@@ -194,7 +194,9 @@ class SideSampler:
             batch = max(1, _BATCH_RAYS // points) * points
             need = _BARYCENTRIC_BYTES * points + _BATCH_BYTES * batch + _LIT_BYTES * n * points
         what = f"{count(points)} points per side x {n} sides"
-        require(need, what, "lower samples (points per side), or leave it out for adaptive sampling", ("samples",))
+        require(
+            need, what, "lower samples (points per side), or leave it out for adaptive sampling", ("samples",)
+        )
         self._sized.add(level)
 
     def origins(self, level: int) -> NDArray[np.float32]:
