@@ -28,6 +28,7 @@ from sunwind.forces.srp import srp
 from sunwind.forces.tables import DragSetup, Job, SrpSetup, SweepRun, direction_grid, run_jobs
 from sunwind.forces.tables.cluster import timed_on_local_cluster
 from sunwind.forces.tables.engine import precompute
+from sunwind.geometry import memory
 from sunwind.geometry.parallel import thread_count
 from sunwind.geometry.rays.shadows import level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
@@ -152,6 +153,10 @@ def _drag_figures(
     return figures
 
 
+#: Bytes per timed attitude: its direction as drawn and normalised, and two timings.
+_ATTITUDE_BYTES = 120
+
+
 def sun_directions(count: int, seed: int = 2026) -> np.ndarray:
     """``count`` seeded random unit vectors, uniform on the sphere, (count, 3)."""
     v = np.random.default_rng(seed).normal(size=(count, 3))
@@ -167,6 +172,8 @@ def benchmark(
     progress: Callable[[int], None] | None = None,
 ) -> BenchReport:
     """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions."""
+    what = f"{memory.count(attitudes)} timed Sun directions"
+    memory.require(_ATTITUDE_BYTES * attitudes, what, "lower attitudes", ("attitudes",))
     directions = sun_directions(attitudes)
     level = level_for_samples(samples)
     start = time.perf_counter()

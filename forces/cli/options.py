@@ -61,6 +61,7 @@ FLAGS = {
     "resume": "--resume",
     "format": "--format",
     "triangles": "--triangles",
+    "attitudes": "--attitudes",
     "divisions": "--divisions",
     "subdivisions": "--subdivisions",
     "segments": "--segments",

@@ -83,6 +83,11 @@ CASES = {
         1,
     ),
     "bench --triangles 1e10": ("bench --triangles 10000000000", ["facets", "lower --triangles"], 1),
+    "bench --attitudes 1e12": (
+        "bench --mesh {box} -m {tmp}/box.toml --attitudes 1000000000000",
+        ["timed Sun directions", "lower --attitudes"],
+        1,
+    ),
     "bench --sweep --step 0.001": ("bench --sweep --step 0.001", ["grid nodes", "raise --step"], 1),
 }
 
@@ -91,6 +96,8 @@ CASES = {
 def box(tmp_path, run_cli) -> str:
     path = tmp_path / "box.obj"
     assert run_cli("mesh", "box", "-o", path)[0] == 0
+    materials = '[materials.m]\nreflectivity = 0.3\nspecular_fraction = 0.5\n[parts]\nbox = "m"\n'
+    (tmp_path / "box.toml").write_text(materials)
     return str(path)
 
 
