@@ -60,6 +60,8 @@ FLAGS = {
     "scheduler": "--scheduler",
     "resume": "--resume",
     "format": "--format",
+    "attitudes": "--attitudes",
+    "no_view": "--no-view",
 }
 
 

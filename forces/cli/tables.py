@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import tempfile
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,7 +30,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
-from sunwind.forces.export import FORMATS, format_of, write
+from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.model import ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import (
@@ -69,9 +70,18 @@ def check_writable(path: Path) -> None:
 
 
 def _kinds(srp_flag: bool, drag_flag: bool, fmt: str) -> tuple[str, ...]:
+    """The quantities to tabulate: those asked for, else every one the format holds (said when that
+    leaves one out)."""
     asked = tuple(k for k, on in (("srp", srp_flag), ("drag", drag_flag)) if on)
     allowed = FORMATS[fmt].kinds
     if not asked:
+        if len(allowed) == 1:
+            other = "drag" if allowed == ("srp",) else "srp"
+            warnings.warn(
+                f"{fmt} files hold {allowed[0]} only: {other} is not tabulated "
+                f"(for it, sweep with --{other} to another format, e.g. -o NAME.nc)",
+                stacklevel=2,
+            )
         return allowed
     refused = [k for k in asked if k not in allowed]
     if refused:
@@ -102,7 +112,8 @@ _OUTPUT_OPTIONS = [
         "--format",
         "fmt",
         type=click.Choice(list(FORMATS)),
-        help="nc, csv, spad, basilisk (SRP) or tudat (drag) [default: from the extension].",
+        help="nc, csv, spad, basilisk (SRP) or tudat (drag) [default: from the extension; a name without "
+        "one gets the format's, an extension of another format is refused].",
     ),
 ]
 _RUN_OPTIONS = [
@@ -136,11 +147,9 @@ class TableRequest:
 
 
 def _table(values: dict) -> TableRequest:
-    """The table flags, checked (the output path included) before the mesh is loaded."""
-    output = values["output"]
-    fmt = format_of(output, values["fmt"])
-    kinds = _kinds(values["srp_flag"], values["drag_flag"], fmt)
-    check_writable(output)
+    """The table flags, checked before the mesh is loaded: the output path (its extension added when it
+    has none), the format against the extension, the attitudes and the quantities it can hold."""
+    fmt, output = output_target(values["output"], values["fmt"])
     if values["step"] is not None and values["attitude_csv"] is not None:
         raise InputError("give --step or --attitudes, not both")
     step = values["step"]
@@ -148,6 +157,9 @@ def _table(values: dict) -> TableRequest:
         step = DEFAULT_STEP
     if step is not None:
         direction_grid(step, "--step")
+    check_request(fmt, step)
+    kinds = _kinds(values["srp_flag"], values["drag_flag"], fmt)
+    check_writable(output)
     return TableRequest(kinds, step, values["attitude_csv"], output, fmt)
 
 

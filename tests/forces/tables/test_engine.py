@@ -306,7 +306,13 @@ def test_attitude_list_with_quaternions_turns_inertial_directions_into_the_body_
     ("text", "match"),
     [
         ("sun_x,sun_y\n1,0\n", "sun_z"),
-        ("a,b,c\n1,2,3\n", "no direction columns"),
+        ("a,b,c\n1,2,3\n", "unexpected column 'a'"),
+        ("qw,qx,qy,qz\n1,0,0,0\n", "no direction columns"),
+        ("sun_x,sun_y,sun_z,sun_z\n1,0,0,5\n", "column 'sun_z' is given twice"),
+        ("sun_x,sun_y,Sun_Y,sun_z\n1,0,0,5\n", "column 'sun_y' is given twice"),
+        ("sun_x,sun_y,sun_z,foo\n1,0,0,3\n", "unexpected column 'foo'"),
+        ("sun_x,sun_y,sun_z,\n1,0,0,\n", "unexpected column ''"),
+        ("\ufeffsun_x,sun_y\n1,0\n", "lacks column sun_z"),
         ("sun_x,sun_y,sun_z\n0,0,0\n", "zero"),
         ("sun_x,sun_y,sun_z\n1,nan,0\n", "NaN"),
         ("sun_x,sun_y,sun_z\n1,x,0\n", "not all numbers"),
@@ -318,6 +324,12 @@ def test_bad_attitude_lists_are_refused(tmp_path, text, match):
     path.write_text(text)
     with pytest.raises(InputError, match=match):
         read_attitude_csv(path)
+
+
+def test_an_attitude_list_with_a_byte_order_mark_is_read(tmp_path):
+    path = tmp_path / "a.csv"
+    path.write_bytes(b"\xef\xbb\xbfSun_X, sun_y ,sun_z\n0,3,4\n")
+    np.testing.assert_allclose(read_attitude_csv(path).sun_vectors, [[0, 0.6, 0.8]])
 
 
 def test_list_sweep_from_the_command_line(model, run_cli, tmp_path):
