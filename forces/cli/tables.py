@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 import tempfile
 import time
 import warnings
@@ -43,6 +44,7 @@ from sunwind.forces.tables import (
     read_attitude_csv,
     sweep,
 )
+from sunwind.forces.tables.cluster import require_dask
 from sunwind.forces.tables.dataset import open_table
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
@@ -163,6 +165,13 @@ def _table(values: dict) -> TableRequest:
     return TableRequest(kinds, step, values["attitude_csv"], output, fmt)
 
 
+def _run(values: dict) -> dict:
+    """The run flags, Dask checked importable (before the mesh is loaded or a checkpoint made)."""
+    if values["scheduler"] is not None:
+        require_dask()
+    return values
+
+
 @click.command("sweep")
 @model_options(gas=True)
 @sun_options(direction=False)
@@ -171,7 +180,7 @@ def _table(values: dict) -> TableRequest:
 @sampling_options
 @reflection_options("both")
 @group("table", _OUTPUT_OPTIONS, _table)
-@group("run", _RUN_OPTIONS)
+@group("run", _RUN_OPTIONS, _run)
 def sweep_command(
     source: ModelSource,
     sun: Sun,
@@ -212,7 +221,15 @@ def sweep_command(
             drag=drag,
             step_deg=table.step_deg,
             attitudes=attitudes,
-            run=SweepRun(run["chunk"], checkpoint, run["resume"], run["scheduler"], run["workers"], progress),
+            run=SweepRun(
+                run["chunk"],
+                checkpoint,
+                run["resume"],
+                run["scheduler"],
+                run["workers"],
+                progress,
+                notice=lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
+            ),
         )
     seconds = time.perf_counter() - start
     written = write(result, table.output, table.format)

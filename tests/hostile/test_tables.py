@@ -3,12 +3,14 @@ each command line gives its exit code and message, never a traceback, and leaves
 
 from __future__ import annotations
 
+import sys
 import warnings
 from pathlib import Path
 
 import pytest
 
 from sunwind.forces.cli.app import main
+from sunwind.geometry.errors import InputError
 
 OPTICS = ("--reflectivity", "0.4", "--specular-fraction", "0.5", "--samples", "1", "--reflections", "none")
 AIR = ("--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:0.2", "--speed", "7600")
@@ -168,3 +170,43 @@ def test_sweep_command_lines(box, run_cli, monkeypatch, args, code, words, made)
         assert (box.parent / name).stat().st_size > 0 and f"wrote {name}" in out
     if code:
         assert not list(box.parent.glob("*.checkpoint")) and "wrote" not in out
+
+
+def test_scheduler_without_dask_is_one_line_and_leaves_nothing(box, run_cli, monkeypatch):
+    monkeypatch.chdir(box.parent)
+    monkeypatch.setitem(sys.modules, "dask", None)  # `import dask.distributed` now fails
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)
+    code, _, err = run_cli(
+        "sweep", box, *OPTICS, "--srp", "--step", "45", "--scheduler", "tcp://h:8786", "-o", "d.nc"
+    )
+    assert code == 1 and "Traceback" not in err and len(err.strip().splitlines()) == 1
+    assert "--scheduler needs Dask distributed" in err and 'pip install "sunwind[dask]"' in err
+    assert not (box.parent / "d.nc.checkpoint").exists()
+
+
+def test_a_failed_scheduler_start_leaves_no_checkpoint(box, run_cli, monkeypatch):
+    from sunwind.forces.tables import cluster
+
+    def unreachable(scheduler, workers):
+        raise InputError(f"cannot reach the Dask scheduler at {scheduler}: timed out")
+
+    monkeypatch.chdir(box.parent)
+    monkeypatch.setattr(cluster, "connect", unreachable)
+    args = ("sweep", box, *OPTICS, "--srp", "--step", "45", "-o", "s.nc")
+    code, _, err = run_cli(*args, "--scheduler", "tcp://127.0.0.1:9")
+    assert code == 1 and "cannot reach the Dask scheduler" in err and "Traceback" not in err
+    assert not (box.parent / "s.nc.checkpoint").exists()
+    code, out, err = run_cli(*args)  # the next plain run is not blocked
+    assert code == 0 and "wrote s.nc" in out, err
+
+
+def test_resume_says_what_it_kept_and_recomputes_a_damaged_chunk(box, run_cli, monkeypatch):
+    monkeypatch.chdir(box.parent)
+    (box.parent / "r.nc.checkpoint").mkdir()
+    (box.parent / "r.nc.checkpoint" / "srp-00000000.npz").write_bytes(b"PK\x03\x04 not a chunk")
+    code, out, err = run_cli(
+        "sweep", box, *OPTICS, "--srp", "--step", "45", "--chunk", "5", "--resume", "-o", "r.nc"
+    )
+    assert code == 0 and "wrote r.nc" in out, err
+    assert "notice: r.nc.checkpoint: checkpoint: kept 0 chunks, recomputing 6 (1 of them found" in err
+    assert not (box.parent / "r.nc.checkpoint").exists()

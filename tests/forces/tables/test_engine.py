@@ -243,6 +243,74 @@ def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
         run_jobs(moved, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
 
 
+def _stopped_checkpoint(model, jobs, checkpoint, chunks: int = 2) -> None:
+    """Run ``jobs`` with a checkpoint and stop after ``chunks`` chunks."""
+    seen = []
+
+    def stop(done: int) -> None:
+        seen.append(done)
+        if len(seen) == chunks + 1:
+            raise _Stop
+
+    with pytest.raises(_Stop):
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, progress=stop))
+
+
+def test_chunks_without_their_manifest_are_taken_only_by_their_own_sweep(model, air, tmp_path):
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "c"
+    _stopped_checkpoint(model, jobs, checkpoint)
+    (checkpoint / "manifest.json").unlink()
+    other = [Job(replace(j.setup, samples=9), j.directions) for j in jobs]
+    lines, progress = [], []
+    run = SweepRun(chunk=5, checkpoint=checkpoint, resume=True, progress=progress.append, notice=lines.append)
+    resumed = run_jobs(model, other, run)
+    fresh = run_jobs(model, other, SweepRun(chunk=5))
+    for kind in fresh:
+        for name in fresh[kind]:
+            np.testing.assert_array_equal(resumed[kind][name], fresh[kind][name])
+    assert progress[0] == 0 and lines == [
+        "checkpoint: kept 0 chunks, recomputing 12 (2 of them found but of other settings or edited)"
+    ]
+
+
+def test_an_edited_chunk_is_computed_again(model, air, tmp_path):
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "c"
+    _stopped_checkpoint(model, jobs, checkpoint)
+    first = checkpoint / "srp-00000000.npz"
+    with np.load(first) as kept:
+        edited = {name: kept[name] for name in kept.files}
+    edited["force_N"] = edited["force_N"] * 2
+    np.savez(first, **edited)
+    lines = []
+    resumed = run_jobs(
+        model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True, notice=lines.append)
+    )
+    whole = run_jobs(model, jobs, SweepRun(chunk=5))
+    np.testing.assert_array_equal(resumed["srp"]["force_N"], whole["srp"]["force_N"])
+    assert lines == [
+        "checkpoint: kept 1 chunks, recomputing 11 (1 of them found but of other settings or edited)"
+    ]
+
+
+def test_a_failed_start_leaves_no_checkpoint(model, air, tmp_path, monkeypatch):
+    from sunwind.forces.tables import engine
+
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "c"
+
+    def unreachable(*args) -> None:
+        raise InputError("cannot reach the Dask scheduler")
+
+    monkeypatch.setattr(engine, "run_on_dask", unreachable)
+    with pytest.raises(InputError, match="cannot reach"):
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, scheduler="tcp://127.0.0.1:9"))
+    assert not checkpoint.exists()
+    _stopped_checkpoint(model, jobs, checkpoint)  # but one that saved chunks is kept
+    assert len(list(checkpoint.glob("*.npz"))) == 2
+
+
 @pytest.mark.slow
 def test_killed_command_line_sweep_resumes_to_the_same_file(model, tmp_path):
     """A real process killed after its first checkpoint chunk, then resumed, writes the same CSV."""
