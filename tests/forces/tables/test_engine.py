@@ -136,6 +136,31 @@ def test_every_table_entry_equals_the_single_attitude_result(model, air):
         assert key in table.attrs  # the Python sweep carries the provenance the command line writes
 
 
+def test_a_netcdf_table_states_its_coordinates_modes_and_atmosphere(model, air, tmp_path):
+    """CF metadata, long names that say what a coordinate is, the mode ``auto`` resolved to, the
+    atmosphere's source and altitude, and drag's projected area."""
+    settings = _settings("auto")
+    high = replace(air, altitude_km=400.0)
+    light_setup = SrpSetup(flux_W_m2=1361.0, samples=4, reflections=settings)
+    drag_setup = DragSetup(speed_m_s=7600.0, atmosphere=high, samples=4, reflections=settings)
+    (path,) = export.write(sweep(model, srp=light_setup, drag=drag_setup, step_deg=90.0), tmp_path / "t.nc")
+    table = open_table(path)
+    u = np.array([0.0, 0.0, 1.0])
+    light = srp(model, u, samples=4, reflections=settings)
+    gas = drag(model, 7600.0 * u, high, samples=4, reflections=settings)
+    assert table.attrs["Conventions"] == "CF-1.8" and "sun_vector points" in table.attrs["comment"]
+    assert table.attrs["reflections_requested"] == "auto"
+    assert table.attrs["srp_reflections"] == light.reflected.mode != "auto"
+    assert table.attrs["drag_reflections"] == gas.reflected.mode != "auto"
+    assert table.attrs["altitude_km"] == 400.0 and table.attrs["atmosphere_source"] == high.source
+    assert table.sun_azimuth.attrs["long_name"].startswith("Sun azimuth in the body frame")
+    assert table.flow_elevation.attrs["long_name"].startswith("flow (v_rel) elevation in the body frame")
+    assert all("units" in table[name].attrs for name in (*table.data_vars, "sun_azimuth", "flow_azimuth"))
+    assert all("long_name" in table[name].attrs for name in (*table.data_vars, *table.coords))
+    at = {"flow_azimuth": 0.0, "flow_elevation": 90.0}
+    assert table.drag_projected_area_m2.sel(at).item() == gas.projected_area_m2 > 0
+
+
 def test_table_entry_equals_the_command_line(model, run_cli, tmp_path):
     mesh = model.source.mesh
     table_path = tmp_path / "t.nc"
