@@ -259,20 +259,21 @@ def _count(table: TableRequest, attitudes) -> int:
     type=float,
     default=None,
     metavar="AZ EL",
-    help="Attitude of the 3-D pressure view [default: where the table's force is largest].",
+    help="Sun / flow direction of the 3-D pressure views [default: where each force is largest].",
 )
-@click.option("--no-view", is_flag=True, help="Maps only, no 3-D view (which reloads the mesh).")
+@click.option("--no-view", is_flag=True, help="Maps only, no 3-D views (which reload the mesh).")
 def plot(table_path: Path, output: Path | None, view_azel, no_view: bool) -> None:
-    """PNG maps of every force and torque component of a table, and a 3-D view of facet pressure."""
-    from sunwind.forces.tables.plots import plot_pressure_view, plot_table
+    """PNG maps of every force and torque component of a table, and 3-D views of facet pressure."""
+    from sunwind.forces.tables.plots import plot_pressure_views, plot_table, view_model
 
     direction = None if view_azel is None else azel_to_vector(*view_azel, "--view-azel")
     table = open_table(table_path)
+    model = None if no_view else view_model(table)  # its checks before any file is drawn
     directory = output if output is not None else (table_path.parent if str(table_path.parent) else Path("."))
     directory.mkdir(parents=True, exist_ok=True)
     written = list(plot_table(table, directory))
-    if not no_view:
-        written.append(plot_pressure_view(table, directory, table_path.stem, direction))
+    if model is not None:
+        written += plot_pressure_views(table, directory, table_path.stem, direction, model)
     print(f"sunwind plot: {table_path}")
     for path in written:
         print(f"  wrote {path}")

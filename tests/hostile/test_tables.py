@@ -210,3 +210,20 @@ def test_resume_says_what_it_kept_and_recomputes_a_damaged_chunk(box, run_cli, m
     assert code == 0 and "wrote r.nc" in out, err
     assert "notice: r.nc.checkpoint: checkpoint: kept 0 chunks, recomputing 6 (1 of them found" in err
     assert not (box.parent / "r.nc.checkpoint").exists()
+
+
+def test_plot_refuses_a_mesh_edited_after_the_sweep(box, run_cli, monkeypatch, tmp_path):
+    mesh = tmp_path / "box.obj"
+    mesh.write_bytes(box.read_bytes())
+    table = tmp_path / "p.nc"
+    code, _, err = run_cli("sweep", mesh, *OPTICS, "--srp", "--step", "90", "-o", table)
+    assert code == 0, err
+    mesh.write_bytes(mesh.read_bytes().replace(b"v ", b"v  ", 1) + b"\n# edited\n")
+    code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
+    assert code == 1 and "Traceback" not in err and not (tmp_path / "plots").exists()
+    assert "mesh_sha256 differs" in err and "--no-view" in err
+    code, _out, err = run_cli("plot", table, "--no-view", "-o", tmp_path / "plots")
+    assert code == 0 and len(list((tmp_path / "plots").glob("*.png"))) == 2, err
+    mesh.unlink()
+    code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
+    assert code == 1 and "is not there for the 3-D view" in err and "--no-view" in err

@@ -559,6 +559,6 @@ def test_plot_writes_maps_and_a_pressure_view(model, run_cli, tmp_path):
     code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
     assert code == 0, err
     pngs = sorted((tmp_path / "plots").glob("*.png"))
-    assert len(pngs) == 5  # SRP and drag force and torque maps (x, y, z panels each), one 3-D view
-    assert any("pressure" in p.name for p in pngs)
+    assert len(pngs) == 6  # SRP and drag force and torque maps (x, y, z panels each), two 3-D views
+    assert {p.name.split(".")[1] for p in pngs if "pressure" in p.name} == {"srp", "drag"}
     assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in pngs)
