@@ -67,6 +67,7 @@ FLAGS = {
     "segments": "--segments",
     "rings": "--rings",
     "facet_size": "--facet-size",
+    "no_view": "--no-view",
 }
 
 

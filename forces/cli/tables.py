@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import sys
 import tempfile
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,7 +31,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
-from sunwind.forces.export import FORMATS, format_of, write
+from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.model import ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import (
@@ -42,6 +44,7 @@ from sunwind.forces.tables import (
     read_attitude_csv,
     sweep,
 )
+from sunwind.forces.tables.cluster import require_dask
 from sunwind.forces.tables.dataset import open_table
 from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector
@@ -70,9 +73,18 @@ def check_writable(path: Path) -> None:
 
 
 def _kinds(srp_flag: bool, drag_flag: bool, fmt: str) -> tuple[str, ...]:
+    """The quantities to tabulate: those asked for, else every one the format holds (said when that
+    leaves one out)."""
     asked = tuple(k for k, on in (("srp", srp_flag), ("drag", drag_flag)) if on)
     allowed = FORMATS[fmt].kinds
     if not asked:
+        if len(allowed) == 1:
+            other = "drag" if allowed == ("srp",) else "srp"
+            warnings.warn(
+                f"{fmt} files hold {allowed[0]} only: {other} is not tabulated "
+                f"(for it, sweep with --{other} to another format, e.g. -o NAME.nc)",
+                stacklevel=2,
+            )
         return allowed
     refused = [k for k in asked if k not in allowed]
     if refused:
@@ -103,7 +115,8 @@ _OUTPUT_OPTIONS = [
         "--format",
         "fmt",
         type=click.Choice(list(FORMATS)),
-        help="nc, csv, spad, basilisk (SRP) or tudat (drag) [default: from the extension].",
+        help="nc, csv, spad, basilisk (SRP) or tudat (drag) [default: from the extension; a name without "
+        "one gets the format's, an extension of another format is refused].",
     ),
 ]
 _RUN_OPTIONS = [
@@ -137,19 +150,28 @@ class TableRequest:
 
 
 def _table(values: dict) -> TableRequest:
-    """The table flags, checked (the output path included) before the mesh is loaded."""
-    output = values["output"]
-    fmt = format_of(output, values["fmt"])
-    kinds = _kinds(values["srp_flag"], values["drag_flag"], fmt)
-    check_writable(output)
+    """The table flags, checked before the mesh is loaded: the output path (its extension added when it
+    has none), the format against the extension, the attitudes and the quantities it can hold."""
+    fmt, output = output_target(values["output"], values["fmt"])
     if values["step"] is not None and values["attitude_csv"] is not None:
         raise InputError("give --step or --attitudes, not both")
     step = values["step"]
     if step is None and values["attitude_csv"] is None:
         step = DEFAULT_STEP
-    if step is not None:
-        check_table_memory(direction_grid(step, "--step"), kinds, "--step")
+    grid = None if step is None else direction_grid(step, "--step")
+    check_request(fmt, step)
+    kinds = _kinds(values["srp_flag"], values["drag_flag"], fmt)
+    if grid is not None:
+        check_table_memory(grid, kinds, "--step")
+    check_writable(output)
     return TableRequest(kinds, step, values["attitude_csv"], output, fmt)
+
+
+def _run(values: dict) -> dict:
+    """The run flags, Dask checked importable (before the mesh is loaded or a checkpoint made)."""
+    if values["scheduler"] is not None:
+        require_dask()
+    return values
 
 
 @click.command("sweep")
@@ -160,7 +182,7 @@ def _table(values: dict) -> TableRequest:
 @sampling_options
 @reflection_options("both")
 @group("table", _OUTPUT_OPTIONS, _table)
-@group("run", _RUN_OPTIONS)
+@group("run", _RUN_OPTIONS, _run)
 def sweep_command(
     source: ModelSource,
     sun: Sun,
@@ -201,7 +223,15 @@ def sweep_command(
             drag=drag,
             step_deg=table.step_deg,
             attitudes=attitudes,
-            run=SweepRun(run["chunk"], checkpoint, run["resume"], run["scheduler"], run["workers"], progress),
+            run=SweepRun(
+                run["chunk"],
+                checkpoint,
+                run["resume"],
+                run["scheduler"],
+                run["workers"],
+                progress,
+                notice=lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
+            ),
         )
     seconds = time.perf_counter() - start
     written = write(result, table.output, table.format)
@@ -231,20 +261,21 @@ def _count(table: TableRequest, attitudes) -> int:
     type=float,
     default=None,
     metavar="AZ EL",
-    help="Attitude of the 3-D pressure view [default: where the table's force is largest].",
+    help="Sun / flow direction of the 3-D pressure views [default: where each force is largest].",
 )
-@click.option("--no-view", is_flag=True, help="Maps only, no 3-D view (which reloads the mesh).")
+@click.option("--no-view", is_flag=True, help="Maps only, no 3-D views (which reload the mesh).")
 def plot(table_path: Path, output: Path | None, view_azel, no_view: bool) -> None:
-    """PNG maps of every force and torque component of a table, and a 3-D view of facet pressure."""
-    from sunwind.forces.tables.plots import plot_pressure_view, plot_table
+    """PNG maps of every force and torque component of a table, and 3-D views of facet pressure."""
+    from sunwind.forces.tables.plots import plot_pressure_views, plot_table, view_model
 
     direction = None if view_azel is None else azel_to_vector(*view_azel, "--view-azel")
     table = open_table(table_path)
+    model = None if no_view else view_model(table)  # its checks before any file is drawn
     directory = output if output is not None else (table_path.parent if str(table_path.parent) else Path("."))
     directory.mkdir(parents=True, exist_ok=True)
     written = list(plot_table(table, directory))
-    if not no_view:
-        written.append(plot_pressure_view(table, directory, table_path.stem, direction))
+    if model is not None:
+        written += plot_pressure_views(table, directory, table_path.stem, direction, model)
     print(f"sunwind plot: {table_path}")
     for path in written:
         print(f"  wrote {path}")

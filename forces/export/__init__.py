@@ -2,7 +2,8 @@
 ``xarray.Dataset``) and writing atomically: netCDF and CSV, GMAT/MONTE SPAD, Basilisk's SRP lookup,
 Tudat's aerodynamic coefficient files (METHOD.md "Outputs and tables").
 
-:func:`write` writes any of them; the format is named or read from the file's extension.
+:func:`write` writes any of them; the format is named or read from the file's extension (a name
+without one gets the format's; an extension of another format is refused).
 """
 
 from __future__ import annotations
@@ -23,16 +24,18 @@ from sunwind.geometry.errors import InputError
 @dataclass(frozen=True)
 class Format:
     """One file format: the extension that chooses it (None: only by name), the quantities it holds,
-    and its writer ``write(table, path) -> files written``."""
+    its writer ``write(table, path) -> files written``, and ``check(step_deg)``, which refuses before a
+    sweep the attitudes it cannot hold (``step_deg`` None: a list of attitudes)."""
 
     extension: str | None
     kinds: tuple[str, ...]
     write: Callable[[xr.Dataset, Path], list[Path]]
+    check: Callable[[float | None], None] | None = None
 
 
 #: Formats by name.
 FORMATS: dict[str, Format] = {
-    name: Format(module.EXTENSION, module.KINDS, module.write)
+    name: Format(module.EXTENSION, module.KINDS, module.write, getattr(module, "check_request", None))
     for name, module in (
         ("nc", netcdf),
         ("csv", csv),
@@ -72,21 +75,59 @@ def format_of(path: str | os.PathLike, given: str | None = None) -> str:
     return by_extension[suffix]
 
 
+def output_target(path: str | os.PathLike, given: str | None = None) -> tuple[str, Path]:
+    """The format of an output and the path it is written to: a path without an extension gets the
+    format's (``-o table --format nc`` writes ``table.nc``).
+
+    Raises
+    ------
+    InputError
+        What :func:`format_of` refuses, or an extension that names a format other than ``given``.
+    """
+    name, target = format_of(path, given), Path(path)
+    suffix, extension = target.suffix.lower(), FORMATS[name].extension
+    named = {spec.extension: other for other, spec in FORMATS.items() if spec.extension}
+    if suffix in named and named[suffix] != name:
+        fix = f"name it {target.stem}{extension}" if extension else f"give a prefix without {suffix}"
+        raise InputError(
+            f"the extension {suffix} says {named[suffix]}, but the table is to be written as {name}",
+            path=str(target),
+            hint=f"{fix}, or leave out format",
+            parameters=("format",),
+        )
+    if not suffix and extension:
+        target = target.with_name(target.name + extension)
+    return name, target
+
+
+def check_request(name: str, step_deg: float | None) -> None:
+    """Refuse, before a sweep starts, attitudes format ``name`` cannot hold (``step_deg`` None: a list).
+
+    Raises
+    ------
+    InputError
+        A list for a grid format (SPAD, Tudat), a step SPAD files cannot hold.
+    """
+    check = FORMATS[name].check
+    if check is not None:
+        check(step_deg)
+
+
 def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None) -> list[Path]:
     """Write a sweep table in ``format`` (default: from the extension of ``path``); the files written.
 
     Raises
     ------
     InputError
-        An unknown format, or a table the format cannot hold (none of its quantities, or a list table
-        for a grid format).
+        An unknown format, an extension of another format, or a table the format cannot hold (none of
+        its quantities, or a list table for a grid format).
 
     Warns
     -----
     UserWarning
         The table holds a quantity the format has no place for (it is not written).
     """
-    name = format_of(path, format)
+    name, target = output_target(path, format)
     spec = FORMATS[name]
     held = kinds_of(table)
     refused = [kind for kind in held if kind not in spec.kinds]
@@ -98,7 +139,7 @@ def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None)
         warnings.warn(
             f"format {name} holds {' and '.join(spec.kinds)} only: {refused[0]} is not written", stacklevel=2
         )
-    return spec.write(table, Path(path))
+    return spec.write(table, target)
 
 
-__all__ = ["FORMATS", "Format", "format_of", "write"]
+__all__ = ["FORMATS", "Format", "check_request", "format_of", "output_target", "write"]

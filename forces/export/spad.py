@@ -63,6 +63,24 @@ def spad_paths(output_path: str | Path, kinds: Sequence[str]) -> dict[str, Path]
     return {kind: path.with_name(f"{stem}.{kind}{suffix}") for kind in kinds}
 
 
+def check_request(step_deg: float | None) -> None:
+    """Refuse, before a sweep, attitudes SPAD files cannot hold: a list (``step_deg`` None) or a grid
+    step that is not a whole number of degrees.
+
+    Raises
+    ------
+    InputError
+        Either of them.
+    """
+    if step_deg is None:
+        raise InputError(
+            "a SPAD file needs an azimuth/elevation grid, not an attitude list",
+            hint="sweep on a grid (a step_deg such as 5) instead of attitudes",
+            parameters=("step_deg", "attitudes"),
+        )
+    check_step(step_deg, 180.0, "SPAD grid", whole_degrees=True)
+
+
 def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
     """Write the SRP or drag area table of a grid sweep as a GMAT SPAD file.
 
@@ -95,11 +113,7 @@ def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
             hint=f"run the sweep with {_TITLE[kind]} included",
         )
     if f"{prefix}_azimuth" not in table.dims:
-        raise InputError(
-            "a SPAD file needs an azimuth/elevation grid, but this table is a list of attitudes",
-            hint="sweep on a grid (a step_deg such as 5) to write SPAD files",
-            parameters=("step_deg",),
-        )
+        check_request(None)  # a list table
     axes = grid_axes(table, prefix)
     n_az = check_step(axes.azimuth_step_deg, 360.0, f"{prefix} azimuth", whole_degrees=True)
     check_step(axes.elevation_step_deg, 180.0, f"{prefix} elevation", whole_degrees=True)
@@ -134,8 +148,18 @@ def read_spad(path: str | Path) -> xr.Dataset:
 
     Reads what :func:`write_spad` writes (and GMAT's sample files); checks that the rows fill the grid the
     Motion blocks declare, in order.
+
+    Raises
+    ------
+    InputError
+        An unreadable file, not a SPAD area file, rows that are not numbers or do not fill the grid.
     """
-    lines = Path(path).read_text(encoding="ascii").splitlines()
+    try:
+        lines = Path(path).read_text(encoding="utf-8-sig").splitlines()  # -sig: a byte-order mark is skipped
+    except OSError as error:
+        raise InputError(f"cannot read the SPAD file: {error.strerror}", path=str(path)) from None
+    except UnicodeDecodeError as error:
+        raise InputError(f"the SPAD file is not text ({error.reason})", path=str(path)) from None
     title = next((i for i, line in enumerate(lines) if line.strip().startswith("Azimuth")), None)
     if title is None:
         raise InputError("no 'Azimuth' title line: not a SPAD file", path=str(path))
@@ -144,9 +168,15 @@ def read_spad(path: str | Path) -> xr.Dataset:
         key, sep, value = line.partition(":")
         if sep and key.strip():
             header.setdefault(key.strip(), []).append(value.strip())
-    steps = [float(step) for step in header.get("Step", [])]
-    data = np.loadtxt(lines[title + 3 :], ndmin=2)
-    if len(steps) != 2 or len(data) != (round(360 / steps[0]) + 1) * (round(180 / steps[1]) + 1):
+    try:
+        steps = [float(step) for step in header.get("Step", [])]
+        data = np.loadtxt(lines[title + 3 :], ndmin=2)
+    except ValueError as error:
+        raise InputError(f"a Step or a row is not numbers ({error})", path=str(path)) from None
+    if data.shape[1:] != (5,):
+        raise InputError("the rows do not hold 5 columns (az el Ax Ay Az)", path=str(path))
+    usable = len(steps) == 2 and all(0 < step <= 180 for step in steps)  # False for NaN too
+    if not usable or len(data) != (round(360 / steps[0]) + 1) * (round(180 / steps[1]) + 1):
         raise InputError("the rows do not fill the Azimuth x Elevation grid of the header", path=str(path))
     az = np.linspace(-180.0, 180.0, round(360 / steps[0]) + 1)
     el = np.linspace(-90.0, 90.0, round(180 / steps[1]) + 1)

@@ -70,6 +70,22 @@ def flow_vector(alpha_rad: NDArray, beta_rad: NDArray) -> NDArray[np.float64]:
     return np.stack([np.cos(alpha) * np.cos(beta), np.sin(beta), np.sin(alpha) * np.cos(beta)], axis=-1)
 
 
+def check_request(step_deg: float | None) -> None:
+    """Refuse, before a sweep, a list of attitudes (``step_deg`` None): Tudat files need a grid.
+
+    Raises
+    ------
+    InputError
+        A list.
+    """
+    if step_deg is None:
+        raise InputError(
+            "Tudat coefficient files need a grid of flow directions, not an attitude list",
+            hint="sweep on a grid (a step_deg such as 5) instead of attitudes",
+            parameters=("step_deg", "attitudes"),
+        )
+
+
 def write_tudat(
     table: xr.Dataset,
     prefix: str | Path,
@@ -104,10 +120,7 @@ def write_tudat(
             hint="run the sweep with drag included",
         )
     if "flow_azimuth" not in table.dims:
-        raise InputError(
-            "Tudat coefficient files need a grid of flow directions, but this table is a list of attitudes",
-            hint="sweep on a grid to write Tudat files",
-        )
+        check_request(None)  # a list table
     axes = grid_axes(table, "flow")
     reference = {
         key: float(table.attrs.get(key, np.nan))

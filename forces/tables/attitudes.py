@@ -100,16 +100,26 @@ def direction_grid(step_deg: float, name: str = "step_deg") -> DirectionGrid:
         )
     count = round(180.0 / step_deg)
     if abs(count * step_deg - 180.0) > 1e-9 * 180.0:
-        divisors = [d for d in (1, 2, 2.5, 3, 5, 6, 7.5, 9, 10, 15, 18, 20, 30, 45) if abs(d - step_deg) < 6]
         raise InputError(
             f"{name} {step_deg:g} deg does not divide the azimuth and elevation ranges (-180..180, -90..90)",
-            hint=f"grids (SPAD among them) need a divisor of 180 deg, e.g. {', '.join(map(str, divisors))}",
+            hint=f"{step_advice(step_deg)} (SPAD files: whole degrees)",
             parameters=(name,),
         )
     grid = DirectionGrid(180.0 / count)
     nodes = grid.nodes
     memory.require(GRID_BYTES * nodes, f"{memory.count(nodes)} grid nodes", f"raise {name}", (name,))
     return grid
+
+
+def step_advice(step_deg: float, whole_degrees: bool = False) -> str:
+    """The grid steps [deg] nearest ``step_deg`` that a sweep grid takes (divisors of 180 deg, in half
+    degrees; with ``whole_degrees``, as SPAD files need, whole degrees), as a hint: every check of a grid
+    step gives this advice."""
+    unit = 1.0 if whole_degrees else 0.5
+    steps = [180 / n for n in range(2, 361) if (180 / n / unit).is_integer()]
+    near = sorted(steps, key=lambda s: abs(s - step_deg) if math.isfinite(step_deg) else abs(s - 10))[:4]
+    kind = "a whole number of degrees" if whole_degrees else "a step"
+    return f"use {kind} that divides 180 deg, e.g. {', '.join(f'{s:g}' for s in sorted(near))}"
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,18 +166,21 @@ def read_attitude_csv(path: str | Path) -> AttitudeList:
     Raises
     ------
     InputError
-        Missing or unreadable file, no direction columns, a column set given in part, a value that is
-        not a finite number, a zero direction or quaternion.
+        Missing or unreadable file (a UTF-8 byte-order mark is fine), a column name that is unknown or
+        given twice, no direction columns, a column set given in part, a value that is not a finite
+        number, a zero direction or quaternion.
     """
     path = Path(path)
     try:
-        with path.open(newline="") as handle:
+        with path.open(newline="", encoding="utf-8-sig") as handle:  # -sig: a byte-order mark is skipped
             rows = [row for row in csv.reader(handle) if row and not row[0].lstrip().startswith("#")]
     except OSError as error:
         raise InputError(f"cannot read the attitude list: {error.strerror}", path=path) from None
+    except (UnicodeDecodeError, csv.Error) as error:
+        raise InputError(f"the attitude list is not UTF-8 CSV text ({error})", path=path) from None
     if len(rows) < 2:
         raise InputError("the attitude list needs a header row and at least one attitude", path=path)
-    header = [name.strip().lower() for name in rows[0]]
+    header = _header(rows[0], path)
     table = _numbers(rows[1:], len(header), path)
     columns = {name: table[:, k] for k, name in enumerate(header)}
     sun = _vectors(columns, SUN_COLUMNS, path)
@@ -189,6 +202,29 @@ def read_attitude_csv(path: str | Path) -> AttitudeList:
         flow = None if flow is None else body_from_inertial.apply(flow)
         quaternions = quaternions / norms[:, None]
     return AttitudeList(sun, flow, quaternions, str(path))
+
+
+def _header(row: list[str], path: Path) -> list[str]:
+    """The column names of the header row (trimmed, lower case), each one known and given once."""
+    header = [name.strip().lower() for name in row]
+    known = (*SUN_COLUMNS, *FLOW_COLUMNS, *QUATERNION_COLUMNS)
+    expected = (
+        f"{','.join(SUN_COLUMNS)} and/or {','.join(FLOW_COLUMNS)}, optionally {','.join(QUATERNION_COLUMNS)}"
+    )
+    for k, name in enumerate(header):
+        if name in header[:k]:
+            raise InputError(
+                f"column {name!r} is given twice in the header",
+                path=path,
+                hint=f"the header names {expected}",
+            )
+        if name not in known:
+            raise InputError(
+                f"unexpected column {name!r} in the header (column {k + 1})",
+                path=path,
+                hint=f"the header names {expected}, each once",
+            )
+    return header
 
 
 def _numbers(rows: list[list[str]], width: int, path: Path) -> NDArray[np.float64]:
@@ -214,7 +250,11 @@ def _columns(columns: dict, names: tuple[str, ...], path: Path) -> NDArray[np.fl
         return None
     if not all(present):
         missing = [name for name in names if name not in columns]
-        raise InputError(f"the attitude list lacks column {', '.join(missing)}", path=path)
+        raise InputError(
+            f"the attitude list lacks column {', '.join(missing)}",
+            path=path,
+            hint=f"give all of {','.join(names)} in the header row",
+        )
     return np.column_stack([columns[name] for name in names])
 
 

@@ -2,9 +2,10 @@
 
 A checkpoint directory holds ``manifest.json`` — what the sweep is, field by field (:func:`fingerprint`:
 the mesh and materials digests, every setting, the attitudes, the sunwind version and a digest of its
-code) — and one ``.npz`` file per finished chunk with its records by field name. Every file is
-written to a temporary name and renamed into place. A checkpoint of a different sweep is refused with
-the fields that differ, never mixed in.
+code) — and one ``.npz`` file per finished chunk with its records by field name, the SHA-256 of the
+manifest and a checksum of its data. Every file is written to a temporary name and renamed into place.
+A checkpoint of a different sweep is refused with the fields that differ, never mixed in; a chunk whose
+signature does not match (a removed manifest, an edited file) is computed again.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import hashlib
 import json
 import os
 import shutil
+import zipfile
 from dataclasses import asdict
 from importlib.metadata import version
 from pathlib import Path
@@ -65,11 +67,20 @@ def fingerprint(model: Model, jobs: list[Job], chunk: int) -> dict:
 
 
 class Checkpoint:
-    """Finished chunks of one sweep on disk: ``manifest.json`` and one ``.npz`` per chunk."""
+    """Finished chunks of one sweep on disk: ``manifest.json`` and one ``.npz`` per chunk.
 
-    def __init__(self, directory: Path, manifest: dict) -> None:
+    Every chunk file carries the SHA-256 of the sweep's manifest (:attr:`settings_sha256`) and of its
+    own kind, range and data: a chunk is taken up only when both match, whether or not the manifest is
+    there, so a chunk of another sweep or an edited one is computed again. :attr:`kept` and
+    :attr:`refused` count the chunks taken up and those found but not taken.
+    """
+
+    def __init__(self, directory: Path, manifest: dict, created: bool) -> None:
         self.directory = directory
         self.manifest = manifest
+        self.created = created  # the directory was made by this run
+        self.settings_sha256 = hashlib.sha256(json.dumps(manifest, sort_keys=True).encode()).hexdigest()
+        self.kept = self.refused = self.saved = 0
 
     @classmethod
     def open(cls, directory: Path, manifest: dict, resume: bool) -> Checkpoint:
@@ -106,40 +117,73 @@ class Checkpoint:
                     path=str(directory),
                     hint="resume with the same mesh, materials, settings and attitudes, or delete it",
                 )
-            return cls(directory, manifest)
+            return cls(directory, manifest, created=False)
+        created = not directory.exists()
         directory.mkdir(parents=True, exist_ok=True)
         write_atomic(found, json.dumps(manifest, indent=1).encode())
-        return cls(directory, manifest)
+        return cls(directory, manifest, created)
 
     def _path(self, kind: str, lo: int) -> Path:
         return self.directory / f"{kind}-{lo:08d}.npz"
 
     def load(self, kind: str, lo: int, hi: int) -> Records | None:
-        """The records of a finished chunk, None when it is not there (or is damaged)."""
+        """The records of a finished chunk of this sweep; None when it is not there, damaged, of other
+        settings or edited (counted in :attr:`refused`)."""
         path = self._path(kind, lo)
         if not path.exists():
             return None
+        records = self._read(path, kind, lo, hi)
+        if records is None:
+            self.refused += 1
+        else:
+            self.kept += 1
+        return records
+
+    def _read(self, path: Path, kind: str, lo: int, hi: int) -> Records | None:
         try:
-            with np.load(path, allow_pickle=False) as kept:
-                records = {name: kept[name] for name in kept.files}
-        except (OSError, ValueError, KeyError):
+            with path.open("rb") as handle, np.load(handle, allow_pickle=False) as kept:
+                stored = {name: kept[name] for name in kept.files}
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
             return None
+        records = {name: stored[name] for name in FIELDS[kind] if name in stored}
         for name, width in FIELDS[kind].items():
             shape = (hi - lo, 3) if width == 3 else (hi - lo,)
             if name not in records or records[name].shape != shape or records[name].dtype != np.float64:
                 return None
+        signature = (str(stored.get("settings_sha256", "")), str(stored.get("data_sha256", "")))
+        if signature != (self.settings_sha256, data_digest(kind, lo, records)):
+            return None
         return records
 
     def save(self, kind: str, lo: int, records: Records) -> None:
-        """Keep a finished chunk (written to a temporary file, then renamed into place)."""
+        """Keep a finished chunk with its signature (written to a temporary file, then renamed)."""
         path = self._path(kind, lo)
         temporary = path.with_name(f".{path.stem}.tmp.npz")
-        np.savez(temporary, **records)
+        signature = {"settings_sha256": self.settings_sha256, "data_sha256": data_digest(kind, lo, records)}
+        np.savez(temporary, **records, **{key: np.array(value) for key, value in signature.items()})
         os.replace(temporary, path)
+        self.saved += 1
+
+    def summary(self, computed: int) -> str | None:
+        """What a resumed checkpoint gave, one line (None when it gave nothing and refused nothing)."""
+        if not (self.kept or self.refused):
+            return None
+        refused = f" ({self.refused} of them found but of other settings or edited)" if self.refused else ""
+        return f"checkpoint: kept {self.kept} chunks, recomputing {computed}{refused}"
 
     def remove(self) -> None:
-        """Delete the checkpoint once the table is written."""
+        """Delete the checkpoint (once the table is made, or after a start that saved nothing)."""
         shutil.rmtree(self.directory, ignore_errors=True)
+
+
+def data_digest(kind: str, lo: int, records: Records) -> str:
+    """SHA-256 of a chunk: its kind, first index, and every field's name, shape and float64 bytes."""
+    digest = hashlib.sha256(f"{kind}:{lo}".encode())
+    for name in FIELDS[kind]:
+        values = np.ascontiguousarray(records[name], dtype=np.float64)
+        digest.update(f"{name}{values.shape}".encode())
+        digest.update(values.tobytes())
+    return digest.hexdigest()
 
 
 def write_atomic(path: Path, data: bytes) -> None:

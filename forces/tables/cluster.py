@@ -56,6 +56,24 @@ def _references(model: Model) -> dict:
     }
 
 
+def require_dask() -> None:
+    """Check, before anything is made, that Dask distributed can be imported.
+
+    Raises
+    ------
+    InputError
+        It cannot (the ``dask`` extra is not installed).
+    """
+    try:
+        import dask.distributed  # noqa: F401
+    except ImportError:
+        raise InputError(
+            "scheduler needs Dask distributed, which is not installed",
+            hint='install it: python -m pip install "sunwind[dask]"',
+            parameters=("scheduler",),
+        ) from None
+
+
 def connect(scheduler: str, workers: int | None):
     """A Dask client: of a new local cluster for ``"local"``, else of the scheduler at the address.
 
@@ -64,14 +82,9 @@ def connect(scheduler: str, workers: int | None):
     InputError
         Dask is not installed, or the scheduler cannot be reached.
     """
-    try:
-        from dask.distributed import Client, LocalCluster
-    except ImportError:
-        raise InputError(
-            "scheduler needs Dask distributed",
-            hint="install it: python -m pip install 'sunwind[dask]'",
-            parameters=("scheduler",),
-        ) from None
+    require_dask()
+    from dask.distributed import Client, LocalCluster
+
     if scheduler == "local":
         cluster = LocalCluster(
             n_workers=workers or CORES, threads_per_worker=1, processes=True, dashboard_address=None
@@ -106,10 +119,10 @@ def run_on_dask(
     finished: Callable[[Job, int, int, Records], None],
 ) -> None:
     """Submit every pending chunk; hand each result to ``finished`` as it arrives."""
-    from dask.distributed import as_completed
-
     source, references = _source_of(model), _references(model)
     client = connect(scheduler, workers)
+    from dask.distributed import as_completed  # importable: connect checked it
+
     try:
         futures = {
             client.submit(_remote_chunk, source, references, job.setup, job.directions[lo:hi], pure=False): (
@@ -130,10 +143,10 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
     """Seconds a local cluster of ``workers`` one-thread workers takes for ``pending`` chunks once every
     worker has the model and what each job's first attitude makes (one-attitude chunks of every job run
     on each worker first), and the chunks' records."""
-    from dask.distributed import wait
-
     source, references = _source_of(model), _references(model)
     client = connect("local", workers)
+    from dask.distributed import wait  # importable: connect checked it
+
     try:
         firsts: dict[int, tuple[Job, int]] = {}
         for job, lo, _ in pending:

@@ -6,9 +6,11 @@ flow_elevation`` for drag (degrees, -180..180 and -90..90 with both ends), and `
 for vectors. **List tables** have one dimension ``attitude`` (rows of the attitude CSV) shared by
 SRP and drag. Variables are ``srp_*`` (force, torque, their direct and reflected parts, lit and
 projected area, ``sun_vector``) and ``drag_*`` (the same parts, the coefficients ``CD, CS, CL`` and
-``CM``, ``flow_vector``); every variable has ``units`` and ``long_name``; the global attributes hold
-the frame, conventions, reference point, solar flux, atmosphere, coefficient references, mesh and
-materials digests and the sunwind version.
+``CM``, ``projected_area_m2``, ``flow_vector``); every variable and coordinate has ``units`` and
+``long_name`` (CF-1.8, ``Conventions``); the global attributes hold the frame, the sign conventions
+(``comment``), reference point, solar flux, atmosphere (its source and altitude), coefficient
+references, the reflection mode each quantity used (``srp_reflections``, ``drag_reflections``: ``auto``
+resolved), mesh and materials digests and the sunwind version.
 
 """
 
@@ -54,13 +56,15 @@ LONG_NAMES = {
     "reflected_force_N": "force added by inter-reflection (light) or re-emission exchange (molecules)",
     "reflected_torque_Nm": "torque added by inter-reflection or re-emission exchange",
     "lit_area_m2": "lit area",
-    "projected_area_m2": "lit area projected normal to the Sun",
+    "projected_area_m2": "lit area projected normal to the Sun vector (SRP) or the flow vector u (drag)",
     "CD": "drag coefficient F.(-u)/(q A_ref)",
     "CS": "side-force coefficient",
     "CL": "lift coefficient",
     "CM": "moment coefficients M/(q A_ref L_ref), body axes",
 }
-#: Netcdf/CSV file conventions, stated in every table.
+#: The metadata convention netCDF tables follow (global attribute ``Conventions``).
+CF_CONVENTIONS = "CF-1.8"
+#: What the table's directions and signs mean, stated in every table (global attribute ``comment``).
 CONVENTIONS = (
     "body frame of the mesh, SI units; azimuth = atan2(y, x) from +x toward +y, elevation = asin(z) [deg]; "
     "sun_vector points from the spacecraft to the Sun; flow_vector u = v_rel/|v_rel|, v_rel the spacecraft "
@@ -70,6 +74,11 @@ CONVENTIONS = (
 GRID_DIMS = {"srp": ("sun_azimuth", "sun_elevation"), "drag": ("flow_azimuth", "flow_elevation")}
 #: The direction variable of each quantity.
 DIRECTION = {"srp": "sun_vector", "drag": "flow_vector"}
+#: What each quantity's direction is, in the long names of its coordinates.
+_WHO = {"srp": "Sun", "drag": "flow (v_rel)"}
+_VECTOR = {"srp": "the Sun vector", "drag": "u = v_rel/|v_rel|"}
+#: Attributes of the coordinates every table has.
+_COMPONENT = {"long_name": "vector component along the body-frame axis"}
 
 
 def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[int, ...]) -> dict:
@@ -92,12 +101,21 @@ def grid_table(
 ) -> xr.Dataset:
     """The grid table of sweep records: ``records[kind]`` of the distinct directions of
     ``grids[kind]``, in their order (:attr:`~sunwind.forces.tables.attitudes.DirectionGrid.distinct`)."""
-    variables, coords = {}, {"component": ["x", "y", "z"]}
+    variables, coords = {}, {"component": ("component", ["x", "y", "z"], _COMPONENT)}
     for kind, values in records.items():
         grid = grids[kind]
         az_dim, el_dim = GRID_DIMS[kind]
-        coords[az_dim] = (az_dim, grid.azimuth_deg, {"units": "degree", "long_name": f"{kind} azimuth"})
-        coords[el_dim] = (el_dim, grid.elevation_deg, {"units": "degree", "long_name": f"{kind} elevation"})
+        who, vector = _WHO[kind], _VECTOR[kind]
+        coords[az_dim] = (
+            az_dim,
+            grid.azimuth_deg,
+            {"units": "degree", "long_name": f"{who} azimuth in the body frame, atan2(y, x) of {vector}"},
+        )
+        coords[el_dim] = (
+            el_dim,
+            grid.elevation_deg,
+            {"units": "degree", "long_name": f"{who} elevation in the body frame, asin(z) of {vector}"},
+        )
         shape = (len(grid.azimuth_deg), len(grid.elevation_deg))
         nodes = {name: column[grid.distinct[1]] for name, column in values.items()}
         variables.update(_variables(kind, nodes, (az_dim, el_dim), shape))
@@ -120,13 +138,20 @@ def list_table(
             attitudes.quaternions,
             {"units": "1", "long_name": "attitude quaternion (w, x, y, z), body relative to inertial"},
         )
-    coords = {"attitude": np.arange(len(attitudes)), "component": ["x", "y", "z"]}
+    coords = {
+        "attitude": (
+            "attitude",
+            np.arange(len(attitudes)),
+            {"long_name": "row of the attitude list, from 0"},
+        ),
+        "component": ("component", ["x", "y", "z"], _COMPONENT),
+    }
     return xr.Dataset(variables, coords=coords, attrs=_attributes({**attrs, "attitudes": attitudes.source}))
 
 
 def _attributes(attrs: Mapping[str, object]) -> dict:
     """netCDF-safe global attributes (None dropped, dicts as JSON text, booleans as 0/1)."""
-    out: dict = {"conventions": CONVENTIONS}
+    out: dict = {"Conventions": CF_CONVENTIONS, "comment": CONVENTIONS}
     for key, value in attrs.items():
         if value is None:
             continue
@@ -158,7 +183,7 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
         "grid_step_deg": step_deg,
         "samples": "adaptive" if first.samples is None else first.samples,
         "tolerance": first.tolerance,
-        "reflections": first.settings.mode,
+        "reflections_requested": first.settings.mode,  # what each quantity used: srp_/drag_reflections
         "mesh": source.pop("mesh"),
         "materials": source.pop("materials", None),
         "unit": source.pop("unit", None),

@@ -21,6 +21,7 @@ from sunwind.forces.model import Model, as_model
 from sunwind.forces.reflection import model_view_factors
 from sunwind.forces.tables.attitudes import GRID_BYTES, AttitudeList, DirectionGrid, direction_grid
 from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
+from sunwind.forces.tables.cluster import require_dask, run_on_dask
 from sunwind.forces.tables.dataset import grid_table, list_table, table_attributes
 from sunwind.forces.tables.jobs import FIELDS, DragSetup, Job, Records, SrpSetup, empty_records
 from sunwind.geometry import memory
@@ -53,6 +54,8 @@ class SweepRun:
         worker processes (default one per core), each on one thread.
     progress : callable or None
         Called with the number of attitudes finished so far (resumed ones included).
+    notice : callable or None
+        Called with one line when a resumed checkpoint was read: the chunks kept and recomputed.
     """
 
     chunk: int = DEFAULT_CHUNK
@@ -61,11 +64,14 @@ class SweepRun:
     scheduler: str | None = None
     workers: int | None = None
     progress: Callable[[int], None] | None = None
+    notice: Callable[[str], None] | None = None
 
     def __post_init__(self) -> None:
         if isinstance(self.chunk, bool) or not isinstance(self.chunk, int) or self.chunk < 1:
             raise InputError(f"chunk {self.chunk} must be a whole number >= 1", parameters=("chunk",))
         checked_threads(self.workers, "workers")
+        if self.scheduler is not None:
+            require_dask()
 
 
 #: Bytes per node of the direction variable of a grid table.
@@ -148,22 +154,33 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
             else:
                 _fill(records[job.kind], lo, hi, kept)
                 done += hi - lo
+    said = None if store is None else store.summary(len(pending))
+    if said and run.notice:
+        run.notice(said)
     if run.progress:
         run.progress(done)
     finished = _Finished(records, store, done, run.progress)
-    if pending:
-        precompute(model, [job for job, _, _ in pending])
-        if run.scheduler is None:
-            local = model if run.workers is None else replace(model, threads=run.workers)
-            for job, lo, hi in pending:
-                finished(job, lo, hi, job.setup.evaluate(local, job.directions[lo:hi]))
-        else:
-            from sunwind.forces.tables.cluster import run_on_dask
-
-            run_on_dask(model, pending, run.scheduler, run.workers, finished)
+    try:
+        if pending:
+            _evaluate(model, pending, run, finished)
+    except BaseException:
+        if store is not None and store.created and not store.saved:
+            store.remove()  # a failed start leaves nothing behind
+        raise
     if store is not None:
         store.remove()
     return records
+
+
+def _evaluate(model: Model, pending: list[tuple[Job, int, int]], run: SweepRun, finished: _Finished) -> None:
+    """Compute the pending chunks, here or on Dask, handing each to ``finished``."""
+    precompute(model, [job for job, _, _ in pending])
+    if run.scheduler is None:
+        local = model if run.workers is None else replace(model, threads=run.workers)
+        for job, lo, hi in pending:
+            finished(job, lo, hi, job.setup.evaluate(local, job.directions[lo:hi]))
+    else:
+        run_on_dask(model, pending, run.scheduler, run.workers, finished)
 
 
 class _Finished:

@@ -27,6 +27,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from sunwind.forces.tables.attitudes import step_advice
 from sunwind.geometry.errors import InputError
 
 #: Direction prefix of the grid coordinates of each kind of table variable.
@@ -83,13 +84,8 @@ def check_step(step_deg: float, span_deg: float, name: str, whole_degrees: bool 
     divides = bool(np.isfinite(count)) and abs(count - round(count)) < 1e-9 * max(count, 1.0)
     whole = not whole_degrees or abs(step_deg - round(step_deg)) < 1e-9
     if not (divides and whole):
-        span = round(span_deg)
-        divisors = ", ".join(str(d) for d in range(1, 46) if span % d == 0)
         problem = f"does not divide {span_deg:g} deg" if not divides else "is not a whole number of degrees"
-        raise InputError(
-            f"{name} step {step_deg:g} deg {problem}",
-            hint=f"use a whole number of degrees that divides {span}, e.g. {divisors}",
-        )
+        raise InputError(f"{name} step {step_deg:g} deg {problem}", hint=step_advice(step_deg, whole_degrees))
     return round(count)
 
 

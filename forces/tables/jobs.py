@@ -18,9 +18,10 @@ from numpy.typing import NDArray
 
 from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.gas.exchange import gas_interference_criterion
 from sunwind.forces.model import Model
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure, solar_flux
-from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors, reflection_plan
 from sunwind.forces.srp import srp
 from sunwind.geometry.directions import finite_point
 from sunwind.geometry.errors import InputError
@@ -41,6 +42,7 @@ _LOAD_FIELDS: dict[str, int] = {
 SRP_FIELDS: dict[str, int] = {**_LOAD_FIELDS, "lit_area_m2": 1, "projected_area_m2": 1}
 DRAG_FIELDS: dict[str, int] = {
     **_LOAD_FIELDS,
+    "projected_area_m2": 1,
     "CD": 1,
     "CS": 1,
     "CL": 1,
@@ -111,8 +113,12 @@ class SrpSetup(_Setup):
         return {name: batch.stacked(name) for name in SRP_FIELDS}
 
     def attributes(self, model: Model) -> dict:
-        """What a table of this setup states about its environment."""
-        return {"flux_W_m2": self.flux_W_m2, "pressure_Pa": radiation_pressure(self.flux_W_m2)}
+        """What a table of this setup states about its environment and the reflection mode it used."""
+        return {
+            "flux_W_m2": self.flux_W_m2,
+            "pressure_Pa": radiation_pressure(self.flux_W_m2),
+            "srp_reflections": reflection_plan(model.craft, self.settings).mode,
+        }
 
 
 @dataclass(frozen=True)
@@ -143,8 +149,17 @@ class DragSetup(_Setup):
         out["atmosphere"] = self.atmosphere.to_json()
         return out
 
+    def used_mode(self, model: Model) -> str:
+        """The re-emission exchange mode the attitudes used: ``auto`` resolved as
+        :func:`~sunwind.forces.drag.drag` resolves it (full when the molecular ``K_IS`` >= the threshold)."""
+        settings = self.settings
+        if settings.mode != "auto":
+            return settings.mode
+        k_is = gas_interference_criterion(model.craft, model_view_factors(model.craft, settings))
+        return "full" if k_is >= AUTO_THRESHOLD else "none"
+
     def attributes(self, model: Model) -> dict:
-        """What a table of this setup states about its environment and coefficients."""
+        """What a table of this setup states about its environment, coefficients and exchange mode."""
         air = self.atmosphere
         area, length = model.reference_sizes
         return {
@@ -152,6 +167,9 @@ class DragSetup(_Setup):
             "density_kg_m3": air.density_kg_m3,
             "temperature_K": air.temperature_K,
             "dynamic_pressure_Pa": 0.5 * air.density_kg_m3 * self.speed_m_s**2,
+            "altitude_km": air.altitude_km,
+            "atmosphere_source": air.source,
+            "drag_reflections": self.used_mode(model),
             "atmosphere": air.to_json(),
             "reference_area_m2": area,
             "reference_length_m": length,

@@ -88,30 +88,50 @@ def plot_facet_pressure(
             f"pressure_Pa has shape {pressure.shape}, expected one finite value per facet ({len(triangles)},)"
         )
     d = unit_vector(direction, "direction")
-    low, high = triangles.reshape(-1, 3).min(axis=0), triangles.reshape(-1, 3).max(axis=0)
-    centre, radius = (low + high) / 2, float(np.max(high - low)) / 2 or 1.0
+    low, high = view_box(triangles)
     norm = Normalize(*_limits(pressure))
     mappable = ScalarMappable(norm=norm, cmap="viridis")
 
     fig = Figure(figsize=(7.5, 6.5), layout="constrained")
     ax = fig.add_subplot(projection="3d")
     ax.add_collection3d(Poly3DCollection(triangles, facecolors=mappable.to_rgba(pressure), linewidths=0))
-    tail = centre + 1.9 * radius * d
-    ax.quiver(*tail, *(-0.7 * radius * d), color="tab:red", linewidth=2, arrow_length_ratio=0.25)
-    ax.text(*(tail + 0.1 * radius * d), label, color="tab:red")
-    for set_lim, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre, strict=True):
-        set_lim(c - 2 * radius, c + 2 * radius)
-    ax.set_box_aspect((1, 1, 1))
+    model_low, model_high = triangles.reshape(-1, 3).min(axis=0), triangles.reshape(-1, 3).max(axis=0)
+    centre = (model_low + model_high) / 2
+    tail = centre + _reach(centre, low, high, d) * d  # on the edge of the axes, on the side d points to
+    head = centre + _reach(centre, model_low, model_high, d) * d  # on the model's box
+    ax.quiver(*tail, *(head - tail), color="tab:red", linewidth=2, arrow_length_ratio=0.25)
+    ax.text(*tail, label, color="tab:red")
+    for set_lim, a, b in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), low, high, strict=True):
+        set_lim(a, b)
+    ax.set_box_aspect(tuple(high - low))  # equal aspect: one metre is as long on every axis
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
     ax.set_title(
-        f"pressure on each facet [Pa], body frame; {label} from ({d[0]:.3f}, {d[1]:.3f}, {d[2]:.3f})"
+        f"pressure on each facet [Pa], body frame\n{label} from ({d[0]:.3f}, {d[1]:.3f}, {d[2]:.3f})"
     )
     fig.colorbar(mappable, ax=ax, shrink=0.7, label="pressure [Pa]")
     out = Path(path)
     fig.savefig(out, dpi=110)
     return out
+
+
+def view_box(triangles: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The limits [m] of a 3-D view of ``triangles`` (n, 3, 3): their bounding box with a margin of 15 % of
+    its largest side for the direction arrow, every side at least 10 % of the largest (a flat sheet)."""
+    points = triangles.reshape(-1, 3)
+    low, high = points.min(axis=0), points.max(axis=0)
+    size = float(np.max(high - low)) or 1.0
+    half = np.maximum(high - low, 0.1 * size) / 2 + 0.15 * size
+    centre = (low + high) / 2
+    return centre - half, centre + half
+
+
+def _reach(centre: NDArray, low: NDArray, high: NDArray, d: NDArray) -> float:
+    """Distance from ``centre`` along the unit vector ``d`` to the box ``low``..``high`` around it."""
+    with np.errstate(divide="ignore"):
+        steps = np.where(d > 0, (high - centre) / d, np.where(d < 0, (low - centre) / d, np.inf))
+    return float(np.min(steps))
 
 
 def _plot_map(table: xr.Dataset, name: str, prefix: str, path: Path) -> Path:
@@ -171,27 +191,65 @@ def _limits(values: NDArray[np.float64]) -> tuple[float, float]:
     return (low, high) if high > low else (low - 0.5, high + 0.5)
 
 
-def plot_pressure_view(
-    table: xr.Dataset, directory: str | Path, name: str, direction: NDArray[np.float64] | None = None
-) -> Path:
-    """A 3-D view of the table's model coloured by facet pressure at one attitude of the table's first
-    quantity: ``direction`` (a unit vector), default where the table's force is largest. The model is
-    loaded again from the files the table names; the PNG is ``NAME.KIND.pressure_azAZ_elEL.png``.
+def view_model(table: xr.Dataset) -> Model:
+    """The model of a table for its 3-D views, loaded again from the files the table names.
 
     Raises
     ------
     InputError
-        The table's mesh file is not there.
+        The mesh file is not there, or it is not the mesh the table was made from (its SHA-256 differs
+        from the table's ``mesh_sha256``; likewise for the materials file).
     """
-    kind = kinds_of(table)[0]
-    if not Path(table.attrs["mesh"]).exists():
+    mesh = str(table.attrs["mesh"])
+    if not Path(mesh).exists():
         raise InputError(
-            f"the table's mesh {table.attrs['mesh']} is not there for the 3-D view",
-            hint="draw the maps without the 3-D view",
+            "the table's mesh is not there for the 3-D view",
+            path=mesh,
+            hint="draw the maps only with no_view",
+            parameters=("no_view",),
         )
-    reference = np.asarray(table.attrs["reference_point_m"], dtype=np.float64)
     source = ModelSource.from_attributes(table.attrs)
-    model = Model(source.load(), source, reference_point_m=reference)
+    for key, found in source.digests().items():
+        if key in table.attrs and found is not None and found != table.attrs[key]:
+            raise InputError(
+                f"the file is not the one the table was made from ({key} differs): the 3-D view would "
+                "show another model",
+                path=mesh if key == "mesh_sha256" else str(table.attrs.get("materials")),
+                hint="restore the file, sweep again, or draw the maps only with no_view",
+                parameters=("no_view",),
+            )
+    reference = np.asarray(table.attrs["reference_point_m"], dtype=np.float64)
+    return Model(source.load(), source, reference_point_m=reference)
+
+
+def plot_pressure_views(
+    table: xr.Dataset,
+    directory: str | Path,
+    name: str,
+    direction: NDArray[np.float64] | None = None,
+    model: Model | None = None,
+) -> list[Path]:
+    """3-D views of the table's model coloured by facet pressure ``|F_facet| / A``, one per quantity
+    (SRP, drag), each at ``direction`` (a unit Sun or flow vector), default where that quantity's force
+    is largest. ``model`` defaults to :func:`view_model`. PNGs ``NAME.KIND.pressure_azAZ_elEL.png``.
+
+    Raises
+    ------
+    InputError
+        What :func:`view_model` refuses.
+    """
+    model = view_model(table) if model is None else model
+    return [_pressure_view(table, model, kind, directory, name, direction) for kind in kinds_of(table)]
+
+
+def _pressure_view(
+    table: xr.Dataset,
+    model: Model,
+    kind: str,
+    directory: str | Path,
+    name: str,
+    direction: NDArray[np.float64] | None,
+) -> Path:
     if direction is None:
         force = np.linalg.norm(table[f"{kind}_force_N"].values, axis=-1)
         at = np.unravel_index(int(np.argmax(force)), force.shape)
@@ -205,4 +263,4 @@ def plot_pressure_view(
     pressure = np.linalg.norm(result.facet_force_N, axis=1) / craft.facet_areas
     az, el = vector_to_azel(direction)
     path = Path(directory) / f"{name}.{kind}.pressure_az{az:+.0f}_el{el:+.0f}.png"
-    return plot_facet_pressure(craft, pressure, direction, path)
+    return plot_facet_pressure(craft, pressure, direction, path, "Sun" if kind == "srp" else "flow u")

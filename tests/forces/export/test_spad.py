@@ -125,6 +125,28 @@ def test_read_spad_round_trip(tmp_path):
     np.testing.assert_array_equal(table["azimuth"].values, np.arange(-180, 181, 15))
 
 
+def test_read_spad_refuses_what_is_not_a_spad_file_and_reads_a_byte_order_mark(tmp_path):
+    path = write_spad(grid_table(15.0), tmp_path / "craft.spo", "drag")
+    text = path.read_text()
+    (tmp_path / "bom.spo").write_bytes(b"\xef\xbb\xbf" + text.encode())
+    np.testing.assert_array_equal(read_spad(tmp_path / "bom.spo")["area_m2"], read_spad(path)["area_m2"])
+    rows = text.splitlines()
+    cases = {
+        "missing.spo": (None, "cannot read the SPAD file"),
+        "binary.spo": (b"\xff\xfe\x00garbage", "not text"),
+        "letters.spo": ("\n".join([*rows[:-1], "0 0 x 1 1"]).encode(), "not numbers"),
+        "zero.spo": (text.replace("Step    : 15", "Step    : 0").encode(), "do not fill"),
+        "nan.spo": (text.replace("Step    : 15", "Step    : nan").encode(), "do not fill"),
+        "short.spo": ("\n".join(rows[:-3]).encode(), "do not fill"),
+        "narrow.spo": ("\n".join([*rows[:-1], "0 0 1 1"]).encode(), "not numbers|5 columns"),
+    }
+    for name, (data, match) in cases.items():
+        if data is not None:
+            (tmp_path / name).write_bytes(data)
+        with pytest.raises(InputError, match=match):
+            read_spad(tmp_path / name)
+
+
 def test_spad_paths_name_one_or_two_files(tmp_path):
     assert spad_paths(tmp_path / "run.spo", ["srp"]) == {"srp": tmp_path / "run.spo"}
     assert spad_paths(tmp_path / "run", ["srp", "drag"]) == {
@@ -137,7 +159,7 @@ def test_spad_paths_name_one_or_two_files(tmp_path):
 
 def test_bad_input(tmp_path):
     path = tmp_path / "craft.spo"
-    with pytest.raises(InputError, match="needs an azimuth/elevation grid, but this table is a list"):
+    with pytest.raises(InputError, match="needs an azimuth/elevation grid, not an attitude list"):
         write_spad(list_table(), path, "srp")
     with pytest.raises(InputError) as error:
         write_spad(grid_table(15.0, kinds=("srp",)), path, "drag")
@@ -146,7 +168,9 @@ def test_bad_input(tmp_path):
     )
     with pytest.raises(InputError, match=r"sun azimuth step 51.4286 deg is not a whole number of degrees"):
         write_spad(grid_table(360 / 7, el_step_deg=10.0), path, "srp")
-    with pytest.raises(InputError, match=r"flow elevation step 25.7143 deg .*divides 180, e.g. 1, 2, 3"):
+    with pytest.raises(
+        InputError, match=r"flow elevation step 25.7143 deg .*divides 180 deg, e.g. 18, 20, 30, 36"
+    ):
         write_spad(grid_table(10.0, el_step_deg=180 / 7), path, "drag")
     with pytest.raises(InputError, match=r"no point opposite each azimuth .* step that divides 180"):
         write_spad(grid_table(40.0, el_step_deg=10.0), path, "drag")

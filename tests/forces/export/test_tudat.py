@@ -60,7 +60,7 @@ def test_files_hold_body_frame_coefficients(tmp_path):
 
 
 def test_bad_input(tmp_path):
-    with pytest.raises(InputError, match="need a grid of flow directions, but this table is a list"):
+    with pytest.raises(InputError, match="need a grid of flow directions, not an attitude list"):
         write_tudat(list_table(), tmp_path / "craft")
     with pytest.raises(InputError) as error:
         write_tudat(grid_table(15.0, kinds=("srp",)), tmp_path / "craft")

@@ -6,8 +6,9 @@ import pytest
 import xarray as xr
 
 from helpers.tables import grid_table, list_table
-from sunwind.forces.export import FORMATS, format_of, write
-from sunwind.forces.tables import open_table
+from sunwind.forces.export import FORMATS, check_request, format_of, output_target, write
+from sunwind.forces.tables import direction_grid, open_table
+from sunwind.forces.tables.attitudes import step_advice
 from sunwind.geometry.errors import InputError
 
 
@@ -55,3 +56,47 @@ def test_a_quantity_the_format_cannot_hold_is_said_and_none_at_all_is_refused(tm
         write(grid_table(15.0, kinds=("srp",)), tmp_path / "aero", "tudat")
     with pytest.raises(InputError, match="grid"):
         write(list_table(kinds=("srp",)), tmp_path / "t.spo")
+
+
+@pytest.mark.parametrize(
+    ("name", "fmt", "target"),
+    [
+        ("t", "nc", ("nc", "t.nc")),
+        ("t", "csv", ("csv", "t.csv")),
+        ("t", "spad", ("spad", "t.spo")),
+        ("t", "basilisk", ("basilisk", "t.xml")),
+        ("aero", "tudat", ("tudat", "aero")),
+        ("t.NC", None, ("nc", "t.NC")),
+        ("t.txt", "csv", ("csv", "t.txt")),  # an extension of no format: the named format, as asked
+    ],
+)
+def test_the_output_path_gets_the_extension_of_its_format(tmp_path, name, fmt, target):
+    assert output_target(tmp_path / name, fmt) == (target[0], tmp_path / target[1])
+
+
+@pytest.mark.parametrize(
+    ("name", "fmt"), [("x.nc", "csv"), ("x.csv", "nc"), ("x.spo", "nc"), ("x.xml", "spad"), ("a.nc", "tudat")]
+)
+def test_an_extension_that_contradicts_the_format_is_refused(tmp_path, name, fmt):
+    with pytest.raises(InputError, match=f"says .*, but the table is to be written as {fmt}"):
+        write(grid_table(30.0), tmp_path / name, fmt)
+    assert not list(tmp_path.iterdir())
+
+
+def test_the_grid_checks_give_one_step_advice():
+    """The sweep grid and SPAD refuse steps with the same advice, and every step advised is taken."""
+    for step, whole in ((8.0, False), (7.0, False), (2.5, True), (0.7, False), (100.0, True)):
+        with pytest.raises(InputError) as error:
+            direction_grid(step) if not whole else check_request("spad", step)
+        assert step_advice(step, whole) in str(error.value)
+        advised = [float(s) for s in step_advice(step, whole).split("e.g. ")[1].split(", ")]
+        assert len(advised) == 4
+        for good in advised:
+            direction_grid(good)
+            if whole:
+                check_request("spad", good)
+    with pytest.raises(InputError, match="not an attitude list"):
+        check_request("spad", None)
+    with pytest.raises(InputError, match="not an attitude list"):
+        check_request("tudat", None)
+    check_request("nc", None), check_request("basilisk", None)

@@ -136,6 +136,31 @@ def test_every_table_entry_equals_the_single_attitude_result(model, air):
         assert key in table.attrs  # the Python sweep carries the provenance the command line writes
 
 
+def test_a_netcdf_table_states_its_coordinates_modes_and_atmosphere(model, air, tmp_path):
+    """CF metadata, long names that say what a coordinate is, the mode ``auto`` resolved to, the
+    atmosphere's source and altitude, and drag's projected area."""
+    settings = _settings("auto")
+    high = replace(air, altitude_km=400.0)
+    light_setup = SrpSetup(flux_W_m2=1361.0, samples=4, reflections=settings)
+    drag_setup = DragSetup(speed_m_s=7600.0, atmosphere=high, samples=4, reflections=settings)
+    (path,) = export.write(sweep(model, srp=light_setup, drag=drag_setup, step_deg=90.0), tmp_path / "t.nc")
+    table = open_table(path)
+    u = np.array([0.0, 0.0, 1.0])
+    light = srp(model, u, samples=4, reflections=settings)
+    gas = drag(model, 7600.0 * u, high, samples=4, reflections=settings)
+    assert table.attrs["Conventions"] == "CF-1.8" and "sun_vector points" in table.attrs["comment"]
+    assert table.attrs["reflections_requested"] == "auto"
+    assert table.attrs["srp_reflections"] == light.reflected.mode != "auto"
+    assert table.attrs["drag_reflections"] == gas.reflected.mode != "auto"
+    assert table.attrs["altitude_km"] == 400.0 and table.attrs["atmosphere_source"] == high.source
+    assert table.sun_azimuth.attrs["long_name"].startswith("Sun azimuth in the body frame")
+    assert table.flow_elevation.attrs["long_name"].startswith("flow (v_rel) elevation in the body frame")
+    assert all("units" in table[name].attrs for name in (*table.data_vars, "sun_azimuth", "flow_azimuth"))
+    assert all("long_name" in table[name].attrs for name in (*table.data_vars, *table.coords))
+    at = {"flow_azimuth": 0.0, "flow_elevation": 90.0}
+    assert table.drag_projected_area_m2.sel(at).item() == gas.projected_area_m2 > 0
+
+
 def test_table_entry_equals_the_command_line(model, run_cli, tmp_path):
     mesh = model.source.mesh
     table_path = tmp_path / "t.nc"
@@ -243,6 +268,74 @@ def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
         run_jobs(moved, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
 
 
+def _stopped_checkpoint(model, jobs, checkpoint, chunks: int = 2) -> None:
+    """Run ``jobs`` with a checkpoint and stop after ``chunks`` chunks."""
+    seen = []
+
+    def stop(done: int) -> None:
+        seen.append(done)
+        if len(seen) == chunks + 1:
+            raise _Stop
+
+    with pytest.raises(_Stop):
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, progress=stop))
+
+
+def test_chunks_without_their_manifest_are_taken_only_by_their_own_sweep(model, air, tmp_path):
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "c"
+    _stopped_checkpoint(model, jobs, checkpoint)
+    (checkpoint / "manifest.json").unlink()
+    other = [Job(replace(j.setup, samples=9), j.directions) for j in jobs]
+    lines, progress = [], []
+    run = SweepRun(chunk=5, checkpoint=checkpoint, resume=True, progress=progress.append, notice=lines.append)
+    resumed = run_jobs(model, other, run)
+    fresh = run_jobs(model, other, SweepRun(chunk=5))
+    for kind in fresh:
+        for name in fresh[kind]:
+            np.testing.assert_array_equal(resumed[kind][name], fresh[kind][name])
+    assert progress[0] == 0 and lines == [
+        "checkpoint: kept 0 chunks, recomputing 12 (2 of them found but of other settings or edited)"
+    ]
+
+
+def test_an_edited_chunk_is_computed_again(model, air, tmp_path):
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "c"
+    _stopped_checkpoint(model, jobs, checkpoint)
+    first = checkpoint / "srp-00000000.npz"
+    with np.load(first) as kept:
+        edited = {name: kept[name] for name in kept.files}
+    edited["force_N"] = edited["force_N"] * 2
+    np.savez(first, **edited)
+    lines = []
+    resumed = run_jobs(
+        model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True, notice=lines.append)
+    )
+    whole = run_jobs(model, jobs, SweepRun(chunk=5))
+    np.testing.assert_array_equal(resumed["srp"]["force_N"], whole["srp"]["force_N"])
+    assert lines == [
+        "checkpoint: kept 1 chunks, recomputing 11 (1 of them found but of other settings or edited)"
+    ]
+
+
+def test_a_failed_start_leaves_no_checkpoint(model, air, tmp_path, monkeypatch):
+    from sunwind.forces.tables import engine
+
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "c"
+
+    def unreachable(*args) -> None:
+        raise InputError("cannot reach the Dask scheduler")
+
+    monkeypatch.setattr(engine, "run_on_dask", unreachable)
+    with pytest.raises(InputError, match="cannot reach"):
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, scheduler="tcp://127.0.0.1:9"))
+    assert not checkpoint.exists()
+    _stopped_checkpoint(model, jobs, checkpoint)  # but one that saved chunks is kept
+    assert len(list(checkpoint.glob("*.npz"))) == 2
+
+
 @pytest.mark.slow
 def test_killed_command_line_sweep_resumes_to_the_same_file(model, tmp_path):
     """A real process killed after its first checkpoint chunk, then resumed, writes the same CSV."""
@@ -306,7 +399,13 @@ def test_attitude_list_with_quaternions_turns_inertial_directions_into_the_body_
     ("text", "match"),
     [
         ("sun_x,sun_y\n1,0\n", "sun_z"),
-        ("a,b,c\n1,2,3\n", "no direction columns"),
+        ("a,b,c\n1,2,3\n", "unexpected column 'a'"),
+        ("qw,qx,qy,qz\n1,0,0,0\n", "no direction columns"),
+        ("sun_x,sun_y,sun_z,sun_z\n1,0,0,5\n", "column 'sun_z' is given twice"),
+        ("sun_x,sun_y,Sun_Y,sun_z\n1,0,0,5\n", "column 'sun_y' is given twice"),
+        ("sun_x,sun_y,sun_z,foo\n1,0,0,3\n", "unexpected column 'foo'"),
+        ("sun_x,sun_y,sun_z,\n1,0,0,\n", "unexpected column ''"),
+        ("\ufeffsun_x,sun_y\n1,0\n", "lacks column sun_z"),
         ("sun_x,sun_y,sun_z\n0,0,0\n", "zero"),
         ("sun_x,sun_y,sun_z\n1,nan,0\n", "NaN"),
         ("sun_x,sun_y,sun_z\n1,x,0\n", "not all numbers"),
@@ -318,6 +417,12 @@ def test_bad_attitude_lists_are_refused(tmp_path, text, match):
     path.write_text(text)
     with pytest.raises(InputError, match=match):
         read_attitude_csv(path)
+
+
+def test_an_attitude_list_with_a_byte_order_mark_is_read(tmp_path):
+    path = tmp_path / "a.csv"
+    path.write_bytes(b"\xef\xbb\xbfSun_X, sun_y ,sun_z\n0,3,4\n")
+    np.testing.assert_allclose(read_attitude_csv(path).sun_vectors, [[0, 0.6, 0.8]])
 
 
 def test_list_sweep_from_the_command_line(model, run_cli, tmp_path):
@@ -454,6 +559,6 @@ def test_plot_writes_maps_and_a_pressure_view(model, run_cli, tmp_path):
     code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
     assert code == 0, err
     pngs = sorted((tmp_path / "plots").glob("*.png"))
-    assert len(pngs) == 5  # SRP and drag force and torque maps (x, y, z panels each), one 3-D view
-    assert any("pressure" in p.name for p in pngs)
+    assert len(pngs) == 6  # SRP and drag force and torque maps (x, y, z panels each), two 3-D views
+    assert {p.name.split(".")[1] for p in pngs if "pressure" in p.name} == {"srp", "drag"}
     assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in pngs)

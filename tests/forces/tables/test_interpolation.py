@@ -101,7 +101,7 @@ def test_check_step_names_the_step_and_suggests_divisors():
         check_step(7.5, 360.0, "azimuth", whole_degrees=True)
     assert str(error.value) == (
         "azimuth step 7.5 deg is not a whole number of degrees; use a whole number of degrees that divides "
-        "360, e.g. 1, 2, 3, 4, 5, 6, 8, 9, 10, 12, 15, 18, 20, 24, 30, 36, 40, 45"
+        "180 deg, e.g. 5, 6, 9, 10"  # the advice the sweep grid gives: 8 divides 360 but no grid takes it
     )
-    with pytest.raises(InputError, match=r"elevation step 7 deg does not divide 180 deg; .* 9, 10, 12, 15"):
+    with pytest.raises(InputError, match=r"elevation step 7 deg does not divide 180 deg; .* 5, 6, 7.5, 9"):
         check_step(7.0, 180.0, "elevation")
