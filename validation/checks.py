@@ -28,7 +28,9 @@ class Measure:
     @property
     def share(self) -> float:
         """``value / limit``: how much of its limit the measure uses (inf when it fails)."""
-        return self.value / self.limit if self.passed else float("inf")
+        if not self.passed:
+            return float("inf")
+        return self.value / self.limit if self.limit else 0.0
 
 
 @dataclass(frozen=True)

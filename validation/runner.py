@@ -15,7 +15,7 @@ import time
 from collections.abc import Callable, Sequence
 
 from sunwind.validation import gas_checks, light_checks
-from sunwind.validation.checks import Check, Family
+from sunwind.validation.checks import Check, Family, Measure
 
 #: Every validation family, in the order they run.
 FAMILIES: tuple[Family, ...] = (
@@ -55,7 +55,7 @@ def run(quick: bool = False, progress: Progress | None = None) -> list[Check]:
         start = time.perf_counter()
         if progress:
             progress(f"[{k}/{len(FAMILIES)}] {family.name}: {family.reference} ...")
-        done = list(family.checks(quick))
+        done = _family_checks(family, quick)
         checks += done
         if progress:
             failed = sum(not c.passed for c in done)
@@ -64,6 +64,17 @@ def run(quick: bool = False, progress: Progress | None = None) -> list[Check]:
                 f"[{k}/{len(FAMILIES)}] {family.name}: {len(done)} checks, {failed} failed, {seconds:.1f} s"
             )
     return checks
+
+
+def _family_checks(family: Family, quick: bool) -> list[Check]:
+    """The family's checks; one that raises ends the family with a failed check naming the error."""
+    done: list[Check] = []
+    try:
+        done.extend(family.checks(quick))
+    except Exception as error:  # a family that breaks is a failed check, not a lost run
+        stopped = Measure("family completed", 0.0, 1.0, low=1.0)
+        done.append(Check(family.name, "(stopped)", f"{type(error).__name__}: {error}"[:60], (stopped,)))
+    return done
 
 
 def cases(checks: Sequence[Check]) -> list[tuple[Check, int, int]]:

@@ -3,7 +3,6 @@ their tables (on stand-in families and a small model: the cases themselves are t
 tests/validation; the quick validation run once, slow)."""
 
 import json
-import time
 
 import pytest
 
@@ -44,13 +43,24 @@ def test_validate_exits_zero_when_every_check_passes(run_cli, monkeypatch):
     assert code == 0 and out.splitlines()[-1] == "1 passed, 0 failed"
 
 
+def test_a_family_that_raises_is_a_failed_check_and_the_others_still_run(run_cli, monkeypatch):
+    def broken(quick):
+        yield Check("broken", "case", "at 0", (Measure("error", 0.0, 1.0),))
+        raise ZeroDivisionError("division by zero")
+
+    monkeypatch.setattr(runner, "FAMILIES", (Family("broken", "a stand-in", broken), _family("good", 0.5)))
+    code, out, err = run_cli("validate")
+    assert code == 1 and "Traceback" not in out + err
+    assert "(stopped)" in out and "ZeroDivisionError: division by zero" in out and "FAIL" in out
+    assert out.splitlines()[-1] == "2 passed, 1 failed"
+
+
 @pytest.mark.slow
 def test_validate_quick_runs_every_family_within_its_limits(run_cli):
-    """Every family but the refinement study (full run only), in well under a minute (~25 s on 2 cores)."""
-    start = time.perf_counter()
+    """Every family but the refinement study (full run only); 16-25 s on 2 cores (not asserted: the
+    machine may be shared)."""
     code, out, err = run_cli("validate", "--quick")
     assert code == 0, out + err
-    assert time.perf_counter() - start < 60
     families = {line[:21].strip() for line in out.splitlines()[1:-1]}
     assert families == {f.name for f in runner.FAMILIES} - {"mesh refinement"}
     passed = int(out.splitlines()[-1].split()[0])
