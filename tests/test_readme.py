@@ -79,6 +79,16 @@ def test_readme_comparison_catches_the_last_shown_digit():
     assert [b.command for b in output_blocks(README)][:1] == ["sunwind srp " + SRP_EXAMPLE]
 
 
+def test_every_console_block_that_shows_output_is_checked():
+    """A ``console`` block is commands only (every line ``$ ...``) or one ``$ sunwind`` command and what
+    it prints, which ``test_printed_outputs_are_what_the_commands_print`` compares."""
+    blocks = re.findall(r"```console\n(.*?)```", README, flags=re.S)
+    showing = [b for b in blocks if any(not line.startswith("$") for line in b.rstrip("\n").split("\n"))]
+    assert len(showing) == len(output_blocks(README)) >= 2
+    for block in showing:
+        assert block.startswith("$ sunwind ") and block.count("\n$") == 0, block
+
+
 #: The first printed example (kept here so that a README edit that drops it fails).
 SRP_EXAMPLE = "meshes/data/sample_spacecraft.obj -m meshes/data/sample_spacecraft.toml --sun 0.3 -0.5 0.8"
 
