@@ -39,3 +39,8 @@ def run_cli(capsys):
         return code, out.out, out.err
 
     return run
+
+
+def pytest_addoption(parser):
+    """``--update-readme``: tests/test_readme.py rewrites README's printed outputs from actual runs."""
+    parser.addoption("--update-readme", action="store_true", help="rewrite README's printed example outputs")

@@ -1,10 +1,12 @@
-"""The README's quick-start command and Python example run as written."""
+"""The README's quick-start command and Python example run as written; its printed outputs are what
+the commands print (to the digits shown)."""
 
 import re
 
 import pytest
 
 from helpers import REPO
+from helpers.readme import block_differences, line_differences, output_blocks, refresh
 
 ROOT = REPO
 README = (ROOT / "README.md").read_text()
@@ -58,29 +60,51 @@ def test_single_attitude_command_runs(run_cli, monkeypatch):
     assert "force   [N]" in out and "sample_spacecraft.usda" in out
 
 
-def console_examples() -> list[tuple[str, list[str]]]:
-    """README's ``console`` blocks that print what they run: the command and the lines it prints."""
-    examples = []
-    for block in re.findall(r"```console\n(.*?)```", README, flags=re.S):
-        lines = block.rstrip("\n").split("\n")
-        if lines[0].startswith("$ sunwind ") and len(lines) > 1 and not lines[1].startswith("$"):
-            examples.append((lines[0][2:], lines[1:]))
-    return examples
+def _printed_by(run_cli, command: str) -> list[str]:
+    """What ``command`` (``sunwind ...``) prints on stdout, line by line; it must succeed."""
+    code, out, err = run_cli(*command.split()[1:])
+    assert code == 0, err
+    return out.rstrip("\n").split("\n")
+
+
+def test_readme_comparison_catches_the_last_shown_digit():
+    """The comparison of ``test_printed_outputs_are_what_the_commands_print`` has teeth."""
+    line = "  force   [N]      [-7.574603e-06  +1.430111e-05]  |F| = 2.573961e-05"
+    assert line_differences(line, line.replace("2.573961", "2.573962"))
+    assert line_differences(line, line.replace("+1.430111", "-1.430111"))
+    assert line_differences(line, line.replace("|F|", "|M|"))
+    assert not line_differences(line, line.replace("2.573961e-05", "2.5739614e-05"))  # more digits printed
+    assert not line_differences("power 7670.57 W", "power    7670.574 W")  # rounds to the digits shown
+    assert line_differences("power 7670.57 W", "power 7670.565 W")
+    assert [b.command for b in output_blocks(README)][:1] == ["sunwind srp " + SRP_EXAMPLE]
+
+
+def test_every_console_block_that_shows_output_is_checked():
+    """A ``console`` block is commands only (every line ``$ ...``) or one ``$ sunwind`` command and what
+    it prints, which ``test_printed_outputs_are_what_the_commands_print`` compares."""
+    blocks = re.findall(r"```console\n(.*?)```", README, flags=re.S)
+    showing = [b for b in blocks if any(not line.startswith("$") for line in b.rstrip("\n").split("\n"))]
+    assert len(showing) == len(output_blocks(README)) >= 2
+    for block in showing:
+        assert block.startswith("$ sunwind ") and block.count("\n$") == 0, block
+
+
+#: The first printed example (kept here so that a README edit that drops it fails).
+SRP_EXAMPLE = "meshes/data/sample_spacecraft.obj -m meshes/data/sample_spacecraft.toml --sun 0.3 -0.5 0.8"
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(
-    ("command", "printed"), console_examples(), ids=lambda x: x if isinstance(x, str) else ""
-)
-def test_printed_outputs_are_what_the_commands_print(run_cli, monkeypatch, command, printed):
-    """Line for line, but where the view factors came from (computed, or read from a cache)."""
+@pytest.mark.parametrize("block", output_blocks(README), ids=lambda b: b.command)
+def test_printed_outputs_are_what_the_commands_print(run_cli, monkeypatch, request, block):
+    """Every README output block against a run, numbers to the digits shown (tests/helpers/readme.py).
+
+    After a change of what a command prints, refresh README's blocks from actual runs with
+    ``python -m pytest -p no:cacheprovider tests/test_readme.py -m slow -k printed --update-readme``
+    (then review ``git diff README.md``).
+    """
     monkeypatch.chdir(ROOT)
-    code, out, err = run_cli(*command.split()[1:])
-    assert code == 0, err
-    got = out.rstrip("\n").split("\n")
-    assert len(got) == len(printed)
-    for line, expected in zip(got, printed, strict=True):
-        if expected.lstrip().startswith("view factors"):
-            assert line.split(",")[0] == expected.split(",")[0]
-        else:
-            assert line == expected
+    if request.config.getoption("--update-readme"):
+        refresh(ROOT / "README.md", lambda command: _printed_by(run_cli, command), only=block.command)
+        return
+    differences = block_differences(block, _printed_by(run_cli, block.command))
+    assert not differences, "\n".join(differences)

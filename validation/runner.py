@@ -1,123 +1,138 @@
-"""Run the validation cases through the solver and tabulate case, reference, computed and error.
+"""Run every validation family and report each case's worst check against its limit.
 
-``python -m sunwind.validation.runner`` (or ``sunwind validate``) prints the table the README quotes.
+``python -m sunwind.validation.runner [--quick] [--json]`` (or ``sunwind validate``) prints one line per
+case (the family, the case, where its worst check is, that check's measure against its limit) and
+ends with ``N passed, M failed`` over the checks; the exit status is 1 when any failed. ``--quick``
+runs a subset of the cases, and the tracers at fewer particles, with the same limits.
 """
 
 from __future__ import annotations
 
-import itertools
+import argparse
+import json
 import sys
-from dataclasses import dataclass
+import time
+from collections.abc import Callable, Sequence
 
-import numpy as np
+from sunwind.validation import gas_checks, light_checks
+from sunwind.validation.checks import Check, Family, Measure
 
-from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure
-from sunwind.forces.srp import srp
-from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES, ShadowCase, SrpCase
+#: Every validation family, in the order they run.
+FAMILIES: tuple[Family, ...] = (
+    Family(
+        "SRP closed forms", "analytic_srp: 7 convex bodies x 4 finishes", light_checks.srp_closed_form_checks
+    ),
+    Family(
+        "partial shadow",
+        "analytic_shadow: the exact shadow of one plate on another",
+        light_checks.shadow_checks,
+    ),
+    Family("mesh refinement", "second-order fall of the faceting error", light_checks.refinement_checks),
+    Family(
+        "V-groove closed form", "analytic_v_groove: mirror inter-reflection", light_checks.v_groove_checks
+    ),
+    Family("photon tracer", "photon_tracer: inter-reflection on concave shapes", light_checks.tracer_checks),
+    Family("direct law", "photon_tracer capped at one interaction", light_checks.direct_law_checks),
+    Family(
+        "drag closed forms",
+        "analytic_drag: 7 convex bodies x 3 gas-surface laws",
+        gas_checks.drag_closed_form_checks,
+    ),
+    Family(
+        "concave drag (TPMC)", "tpmc: re-emission exchange on concave shapes", gas_checks.concave_drag_checks
+    ),
+    Family("TPMC closed forms", "the molecule tracer against plates and spheres", gas_checks.tpmc_checks),
+)
+
+Progress = Callable[[str], None]
 
 
-@dataclass(frozen=True)
-class Row:
-    """One case at one Sun direction."""
-
-    case: str
-    sun: str
-    reference: float
-    computed: float
-    force_error: float
-    torque_error: float
-    tolerance: float
-
-    @property
-    def passed(self) -> bool:
-        return self.force_error <= self.tolerance and self.torque_error <= self.tolerance
-
-
-def run_srp_case(case: SrpCase, refinement: float = 1.0) -> list[Row]:
-    """Solver against closed form at every direction of ``case``; torques about the origin."""
-    craft = case.spacecraft(refinement)
-    scale = radiation_pressure(SOLAR_FLUX_1AU) * case.reference_area_m2
-    rows = []
-    for alpha, u in case.sun_vectors():
-        exact = case.reference(u)
-        result = srp(craft, u, reference_point_m=np.zeros(3))
-        rows.append(
-            Row(
-                case=case.name,
-                sun=f"alpha {alpha:g}",
-                reference=float(np.linalg.norm(exact.force_N)),
-                computed=float(np.linalg.norm(result.force_N)),
-                force_error=float(np.linalg.norm(result.force_N - exact.force_N) / scale),
-                torque_error=float(
-                    np.linalg.norm(result.torque_Nm - exact.torque_Nm) / (scale * case.reference_length_m)
-                ),
-                tolerance=case.rel_tol,
+def run(quick: bool = False, progress: Progress | None = None) -> list[Check]:
+    """Every check of every family (``quick``: the subset); ``progress(line)`` hears each family's start
+    and end."""
+    checks: list[Check] = []
+    for k, family in enumerate(FAMILIES, start=1):
+        start = time.perf_counter()
+        if progress:
+            progress(f"[{k}/{len(FAMILIES)}] {family.name}: {family.reference} ...")
+        done = _family_checks(family, quick)
+        checks += done
+        if progress:
+            failed = sum(not c.passed for c in done)
+            seconds = time.perf_counter() - start
+            progress(
+                f"[{k}/{len(FAMILIES)}] {family.name}: {len(done)} checks, {failed} failed, {seconds:.1f} s"
             )
+    return checks
+
+
+def _family_checks(family: Family, quick: bool) -> list[Check]:
+    """The family's checks; one that raises ends the family with a failed check naming the error."""
+    done: list[Check] = []
+    try:
+        done.extend(family.checks(quick))
+    except Exception as error:  # a family that breaks is a failed check, not a lost run
+        stopped = Measure("family completed", 0.0, 1.0, low=1.0)
+        done.append(Check(family.name, "(stopped)", f"{type(error).__name__}: {error}"[:60], (stopped,)))
+    return done
+
+
+def cases(checks: Sequence[Check]) -> list[tuple[Check, int, int]]:
+    """One entry per (family, case), in order: its worst check, its check count and failures."""
+    grouped: dict[tuple[str, str], list[Check]] = {}
+    for check in checks:
+        grouped.setdefault((check.family, check.case), []).append(check)
+    return [
+        (max(group, key=lambda c: c.worst.share), len(group), sum(not c.passed for c in group))
+        for group in grouped.values()
+    ]
+
+
+def summary(checks: Sequence[Check]) -> str:
+    """``N passed, M failed`` over ``checks``."""
+    failed = sum(not c.passed for c in checks)
+    return f"{len(checks) - failed} passed, {failed} failed"
+
+
+def table(checks: Sequence[Check]) -> list[str]:
+    """The printed report: a header, one line per case (worst check), the summary line."""
+    head = f"{'family':<21} {'case':<34} {'checks':>6}  {'worst at':<36} {'measure':<22}"
+    lines = [f"{head} {'value':>9} {'limit':>9}"]
+    for worst, count, failed in cases(checks):
+        measure = worst.worst
+        lines.append(
+            f"{worst.family:<21} {worst.case:<34} {count:>6}  {worst.at:<36} {measure.name:<22} "
+            f"{measure.value:>9.2e} {measure.limit:>9.3g}" + (f"  FAIL ({failed})" if failed else "")
         )
-    return rows
+    return [*lines, summary(checks)]
 
 
-def run_shadow_case(case: ShadowCase = SHADOW_CASE) -> list[Row]:
-    """Solver against the exact partial shadow; errors on plate A relative to its own loads."""
-    craft = case.spacecraft()
-    on_a = craft.facet_part == craft.part_names.index("plate_a")
-    rows = []
-    for sun in case.sun_vectors:
-        u = np.asarray(sun) / np.linalg.norm(sun)
-        exact = case.reference(u)
-        result = srp(craft, u, reference_point_m=np.zeros(3))
-        force_a = result.facet_force_N[on_a].sum(axis=0)
-        torque_a = result.facet_torque_Nm[on_a].sum(axis=0)
-        rows.append(
-            Row(
-                case=case.name,
-                sun="u " + " ".join(f"{x:+.2f}" for x in u),
-                reference=float(np.linalg.norm(exact.plate_a.torque_Nm)),
-                computed=float(np.linalg.norm(torque_a)),
-                force_error=float(
-                    np.linalg.norm(force_a - exact.plate_a.force_N) / np.linalg.norm(exact.plate_a.force_N)
-                ),
-                torque_error=float(
-                    np.linalg.norm(torque_a - exact.plate_a.torque_Nm)
-                    / np.linalg.norm(exact.plate_a.torque_Nm)
-                ),
-                tolerance=case.rel_tol,
-            )
-        )
-    return rows
-
-
-def refinement_study(case: SrpCase, refinements: tuple[float, ...] = (1 / 16, 1 / 8, 1 / 4)) -> list[float]:
-    """Largest force error over the case's directions at each refinement (coarse to fine)."""
-    return [max(row.force_error for row in run_srp_case(case, f)) for f in refinements]
-
-
-def main() -> int:
-    """Print the validation table; exit non-zero if any case fails."""
-    print(
-        f"{'case':<34} {'worst Sun':<22} {'|F| ref [N]':>12} {'|F| [N]':>12} "
-        f"{'F error':>9} {'M error':>9} {'tol':>7}"
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the validation, print the table (or ``--json``); 1 if any check failed, else 0."""
+    parser = argparse.ArgumentParser(prog="python -m sunwind.validation.runner", description=__doc__)
+    parser.add_argument(
+        "--quick", action="store_true", help="a subset of the cases, the tracers at fewer particles"
     )
-    failed = 0
-    for rows in [run_srp_case(case) for case in SRP_CASES] + [run_shadow_case()]:
-        worst = max(rows, key=lambda r: max(r.force_error, r.torque_error))
-        failed += sum(not r.passed for r in rows)
-        print(
-            f"{worst.case:<34} {worst.sun:<22} {worst.reference:>12.5e} {worst.computed:>12.5e} "
-            f"{worst.force_error:>9.2e} {worst.torque_error:>9.2e} {worst.tolerance:>7.0e}"
-            f"{'' if all(r.passed for r in rows) else '  FAIL'}"
-        )
-    print("\nrefinement (force error at 1/16, 1/8, 1/4 of the default resolution; observed order):")
-    for case in REFINEMENT_CASES:
-        errors = refinement_study(case)
-        orders = [np.log2(a / b) for a, b in itertools.pairwise(errors)]
-        print(
-            f"  {case.name:<32} "
-            + "  ".join(f"{e:.2e}" for e in errors)
-            + "   order "
-            + "  ".join(f"{o:.2f}" for o in orders)
-        )
-    return 1 if failed else 0
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    args = parser.parse_args(argv)
+    return report(args.quick, args.json)
+
+
+def report(quick: bool, as_json: bool) -> int:
+    """Run (``quick``: the subset), print the table or a JSON object, progress on stderr; the exit status."""
+    checks = run(quick, progress=lambda line: print(f"validate: {line}", file=sys.stderr, flush=True))
+    if as_json:
+        failed = sum(not c.passed for c in checks)
+        document = {
+            "quick": quick,
+            "passed": len(checks) - failed,
+            "failed": failed,
+            "checks": [c.to_json() for c in checks],
+        }
+        print(json.dumps(document, indent=2))
+    else:
+        print("\n".join(table(checks)))
+    return 1 if any(not c.passed for c in checks) else 0
 
 
 if __name__ == "__main__":

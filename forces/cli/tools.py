@@ -152,9 +152,14 @@ def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> No
 
 
 @click.command()
-def validate() -> None:
-    """Run the validation cases against closed forms and print case, reference, computed, error."""
-    from sunwind.validation.runner import main as run_validation  # the validation sits above forces
+@click.option(
+    "--quick", is_flag=True, help="A subset of the cases, the tracers at fewer particles (same limits)."
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object: every check and its measures.")
+def validate(quick: bool, as_json: bool) -> None:
+    """Run every validation case (SRP, shadows, reflections, drag, TPMC) against its reference and print
+    each case's worst check; ends with 'N passed, M failed' and exits 1 if any failed."""
+    from sunwind.validation.runner import report  # the validation sits above forces
 
-    if run_validation():
+    if report(quick, as_json):
         raise SystemExit(1)

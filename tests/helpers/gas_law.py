@@ -9,15 +9,11 @@ import numpy as np
 from scipy.special import erfc
 
 from sunwind.validation.analytic_gas_law import GasLaw
+from sunwind.validation.gas_checks import SURFACES as VALIDATION_SURFACES
 
 SQRT_PI = math.sqrt(math.pi)
 T_INF = 1000.0
-SURFACES = {
-    "sentman": GasLaw("sentman", energy_accommodation=0.9, wall_temperature_K=300.0),
-    "dria": GasLaw("dria", energy_accommodation=0.8, wall_temperature_K=500.0),
-    "schaaf-chambre": GasLaw("schaaf-chambre", normal_accommodation=0.7, tangential_accommodation=0.8),
-    "specular": GasLaw("specular"),
-}
+SURFACES = {**VALIDATION_SURFACES, "dria": GasLaw("dria", energy_accommodation=0.8, wall_temperature_K=500.0)}
 
 
 def local_coefficients(surface: GasLaw, speed_ratio: float, gamma: np.ndarray):

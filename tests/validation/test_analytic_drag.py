@@ -21,12 +21,12 @@ from helpers.gas_law import SURFACES, T_INF, local_coefficients
 from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces, panel_coefficients
 from sunwind.geometry.materials import Material
 from sunwind.geometry.spacecraft import build_spacecraft
-from sunwind.meshes import primitives
 from sunwind.meshes.assembly import rotation_matrix
 from sunwind.validation import analytic_srp
 from sunwind.validation.analytic_drag import cone_drag, cylinder_drag, plate_drag, sphere_drag
 from sunwind.validation.analytic_gas_law import FreeStream, GasLaw, flow_vector_from_alpha, surface_law
 from sunwind.validation.analytic_srp_law import SPEED_OF_LIGHT_M_S
+from sunwind.validation.gas_checks import DRAG_BODIES
 
 SQRT_PI = math.sqrt(math.pi)
 
@@ -539,48 +539,8 @@ def mesh_force(sides, u, surface, speed_ratio):
     return (areas[:, None] * (-c_n[:, None] * normals + c_t[:, None] * t_hat)).sum(axis=0)
 
 
-MESH_CASES = {
-    # name: (mesh builder, sheet, closed form(u, surface, S))
-    "plate-one-sided": (
-        lambda: primitives.plate(1.0, 2.0, 4),
-        "one",
-        lambda u, s, S: plate_drag(1.0, 2.0, FreeStream(u, S, T_INF), s),
-    ),
-    "plate-two-sided": (
-        lambda: primitives.plate(1.0, 2.0, 4),
-        "two",
-        lambda u, s, S: plate_drag(1.0, 2.0, FreeStream(u, S, T_INF), s, one_sided=False),
-    ),
-    "sphere": (
-        lambda: primitives.sphere(1.0),
-        None,
-        lambda u, s, S: sphere_drag(1.0, FreeStream(u, S, T_INF), s),
-    ),
-    "cylinder": (
-        lambda: primitives.cylinder(0.5, 1.5),
-        None,
-        lambda u, s, S: cylinder_drag(0.5, 1.5, FreeStream(u, S, T_INF), s),
-    ),
-    "tube": (
-        lambda: primitives.cylinder(0.5, 1.5, caps=False),
-        "one",
-        lambda u, s, S: cylinder_drag(0.5, 1.5, FreeStream(u, S, T_INF), s, caps=False),
-    ),
-    "cone-70": (
-        lambda: primitives.cone(1.0),
-        None,
-        lambda u, s, S: cone_drag(1.0, FreeStream(u, S, T_INF), s),
-    ),
-    "cone-70-open": (
-        lambda: primitives.cone(1.0, base=False),
-        "one",
-        lambda u, s, S: cone_drag(1.0, FreeStream(u, S, T_INF), s, base=False),
-    ),
-}
-
-
 @pytest.mark.slow
-@pytest.mark.parametrize("name", list(MESH_CASES))
+@pytest.mark.parametrize("name", list(DRAG_BODIES))
 def test_gsi_on_fine_meshes_matches_closed_forms(name):
     """Per-facet sums of sunwind.forces.gas.laws on the default primitives agree with the closed forms to 0.1
     %.
@@ -592,15 +552,15 @@ def test_gsi_on_fine_meshes_matches_closed_forms(name):
     errors on that scale, default resolutions: plates 4e-15; sphere, cylinder, tube, cone 6.4e-5
     (C_D) and 5.5e-5 (C_L); open cone 1.4e-4 (C_D), 7e-5 (C_L).
     """
-    build, sheet, closed = MESH_CASES[name]
-    sides = mesh_sides(build(), sheet)
+    build, interacting, closed = DRAG_BODIES[name]
+    sides = mesh_sides(build(), None if interacting == "closed" else interacting)
     worst = 0.0
     for model in ("sentman", "schaaf-chambre", "specular"):
         surface = SURFACES[model]
         for speed_ratio in (2.0, 5.0, 8.0, 15.0):
             for alpha in (0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0):
                 u = flow_vector_from_alpha(alpha)
-                ref = closed(u, surface, speed_ratio)
+                ref = closed(u, surface, FreeStream(u, speed_ratio, T_INF))
                 force = mesh_force(sides, u, surface, speed_ratio) / ref.reference_area_m2
                 c_d, c_l = force @ ref.drag_direction, force @ ref.lift_direction
                 scale = max(abs(ref.drag_coefficient), abs(ref.lift_coefficient))

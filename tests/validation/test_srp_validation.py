@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES
-from sunwind.validation.runner import refinement_study, run_shadow_case, run_srp_case
+from sunwind.validation.light_checks import refinement_study, run_shadow_case, run_srp_case
 
 #: Plates (exact at any resolution) in the quick run; the curved bodies (seconds each) in the full one.
 CONVEX = [pytest.param(c, marks=() if c.name.startswith("plate") else pytest.mark.slow) for c in SRP_CASES]

@@ -1,0 +1,249 @@
+"""The sunlight validation families: the solver against closed forms, the exact shadow and the photon tracer.
+
+Each family function yields :class:`sunwind.validation.checks.Check` rows with the limits of
+``tests/validation/test_srp_validation.py`` and ``test_reflection_validation.py``; ``quick`` keeps a
+subset of the cases (the tracer at its full photon count, so that its own error stays in bounds).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure
+from sunwind.forces.srp import srp
+from sunwind.validation.analytic_srp_law import Optics
+from sunwind.validation.analytic_v_groove import v_groove_srp
+from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES, ShadowCase, SrpCase
+from sunwind.validation.checks import Check, Measure
+from sunwind.validation.concave import (
+    CONCAVE_CASES,
+    MC_PHOTONS,
+    TOLERANCE,
+    ReflectionRow,
+    compare,
+    finished_spacecraft,
+    sun_from_az_el,
+    torque_scale,
+    trace_case,
+)
+
+#: The tracer's standard error may be at most this share of the tolerance.
+SIGMA_SHARE = 0.25
+#: Photon bundles of the single-interaction comparison of the direct law.
+DIRECT_PHOTONS = 200_000
+#: Mean observed order of the refinement study must lie in this range (two halvings of the facet size).
+ORDER_RANGE = (1.3, 2.7)
+#: Mirror V-groove lit across its axis: reflectivities and tilts psi [deg] of the closed-form checks.
+V_GROOVE_RHO, V_GROOVE_PSI_DEG = (1.0, 0.9), (0.0, 20.0, -35.0)
+#: The SRP closed-form cases of a quick run: the plates (exact) and one curved body.
+QUICK_SRP = ("plate", "cone with base/mixed")
+
+
+@dataclass(frozen=True)
+class Row:
+    """One SRP case at one Sun direction."""
+
+    case: str
+    sun: str
+    reference: float
+    computed: float
+    force_error: float
+    torque_error: float
+    tolerance: float
+
+    @property
+    def passed(self) -> bool:
+        return self.force_error <= self.tolerance and self.torque_error <= self.tolerance
+
+
+def run_srp_case(case: SrpCase, refinement: float = 1.0) -> list[Row]:
+    """Solver against closed form at every direction of ``case``; torques about the origin."""
+    craft = case.spacecraft(refinement)
+    scale = radiation_pressure(SOLAR_FLUX_1AU) * case.reference_area_m2
+    rows = []
+    for alpha, u in case.sun_vectors():
+        exact = case.reference(u)
+        result = srp(craft, u, reference_point_m=np.zeros(3))
+        rows.append(
+            Row(
+                case=case.name,
+                sun=f"alpha {alpha:g}",
+                reference=float(np.linalg.norm(exact.force_N)),
+                computed=float(np.linalg.norm(result.force_N)),
+                force_error=float(np.linalg.norm(result.force_N - exact.force_N) / scale),
+                torque_error=float(
+                    np.linalg.norm(result.torque_Nm - exact.torque_Nm) / (scale * case.reference_length_m)
+                ),
+                tolerance=case.rel_tol,
+            )
+        )
+    return rows
+
+
+def run_shadow_case(case: ShadowCase = SHADOW_CASE) -> list[Row]:
+    """Solver against the exact partial shadow; errors on plate A relative to its own loads."""
+    craft = case.spacecraft()
+    on_a = craft.facet_part == craft.part_names.index("plate_a")
+    rows = []
+    for sun in case.sun_vectors:
+        u = np.asarray(sun) / np.linalg.norm(sun)
+        exact = case.reference(u)
+        result = srp(craft, u, reference_point_m=np.zeros(3))
+        force_a = result.facet_force_N[on_a].sum(axis=0)
+        torque_a = result.facet_torque_Nm[on_a].sum(axis=0)
+        rows.append(
+            Row(
+                case=case.name,
+                sun="u " + " ".join(f"{x:+.2f}" for x in u),
+                reference=float(np.linalg.norm(exact.plate_a.torque_Nm)),
+                computed=float(np.linalg.norm(torque_a)),
+                force_error=float(
+                    np.linalg.norm(force_a - exact.plate_a.force_N) / np.linalg.norm(exact.plate_a.force_N)
+                ),
+                torque_error=float(
+                    np.linalg.norm(torque_a - exact.plate_a.torque_Nm)
+                    / np.linalg.norm(exact.plate_a.torque_Nm)
+                ),
+                tolerance=case.rel_tol,
+            )
+        )
+    return rows
+
+
+def refinement_study(case: SrpCase, refinements: tuple[float, ...] = (1 / 16, 1 / 8, 1 / 4)) -> list[float]:
+    """Largest force error over the case's directions at each refinement (coarse to fine)."""
+    return [max(row.force_error for row in run_srp_case(case, f)) for f in refinements]
+
+
+def _row_check(family: str, row: Row) -> Check:
+    return Check(
+        family,
+        row.case,
+        row.sun,
+        (
+            Measure("force", row.force_error, row.tolerance),
+            Measure("torque", row.torque_error, row.tolerance),
+        ),
+    )
+
+
+def srp_closed_form_checks(quick: bool) -> Iterator[Check]:
+    """Every convex body and finish of :data:`SRP_CASES` at every Sun angle (quick: :data:`QUICK_SRP`)."""
+    for case in SRP_CASES:
+        if not quick or case.name.startswith(QUICK_SRP):
+            yield from (_row_check("SRP closed forms", row) for row in run_srp_case(case))
+
+
+def shadow_checks(quick: bool) -> Iterator[Check]:
+    """Plate A's force and torque under plate B's partial shadow, every Sun direction of the case."""
+    yield from (_row_check("partial shadow", row) for row in run_shadow_case())
+
+
+def refinement_checks(quick: bool) -> Iterator[Check]:
+    """The force error falls at second order with mesh refinement (full run only)."""
+    for case in () if quick else REFINEMENT_CASES:
+        errors = refinement_study(case)
+        order = math.log2(errors[0] / errors[2]) / 2
+        yield Check(
+            "mesh refinement",
+            case.name,
+            "1/16, 1/8, 1/4",
+            (
+                Measure("error ratio 1/8 : 1/16", errors[1] / errors[0], 1.0),
+                Measure("error ratio 1/4 : 1/8", errors[2] / errors[1], 1.0),
+                Measure("observed order", order, ORDER_RANGE[1], low=ORDER_RANGE[0]),
+            ),
+        )
+
+
+def v_groove_checks(quick: bool) -> Iterator[Check]:
+    """Mirror V-groove lit across its axis against its closed form (force over ``|F|``, torque scale)."""
+    case = CONCAVE_CASES[0]
+    for rho in V_GROOVE_RHO:
+        mirror = Optics(rho, 1.0, 0.0)
+        craft = finished_spacecraft(case.mesh(), {"*": (mirror, mirror)}, f"v-groove/mirror {rho}")
+        ref = craft.default_reference[0]
+        for psi in V_GROOVE_PSI_DEG:
+            u = np.array([math.sin(math.radians(psi)), 0.0, math.cos(math.radians(psi))])
+            exact = v_groove_srp(1.0, 3.0, psi, rho, ref_point_m=ref)
+            result = srp(craft, u, reference_point_m=ref, reflections="full")
+            scale = torque_scale(exact.force_N, exact.torque_Nm, case.size_m)
+            force = np.linalg.norm(result.force_N - exact.force_N) / np.linalg.norm(exact.force_N)
+            torque = np.linalg.norm(result.torque_Nm - exact.torque_Nm) / scale
+            yield Check(
+                "V-groove closed form",
+                f"mirror rho {rho:g}",
+                f"psi {psi:g}",
+                (Measure("force", float(force), TOLERANCE), Measure("torque", float(torque), TOLERANCE)),
+            )
+
+
+def tracer_checks(quick: bool) -> Iterator[Check]:
+    """Full reflections against the photon tracer, every case, finish and Sun (quick: the diffuse
+    finish at each case's first Sun)."""
+    for case in CONCAVE_CASES:
+        for finish in ("diffuse",) if quick else case.finishes:
+            for sun in case.suns_deg[:1] if quick else case.suns_deg:
+                yield tracer_check(compare(case, finish, sun, photons=MC_PHOTONS))
+
+
+def tracer_check(row: ReflectionRow) -> Check:
+    """One solver-against-tracer comparison as a check: force, torque and power within the tolerance,
+    the tracer's own standard errors within :data:`SIGMA_SHARE` of it."""
+    return Check(
+        "photon tracer",
+        f"{row.case}/{row.finish}",
+        f"az {row.azimuth_deg:g} el {row.elevation_deg:g}",
+        (
+            Measure("force", row.force_difference, TOLERANCE),
+            Measure("torque", row.torque_difference, TOLERANCE),
+            Measure("power", row.power_difference, TOLERANCE),
+            Measure("tracer sigma (force)", row.force_mc_sigma, SIGMA_SHARE * TOLERANCE),
+            Measure("tracer sigma (torque)", row.torque_mc_sigma, SIGMA_SHARE * TOLERANCE),
+        ),
+    )
+
+
+def direct_law_checks(quick: bool) -> Iterator[Check]:
+    """``reflections="none"`` against the tracer capped at one interaction (mixed finish, every Sun;
+    quick: each case's first Sun), and the full result's split into direct + reflected."""
+    for case in CONCAVE_CASES:
+        craft = case.spacecraft("mixed")
+        for sun in case.suns_deg[:1] if quick else case.suns_deg:
+            mc = trace_case(case, "mixed", sun, photons=DIRECT_PHOTONS, max_bounces=1)
+            u, ref = sun_from_az_el(*sun), mc.reference_point_m
+            none = srp(craft, u, reference_point_m=ref, reflections="none")
+            full = srp(craft, u, reference_point_m=ref, reflections="full")
+            f_mc = float(np.linalg.norm(mc.force_N))
+            scale = torque_scale(mc.force_N, mc.torque_Nm, case.size_m)
+            direct_gap = max(
+                _relative(full.direct_force_N, none.force_N), _relative(full.direct_torque_Nm, none.torque_Nm)
+            )
+            split_gap = max(
+                _relative(full.direct_force_N + full.reflected_force_N, full.force_N),
+                _relative(full.direct_torque_Nm + full.reflected_torque_Nm, full.torque_Nm),
+            )
+            yield Check(
+                "direct law",
+                f"{case.name}/mixed",
+                f"az {sun[0]:g} el {sun[1]:g}",
+                (
+                    Measure("force", float(np.linalg.norm(none.force_N - mc.force_N)) / f_mc, TOLERANCE),
+                    Measure(
+                        "torque", float(np.linalg.norm(none.torque_Nm - mc.torque_Nm)) / scale, TOLERANCE
+                    ),
+                    Measure("incident power", abs(none.power.incident_W / mc.incident_W - 1), TOLERANCE),
+                    Measure("tracer sigma (force)", mc.force_error_N / f_mc, SIGMA_SHARE * TOLERANCE),
+                    Measure("full's direct part", direct_gap, 1e-9),
+                    Measure("direct + reflected", split_gap, 1e-12),
+                ),
+            )
+
+
+def _relative(a: np.ndarray, b: np.ndarray) -> float:
+    """``|a - b| / |b|`` [-]."""
+    return float(np.linalg.norm(a - b) / np.linalg.norm(b))
