@@ -8,6 +8,7 @@ import numpy as np
 import scipy.sparse
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import MeshError
@@ -18,6 +19,14 @@ MERGE_TOLERANCE = 1e-9
 #: A triangle whose area is below this share of its longest edge squared is degenerate (a needle or
 #: a point); such triangles carry no area and are dropped and counted.
 DEGENERATE_RATIO = 1e-10
+#: Cracks of a closed body narrower than this share of the model size (largest bounding-box extent)
+#: are closed on loading: boundary vertices this close are welded, and a boundary vertex this close
+#: to another boundary edge of its part splits that edge (a T-junction).
+CRACK_TOLERANCE = 1e-4
+#: A model whose largest extent [m] is outside this range is probably in another unit.
+PLAUSIBLE_SIZE_M = (0.01, 500.0)
+#: Most passes of T-junction splitting (each splits every open edge at one vertex at most).
+_SPLIT_PASSES = 32
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,11 +73,12 @@ def check_mesh(
 ) -> MeshCheck:
     """Check a labelled triangle soup and repair what can be repaired without guessing.
 
-    Non-finite coordinates are an error. Coincident vertices are merged. Triangles with a repeated
-    vertex or (near) zero area are dropped and counted. Faces of closed bodies (``face_kind ==
-    SOLID``) are checked for open and non-manifold edges (reported, not raised: the caller decides);
-    inconsistent winding is made consistent and a body wound inward (negative signed volume) is
-    flipped, each with a notice.
+    Non-finite coordinates are an error. Coincident vertices are merged. Faces of closed bodies
+    (``face_kind == SOLID``) have their hair-line cracks closed (``CRACK_TOLERANCE``), with a notice.
+    Triangles with a repeated vertex or (near) zero area are dropped and counted. Each part's closed-body
+    faces are checked, on their own, for open and non-manifold edges (reported, not raised: the caller
+    decides); inconsistent winding is made consistent and a body wound inward (negative signed volume)
+    is flipped, each with a notice.
 
     Raises
     ------
@@ -86,7 +96,10 @@ def check_mesh(
             hint="fix or remove them in the mesh file",
         )
     vertices, faces = _merge_vertices(vertices[used], np.searchsorted(used, faces))
-    notices: list[str] = []
+    vertices, faces, origin, notices = _close_cracks(
+        vertices, faces, face_part, face_kind == SOLID, part_names
+    )
+    face_part, face_kind = face_part[origin], face_kind[origin]
     repeated = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
     kept = np.flatnonzero(~repeated)
     solid = kept[face_kind[kept] == SOLID]
@@ -107,7 +120,158 @@ def check_mesh(
         notices.append(f"dropped {dropped} degenerate triangles (parts: {', '.join(names)})")
     if not len(kept):
         raise MeshError("no triangle with non-zero area", path=source, hint="check the mesh file")
-    return MeshCheck(vertices, faces[kept], kept, dropped, open_edges, nonmanifold_edges, tuple(notices))
+    return MeshCheck(
+        vertices, faces[kept], origin[kept], dropped, open_edges, nonmanifold_edges, tuple(notices)
+    )
+
+
+def size_notice(vertices: NDArray[np.float64], unit: str) -> str | None:
+    """A notice when the model's largest extent [m] suggests that its file is in another unit."""
+    extent = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    low, high = PLAUSIBLE_SIZE_M
+    if low <= extent <= high:
+        return None
+    return (
+        f"the model is {extent:.4g} m across (largest extent of its bounding box; unit {unit}), "
+        f"outside {low:g}-{high:g} m: if the file is in another unit, give it with --unit "
+        "(Python: unit=), e.g. --unit mm"
+    )
+
+
+def _close_cracks(
+    vertices: NDArray[np.float64],
+    faces: NDArray[np.int64],
+    face_part: NDArray[np.int32],
+    solid: NDArray[np.bool_],
+    part_names: tuple[str, ...],
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64], list[str]]:
+    """Close the hair-line cracks of closed bodies: weld boundary vertices closer than the tolerance and
+    split boundary edges at the boundary vertices of the same part lying on them (T-junctions).
+
+    Returns the vertices, the faces (a split face becomes two), the input face of each face, and a
+    notice per repair.
+    """
+    origin = np.arange(len(faces))
+    scale = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    tolerance = CRACK_TOLERANCE * scale
+    edges = _open_edges(faces, face_part, solid)
+    if not len(edges) or tolerance <= 0:
+        return vertices, faces, origin, []
+    before = _length(vertices, edges)
+    # weld: boundary vertices of one part closer than the tolerance become one
+    boundary = np.unique(edges[:, :2])
+    pairs = cKDTree(vertices[boundary]).query_pairs(tolerance, output_type="ndarray")
+    welded = 0
+    if len(pairs):
+        graph = scipy.sparse.coo_matrix(
+            (np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(boundary), len(boundary))
+        )
+        label = connected_components(graph, directed=False)[1]
+        target = np.arange(len(vertices))
+        first = np.full(label.max() + 1, len(boundary))
+        np.minimum.at(first, label, np.arange(len(boundary)))
+        target[boundary] = boundary[first[label]]
+        welded = int(np.count_nonzero(target[boundary] != boundary))
+        faces = target[faces]
+    split = 0
+    for _ in range(_SPLIT_PASSES):
+        faces, origin, count = _split_t_junctions(
+            vertices, faces, origin, face_part[origin], solid[origin], tolerance
+        )
+        split += count
+        if not count:
+            break
+    after = _open_edges(faces, face_part[origin], solid[origin])
+    if not welded and not split:
+        return vertices, faces, origin, []
+    closed = before - _length(vertices, after)
+    touched = sorted({part_names[p] for p in face_part[edges[:, 2]]})
+    return (
+        vertices,
+        faces,
+        origin,
+        [
+            f"closed hair-line cracks of closed bodies (parts: {', '.join(touched)}): welded {welded} "
+            f"vertices and split {split} triangles at T-junctions, closing {closed:.4g} m of open edges; "
+            f"gaps up to {tolerance:.3g} m ({CRACK_TOLERANCE:g} of the model size) count as cracks"
+        ],
+    )
+
+
+def _open_edges(
+    faces: NDArray[np.int64], face_part: NDArray[np.int32], solid: NDArray[np.bool_]
+) -> NDArray[np.int64]:
+    """Edges used once by the closed-body faces of their part: (n, 3) of vertex, vertex, face."""
+    faces, owner = faces[solid], np.flatnonzero(solid)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    keys = np.column_stack([np.repeat(face_part[solid], 3), np.sort(directed, axis=1)])
+    if not len(keys):
+        return np.zeros((0, 3), dtype=np.int64)
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    once = counts[inverse.reshape(-1)] == 1
+    return np.column_stack([directed[once], np.repeat(owner, 3)[once]])
+
+
+def _length(vertices: NDArray[np.float64], edges: NDArray[np.int64]) -> float:
+    """Total length [m] of ``edges`` (rows of vertex, vertex, ...)."""
+    return float(np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).sum())
+
+
+def _split_t_junctions(
+    vertices: NDArray[np.float64],
+    faces: NDArray[np.int64],
+    origin: NDArray[np.int64],
+    face_part: NDArray[np.int32],
+    solid: NDArray[np.bool_],
+    tolerance: float,
+) -> tuple[NDArray[np.int64], NDArray[np.int64], int]:
+    """One pass: split each open edge that a boundary vertex of its part lies on (within ``tolerance``,
+    away from its ends) at that vertex; each face is split at most once. Returns faces, origin, count."""
+    edges = _open_edges(faces, face_part, solid)
+    if not len(edges):
+        return faces, origin, 0
+    candidates = np.unique(edges[:, :2])
+    a, b = vertices[edges[:, 0]], vertices[edges[:, 1]]
+    half = np.linalg.norm(b - a, axis=1) / 2
+    near = cKDTree(vertices[candidates]).query_ball_point((a + b) / 2, half + tolerance)
+    edge = np.repeat(np.arange(len(edges)), [len(hits) for hits in near])
+    vertex = candidates[np.concatenate([np.asarray(hits, dtype=np.int64) for hits in near])]
+    n = len(vertices)
+    part = face_part[edges[:, 2]]
+    ends_keys = np.r_[part * n + edges[:, 0], part * n + edges[:, 1]]  # boundary vertices of each part
+    p, ea, eb = vertices[vertex], a[edge], b[edge]
+    t = np.einsum("ij,ij->i", p - ea, eb - ea) / np.maximum(4 * half[edge] ** 2, 1e-300)
+    gap = np.linalg.norm(ea + t[:, None] * (eb - ea) - p, axis=1)
+    ends = np.minimum(np.linalg.norm(p - ea, axis=1), np.linalg.norm(p - eb, axis=1))
+    ok = (
+        (vertex != edges[edge, 0])
+        & (vertex != edges[edge, 1])
+        & (t > 0)
+        & (t < 1)
+        & (gap <= tolerance)
+        & (ends > tolerance)
+        & np.isin(part[edge] * n + vertex, ends_keys)
+    )
+    edge, vertex = edge[ok], vertex[ok]
+    split_faces, first = np.unique(edges[edge, 2], return_index=True)
+    chosen = {
+        int(face): (int(edges[e, 0]), int(edges[e, 1]), int(v))
+        for face, e, v in zip(split_faces, edge[first], vertex[first], strict=True)
+    }
+    if not chosen:
+        return faces, origin, 0
+    halves = []
+    for face in split_faces:
+        x, y, v = chosen[int(face)]
+        f = faces[face].tolist()
+        i = next(k for k in range(3) if {f[k], f[(k + 1) % 3]} == {x, y})
+        p, q, r = f[i], f[(i + 1) % 3], f[(i + 2) % 3]
+        halves += [[p, v, r], [v, q, r]]
+    keep = np.ones(len(faces), dtype=bool)
+    keep[split_faces] = False
+    faces = np.concatenate([faces[keep], np.asarray(halves, dtype=np.int64)])
+    origin = np.concatenate([origin[keep], np.repeat(origin[split_faces], 2)])
+    return faces, origin, len(split_faces)
 
 
 def _merge_vertices(
@@ -121,12 +285,15 @@ def _merge_vertices(
     return vertices[first], inverse.reshape(-1)[faces]
 
 
-def _edges(faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Undirected edge keys (3 n,) and the face of each."""
+def _edges(
+    faces: NDArray[np.int64], face_part: NDArray[np.int32]
+) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Undirected edge keys (3 n,), one per edge of each part (a part's edges are its own), and the
+    face of each."""
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    lo, hi = directed.min(axis=1), directed.max(axis=1)
-    n = int(faces.max()) + 1 if len(faces) else 1
-    return lo * n + hi, np.repeat(np.arange(len(faces)), 3)
+    rows = np.column_stack([np.repeat(face_part, 3), np.sort(directed, axis=1)])
+    keys = np.unique(rows, axis=0, return_inverse=True)[1].reshape(-1) if len(rows) else np.zeros(0, np.int64)
+    return keys.astype(np.int64), np.repeat(np.arange(len(faces)), 3)
 
 
 def _edge_defects(
@@ -135,7 +302,7 @@ def _edge_defects(
     """Per part, the number of edges used by one face (open) and by more than two (non-manifold)."""
     if not len(faces):
         return {}, {}
-    keys, owner = _edges(faces)
+    keys, owner = _edges(faces, face_part)
     _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
     per_edge = counts[inverse]
 
@@ -163,7 +330,7 @@ def _orient_outward(
     """
     notices = []
     n = len(faces)
-    first, second, same_direction = _edge_pairs(faces)
+    first, second, same_direction = _edge_pairs(faces, face_part)
     # agreeing states: (i kept, j kept) when the edge runs opposite ways, else (i kept, j flipped)
     a = np.r_[first, first + n]
     b = np.r_[second + n * same_direction, second + n * (1 - same_direction)]
@@ -206,10 +373,12 @@ def _orient_outward(
     return faces, notices
 
 
-def _edge_pairs(faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
-    """Faces sharing each manifold edge, and 1 where both run the edge in the same direction."""
+def _edge_pairs(
+    faces: NDArray[np.int64], face_part: NDArray[np.int32]
+) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """Faces of one part sharing each manifold edge, and 1 where both run the edge in the same direction."""
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    keys, owner = _edges(faces)
+    keys, owner = _edges(faces, face_part)
     forward = (directed[:, 0] < directed[:, 1]).astype(np.int64)
     order = np.argsort(keys, kind="stable")
     paired = keys[order][1:] == keys[order][:-1]

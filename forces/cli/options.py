@@ -60,6 +60,7 @@ FLAGS = {
     "scheduler": "--scheduler",
     "resume": "--resume",
     "format": "--format",
+    "two_sided": "--two-sided",
 }
 
 
@@ -188,7 +189,8 @@ def reference_options(sizes: bool = False) -> Callable:
             type=float,
             default=None,
             metavar="X Y Z",
-            help="Torque reference point [m] [default: volume centroid if closed, else area centroid].",
+            help="Torque reference point [m] [default: the materials file's [model] centre_of_mass_m, "
+            "else the volume centroid if closed, else the area centroid].",
         )
     ]
     if sizes:
