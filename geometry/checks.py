@@ -202,14 +202,12 @@ def _open_edges(
     faces: NDArray[np.int64], face_part: NDArray[np.int32], solid: NDArray[np.bool_]
 ) -> NDArray[np.int64]:
     """Edges used once by the closed-body faces of their part: (n, 3) of vertex, vertex, face."""
-    faces, owner = faces[solid], np.flatnonzero(solid)
-    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    keys = np.column_stack([np.repeat(face_part[solid], 3), np.sort(directed, axis=1)])
-    if not len(keys):
-        return np.zeros((0, 3), dtype=np.int64)
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    once = counts[inverse.reshape(-1)] == 1
-    return np.column_stack([directed[once], np.repeat(owner, 3)[once]])
+    owner = np.flatnonzero(solid)
+    keys, position = _edges(faces[solid], face_part[solid])
+    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
+    once = counts[inverse] == 1
+    directed = faces[solid][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    return np.column_stack([directed[once], owner[position[once]]]).astype(np.int64)
 
 
 def _length(vertices: NDArray[np.float64], edges: NDArray[np.int64]) -> float:
@@ -291,8 +289,13 @@ def _edges(
     """Undirected edge keys (3 n,), one per edge of each part (a part's edges are its own), and the
     face of each."""
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    rows = np.column_stack([np.repeat(face_part, 3), np.sort(directed, axis=1)])
-    keys = np.unique(rows, axis=0, return_inverse=True)[1].reshape(-1) if len(rows) else np.zeros(0, np.int64)
+    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    part = np.repeat(np.asarray(face_part, dtype=np.int64), 3)
+    n = int(faces.max()) + 1 if len(faces) else 1
+    if (int(part.max()) + 1 if len(part) else 1) * n * n < 2**62:
+        keys = (part * n + lo) * n + hi
+    else:  # too many vertices and parts for one int64 key
+        keys = np.unique(np.column_stack([part, lo, hi]), axis=0, return_inverse=True)[1].reshape(-1)
     return keys.astype(np.int64), np.repeat(np.arange(len(faces)), 3)
 
 

@@ -12,6 +12,9 @@ from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED
 from sunwind.geometry.spacecraft import BLIND, ESCAPED, build_spacecraft
 from sunwind.meshes import primitives
 
+#: SPEC's rules cover the parts of several test meshes: a rule matching no part warns, and that is fine here.
+pytestmark = pytest.mark.filterwarnings("ignore:.*matches no part:UserWarning")
+
 SPEC = parse_materials(
     {
         "materials": {
