@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdShade, Vt
 
 from sunwind.geometry.errors import MeshError, combine
-from sunwind.geometry.io.topology import bounds, compact, fan_triangles, groups
+from sunwind.geometry.io.topology import bounds, check_transform, compact, fan_triangles, groups
 from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
 
 #: USD attribute on a Material prim holding each key of ``OPTICS_KEYS``.
@@ -153,18 +153,7 @@ def _read_mesh(mesh: UsdGeom.Mesh, world: Gf.Matrix4d, materials: _Materials, pa
         )
     triangles, polygon = fan_triangles(counts, indices)
     matrix = np.array(world, dtype=np.float64)  # row vectors: p_world = p @ M[:3, :3] + M[3, :3]
-    if not np.isfinite(matrix).all():
-        raise error(
-            "has a transform (xformOp, its own or a parent's) with values that are not finite",
-            "give every xformOp of the prim and its parents finite values",
-        )
-    linear = matrix[:3, :3]
-    if abs(np.linalg.det(linear)) <= 1e-12 * max(float(np.abs(linear).max()), 1e-300) ** 3:
-        raise error(
-            "has a transform (xformOp, its own or a parent's) that collapses it flat "
-            f"(determinant {np.linalg.det(linear):g}: a scale of 0?)",
-            "give every scale of the prim and its parents non-zero factors",
-        )
+    check_transform(matrix[:3, :3], str(path), part)
     left_handed = mesh.GetOrientationAttr().Get() == UsdGeom.Tokens.leftHanded
     if left_handed != (np.linalg.det(matrix[:3, :3]) < 0):
         triangles = triangles[:, ::-1]

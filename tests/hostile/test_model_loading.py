@@ -66,6 +66,19 @@ def Xform "root"
 """
 
 
+def gltf_scaled(directory: Path, scale: list[float]) -> None:
+    """``m.gltf``: the unit cube as one node with ``scale``."""
+    import json
+
+    from sunwind.geometry.io import load_mesh, save_mesh
+
+    (directory / "c.obj").write_text(obj_text({"box": CUBE_QUADS}))
+    save_mesh(load_mesh(directory / "c.obj"), directory / "m.gltf")
+    document = json.loads((directory / "m.gltf").read_text())
+    document["nodes"][0]["scale"] = scale
+    (directory / "m.gltf").write_text(json.dumps(document))
+
+
 def t_junction_box() -> tuple[list, dict]:
     """The unit cube with its top split in two along x = 0.5: the front and back faces keep one edge
     where the top has two (a T-junction at each end), as CAD exporters write. Closed physically."""
@@ -133,6 +146,12 @@ CASES = {
         ["info", "m.usda", "--no-k-is"],
         1,
         ["error", "/root/box", "transform", "finite"],
+    ),
+    "gltf-scale-zero": (
+        lambda d: gltf_scaled(d, [1, 0, 1]),
+        ["info", "m.gltf", "--no-k-is", *UNIFORM],
+        1,
+        ["error", "m.gltf", "part 'box'", "collapses"],
     ),
     # item 6: a size that suggests the wrong unit
     "size-1000-m": (
