@@ -158,13 +158,18 @@ def _close_cracks(
     if not len(edges) or tolerance <= 0:
         return vertices, faces, origin, []
     before = _length(vertices, edges)
-    # weld: boundary vertices of one part closer than the tolerance become one
+    # weld: each boundary vertex joins its nearest boundary vertex when closer than the tolerance (one
+    # neighbour each: the work stays linear however many vertices crowd together)
     boundary = np.unique(edges[:, :2])
-    pairs = cKDTree(vertices[boundary]).query_pairs(tolerance, output_type="ndarray")
+    distance, nearest = cKDTree(vertices[boundary]).query(vertices[boundary], k=2)
+    other = np.where(nearest[:, 0] == np.arange(len(boundary)), nearest[:, 1], nearest[:, 0])
+    close = np.flatnonzero(
+        np.where(nearest[:, 0] == np.arange(len(boundary)), distance[:, 1], distance[:, 0]) <= tolerance
+    )
     welded = 0
-    if len(pairs):
+    if len(close):
         graph = scipy.sparse.coo_matrix(
-            (np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(boundary), len(boundary))
+            (np.ones(len(close)), (close, other[close])), shape=(len(boundary), len(boundary))
         )
         label = connected_components(graph, directed=False)[1]
         target = np.arange(len(vertices))
@@ -215,6 +220,26 @@ def _length(vertices: NDArray[np.float64], edges: NDArray[np.int64]) -> float:
     return float(np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).sum())
 
 
+def _junction_candidates(
+    edges: NDArray[np.int64], edge_part: NDArray[np.int32], n_vertices: int
+) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Pairs (open edge, boundary vertex of its part) where the vertex may lie on the edge: the far end
+    of an open edge that shares an end with it. A T-junction's vertex is found so (a chain of them one
+    per pass), and the work is linear in the number of open edges."""
+    n = len(edges)
+    ends = np.r_[edges[:, 0], edges[:, 1]] + n_vertices * np.r_[edge_part, edge_part].astype(np.int64)
+    _, key = np.unique(ends, return_inverse=True)
+    incidence = scipy.sparse.csr_matrix((np.ones(2 * n), (key, np.r_[np.arange(n), np.arange(n)])))
+    touching = (incidence.T @ incidence).tocoo()  # edges sharing an end (and each edge with itself)
+    first, second = touching.row.astype(np.int64), touching.col.astype(np.int64)
+    keep = first != second
+    first, second = first[keep], second[keep]
+    # the end of ``first`` that is not an end of ``second``
+    shared_a = (edges[first, 0] == edges[second, 0]) | (edges[first, 0] == edges[second, 1])
+    far = np.where(shared_a, edges[first, 1], edges[first, 0])
+    return second, far
+
+
 def _split_t_junctions(
     vertices: NDArray[np.float64],
     faces: NDArray[np.int64],
@@ -228,15 +253,9 @@ def _split_t_junctions(
     edges = _open_edges(faces, face_part, solid)
     if not len(edges):
         return faces, origin, 0
-    candidates = np.unique(edges[:, :2])
+    edge, vertex = _junction_candidates(edges, face_part[edges[:, 2]], len(vertices))
     a, b = vertices[edges[:, 0]], vertices[edges[:, 1]]
     half = np.linalg.norm(b - a, axis=1) / 2
-    near = cKDTree(vertices[candidates]).query_ball_point((a + b) / 2, half + tolerance)
-    edge = np.repeat(np.arange(len(edges)), [len(hits) for hits in near])
-    vertex = candidates[np.concatenate([np.asarray(hits, dtype=np.int64) for hits in near])]
-    n = len(vertices)
-    part = face_part[edges[:, 2]]
-    ends_keys = np.r_[part * n + edges[:, 0], part * n + edges[:, 1]]  # boundary vertices of each part
     p, ea, eb = vertices[vertex], a[edge], b[edge]
     t = np.einsum("ij,ij->i", p - ea, eb - ea) / np.maximum(4 * half[edge] ** 2, 1e-300)
     gap = np.linalg.norm(ea + t[:, None] * (eb - ea) - p, axis=1)
@@ -248,7 +267,6 @@ def _split_t_junctions(
         & (t < 1)
         & (gap <= tolerance)
         & (ends > tolerance)
-        & np.isin(part[edge] * n + vertex, ends_keys)
     )
     edge, vertex = edge[ok], vertex[ok]
     split_faces, first = np.unique(edges[edge, 2], return_index=True)

@@ -66,6 +66,36 @@ def test_t_junctions_of_a_closed_box_are_closed_with_a_notice():
     assert "split 2 triangles at T-junctions" in notice and "closing 4 m of open edges" in notice
 
 
+def test_several_t_junctions_on_one_edge_and_a_random_soup_stays_open():
+    # the top cut in three strips: two vertices on each of the front and back faces' top edges
+    strips = [
+        (0, 0, 1),
+        (1 / 3, 0, 1),
+        (2 / 3, 0, 1),
+        (1, 0, 1),
+        (1, 1, 1),
+        (2 / 3, 1, 1),
+        (1 / 3, 1, 1),
+        (0, 1, 1),
+    ]
+    points = np.vstack([CUBE[:4], strips])  # 4..11 around the top
+    sides = [(0, 3, 2, 1), (0, 1, 7, 4), (1, 2, 8, 7), (2, 3, 11, 8), (3, 0, 4, 11)]
+    top = [(4, 5, 10, 11), (5, 6, 9, 10), (6, 7, 8, 9)]
+    craft = build_spacecraft(mesh(points, {"box": sides + top}), uniform=ABSORBER)
+    assert craft.is_closed and craft.volume == pytest.approx(1.0)
+    assert any("split 4 triangles" in n for n in craft.notices)
+    rng = np.random.default_rng(1)
+    soup = MeshData(
+        rng.random((3000, 3)),
+        np.arange(3000).reshape(-1, 3),
+        np.zeros(1000, np.int32),
+        ("soup",),
+        -np.ones(1000, np.int32),
+    )
+    with pytest.raises(MeshError, match="3000 boundary edges"):
+        build_spacecraft(soup, uniform=ABSORBER)
+
+
 def test_a_hair_line_gap_is_welded_and_a_wide_one_is_open():
     def box(gap: float) -> MeshData:
         # the top face's own copy of corner 6, off by ``gap``: a crack along two edges
