@@ -44,7 +44,11 @@ class MeshCheck:
     dropped_degenerate : int
         Degenerate triangles removed.
     open_edges, nonmanifold_edges : dict of str -> int
-        Per part, edges of closed-body (``SOLID``) faces used by one face, or by more than two.
+        Per part, edges of closed-body (``SOLID``) faces used by one face, or by more than two. A closed
+        body may be made of several parts (a cylinder's side and caps).
+    open_alone : dict of str -> (int, tuple of str)
+        Parts open on their own triangles whose boundary edges other parts' closed-body faces close:
+        the number of those edges and the parts that close them.
     notices : tuple of str
         One line per repair made (faces dropped, winding fixed).
     """
@@ -55,6 +59,7 @@ class MeshCheck:
     dropped_degenerate: int
     open_edges: dict[str, int]
     nonmanifold_edges: dict[str, int]
+    open_alone: dict[str, tuple[int, tuple[str, ...]]]
     notices: tuple[str, ...]
 
     @property
@@ -75,10 +80,10 @@ def check_mesh(
 
     Non-finite coordinates are an error. Coincident vertices are merged. Faces of closed bodies
     (``face_kind == SOLID``) have their hair-line cracks closed (``CRACK_TOLERANCE``), with a notice.
-    Triangles with a repeated vertex or (near) zero area are dropped and counted. Each part's closed-body
-    faces are checked, on their own, for open and non-manifold edges (reported, not raised: the caller
-    decides); inconsistent winding is made consistent and a body wound inward (negative signed volume)
-    is flipped, each with a notice.
+    Triangles with a repeated vertex or (near) zero area are dropped and counted. Closed-body faces are
+    checked for open and non-manifold edges, and each part on its own triangles (all reported, not
+    raised: the caller decides); inconsistent winding is made consistent and a body wound inward
+    (negative signed volume) is flipped, each with a notice.
 
     Raises
     ------
@@ -103,7 +108,7 @@ def check_mesh(
     repeated = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
     kept = np.flatnonzero(~repeated)
     solid = kept[face_kind[kept] == SOLID]
-    open_edges, nonmanifold_edges = _edge_defects(faces[solid], face_part[solid], part_names)
+    open_edges, nonmanifold_edges, open_alone = _edge_defects(faces[solid], face_part[solid], part_names)
     faces = faces.copy()
     if not open_edges and not nonmanifold_edges and len(solid):
         faces[solid], winding_notices = _orient_outward(
@@ -121,7 +126,14 @@ def check_mesh(
     if not len(kept):
         raise MeshError("no triangle with non-zero area", path=source, hint="check the mesh file")
     return MeshCheck(
-        vertices, faces[kept], origin[kept], dropped, open_edges, nonmanifold_edges, tuple(notices)
+        vertices,
+        faces[kept],
+        origin[kept],
+        dropped,
+        open_edges,
+        nonmanifold_edges,
+        open_alone,
+        tuple(notices),
     )
 
 
@@ -208,9 +220,10 @@ def _open_edges(
 ) -> NDArray[np.int64]:
     """Edges used once by the closed-body faces of their part: (n, 3) of vertex, vertex, face."""
     owner = np.flatnonzero(solid)
-    keys, position = _edges(faces[solid], face_part[solid])
-    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
-    once = counts[inverse] == 1
+    keys, position = _edges(
+        faces[solid], np.zeros(int(solid.sum()), np.int32)
+    )  # closed bodies may span parts
+    once = _uses(keys) == 1
     directed = faces[solid][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     return np.column_stack([directed[once], owner[position[once]]]).astype(np.int64)
 
@@ -319,20 +332,36 @@ def _edges(
 
 def _edge_defects(
     faces: NDArray[np.int64], face_part: NDArray[np.int32], part_names: tuple[str, ...]
-) -> tuple[dict[str, int], dict[str, int]]:
-    """Per part, the number of edges used by one face (open) and by more than two (non-manifold)."""
+) -> tuple[dict[str, int], dict[str, int], dict[str, tuple[int, tuple[str, ...]]]]:
+    """Per part, the number of edges used by one face (open) and by more than two (non-manifold), over
+    all closed-body faces; and for a part open on its own, its own boundary edges and the parts whose
+    faces close them."""
     if not len(faces):
-        return {}, {}
-    keys, owner = _edges(faces, face_part)
-    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
-    per_edge = counts[inverse]
+        return {}, {}, {}
+    keys, owner = _edges(faces, np.zeros_like(face_part))
+    own, _ = _edges(faces, face_part)
+    per_edge, per_own = _uses(keys), _uses(own)
 
     def tally(mask: NDArray[np.bool_]) -> dict[str, int]:
         edge_part = np.unique(np.column_stack([keys[mask], face_part[owner[mask]]]), axis=0)
         parts, n = np.unique(edge_part[:, 1], return_counts=True)
         return {part_names[p]: int(c) for p, c in zip(parts, n, strict=True)}
 
-    return tally(per_edge == 1), tally(per_edge > 2)
+    alone = (per_own == 1) & (per_edge == 2)
+    edge_parts = np.unique(np.column_stack([keys, face_part[owner]]), axis=0)
+    closed_by = {}
+    for part, count in tally(alone).items():
+        index = part_names.index(part)
+        mine = np.unique(keys[alone & (face_part[owner] == index)])
+        others = np.unique(edge_parts[np.isin(edge_parts[:, 0], mine), 1])
+        closed_by[part] = (count, tuple(part_names[p] for p in others if p != index))
+    return tally(per_edge == 1), tally(per_edge > 2), closed_by
+
+
+def _uses(keys: NDArray[np.int64]) -> NDArray[np.int64]:
+    """How many times each entry's key occurs in ``keys``."""
+    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
+    return counts[inverse.reshape(-1)]
 
 
 def _orient_outward(
@@ -351,7 +380,7 @@ def _orient_outward(
     """
     notices = []
     n = len(faces)
-    first, second, same_direction = _edge_pairs(faces, face_part)
+    first, second, same_direction = _edge_pairs(faces, np.zeros_like(face_part))
     # agreeing states: (i kept, j kept) when the edge runs opposite ways, else (i kept, j flipped)
     a = np.r_[first, first + n]
     b = np.r_[second + n * same_direction, second + n * (1 - same_direction)]

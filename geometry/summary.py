@@ -51,6 +51,11 @@ def describe(
     checks += [n for n in (*check.notices, size_notice(check.vertices, mesh.metadata.get("unit", "m"))) if n]
     for part, count in check.open_edges.items():
         checks.append(f"part '{part}' is open ({count} boundary edges): declare it a sheet to use it")
+    for part, (count, others) in check.open_alone.items():
+        checks.append(
+            f"part '{part}' is open on its own ({count} boundary edges): a closed body only together "
+            f"with {', '.join(repr(o) for o in others)}"
+        )
     for part, count in check.nonmanifold_edges.items():
         checks.append(f"part '{part}' has {count} non-manifold edges: declare it a sheet or split it")
     corners = check.vertices[check.faces]
@@ -73,6 +78,8 @@ def describe(
         surface = _SURFACE[int(facet_kind[mine][0])]
         if name in check.open_edges or name in check.nonmanifold_edges:
             surface = "open, undeclared"
+        elif name in check.open_alone:
+            surface = "part of a body"
         file_keys = sorted({keys[k] for k in mesh.face_material[mesh.face_part == index]} - {""})
         parts.append(
             {

@@ -15,16 +15,19 @@ CUBE_POINTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1),
 CUBE_QUADS = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
 
 
-def obj_text(
-    parts: dict[str, list[tuple[int, ...]]], points=CUBE_POINTS, scale: float = 1.0, mtl=None
-) -> str:
-    """An OBJ of ``points`` with one group per part; ``mtl`` maps a part to its usemtl key."""
-    lines = [f"v {x * scale:g} {y * scale:g} {z * scale:g}" for x, y, z in points]
-    for part, faces in parts.items():
+def obj_text(parts: dict, points=CUBE_POINTS, scale: float = 1.0, mtl=None, shared: bool = False) -> str:
+    """An OBJ with one group per part, each on its own copy of ``points`` 2 m further along x (all on
+    the same points when ``shared``); ``mtl`` maps a part to its usemtl key."""
+    lines = []
+    for k, (part, faces) in enumerate(parts.items()):
+        dx = 0 if shared else 2 * k
+        if k == 0 or not shared:
+            lines += [f"v {(x + dx) * scale:g} {y * scale:g} {z * scale:g}" for x, y, z in points]
         lines.append(f"g {part}")
         if mtl and part in mtl:
             lines.append(f"usemtl {mtl[part]}")
-        lines += ["f " + " ".join(str(i + 1) for i in face) for face in faces]
+        base = 0 if shared else k * len(points)
+        lines += ["f " + " ".join(str(base + i + 1) for i in face) for face in faces]
     return "\n".join(lines) + "\n"
 
 
@@ -217,10 +220,16 @@ CASES = {
     ),
     # item 26: a part open on its own, closed only with its neighbour
     "part-open-alone": (
-        lambda d: (d / "m.obj").write_text(obj_text({"lid": CUBE_QUADS[:1], "tub": CUBE_QUADS[1:]})),
+        lambda d: (d / "m.obj").write_text(
+            obj_text({"lid": CUBE_QUADS[:1], "tub": CUBE_QUADS[1:]}, shared=True)
+        ),
         ["info", "m.obj", "--no-k-is", *UNIFORM],
         0,
-        ["part 'lid' is open", "part 'tub' is open"],
+        [
+            "part 'lid' is open on its own (4 boundary edges): a closed body only together with 'tub'",
+            "part 'tub' is open on its own",
+            "part of a body",
+        ],
     ),
     # item 27: a closed body with T-junctions is closed
     "t-junction-box": (
