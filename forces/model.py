@@ -152,8 +152,9 @@ class Model:
     source : ModelSource or None
         How it was loaded (None for a model built in memory: it cannot go to Dask workers).
     reference_point_m : (3,) float64 or None
-        Torque reference point [m], body frame (the centre of mass); None: the volume centroid of a
-        closed model, else the area centroid (METHOD.md "Frames, units and signs").
+        Torque reference point [m], body frame (the centre of mass); None: the materials file's
+        ``[model] centre_of_mass_m``, else by default the volume centroid of a closed model, else the
+        area centroid (METHOD.md "Frames, units and signs").
     reference_area_m2, reference_length_m : float or None
         Normalisation of the aerodynamic coefficients; None: a quarter of the total area (the mean
         projected area of a convex body: ``pi R^2`` for a sphere) and the largest extent of the
@@ -195,7 +196,8 @@ class Model:
 
     def reference(self, point_m: Sequence[float] | NDArray | None = None) -> tuple[NDArray[np.float64], str]:
         """The torque reference point [m] and where it came from: ``point_m``, else the model's own
-        point ("user"), else the model default ("volume centroid" or "area centroid")."""
+        point ("user"), else the materials file's centre of mass ("centre of mass (materials file)"),
+        else a default ("volume centroid (default)" or "area centroid (default)")."""
         point = self.reference_point_m if point_m is None else point_m
         if point is None:
             return self.craft.default_reference
@@ -263,7 +265,8 @@ def load(
         ``{"gsi": "cll", "normal_accommodation": 0.3}``; unknown keys are refused (defaults:
         :data:`~sunwind.geometry.materials.GAS_DEFAULTS`).
     reference_point_m : (3,) array_like, optional
-        Torque reference point [m] (the centre of mass); default as :class:`Model`.
+        Torque reference point [m] (the centre of mass); default the materials file's
+        ``[model] centre_of_mass_m``, else as :class:`Model`.
     threads : int, optional
         Threads each attitude uses; default every core.
 

@@ -70,7 +70,8 @@ class AttitudeResult:
     reference_point_m : (3,) float64
         Point the torque is taken about.
     reference_point : str
-        Where it came from: "user", "volume centroid" or "area centroid".
+        Where it came from: "user" (given), "centre of mass (materials file)", or a default: "volume
+        centroid (default)" or "area centroid (default)".
     projected_area_m2 : float
         Lit area projected on the plane normal to the attitude's direction: the shadow the spacecraft
         casts in the Sun or in the flow.

@@ -8,6 +8,7 @@ import numpy as np
 import scipy.sparse
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import MeshError
@@ -18,6 +19,14 @@ MERGE_TOLERANCE = 1e-9
 #: A triangle whose area is below this share of its longest edge squared is degenerate (a needle or
 #: a point); such triangles carry no area and are dropped and counted.
 DEGENERATE_RATIO = 1e-10
+#: Cracks of a closed body narrower than this share of the model size (largest bounding-box extent)
+#: are closed on loading: boundary vertices this close are welded, and a boundary vertex this close
+#: to another boundary edge of its part splits that edge (a T-junction).
+CRACK_TOLERANCE = 1e-4
+#: A model whose largest extent [m] is outside this range is probably in another unit.
+PLAUSIBLE_SIZE_M = (0.01, 500.0)
+#: Most passes of T-junction splitting (each splits every open edge at one vertex at most).
+_SPLIT_PASSES = 32
 
 
 @dataclass(frozen=True, eq=False)
@@ -35,7 +44,11 @@ class MeshCheck:
     dropped_degenerate : int
         Degenerate triangles removed.
     open_edges, nonmanifold_edges : dict of str -> int
-        Per part, edges of closed-body (``SOLID``) faces used by one face, or by more than two.
+        Per part, edges of closed-body (``SOLID``) faces used by one face, or by more than two. A closed
+        body may be made of several parts (a cylinder's side and caps).
+    open_alone : dict of str -> (int, tuple of str)
+        Parts open on their own triangles whose boundary edges other parts' closed-body faces close:
+        the number of those edges and the parts that close them.
     notices : tuple of str
         One line per repair made (faces dropped, winding fixed).
     """
@@ -46,6 +59,7 @@ class MeshCheck:
     dropped_degenerate: int
     open_edges: dict[str, int]
     nonmanifold_edges: dict[str, int]
+    open_alone: dict[str, tuple[int, tuple[str, ...]]]
     notices: tuple[str, ...]
 
     @property
@@ -64,11 +78,12 @@ def check_mesh(
 ) -> MeshCheck:
     """Check a labelled triangle soup and repair what can be repaired without guessing.
 
-    Non-finite coordinates are an error. Coincident vertices are merged. Triangles with a repeated
-    vertex or (near) zero area are dropped and counted. Faces of closed bodies (``face_kind ==
-    SOLID``) are checked for open and non-manifold edges (reported, not raised: the caller decides);
-    inconsistent winding is made consistent and a body wound inward (negative signed volume) is
-    flipped, each with a notice.
+    Non-finite coordinates are an error. Coincident vertices are merged. Faces of closed bodies
+    (``face_kind == SOLID``) have their hair-line cracks closed (``CRACK_TOLERANCE``), with a notice.
+    Triangles with a repeated vertex or (near) zero area are dropped and counted. Closed-body faces are
+    checked for open and non-manifold edges, and each part on its own triangles (all reported, not
+    raised: the caller decides); inconsistent winding is made consistent and a body wound inward
+    (negative signed volume) is flipped, each with a notice.
 
     Raises
     ------
@@ -86,11 +101,14 @@ def check_mesh(
             hint="fix or remove them in the mesh file",
         )
     vertices, faces = _merge_vertices(vertices[used], np.searchsorted(used, faces))
-    notices: list[str] = []
+    vertices, faces, origin, notices = _close_cracks(
+        vertices, faces, face_part, face_kind == SOLID, part_names
+    )
+    face_part, face_kind = face_part[origin], face_kind[origin]
     repeated = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
     kept = np.flatnonzero(~repeated)
     solid = kept[face_kind[kept] == SOLID]
-    open_edges, nonmanifold_edges = _edge_defects(faces[solid], face_part[solid], part_names)
+    open_edges, nonmanifold_edges, open_alone = _edge_defects(faces[solid], face_part[solid], part_names)
     faces = faces.copy()
     if not open_edges and not nonmanifold_edges and len(solid):
         faces[solid], winding_notices = _orient_outward(
@@ -107,7 +125,182 @@ def check_mesh(
         notices.append(f"dropped {dropped} degenerate triangles (parts: {', '.join(names)})")
     if not len(kept):
         raise MeshError("no triangle with non-zero area", path=source, hint="check the mesh file")
-    return MeshCheck(vertices, faces[kept], kept, dropped, open_edges, nonmanifold_edges, tuple(notices))
+    return MeshCheck(
+        vertices,
+        faces[kept],
+        origin[kept],
+        dropped,
+        open_edges,
+        nonmanifold_edges,
+        open_alone,
+        tuple(notices),
+    )
+
+
+def size_notice(vertices: NDArray[np.float64], unit: str) -> str | None:
+    """A notice when the model's largest extent [m] suggests that its file is in another unit."""
+    extent = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    low, high = PLAUSIBLE_SIZE_M
+    if low <= extent <= high:
+        return None
+    return (
+        f"the model is {extent:.4g} m across (largest extent of its bounding box; unit {unit}), "
+        f"outside {low:g}-{high:g} m: if the file is in another unit, give it with --unit "
+        "(Python: unit=), e.g. --unit mm"
+    )
+
+
+def _close_cracks(
+    vertices: NDArray[np.float64],
+    faces: NDArray[np.int64],
+    face_part: NDArray[np.int32],
+    solid: NDArray[np.bool_],
+    part_names: tuple[str, ...],
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64], list[str]]:
+    """Close the hair-line cracks of closed bodies: weld boundary vertices closer than the tolerance and
+    split boundary edges at the boundary vertices of the same part lying on them (T-junctions).
+
+    Returns the vertices, the faces (a split face becomes two), the input face of each face, and a
+    notice per repair.
+    """
+    origin = np.arange(len(faces))
+    scale = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    tolerance = CRACK_TOLERANCE * scale
+    edges = _open_edges(faces, face_part, solid)
+    if not len(edges) or tolerance <= 0:
+        return vertices, faces, origin, []
+    before = _length(vertices, edges)
+    # weld: each boundary vertex joins its nearest boundary vertex when closer than the tolerance (one
+    # neighbour each: the work stays linear however many vertices crowd together)
+    boundary = np.unique(edges[:, :2])
+    distance, nearest = cKDTree(vertices[boundary]).query(vertices[boundary], k=2)
+    other = np.where(nearest[:, 0] == np.arange(len(boundary)), nearest[:, 1], nearest[:, 0])
+    close = np.flatnonzero(
+        np.where(nearest[:, 0] == np.arange(len(boundary)), distance[:, 1], distance[:, 0]) <= tolerance
+    )
+    welded = 0
+    if len(close):
+        graph = scipy.sparse.coo_matrix(
+            (np.ones(len(close)), (close, other[close])), shape=(len(boundary), len(boundary))
+        )
+        label = connected_components(graph, directed=False)[1]
+        target = np.arange(len(vertices))
+        first = np.full(label.max() + 1, len(boundary))
+        np.minimum.at(first, label, np.arange(len(boundary)))
+        target[boundary] = boundary[first[label]]
+        welded = int(np.count_nonzero(target[boundary] != boundary))
+        faces = target[faces]
+    split = 0
+    for _ in range(_SPLIT_PASSES):
+        faces, origin, count = _split_t_junctions(
+            vertices, faces, origin, face_part[origin], solid[origin], tolerance
+        )
+        split += count
+        if not count:
+            break
+    after = _open_edges(faces, face_part[origin], solid[origin])
+    if not welded and not split:
+        return vertices, faces, origin, []
+    closed = before - _length(vertices, after)
+    touched = sorted({part_names[p] for p in face_part[edges[:, 2]]})
+    return (
+        vertices,
+        faces,
+        origin,
+        [
+            f"closed hair-line cracks of closed bodies (parts: {', '.join(touched)}): welded {welded} "
+            f"vertices and split {split} triangles at T-junctions, closing {closed:.4g} m of open edges; "
+            f"gaps up to {tolerance:.3g} m ({CRACK_TOLERANCE:g} of the model size) count as cracks"
+        ],
+    )
+
+
+def _open_edges(
+    faces: NDArray[np.int64], face_part: NDArray[np.int32], solid: NDArray[np.bool_]
+) -> NDArray[np.int64]:
+    """Edges used once by the closed-body faces of their part: (n, 3) of vertex, vertex, face."""
+    owner = np.flatnonzero(solid)
+    keys, position = _edges(
+        faces[solid], np.zeros(int(solid.sum()), np.int32)
+    )  # closed bodies may span parts
+    once = _uses(keys) == 1
+    directed = faces[solid][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    return np.column_stack([directed[once], owner[position[once]]]).astype(np.int64)
+
+
+def _length(vertices: NDArray[np.float64], edges: NDArray[np.int64]) -> float:
+    """Total length [m] of ``edges`` (rows of vertex, vertex, ...)."""
+    return float(np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).sum())
+
+
+def _junction_candidates(
+    edges: NDArray[np.int64], edge_part: NDArray[np.int32], n_vertices: int
+) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Pairs (open edge, boundary vertex of its part) where the vertex may lie on the edge: the far end
+    of an open edge that shares an end with it. A T-junction's vertex is found so (a chain of them one
+    per pass), and the work is linear in the number of open edges."""
+    n = len(edges)
+    ends = np.r_[edges[:, 0], edges[:, 1]] + n_vertices * np.r_[edge_part, edge_part].astype(np.int64)
+    _, key = np.unique(ends, return_inverse=True)
+    incidence = scipy.sparse.csr_matrix((np.ones(2 * n), (key, np.r_[np.arange(n), np.arange(n)])))
+    touching = (incidence.T @ incidence).tocoo()  # edges sharing an end (and each edge with itself)
+    first, second = touching.row.astype(np.int64), touching.col.astype(np.int64)
+    keep = first != second
+    first, second = first[keep], second[keep]
+    # the end of ``first`` that is not an end of ``second``
+    shared_a = (edges[first, 0] == edges[second, 0]) | (edges[first, 0] == edges[second, 1])
+    far = np.where(shared_a, edges[first, 1], edges[first, 0])
+    return second, far
+
+
+def _split_t_junctions(
+    vertices: NDArray[np.float64],
+    faces: NDArray[np.int64],
+    origin: NDArray[np.int64],
+    face_part: NDArray[np.int32],
+    solid: NDArray[np.bool_],
+    tolerance: float,
+) -> tuple[NDArray[np.int64], NDArray[np.int64], int]:
+    """One pass: split each open edge that a boundary vertex of its part lies on (within ``tolerance``,
+    away from its ends) at that vertex; each face is split at most once. Returns faces, origin, count."""
+    edges = _open_edges(faces, face_part, solid)
+    if not len(edges):
+        return faces, origin, 0
+    edge, vertex = _junction_candidates(edges, face_part[edges[:, 2]], len(vertices))
+    a, b = vertices[edges[:, 0]], vertices[edges[:, 1]]
+    half = np.linalg.norm(b - a, axis=1) / 2
+    p, ea, eb = vertices[vertex], a[edge], b[edge]
+    t = np.einsum("ij,ij->i", p - ea, eb - ea) / np.maximum(4 * half[edge] ** 2, 1e-300)
+    gap = np.linalg.norm(ea + t[:, None] * (eb - ea) - p, axis=1)
+    ends = np.minimum(np.linalg.norm(p - ea, axis=1), np.linalg.norm(p - eb, axis=1))
+    ok = (
+        (vertex != edges[edge, 0])
+        & (vertex != edges[edge, 1])
+        & (t > 0)
+        & (t < 1)
+        & (gap <= tolerance)
+        & (ends > tolerance)
+    )
+    edge, vertex = edge[ok], vertex[ok]
+    split_faces, first = np.unique(edges[edge, 2], return_index=True)
+    chosen = {
+        int(face): (int(edges[e, 0]), int(edges[e, 1]), int(v))
+        for face, e, v in zip(split_faces, edge[first], vertex[first], strict=True)
+    }
+    if not chosen:
+        return faces, origin, 0
+    halves = []
+    for face in split_faces:
+        x, y, v = chosen[int(face)]
+        f = faces[face].tolist()
+        i = next(k for k in range(3) if {f[k], f[(k + 1) % 3]} == {x, y})
+        p, q, r = f[i], f[(i + 1) % 3], f[(i + 2) % 3]
+        halves += [[p, v, r], [v, q, r]]
+    keep = np.ones(len(faces), dtype=bool)
+    keep[split_faces] = False
+    faces = np.concatenate([faces[keep], np.asarray(halves, dtype=np.int64)])
+    origin = np.concatenate([origin[keep], np.repeat(origin[split_faces], 2)])
+    return faces, origin, len(split_faces)
 
 
 def _merge_vertices(
@@ -121,30 +314,54 @@ def _merge_vertices(
     return vertices[first], inverse.reshape(-1)[faces]
 
 
-def _edges(faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Undirected edge keys (3 n,) and the face of each."""
+def _edges(
+    faces: NDArray[np.int64], face_part: NDArray[np.int32]
+) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Undirected edge keys (3 n,), one per edge of each part (a part's edges are its own), and the
+    face of each."""
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     lo, hi = directed.min(axis=1), directed.max(axis=1)
+    part = np.repeat(np.asarray(face_part, dtype=np.int64), 3)
     n = int(faces.max()) + 1 if len(faces) else 1
-    return lo * n + hi, np.repeat(np.arange(len(faces)), 3)
+    if (int(part.max()) + 1 if len(part) else 1) * n * n < 2**62:
+        keys = (part * n + lo) * n + hi
+    else:  # too many vertices and parts for one int64 key
+        keys = np.unique(np.column_stack([part, lo, hi]), axis=0, return_inverse=True)[1].reshape(-1)
+    return keys.astype(np.int64), np.repeat(np.arange(len(faces)), 3)
 
 
 def _edge_defects(
     faces: NDArray[np.int64], face_part: NDArray[np.int32], part_names: tuple[str, ...]
-) -> tuple[dict[str, int], dict[str, int]]:
-    """Per part, the number of edges used by one face (open) and by more than two (non-manifold)."""
+) -> tuple[dict[str, int], dict[str, int], dict[str, tuple[int, tuple[str, ...]]]]:
+    """Per part, the number of edges used by one face (open) and by more than two (non-manifold), over
+    all closed-body faces; and for a part open on its own, its own boundary edges and the parts whose
+    faces close them."""
     if not len(faces):
-        return {}, {}
-    keys, owner = _edges(faces)
-    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
-    per_edge = counts[inverse]
+        return {}, {}, {}
+    keys, owner = _edges(faces, np.zeros_like(face_part))
+    own, _ = _edges(faces, face_part)
+    per_edge, per_own = _uses(keys), _uses(own)
 
     def tally(mask: NDArray[np.bool_]) -> dict[str, int]:
         edge_part = np.unique(np.column_stack([keys[mask], face_part[owner[mask]]]), axis=0)
         parts, n = np.unique(edge_part[:, 1], return_counts=True)
         return {part_names[p]: int(c) for p, c in zip(parts, n, strict=True)}
 
-    return tally(per_edge == 1), tally(per_edge > 2)
+    alone = (per_own == 1) & (per_edge == 2)
+    edge_parts = np.unique(np.column_stack([keys, face_part[owner]]), axis=0)
+    closed_by = {}
+    for part, count in tally(alone).items():
+        index = part_names.index(part)
+        mine = np.unique(keys[alone & (face_part[owner] == index)])
+        others = np.unique(edge_parts[np.isin(edge_parts[:, 0], mine), 1])
+        closed_by[part] = (count, tuple(part_names[p] for p in others if p != index))
+    return tally(per_edge == 1), tally(per_edge > 2), closed_by
+
+
+def _uses(keys: NDArray[np.int64]) -> NDArray[np.int64]:
+    """How many times each entry's key occurs in ``keys``."""
+    _, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
+    return counts[inverse.reshape(-1)]
 
 
 def _orient_outward(
@@ -163,7 +380,7 @@ def _orient_outward(
     """
     notices = []
     n = len(faces)
-    first, second, same_direction = _edge_pairs(faces)
+    first, second, same_direction = _edge_pairs(faces, np.zeros_like(face_part))
     # agreeing states: (i kept, j kept) when the edge runs opposite ways, else (i kept, j flipped)
     a = np.r_[first, first + n]
     b = np.r_[second + n * same_direction, second + n * (1 - same_direction)]
@@ -206,10 +423,12 @@ def _orient_outward(
     return faces, notices
 
 
-def _edge_pairs(faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
-    """Faces sharing each manifold edge, and 1 where both run the edge in the same direction."""
+def _edge_pairs(
+    faces: NDArray[np.int64], face_part: NDArray[np.int32]
+) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """Faces of one part sharing each manifold edge, and 1 where both run the edge in the same direction."""
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    keys, owner = _edges(faces)
+    keys, owner = _edges(faces, face_part)
     forward = (directed[:, 0] < directed[:, 1]).astype(np.int64)
     order = np.argsort(keys, kind="stable")
     paired = keys[order][1:] == keys[order][:-1]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 
 class SunwindError(ValueError):
@@ -23,6 +23,9 @@ class SunwindError(ValueError):
     parameters : tuple of str
         The Python parameters the message names (``"flux_W_m2"``), as written in it: the command line
         renames them to its flags (:meth:`renamed`).
+    problems : tuple of SunwindError
+        The problems an error made by :func:`combine` lists, one line each (without their fixes,
+        which its ``hint`` holds, one per line).
     """
 
     def __init__(
@@ -33,12 +36,14 @@ class SunwindError(ValueError):
         part: str | None = None,
         hint: str | None = None,
         parameters: tuple[str, ...] = (),
+        problems: tuple[SunwindError, ...] = (),
     ) -> None:
         self.message = message
         self.path = path
         self.part = part
         self.hint = hint
         self.parameters = parameters
+        self.problems = problems
         super().__init__(str(self))
 
     def renamed(self, names: Mapping[str, str]) -> SunwindError:
@@ -58,13 +63,59 @@ class SunwindError(ValueError):
             part=self.part,
             hint=rename(self.hint),
             parameters=self.parameters,
+            problems=tuple(problem.renamed(names) for problem in self.problems),
         )
 
     def __str__(self) -> str:
         where = f"{self.path}: " if self.path else ""
         which = f"part '{self.part}' " if self.part else ""
+        if self.problems:
+            lines = [f"{where}{self.message}:"]
+            for problem in self.problems:
+                shown = problem if problem.path != self.path else _without_path(problem)
+                lines.append(f"  {shown}")
+            lines += [f"  fix: {fix}" for fix in (self.hint or "").splitlines()]
+            return "\n".join(lines)
         fix = f"; {self.hint}" if self.hint else ""
         return f"{where}{which}{self.message}{fix}"
+
+
+def _without_path(error: SunwindError) -> SunwindError:
+    """``error`` without its file, for a list under a heading that names the file."""
+    return type(error)(error.message, part=error.part, hint=error.hint, parameters=error.parameters)
+
+
+def combine(errors: Sequence[SunwindError], hint: str | None = None) -> SunwindError:
+    """One error listing every problem of ``errors``, one line each, then their distinct fixes.
+
+    Errors made by this function are flattened into their problems and fixes. ``hint`` replaces the
+    fixes of the other ``errors`` (one fix for a list of problems of one kind). One problem without
+    ``hint`` is returned as it is. The result has the type of the first problem and names the file when
+    every problem is in the same file.
+    """
+    problems: list[SunwindError] = []
+    fixes: list[str] = [] if hint is None else [hint]
+    for error in errors:
+        if error.problems:
+            problems += error.problems
+            fixes += (error.hint or "").splitlines()
+            continue
+        problems.append(
+            type(error)(error.message, path=error.path, part=error.part, parameters=error.parameters)
+        )
+        if hint is None and error.hint:
+            fixes.append(error.hint)
+    if len(problems) == 1 and hint is None and len(errors) == 1:
+        return errors[0]
+    paths = {problem.path for problem in problems}
+    return type(problems[0])(
+        f"{len(problems)} problems" if len(problems) > 1 else problems[0].message,
+        path=paths.pop() if len(paths) == 1 else None,
+        part=None if len(problems) > 1 else problems[0].part,
+        hint="\n".join(dict.fromkeys(fixes)) or None,
+        parameters=tuple(dict.fromkeys(p for problem in problems for p in problem.parameters)),
+        problems=tuple(problems) if len(problems) > 1 else (),
+    )
 
 
 class MeshError(SunwindError):

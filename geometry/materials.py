@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import fnmatch
+import json
 import math
 import os
+import re
 import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
@@ -13,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.geometry.errors import MaterialError
+from sunwind.geometry.errors import MaterialError, SunwindError, combine
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -36,6 +38,15 @@ GAS_DEFAULTS = {
     "tangential_accommodation": 1.0,  # sigma_t (schaaf-chambre, cll)
     "wall_temperature": 300.0,  # T_w [K]
 }
+
+
+#: Most tables and arrays one inside another that a materials file may nest (a real one nests 2).
+MAX_TOML_DEPTH = 64
+
+
+def toml_key(name: str) -> str:
+    """``name`` as a TOML key: bare when it may be (``white_paint``), else quoted (``"foil_silver.014"``)."""
+    return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else json.dumps(name, ensure_ascii=False)
 
 
 @dataclass(frozen=True)
@@ -250,11 +261,13 @@ class PartRule:
 
 @dataclass(frozen=True)
 class MaterialSpec:
-    """A parsed materials file: named materials and the ordered part rules."""
+    """A parsed materials file: named materials, the ordered part rules and, from its ``[model]`` table,
+    the centre of mass [m] in the body frame (the torque reference point; None when not given)."""
 
     materials: Mapping[str, Material]
     rules: tuple[PartRule, ...]
     source: str | None = None
+    centre_of_mass_m: tuple[float, float, float] | None = None
 
     def rule_for(self, part: str) -> PartRule | None:
         """The first rule matching ``part``, or None."""
@@ -277,21 +290,40 @@ def load_materials(path: str | os.PathLike) -> MaterialSpec:
         raise MaterialError("no such file", path=source, hint="check the materials file's path") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise MaterialError(f"cannot read the file ({exc.__class__.__name__})", path=source) from None
+    depth = _nesting(text)
+    if depth > MAX_TOML_DEPTH:
+        raise MaterialError(
+            f"is nested {depth} tables or arrays deep, more than the {MAX_TOML_DEPTH} a materials file may",
+            path=source,
+            hint="a materials file has [materials.NAME] tables, a [parts] table and a [model] table",
+        )
     try:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise MaterialError(f"not valid TOML: {exc}", path=source) from None
+    except RecursionError:  # nesting that _nesting does not see, e.g. dotted keys
+        raise MaterialError("is nested too deeply to read", path=source) from None
     return parse_materials(document, source)
+
+
+def _nesting(text: str) -> int:
+    """Deepest nesting of ``{`` and ``[`` outside strings and comments (an upper bound; cheap)."""
+    text = re.sub(r"#[^\n]*|\"(?:[^\"\\\n]|\\.)*\"|'[^'\n]*'", "", text)
+    depth = deepest = 0
+    for char in re.findall(r"[\[\]{}]", text):
+        depth = depth + 1 if char in "[{" else max(depth - 1, 0)
+        deepest = max(deepest, depth)
+    return deepest
 
 
 def parse_materials(document: Mapping[str, object], source: str | None = None) -> MaterialSpec:
     """Check and convert a materials document already parsed from TOML."""
-    unknown = sorted(set(document) - {"materials", "parts"})
+    unknown = sorted(set(document) - {"materials", "parts", "model"})
     if unknown:
         raise MaterialError(
             f"unknown top-level table '{unknown[0]}'",
             path=source,
-            hint="a materials file has [materials.NAME] tables and a [parts] table",
+            hint="a materials file has [materials.NAME] tables, a [parts] table and a [model] table",
         )
     tables = document.get("materials", {})
     if not isinstance(tables, Mapping) or not all(isinstance(t, Mapping) for t in tables.values()):
@@ -300,18 +332,60 @@ def parse_materials(document: Mapping[str, object], source: str | None = None) -
             path=source,
             hint="write [materials.white_paint] followed by its keys",
         )
-    materials = {name: Material.checked(name, values, source) for name, values in tables.items()}
+    problems: list[SunwindError] = []
+    materials = {}
+    for name, values in tables.items():
+        try:
+            materials[name] = Material.checked(name, values, source)
+        except MaterialError as error:
+            problems.append(error)
     rules_table = document.get("parts", {})
     if not isinstance(rules_table, Mapping):
-        raise MaterialError("[parts] must be a table of glob = material", path=source)
-    rules = tuple(_parse_rule(pattern, value, materials, source) for pattern, value in rules_table.items())
-    return MaterialSpec(materials=materials, rules=rules, source=source)
+        problems.append(MaterialError("[parts] must be a table of glob = material", path=source))
+        rules_table = {}
+    rules = []
+    for pattern, value in rules_table.items():
+        try:
+            rules.append(_parse_rule(pattern, value, materials, set(tables), source))
+        except MaterialError as error:
+            problems.append(error)
+    try:
+        centre = _centre_of_mass(document.get("model", {}), source)
+    except MaterialError as error:
+        problems.append(error)
+    if problems:
+        raise combine(problems)
+    return MaterialSpec(materials=materials, rules=tuple(rules), source=source, centre_of_mass_m=centre)
+
+
+def _centre_of_mass(table: object, source: str | None) -> tuple[float, float, float] | None:
+    """``centre_of_mass_m`` of the ``[model]`` table: three finite numbers [m], or None when absent."""
+    if not isinstance(table, Mapping) or set(table) - {"centre_of_mass_m"}:
+        raise MaterialError(
+            "[model] may hold only centre_of_mass_m",
+            path=source,
+            hint="write [model] followed by centre_of_mass_m = [x, y, z] (metres, body frame)",
+        )
+    value = table.get("centre_of_mass_m")
+    if value is None:
+        return None
+    numbers = isinstance(value, list) and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value
+    )
+    if not numbers or len(value) != 3:
+        raise MaterialError(
+            f"[model] centre_of_mass_m = {value!r} is not 3 numbers",
+            path=source,
+            hint="give centre_of_mass_m = [x, y, z], finite, in metres in the body frame",
+        )
+    return (float(value[0]), float(value[1]), float(value[2]))
 
 
 def _parse_rule(
-    pattern: str, value: object, materials: Mapping[str, Material], source: str | None
+    pattern: str, value: object, materials: Mapping[str, Material], defined: set[str], source: str | None
 ) -> PartRule:
-    """Convert one ``[parts]`` entry, checking that the materials it names exist."""
+    """Convert one ``[parts]`` entry, checking that the materials it names exist (``defined``: every
+    ``[materials]`` table, valid or not, so that a bad material is reported once)."""
     if isinstance(value, str):
         front, back, sheet = value, None, False
     elif isinstance(value, Mapping):
@@ -326,10 +400,10 @@ def _parse_rule(
     else:
         raise MaterialError(f'[parts] "{pattern}" = {value!r} is not a material name', path=source)
     for name in (front, back):
-        if name is not None and name not in materials:
+        if name is not None and name not in defined:
             raise MaterialError(
                 f"[parts] \"{pattern}\" names material '{name}', which is not defined",
                 path=source,
-                hint=f"add a [materials.{name}] table",
+                hint=f"add a [materials.{toml_key(str(name))}] table",
             )
     return PartRule(pattern=pattern, front=front, back=back, sheet=sheet)

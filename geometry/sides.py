@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.geometry.errors import MaterialError
-from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, part_matches
+from sunwind.geometry.errors import InputError, MaterialError, combine
+from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, part_matches, toml_key
 from sunwind.geometry.mesh_data import MeshData
 
 #: Facet kinds: a facet of a closed body (front side only), an open sheet lit from the front only,
@@ -19,7 +20,7 @@ SOLID, ONE_SIDED, TWO_SIDED = 0, 1, 2
 UNIFORM_NAME = "uniform"
 
 _NO_MATERIAL_HINT = (
-    "add a [parts] entry or a [materials.{key}] table to the materials file, "
+    "add {what} to the materials file, "
     "or give a uniform material (uniform=Material(...); on the command line --reflectivity and "
     "--specular-fraction)"
 )
@@ -55,6 +56,8 @@ class _Catalogue:
         self.mesh, self.spec, self.uniform = mesh, spec, uniform
         self.used: list[Material] = []
         self.origin: list[str] = []
+        self.missing: list[MaterialError] = []
+        self.missing_keys: list[str | None] = []
 
     def index(self, material: Material, origin: str) -> int:
         for i, known in enumerate(self.used):
@@ -65,7 +68,8 @@ class _Catalogue:
         return len(self.used) - 1
 
     def resolve(self, key: str | None, part: str) -> tuple[int, str]:
-        """Index and description of the material for mesh material ``key`` on ``part``."""
+        """Index and description of the material for mesh material ``key`` on ``part``; a key without
+        a material is noted in :attr:`missing` (index -1), for :meth:`raise_missing`."""
         if key is not None and self.spec is not None and key in self.spec.materials:
             return self.index(self.spec.materials[key], "materials file"), f"{key} (materials file)"
         if key is not None and key in self.mesh.file_optics:
@@ -74,12 +78,23 @@ class _Catalogue:
         if self.uniform is not None:
             return self.index(self.uniform, "command line"), f"{UNIFORM_NAME} (command line)"
         detail = f"has material key '{key}', which is not defined" if key else "has no material"
-        raise MaterialError(
-            detail,
-            path=self.spec.source if self.spec and self.spec.source else self.mesh.source,
-            part=part,
-            hint=_NO_MATERIAL_HINT.format(key=key or "NAME"),
-        )
+        path = self.spec.source if self.spec and self.spec.source else self.mesh.source
+        self.missing.append(MaterialError(detail, path=path, part=part))
+        self.missing_keys.append(key)
+        return -1, "(none)"
+
+    def raise_missing(self) -> None:
+        """Raise one error listing every part and key left without a material, with one fix."""
+        if not self.missing:
+            return
+        keys = [f"[materials.{toml_key(k)}]" for k in dict.fromkeys(self.missing_keys) if k is not None]
+        if keys:
+            what = f"the material table{'s' if len(keys) > 1 else ''} {', '.join(keys)}"
+            if None in self.missing_keys:
+                what += " and [parts] entries for the parts without a material key"
+        else:
+            what = "[parts] entries (or [materials.NAME] tables for the mesh file's material keys)"
+        raise combine(self.missing, hint=_NO_MATERIAL_HINT.format(what=what))
 
     def table(self) -> MaterialTable:
         return MaterialTable.from_materials(self.used)
@@ -102,8 +117,16 @@ def assign_sides(
     Raises
     ------
     MaterialError
-        A part (or some of its faces) has no material.
+        Parts (or some of their faces) without a material, all of them in one error.
+    InputError
+        A ``two_sided`` glob that matches no part.
+
+    Warns
+    -----
+    UserWarning
+        A ``[parts]`` glob that matches no part (the file may be meant for other models too).
     """
+    _check_globs(mesh, spec, two_sided)
     catalogue = _Catalogue(mesh, spec, uniform)
     n = mesh.n_faces
     kind = np.full(n, SOLID, dtype=np.int8)
@@ -150,4 +173,38 @@ def assign_sides(
             else:
                 back[faces], text = catalogue.resolve(back_key, part)
                 summary[part] = f"front {summary[part]}, back {text}"
+    catalogue.raise_missing()
     return SideAssignment(kind, front, back, catalogue.table(), summary)
+
+
+def _check_globs(mesh: MeshData, spec: MaterialSpec | None, two_sided: Sequence[str]) -> None:
+    """Refuse a ``two_sided`` glob, and warn of a ``[parts]`` glob, that selects no part of ``mesh``."""
+    parts = list(mesh.part_names)
+    listed = ", ".join(parts[:20]) + (f", ... ({len(parts)} parts)" if len(parts) > 20 else "")
+    for glob in two_sided:
+        if not any(part_matches(part, glob) for part in parts):
+            raise InputError(
+                f"two_sided glob '{glob}' matches no part",
+                path=mesh.source,
+                hint=f"the parts are: {listed}",
+                parameters=("two_sided",),
+            )
+    for rule in spec.rules if spec is not None else ():
+        if not any(rule.matches(part) for part in parts):
+            warnings.warn(
+                f'{spec.source or "materials"}: [parts] "{rule.pattern}" matches no part of '
+                f"{mesh.source} (its parts: {listed})",
+                stacklevel=3,
+            )
+
+
+def declared_kinds(mesh: MeshData, spec: MaterialSpec | None, two_sided: Sequence[str]) -> NDArray[np.int8]:
+    """Face kinds from sheet declarations alone, for when the materials are incomplete."""
+    kind = np.full(mesh.n_faces, SOLID, dtype=np.int8)
+    for index, part in enumerate(mesh.part_names):
+        rule = spec.rule_for(part) if spec is not None else None
+        if rule is not None and rule.sheet:
+            kind[mesh.face_part == index] = TWO_SIDED if rule.back is not None else ONE_SIDED
+        elif part in mesh.two_sided_parts or any(part_matches(part, g) for g in two_sided):
+            kind[mesh.face_part == index] = TWO_SIDED
+    return kind

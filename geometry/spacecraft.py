@@ -12,18 +12,22 @@ from numpy.typing import NDArray
 
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.cache import ModelCache
-from sunwind.geometry.checks import MeshCheck, check_mesh
-from sunwind.geometry.errors import MeshError
-from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials
+from sunwind.geometry.checks import CRACK_TOLERANCE, MeshCheck, check_mesh, size_notice
+from sunwind.geometry.errors import MaterialError, MeshError, SunwindError, combine
+from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials, toml_key
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.rays.scene import RayScene
-from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
+from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides, declared_kinds
 
 #: :meth:`Spacecraft.struck_sides` of a ray that left the model.
 ESCAPED = -1
 #: :meth:`Spacecraft.struck_sides` of a ray that met a side the model does not have (a closed body's
 #: inside, a one-sided sheet's back): absorbed there.
 BLIND = -2
+
+
+#: Name of the torque reference point that the materials file's ``[model] centre_of_mass_m`` gives.
+CENTRE_OF_MASS = "centre of mass (materials file)"
 
 
 def _frozen(array: NDArray) -> NDArray:
@@ -66,7 +70,11 @@ class Spacecraft:
     unit : str
         Length unit of the file and how it was chosen, e.g. "mm (--unit)".
     notices : tuple of str
-        Repairs made on loading (degenerate triangles dropped, winding fixed).
+        Repairs made on loading (degenerate triangles dropped, winding fixed, cracks closed) and
+        remarks (a size that suggests another unit).
+    centre_of_mass_m : (3,) float64 or None
+        Centre of mass [m] the materials file gives (``[model] centre_of_mass_m``): the default torque
+        reference point.
     cache : ModelCache
         What is built once for this model and kept (ray scene, shadow-ray origins, view factors,
         ...): list it with ``cache.entries()``, free it with ``cache.clear()``. A model made from this
@@ -86,9 +94,14 @@ class Spacecraft:
     source: str = "<memory>"
     unit: str = "m"
     notices: tuple[str, ...] = ()
+    centre_of_mass_m: NDArray[np.float64] | None = None
     cache: ModelCache = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        if self.centre_of_mass_m is not None:
+            object.__setattr__(
+                self, "centre_of_mass_m", _frozen(np.array(self.centre_of_mass_m, dtype=float))
+            )
         for array in (self.vertices, self.faces, self.facet_part, self.facet_kind):
             _frozen(array)
         for array in (self.side_facet, self.side_sign, self.side_material):
@@ -250,11 +263,15 @@ class Spacecraft:
     def default_reference(self) -> tuple[NDArray[np.float64], str]:
         """Default torque reference point [m] and its name (METHOD.md "Frames, units and signs").
 
-        The volume centroid of a closed model, else the area centroid of its facets.
+        The centre of mass of the materials file ("centre of mass (materials file)"), else the volume
+        centroid of a closed model ("volume centroid (default)"), else the area centroid of its facets
+        ("area centroid (default)").
         """
+        if self.centre_of_mass_m is not None:
+            return self.centre_of_mass_m, CENTRE_OF_MASS
         if self.is_closed:
-            return tri.volume_centroid(self.triangles), "volume centroid"
-        return self.area_centroid, "area centroid"
+            return tri.volume_centroid(self.triangles), "volume centroid (default)"
+        return self.area_centroid, "area centroid (default)"
 
     @cached_property
     def bounds(self) -> NDArray[np.float64]:
@@ -294,17 +311,24 @@ def build_spacecraft(
     Raises
     ------
     MaterialError
-        A part has no material, or the materials file is invalid.
+        Parts without a material, or an invalid materials file.
     MeshError
-        Non-finite coordinates; an open or non-manifold surface that is not declared a sheet.
+        Non-finite coordinates; open or non-manifold surfaces that are not declared sheets. Parts
+        without material and such surfaces are reported together, in one error.
     """
     spec = load_materials(materials) if isinstance(materials, (str, os.PathLike)) else materials
-    sides = assign_sides(mesh, spec, uniform, two_sided)
-    check = check_mesh(
-        mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, sides.face_kind, mesh.source
-    )
+    problems: list[SunwindError] = []
+    try:
+        sides = assign_sides(mesh, spec, uniform, two_sided)
+        face_kind = sides.face_kind
+    except MaterialError as error:
+        problems.append(error)
+        face_kind = declared_kinds(mesh, spec, two_sided)
+    check = check_mesh(mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, face_kind, mesh.source)
     if not check.closed:
-        raise _undeclared_sheet(check, mesh.source)
+        problems.append(_undeclared_sheets(check, mesh.source))
+    if problems:
+        raise combine(problems)
     kind = sides.face_kind[check.kept]
     facets = np.arange(len(check.kept))
     back = kind == TWO_SIDED
@@ -324,28 +348,43 @@ def build_spacecraft(
         part_materials=sides.part_summary,
         source=mesh.source,
         unit=str(mesh.metadata.get("unit", "m")),
-        notices=check.notices,
-    )
-
-
-def _undeclared_sheet(check: MeshCheck, source: str) -> MeshError:
-    """The error for a part with open or non-manifold edges that is not declared a sheet."""
-    if check.open_edges:
-        part, count = next(iter(check.open_edges.items()))
-        detail = f"is an open surface ({count} boundary edges)"
-    else:
-        part, count = next(iter(check.nonmanifold_edges.items()))
-        detail = f"has {count} edges shared by more than two triangles (non-manifold)"
-    leaf = part.rstrip("/").rsplit("/", 1)[-1]
-    return MeshError(
-        detail,
-        path=source,
-        part=part,
-        hint=(
-            f'declare it a sheet in the materials file ([parts] "{leaf}" = '
-            f'{{ front = "...", back = "..." }}), with two_sided=["{leaf}"] or with --two-sided "{leaf}"'
+        notices=tuple(
+            n for n in (*check.notices, size_notice(check.vertices, mesh.metadata.get("unit", "m"))) if n
         ),
+        centre_of_mass_m=None if spec is None else spec.centre_of_mass_m,
     )
+
+
+def _undeclared_sheets(check: MeshCheck, source: str) -> MeshError:
+    """One error for every part with open or non-manifold edges that is not declared a sheet, with the
+    choices and what each means for the physics."""
+    problems = [
+        MeshError(f"is an open surface ({count} boundary edges)", path=source, part=part)
+        for part, count in check.open_edges.items()
+    ]
+    problems += [
+        MeshError(
+            f"has {count} edges shared by more than two triangles (non-manifold)", path=source, part=part
+        )
+        for part, count in check.nonmanifold_edges.items()
+    ]
+    leaves = list(
+        dict.fromkeys(
+            part.rstrip("/").rsplit("/", 1)[-1] for part in [*check.open_edges, *check.nonmanifold_edges]
+        )
+    )
+    leaf = leaves[0]
+    flags = " ".join(f'--two-sided "{name}"' for name in leaves)
+    hint = (
+        "a solid body: close it in the mesh file (gaps narrower than "
+        f"{CRACK_TOLERANCE:g} of the model size are closed on loading); a thin sheet lit from one side: "
+        f'declare it one-sided ([parts] {toml_key(leaf)} = {{ front = "MATERIAL" }}; its back absorbs '
+        "what reaches it); a sheet lit on both sides: declare it two-sided "
+        f'([parts] {toml_key(leaf)} = {{ front = "...", back = "..." }}, two_sided={leaves!r} or '
+        f"{flags}), a zero-thickness sheet lit and re-emitting on both faces, which turns the inside of a "
+        "solid body into a cavity"
+    )
+    return combine(problems, hint=hint)
 
 
 def load_spacecraft(

@@ -8,10 +8,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from sunwind.geometry import triangles as tri
-from sunwind.geometry.checks import check_mesh
+from sunwind.geometry.checks import check_mesh, size_notice
 from sunwind.geometry.errors import MaterialError
-from sunwind.geometry.materials import Material, MaterialSpec, load_materials, part_matches
-from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides
+from sunwind.geometry.materials import Material, MaterialSpec, load_materials
+from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides, declared_kinds
+from sunwind.geometry.spacecraft import CENTRE_OF_MASS
 
 _SURFACE = {SOLID: "closed body", ONE_SIDED: "one-sided sheet", TWO_SIDED: "two-sided sheet"}
 
@@ -43,13 +44,18 @@ def describe(
         sides = assign_sides(mesh, spec, uniform, two_sided)
         kind, part_materials, table = sides.face_kind, sides.part_summary, sides.table
     except MaterialError as error:
-        checks.append(f"materials: {error}")
-        kind = _declared_kinds(mesh, spec, two_sided)
+        checks += [f"materials: {problem}" for problem in error.problems or (error,)]
+        kind = declared_kinds(mesh, spec, two_sided)
         part_materials, table = {}, None
     check = check_mesh(mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, kind, mesh.source)
-    checks += list(check.notices)
+    checks += [n for n in (*check.notices, size_notice(check.vertices, mesh.metadata.get("unit", "m"))) if n]
     for part, count in check.open_edges.items():
         checks.append(f"part '{part}' is open ({count} boundary edges): declare it a sheet to use it")
+    for part, (count, others) in check.open_alone.items():
+        checks.append(
+            f"part '{part}' is open on its own ({count} boundary edges): a closed body only together "
+            f"with {', '.join(repr(o) for o in others)}"
+        )
     for part, count in check.nonmanifold_edges.items():
         checks.append(f"part '{part}' has {count} non-manifold edges: declare it a sheet or split it")
     corners = check.vertices[check.faces]
@@ -57,7 +63,12 @@ def describe(
     facet_part = mesh.face_part[check.kept]
     facet_kind = kind[check.kept]
     closed = check.closed and bool(np.all(facet_kind == SOLID))
-    reference = tri.volume_centroid(corners) if closed else areas @ tri.centroids(corners) / areas.sum()
+    if spec is not None and spec.centre_of_mass_m is not None:
+        reference, name = np.array(spec.centre_of_mass_m), CENTRE_OF_MASS
+    elif closed:
+        reference, name = tri.volume_centroid(corners), "volume centroid (default)"
+    else:
+        reference, name = areas @ tri.centroids(corners) / areas.sum(), "area centroid (default)"
     keys = (*mesh.material_names, "")
     parts = []
     for index, name in enumerate(mesh.part_names):
@@ -67,6 +78,8 @@ def describe(
         surface = _SURFACE[int(facet_kind[mine][0])]
         if name in check.open_edges or name in check.nonmanifold_edges:
             surface = "open, undeclared"
+        elif name in check.open_alone:
+            surface = "part of a body"
         file_keys = sorted({keys[k] for k in mesh.face_material[mesh.face_part == index]} - {""})
         parts.append(
             {
@@ -85,7 +98,7 @@ def describe(
         "volume_m3": tri.signed_volume(corners) if closed else None,
         "closed": closed,
         "bounds_m": [check.vertices.min(axis=0).tolist(), check.vertices.max(axis=0).tolist()],
-        "reference_point": f"{'volume' if closed else 'area'} centroid {np.round(reference, 6).tolist()} m",
+        "reference_point": f"{name} {np.round(reference, 6).tolist()} m",
         "checks": checks or ["all passed"],
         "parts": parts,
         "materials": [
@@ -101,15 +114,3 @@ def describe(
         if table is not None
         else [],
     }
-
-
-def _declared_kinds(mesh, spec: MaterialSpec | None, two_sided: Sequence[str]) -> np.ndarray:
-    """Face kinds from sheet declarations alone, for a report when materials are incomplete."""
-    kind = np.full(mesh.n_faces, SOLID, dtype=np.int8)
-    for index, part in enumerate(mesh.part_names):
-        rule = spec.rule_for(part) if spec is not None else None
-        if rule is not None and rule.sheet:
-            kind[mesh.face_part == index] = TWO_SIDED if rule.back is not None else ONE_SIDED
-        elif part in mesh.two_sided_parts or any(part_matches(part, g) for g in two_sided):
-            kind[mesh.face_part == index] = TWO_SIDED
-    return kind

@@ -131,6 +131,7 @@ def mesh(ctx: click.Context, kind: str, output: Path) -> None:
     `sunwind mesh sample --triangles 100000 -o big.usda`. Frames: METHOD.md "Frames, units and signs".
     """
     from sunwind.geometry.io import save_mesh  # its readers load trimesh and USD: when a mesh is written
+    from sunwind.geometry.io.registry import SINGLE_BODY_SUFFIXES
 
     if kind == "sample":
         built = meshes.sample_spacecraft(**builder_params(kind, meshes.sample_spacecraft, ctx.args))
@@ -139,6 +140,15 @@ def mesh(ctx: click.Context, kind: str, output: Path) -> None:
     else:
         kinds = ", ".join([*meshes.PRIMITIVES, "sample"])
         raise InputError(f"unknown mesh kind '{kind}'", hint=f"choose one of {kinds}")
+    parts = len(np.unique(built.face_part))
+    if output.suffix.lower() in SINGLE_BODY_SUFFIXES and (parts > 1 or len(built.material_names) > 1):
+        raise InputError(
+            f"mesh {kind} has {parts} parts and {len(built.material_names)} materials, which a "
+            f"{output.suffix} file cannot keep (it holds one body: sunwind would read it as one part "
+            "without material)",
+            path=str(output),
+            hint="write .obj (with its .toml), .glb, .gltf, .usda or .usdc",
+        )
     save_mesh(built, output)
     print(f"wrote {output}: {built.n_faces} triangles, parts {', '.join(built.part_names)}")
     if kind == "sample" and not output.suffix.lower().startswith(".usd"):

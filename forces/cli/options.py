@@ -68,6 +68,7 @@ FLAGS = {
     "rings": "--rings",
     "facet_size": "--facet-size",
     "no_view": "--no-view",
+    "two_sided": "--two-sided",
 }
 
 
@@ -196,7 +197,8 @@ def reference_options(sizes: bool = False) -> Callable:
             type=float,
             default=None,
             metavar="X Y Z",
-            help="Torque reference point [m] [default: volume centroid if closed, else area centroid].",
+            help="Torque reference point [m] [default: the materials file's [model] centre_of_mass_m, "
+            "else the volume centroid if closed, else the area centroid].",
         )
     ]
     if sizes:

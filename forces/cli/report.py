@@ -15,6 +15,14 @@ def vector(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
     return "[" + "  ".join(fmt.format(x) for x in v) + "]"
 
 
+def about(point_m: np.ndarray, name: str) -> str:
+    """The torque reference point and what it is; a default says how to give the centre of mass."""
+    text = f"{vector(point_m, '{:+.6f}')}  ({name})"
+    if name.endswith("(default)"):
+        text += "; give the centre of mass with --ref-point or [model] centre_of_mass_m"
+    return text
+
+
 def header(craft: Spacecraft) -> dict:
     """What every JSON document says of the model."""
     return {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
@@ -40,7 +48,7 @@ def print_srp(result: SrpResult) -> None:
     print(f"  torque  [N m]    {vector(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
     print(f"    direct         {vector(result.direct_torque_Nm)}")
     print(f"    reflected      {vector(result.reflected_torque_Nm)}")
-    print(f"  about   [m]      {vector(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
+    print(f"  about   [m]      {about(result.reference_point_m, result.reference_point)}")
     print(f"  lit area         {result.lit_area_m2:.6f} m^2")
     print(f"  projected area   {result.projected_area_m2:.6f} m^2")
     print(f"  shadow rays      {result.rays} ({result.sampling})")
@@ -77,7 +85,7 @@ def print_drag(result: DragResult, heading: str) -> None:
     print(f"    panel law      {vector(result.direct_force_N)}")
     print(f"    re-emission    {vector(result.reflected_force_N)}")
     print(f"  torque  [N m]    {vector(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
-    print(f"  about   [m]      {vector(result.reference_point_m, '{:+.6f}')}  ({result.reference_point})")
+    print(f"  about   [m]      {about(result.reference_point_m, result.reference_point)}")
     print(
         f"  coefficients     CD {cd:.6f}  CL {cl:+.6f}  CS {cs:+.6f}  CM {vector(result.moment_coefficients)}"
     )
@@ -98,6 +106,7 @@ def forces_document(light: SrpResult, gas: DragResult) -> dict:
         "force_N": (light.force_N + gas.force_N).tolist(),
         "torque_Nm": (light.torque_Nm + gas.torque_Nm).tolist(),
         "reference_point_m": light.reference_point_m.tolist(),
+        "reference_point": light.reference_point,
         "frame": FRAME,
     }
     return {"srp": light.to_json(), "drag": gas.to_json(), "total": total}
@@ -109,7 +118,8 @@ def print_forces(light: SrpResult, gas: DragResult) -> None:
     force, torque = light.force_N + gas.force_N, light.torque_Nm + gas.torque_Nm
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
     print(f"  total force  [N]    {vector(force)}  |F| = {np.linalg.norm(force):.6e}")
-    print(f"  total torque [N m]  {vector(torque)}  about {vector(light.reference_point_m, '{:+.6f}')} m")
+    print(f"  total torque [N m]  {vector(torque)}")
+    print(f"  about        [m]    {about(light.reference_point_m, light.reference_point)}")
     print(f"  srp force    [N]    {vector(light.force_N)}  (sun {vector(light.sun_vector, '{:+.4f}')})")
     print(f"  srp torque   [N m]  {vector(light.torque_Nm)}")
     print_drag(gas, "  drag:")

@@ -9,7 +9,6 @@ optionally ``metadata["declared_unit"] = (metres_per_unit, source)``) plus a lin
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 from pathlib import Path
@@ -19,7 +18,7 @@ from sunwind.geometry.io.gltf import write_gltf
 from sunwind.geometry.io.obj import read_obj, write_obj
 from sunwind.geometry.io.trimesh_ import read_gltf, read_single, read_stl, write_ply, write_stl
 from sunwind.geometry.io.units import parse_unit, resolve_unit
-from sunwind.geometry.io.usd_ import read_usd, write_usd
+from sunwind.geometry.io.usd_ import PXR_NAMESPACE, read_usd, write_usd
 from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
 
 #: Reader of each file suffix (lower case); it returns the file's data in file units.
@@ -45,8 +44,8 @@ WRITERS: dict[str, Callable[[MeshData, Path], None]] = {
     ".usda": write_usd,
     ".usdc": write_usd,
 }
-#: C++ namespace that USD puts before every name in its messages.
-_PXR_NAMESPACE = re.compile(r"pxrInternal_v\w+?__pxrReserved__::")
+#: Suffixes whose files hold one body: no parts, no material keys (:func:`save_mesh` merges the parts).
+SINGLE_BODY_SUFFIXES: tuple[str, ...] = (".stl", ".ply")
 #: Suffixes :func:`load_mesh` reads.
 SUPPORTED_SUFFIXES: tuple[str, ...] = tuple(LOADERS)
 
@@ -204,5 +203,5 @@ def _summary(exc: Exception) -> str:
     first = lines[0]
     if first.startswith("Error in '") and " : '" in first:  # pxr Tf.ErrorException
         first = first.split(" : '", 1)[1].rstrip("'")
-    first = _PXR_NAMESPACE.sub("", first)
+    first = PXR_NAMESPACE.sub("", first)
     return first if len(first) <= 160 else first[:157] + "..."

@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from sunwind.geometry.errors import MeshError
+
 
 def fan_triangles(counts: ArrayLike, indices: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
     """Split polygons into triangles fanning out from each polygon's first vertex.
@@ -95,3 +97,30 @@ def bounds(points: NDArray[np.floating]) -> tuple[NDArray[np.floating], NDArray[
     if not len(finite):
         finite = np.zeros((1, 3), dtype=points.dtype)
     return finite.min(axis=0), finite.max(axis=0)
+
+
+def check_transform(linear: NDArray[np.float64], path: str, part: str) -> None:
+    """Refuse a part's world transform (its 3 x 3 linear part) that is not finite or collapses it flat.
+
+    Raises
+    ------
+    MeshError
+        A NaN or infinite entry, or a determinant that is zero (to 1e-12 of the largest entry cubed):
+        a scale of 0 somewhere in the part's transforms or its parents'.
+    """
+    if not np.isfinite(linear).all():
+        raise MeshError(
+            "has a transform (its own or a parent's) with values that are not finite",
+            path=path,
+            part=part,
+            hint="give every transform of the part and its parents finite values",
+        )
+    determinant = float(np.linalg.det(linear))
+    if abs(determinant) <= 1e-12 * max(float(np.abs(linear).max()), 1e-300) ** 3:
+        raise MeshError(
+            f"has a transform (its own or a parent's) that collapses it flat (determinant {determinant:g}: "
+            "a scale of 0?)",
+            path=path,
+            part=part,
+            hint="give every scale of the part and its parents non-zero factors",
+        )

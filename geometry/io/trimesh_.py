@@ -15,6 +15,7 @@ import numpy as np
 import trimesh
 
 from sunwind.geometry.errors import MeshError
+from sunwind.geometry.io.topology import check_transform
 from sunwind.geometry.mesh_data import MeshData
 
 
@@ -115,6 +116,7 @@ def read_gltf(path: Path) -> MeshData:
         if _is_primitive_child(node, parent, graph.nodes_geometry):
             node = parent
         faces = np.asarray(geometry.faces, dtype=np.int64)
+        check_transform(matrix[:3, :3], str(path), geometry_name if node.isdigit() else node)
         if np.linalg.det(matrix[:3, :3]) < 0:
             faces = faces[:, ::-1]
         material = getattr(getattr(geometry.visual, "material", None), "name", None)

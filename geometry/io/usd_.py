@@ -10,6 +10,7 @@ sunwind's USD vocabulary, on top of plain ``UsdGeom``/``UsdShade``:
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -17,8 +18,8 @@ import numpy as np
 from numpy.typing import NDArray
 from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdShade, Vt
 
-from sunwind.geometry.errors import MeshError
-from sunwind.geometry.io.topology import bounds, compact, fan_triangles, groups
+from sunwind.geometry.errors import MeshError, combine
+from sunwind.geometry.io.topology import bounds, check_transform, compact, fan_triangles, groups
 from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
 
 #: USD attribute on a Material prim holding each key of ``OPTICS_KEYS``.
@@ -29,6 +30,8 @@ OPTICS_ATTRIBUTES = dict(
         strict=True,
     )
 )
+#: C++ namespace that USD puts before every name in its messages.
+PXR_NAMESPACE = re.compile(r"pxrInternal_v\w+?__pxrReserved__::")
 #: Relationship on a Mesh prim targeting the Material of its back side.
 BACK_MATERIAL = "sunwind:backMaterial"
 
@@ -53,7 +56,10 @@ def read_usd(path: Path) -> MeshData:
     Raises
     ------
     MeshError
-        Polygons with holes, inconsistent topology, or incomplete or non-numeric sunwind optics.
+        A composition error (a missing referenced, payload or sublayer file: every problem USD
+        reports), ``metersPerUnit`` not a positive finite number, a transform that is not finite or
+        collapses a mesh (zero determinant), polygons with holes, inconsistent topology, or incomplete
+        or non-numeric sunwind optics.
 
     Notes
     -----
@@ -64,6 +70,7 @@ def read_usd(path: Path) -> MeshData:
     if held and not held.dirty:  # a layer still open elsewhere in this process may be stale
         held.Reload(force=True)
     stage = Usd.Stage.Open(str(path))
+    _check_composition(stage, path)
     materials = _Materials(path)
     xforms = UsdGeom.XformCache(Usd.TimeCode.Default())
     pieces = [
@@ -72,16 +79,43 @@ def read_usd(path: Path) -> MeshData:
         if prim.IsA(UsdGeom.Mesh) and UsdGeom.Imageable(prim).ComputePurpose() != UsdGeom.Tokens.guide
     ]
     mesh = MeshData.concatenate(pieces, source=str(path))
-    declared = (
-        (UsdGeom.GetStageMetersPerUnit(stage), "USD metersPerUnit")
-        if UsdGeom.StageHasAuthoredMetersPerUnit(stage)
-        else None
-    )
+    declared = None
+    if UsdGeom.StageHasAuthoredMetersPerUnit(stage):
+        metres = UsdGeom.GetStageMetersPerUnit(stage)
+        if not (np.isfinite(metres) and metres > 0):
+            raise MeshError(
+                f"metersPerUnit = {metres:g} is not a positive finite number",
+                path=str(path),
+                hint="author the stage's length unit in metres, e.g. metersPerUnit = 0.001 for mm, "
+                "or remove it and give the unit with --unit (Python: unit=)",
+            )
+        declared = (metres, "USD metersPerUnit")
     return replace(
         mesh,
         file_optics=materials.optics,
         metadata={"declared_unit": declared} if declared else {},
     )
+
+
+def _check_composition(stage: Usd.Stage, path: Path) -> None:
+    """Refuse a stage that USD could not compose completely (it only logs a warning and goes on)."""
+    problems = [
+        MeshError(f"the stage cannot be composed: {_composition_message(error)}", path=str(path))
+        for error in stage.GetCompositionErrors()
+    ]
+    if problems:
+        raise combine(
+            problems,
+            hint="put every file the stage refers to (references, payloads, subLayers) where it points, "
+            "relative to the layer that names it, or remove the reference; or flatten the stage into "
+            "one file (usdcat --flatten)",
+        )
+
+
+def _composition_message(error: object) -> str:
+    """USD's text of a composition error, without its C++ namespace and its "skipping"."""
+    text = PXR_NAMESPACE.sub("", str(error)).strip().rstrip(".")
+    return text.removesuffix("; skipping").rstrip(".")
 
 
 def _read_mesh(mesh: UsdGeom.Mesh, world: Gf.Matrix4d, materials: _Materials, path: Path) -> MeshData:
@@ -119,6 +153,7 @@ def _read_mesh(mesh: UsdGeom.Mesh, world: Gf.Matrix4d, materials: _Materials, pa
         )
     triangles, polygon = fan_triangles(counts, indices)
     matrix = np.array(world, dtype=np.float64)  # row vectors: p_world = p @ M[:3, :3] + M[3, :3]
+    check_transform(matrix[:3, :3], str(path), part)
     left_handed = mesh.GetOrientationAttr().Get() == UsdGeom.Tokens.leftHanded
     if left_handed != (np.linalg.det(matrix[:3, :3]) < 0):
         triangles = triangles[:, ::-1]

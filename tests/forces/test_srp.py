@@ -38,7 +38,7 @@ def test_absorbing_convex_body_force_is_pressure_times_projected_area():
     assert np.isclose(result.projected_area_m2, projected)
     assert np.allclose(result.force_N, -P * projected * u, rtol=1e-12)
     assert np.allclose(result.torque_Nm, 0.0, atol=1e-18)
-    assert result.reference_point == "volume centroid"
+    assert result.reference_point == "volume centroid (default)"
 
 
 @settings(max_examples=20, deadline=None)
