@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 from sunwind.forces.cli.options import group
 from sunwind.forces.drag import checked_velocities
 from sunwind.forces.gas import Atmosphere, circular_speed, corotation_speed, explicit, nrlmsis
+from sunwind.forces.gas.flow import flow_speed
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
 
@@ -132,10 +133,7 @@ def _speed(values: dict) -> float:
     """``|v_rel|`` [m/s]: ``--speed``, else the circular-orbit speed at ``--altitude`` (relative to a
     co-rotating atmosphere with ``--corotating``)."""
     if values["speed"] is not None:
-        speed = float(values["speed"])
-        if not np.isfinite(speed) or speed <= 0:
-            raise InputError(f"--speed {speed} must be a positive number of m/s")
-        return speed
+        return flow_speed(values["speed"], "speed_m_s")
     if values["altitude"] is None:
         raise InputError("a flow direction needs --speed V, or --altitude for the circular-orbit speed")
     speed = circular_speed(values["altitude"])

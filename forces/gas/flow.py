@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from sunwind.forces.gas.atmosphere import finite_number
+from sunwind.geometry.errors import InputError
 
 #: Earth's gravitational parameter GM [m^3/s^2] (WGS 84 / IERS Conventions 2010).
 EARTH_GM = 3.986004418e14
@@ -13,6 +14,39 @@ EARTH_GM = 3.986004418e14
 EARTH_RADIUS = 6378.137e3
 #: Earth's mean angular velocity [rad/s] (WGS 84 nominal value).
 EARTH_ROTATION = 7.292115e-5
+#: Slowest ``|v_rel|`` [m/s] taken as a flow: at 1 m/s the speed ratio in thermospheric air (thermal
+#: speed ~1 km/s) is ~1e-3 and the dynamic pressure a 1e-8 share of an orbit's (~7.5 km/s); below it the
+#: directed flow the laws and the shadow follow is lost in the thermal motion.
+MIN_FLOW_SPEED = 1.0
+#: Fastest ``|v_rel|`` [m/s]: 1000 km/s, over ten times any heliocentric or meteoric speed near a planet,
+#: and still far below the speed of light (the laws are Newtonian).
+MAX_FLOW_SPEED = 1e6
+
+
+def flow_speed(speed_m_s: float, name: str = "speed_m_s") -> float:
+    """``speed_m_s`` [m/s] as a float, checked to be the speed of a flow: finite and from
+    :data:`MIN_FLOW_SPEED` to :data:`MAX_FLOW_SPEED`; ``name`` is the parameter that gave it.
+
+    Raises
+    ------
+    InputError
+        Not a number, not finite, or out of that range.
+    """
+    speed = finite_number(speed_m_s, name, "m/s")
+    if speed < MIN_FLOW_SPEED:
+        raise InputError(
+            f"{name} gives a speed of {speed:.6g} m/s, below {MIN_FLOW_SPEED:g} m/s: too slow to be a "
+            "flow (thermal speeds are ~1 km/s)",
+            hint=f"give v_rel of at least {MIN_FLOW_SPEED:g} m/s; an orbit's is ~7.5 km/s",
+            parameters=(name,),
+        )
+    if speed > MAX_FLOW_SPEED:
+        raise InputError(
+            f"{name} gives a speed of {speed:.6g} m/s, above {MAX_FLOW_SPEED:g} m/s",
+            hint="give v_rel in m/s; an orbit's is ~7.5 km/s",
+            parameters=(name,),
+        )
+    return speed
 
 
 def circular_speed(altitude_km: float) -> float:

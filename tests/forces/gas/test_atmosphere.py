@@ -340,7 +340,8 @@ def test_date_errors_say_why():
         ((0.0, 1000.0, "O:1"), {}, r"density_kg_m3 0\.0 kg/m\^3 is not positive"),
         ((-1e-12, 1000.0, "O:1"), {}, r"density_kg_m3"),
         ((math.nan, 1000.0, "O:1"), {}, r"density_kg_m3 nan kg/m\^3 is not a finite number"),
-        ((1e-12, 0.0, "O:1"), {}, r"temperature_K 0\.0 K is not positive"),
+        ((1e-12, 0.0, "O:1"), {}, r"temperature_K 0\.0 K is below 1"),
+        ((1e-12, 1e300, "O:1"), {}, r"temperature_K 1e\+300 K is above 100000"),
         ((1e-12, math.inf, "O:1"), {}, r"temperature_K inf K is not a finite number"),
     ],
 )
@@ -367,7 +368,7 @@ def test_atmosphere_checks_its_fields():
         Atmosphere({"O": 0.0}, 1000.0, "test")
     with pytest.raises(InputError, match="species O is given twice"):
         Atmosphere({"O": 1.0, "o": 2.0}, 1000.0, "test")
-    with pytest.raises(InputError, match=r"temperature -1\.0 K"):
+    with pytest.raises(InputError, match=r"temperature_K -1\.0 K is below 1"):
         Atmosphere({"O": 1.0}, -1.0, "test")
     with pytest.raises(InputError, match="no species"):
         Atmosphere({}, 1000.0, "test")
