@@ -1,0 +1,100 @@
+"""Hostile command lines of issue 17 for drag physics inputs (items 7, 15, 17): each gives one line,
+the right exit status, and no traceback."""
+
+import json
+
+import pytest
+
+AIR = ["--density", "3e-12", "--temperature", "900", "--composition", "O:0.8,N2:0.2"]
+V = ["--velocity", "7600", "0", "0"]
+
+
+@pytest.fixture(scope="module")
+def sphere(tmp_path_factory):
+    """A coarse sphere without any material: drag needs none, SRP needs optics."""
+    from sunwind.geometry.io import save_mesh
+    from sunwind.meshes.primitives import sphere
+
+    path = tmp_path_factory.mktemp("hostile-drag") / "sphere.obj"
+    save_mesh(sphere(1.0, 4), path)
+    return path
+
+
+CASES = {
+    # item 7: speeds too small or too large to be a flow, and the atmosphere's siblings
+    "velocity 1e-300": (["drag", "--velocity", "1e-300", "0", "0", *AIR], 1, ["--velocity", "below 1 m/s"]),
+    "velocity 0.5": (
+        ["drag", "--velocity", "0.5", "0", "0", *AIR],
+        1,
+        ["--velocity", "too slow to be a flow"],
+    ),
+    "velocity 1e300": (["drag", "--velocity", "1e300", "0", "0", *AIR], 1, ["--velocity", "above 1e+06 m/s"]),
+    "velocity nan": (["drag", "--velocity", "nan", "0", "0", *AIR], 1, ["--velocity", "finite"]),
+    "speed 1e-300": (
+        ["drag", "--flow-azel", "0", "0", "--speed", "1e-300", *AIR],
+        1,
+        ["--speed", "below 1 m/s"],
+    ),
+    "forces velocity 1e-300": (
+        ["forces", "--sun", "1", "0", "0", "--velocity", "1e-300", "0", "0", *AIR],
+        1,
+        ["--velocity", "below 1 m/s"],
+    ),
+    "sweep speed 1e-300": (
+        ["sweep", "--drag", "--step", "30", "--speed", "1e-300", *AIR, "-o", "{tmp}/d.nc"],
+        1,
+        ["--speed", "below 1 m/s"],
+    ),
+    "temperature 1e300": (
+        ["drag", *V, "--density", "3e-12", "--temperature", "1e300", "--composition", "O:1"],
+        1,
+        ["--temperature", "above 100000"],
+    ),
+    "temperature 1e-300": (
+        ["drag", *V, "--density", "3e-12", "--temperature", "1e-300", "--composition", "O:1"],
+        1,
+        ["--temperature", "below 1"],
+    ),
+    "density 1e300": (
+        ["drag", *V, "--density", "1e300", "--temperature", "900", "--composition", "O:1"],
+        1,
+        ["number density", "not a finite"],
+    ),
+    # item 15: drag asks for no optics; SRP still does, even when gas flags are given
+    "drag without optics": (["drag", *V, *AIR], 0, []),
+    "sweep drag without optics": (
+        ["sweep", "--drag", "--step", "45", "--speed", "7600", *AIR, "-o", "{tmp}/d.nc"],
+        0,
+        [],
+    ),
+    "forces gas flags only": (
+        ["forces", "--sun", "1", "0", "0", *V, *AIR, "--gsi", "sentman"],
+        1,
+        ["has no material", "--reflectivity"],
+    ),
+    "sweep srp gas flags only": (
+        ["sweep", "--srp", "--step", "45", "--gsi", "sentman", "-o", "{tmp}/s.nc"],
+        1,
+        ["has no material", "--reflectivity"],
+    ),
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_hostile_drag_input(run_cli, sphere, tmp_path, name):
+    args, code, words = CASES[name]
+    command, *rest = args
+    code_, _, err = run_cli(command, sphere, *(a.replace("{tmp}", str(tmp_path)) for a in rest))
+    assert code_ == code, err
+    assert "Traceback" not in err
+    if code:
+        assert err.startswith("sunwind: error: ") and err.count("\n") == 1, err
+    for word in words:
+        assert word in err
+
+
+def test_drag_without_optics_uses_the_default_gas_law(run_cli, sphere):
+    """No material at all: the documented defaults of the gas flags (sentman, T_w 300 K)."""
+    runs = [run_cli("drag", sphere, *V, *AIR, *extra, "--json") for extra in ([], ["--gsi", "sentman"])]
+    assert all(code == 0 for code, _, _ in runs)
+    assert json.loads(runs[0][1])["force_N"] == json.loads(runs[1][1])["force_N"]
