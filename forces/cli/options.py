@@ -54,6 +54,8 @@ FLAGS = {
     "composition": "--composition",
     "normalise": "--normalise-composition",
     "heading_deg": "--heading",
+    "nadir": "--nadir",
+    "velocity_direction": "--flow-azel",
     "step_deg": "--step",
     "chunk": "--chunk",
     "workers": "--workers",

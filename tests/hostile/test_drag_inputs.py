@@ -2,6 +2,7 @@
 the right exit status, and no traceback."""
 
 import json
+import math
 
 import pytest
 
@@ -77,6 +78,53 @@ CASES = {
         1,
         ["has no material", "--reflectivity"],
     ),
+    # item 17: --corotating turns v_rel; a crosswind needs --nadir to be placed
+    "corotating polar, no nadir": (
+        ["drag", "--flow-azel", "0", "0", "--altitude", "400", "--corotating", "--heading", "0"],
+        1,
+        ["crosses the track at 494.3 m/s", "--nadir"],
+    ),
+    "corotating nadir along the track": (
+        [
+            "drag",
+            "--flow-azel",
+            "0",
+            "0",
+            "--altitude",
+            "400",
+            "--corotating",
+            "--heading",
+            "0",
+            "--nadir",
+            "1",
+            "0",
+            "0",
+        ],
+        1,
+        ["--nadir is 90 deg off perpendicular"],
+    ),
+    "nadir without corotating": (
+        ["drag", "--flow-azel", "0", "0", "--altitude", "400", "--nadir", "0", "0", "1"],
+        1,
+        ["--nadir", "--corotating"],
+    ),
+    "sweep nadir": (
+        [
+            "sweep",
+            "--drag",
+            "--altitude",
+            "400",
+            "--corotating",
+            "--nadir",
+            "0",
+            "0",
+            "1",
+            "-o",
+            "{tmp}/d.nc",
+        ],
+        1,
+        ["drop --nadir"],
+    ),
 }
 
 
@@ -98,3 +146,33 @@ def test_drag_without_optics_uses_the_default_gas_law(run_cli, sphere):
     runs = [run_cli("drag", sphere, *V, *AIR, *extra, "--json") for extra in ([], ["--gsi", "sentman"])]
     assert all(code == 0 for code, _, _ in runs)
     assert json.loads(runs[0][1])["force_N"] == json.loads(runs[1][1])["force_N"]
+
+
+@pytest.mark.parametrize(
+    "heading, nadir, expected",
+    [
+        ("90", [], lambda v, w: [v - w, 0.0, 0.0]),
+        ("0", ["--nadir", "0", "0", "1"], lambda v, w: [v, -w, 0.0]),
+    ],
+    ids=["prograde equatorial", "polar at the equator"],
+)
+def test_corotating_drag_turns_v_rel_as_a_hand_computation(run_cli, sphere, heading, nadir, expected):
+    """Body x along the orbit velocity, z to the Earth's centre: the air moves east (+y heading north)
+    at omega r, so v_rel loses omega r along x going east, and gains -omega r along y going north."""
+    code, out, err = run_cli(
+        "drag",
+        sphere,
+        "--flow-azel",
+        "0",
+        "0",
+        "--altitude",
+        "400",
+        "--corotating",
+        "--heading",
+        heading,
+        *nadir,
+        "--json",
+    )
+    assert code == 0, err
+    v, omega_r = math.sqrt(3.986004418e14 / 6778.137e3), 7.292115e-5 * 6778.137e3
+    assert json.loads(out)["velocity_m_s"] == pytest.approx(expected(v, omega_r), abs=1e-6)
