@@ -176,3 +176,39 @@ def test_corotating_drag_turns_v_rel_as_a_hand_computation(run_cli, sphere, head
     assert code == 0, err
     v, omega_r = math.sqrt(3.986004418e14 / 6778.137e3), 7.292115e-5 * 6778.137e3
     assert json.loads(out)["velocity_m_s"] == pytest.approx(expected(v, omega_r), abs=1e-6)
+
+
+@pytest.fixture(scope="module")
+def box_wing(tmp_path_factory):
+    """A small concave model: its wings see the bus, so it has view factors to cache."""
+    from sunwind.geometry.io import save_mesh
+    from sunwind.meshes.primitives import box_wing
+
+    path = tmp_path_factory.mktemp("hostile-cache") / "box_wing.usda"
+    save_mesh(box_wing(facet_size=0.5), path)
+    return path
+
+
+def test_a_forged_view_factor_cache_full_of_nan_is_rebuilt_with_a_warning(run_cli, box_wing, tmp_path):
+    """Item 12: a cache entry under the right key and a valid checksum, its values NaN."""
+    import numpy as np
+
+    from sunwind.geometry.views.disk_cache import write_entry
+
+    args = ["srp", box_wing, "--sun", "1", "0.3", "0.2", "--reflectivity", "0.5", "--specular-fraction", "0"]
+    args += ["--reflections", "full", "--view-rays", "16", "--cache-dir", tmp_path, "--json"]
+    code, fresh, err = run_cli(*args)
+    assert code == 0 and "warning" not in err, err
+    [path] = tmp_path.glob("view_factors-*.npz")
+    stored = dict(np.load(path))
+    arrays = {
+        name: np.full_like(value, np.nan) if value.dtype.kind == "f" else value
+        for name, value in stored.items()
+    }
+    write_entry(path, str(stored["key"]), {k: v for k, v in arrays.items() if k not in ("key", "checksum")})
+    code, out, err = run_cli(*args)
+    assert code == 0 and "Traceback" not in err
+    assert (
+        err.startswith("sunwind: warning: cache entry") and "was corrupt (values not finite): rebuilt" in err
+    )
+    assert json.loads(out)["force_N"] == json.loads(fresh)["force_N"]
