@@ -1,4 +1,4 @@
-"""Hostile command lines of issue 17 for drag physics inputs (items 7, 15, 17): each gives one line,
+"""Hostile command lines of issue 17 for drag inputs, caches and precomputes (items 7, 12, 15, 17, 28):
 the right exit status, and no traceback."""
 
 import json
@@ -212,3 +212,18 @@ def test_a_forged_view_factor_cache_full_of_nan_is_rebuilt_with_a_warning(run_cl
         err.startswith("sunwind: warning: cache entry") and "was corrupt (values not finite): rebuilt" in err
     )
     assert json.loads(out)["force_N"] == json.loads(fresh)["force_N"]
+
+
+def test_a_precompute_shows_its_steps_on_stderr_not_in_the_json(run_cli, box_wing, monkeypatch):
+    """Item 28: every precompute step that runs for DELAY seconds prints a line (DELAY 0 here)."""
+    import sunwind.forces.cli.progress as progress
+
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    args = ["drag", box_wing, *V, *AIR, "--reflections", "full", "--view-rays", "16", "--no-cache", "--json"]
+    code, out, err = run_cli(*args)
+    assert code == 0, err
+    json.loads(out)  # stdout is the JSON alone
+    for name in ("view factors", "molecular exchange"):
+        assert f"sunwind: {name} ...\n" in err and f"sunwind: {name} done in " in err
+    monkeypatch.setattr(progress, "DELAY", 60.0)
+    assert run_cli(*args)[2] == ""  # quick steps print nothing
