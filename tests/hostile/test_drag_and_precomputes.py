@@ -1,5 +1,5 @@
 """Hostile command lines of issue 17 for drag inputs, caches and precomputes (items 7, 12, 15, 17, 28):
-the right exit status, and no traceback."""
+each gives the right exit status and one line, and no traceback."""
 
 import json
 import math
