@@ -13,7 +13,14 @@ the direct pass), :mod:`~sunwind.forces.reflection` (beam chains and the diffuse
 """
 
 from sunwind.forces.drag import drag
-from sunwind.forces.gas import Atmosphere, circular_speed, corotation_speed, explicit, nrlmsis
+from sunwind.forces.gas import (
+    Atmosphere,
+    circular_speed,
+    corotation_speed,
+    corotation_velocity,
+    explicit,
+    nrlmsis,
+)
 from sunwind.forces.model import Model, ModelSource, load
 from sunwind.forces.radiation import (
     SOLAR_FLUX_1AU,
@@ -46,6 +53,7 @@ __all__ = [
     "SweepRun",
     "circular_speed",
     "corotation_speed",
+    "corotation_velocity",
     "drag",
     "explicit",
     "load",

@@ -10,6 +10,7 @@ speed ratio. With ``full``, re-emitted molecules landing on other sides are re-e
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Sequence
 
@@ -18,14 +19,16 @@ from numpy.typing import NDArray
 
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.exchange import gas_interference_criterion, molecular_exchange
+from sunwind.forces.gas.flow import flow_speed
 from sunwind.forces.gas.panel import gas_groups, panel_forces, summed_laws
 from sunwind.forces.gas.shadow import flow_shadow
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors
 from sunwind.forces.results import DragBatch, DragResult, GasReflected
-from sunwind.geometry.directions import unit_vector
+from sunwind.geometry.directions import unit_vector, unit_vectors
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import using_threads
+from sunwind.geometry.rays.hull import clearance
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -37,7 +40,8 @@ LOW_SPEED_RATIO = 3.0
 
 
 class LowSpeedRatioWarning(UserWarning):
-    """The flow's speed ratio is below :data:`LOW_SPEED_RATIO`."""
+    """The flow's speed ratio is below :data:`LOW_SPEED_RATIO` on a model one side of which can shadow
+    another (on a convex model nothing is blocked and the result is exact)."""
 
 
 def drag(
@@ -81,7 +85,7 @@ def drag(
     Warns
     -----
     LowSpeedRatioWarning
-        Below speed ratio :data:`LOW_SPEED_RATIO`.
+        Below speed ratio :data:`LOW_SPEED_RATIO`, on a model that can shadow itself (not convex).
     """
     model = as_model(model)
     settings = ReflectionSettings.of(reflections)
@@ -106,20 +110,12 @@ def drag(
 
 
 def checked_velocities(velocity_m_s: Sequence[float] | NDArray) -> NDArray[np.float64]:
-    """``v_rel`` as (3,) or (n, 3) float64, each finite and not zero."""
+    """``v_rel`` as (3,) or (n, 3) float64, each three finite numbers of a flow speed
+    (:func:`~sunwind.forces.gas.flow.flow_speed`)."""
     velocity = np.asarray(velocity_m_s, dtype=np.float64)
-    if velocity.shape != (3,) and (velocity.ndim != 2 or velocity.shape[1] != 3 or not len(velocity)):
-        raise InputError(
-            f"velocity_m_s of shape {velocity.shape} must be one vector (3,) or a batch (n, 3)",
-            parameters=("velocity_m_s",),
-        )
+    unit_vectors(velocity, "velocity_m_s")  # shape, finite, not zero
     for v in velocity.reshape(-1, 3):
-        if not np.all(np.isfinite(v)) or not np.any(v):
-            raise InputError(
-                f"velocity_m_s {v.tolist()} must be three finite numbers, not all zero",
-                hint="give v_rel [m/s], the spacecraft's velocity relative to the atmosphere",
-                parameters=("velocity_m_s",),
-            )
+        flow_speed(math.hypot(*v.tolist()), "velocity_m_s")
     return velocity
 
 
@@ -133,14 +129,14 @@ def _one(
 ) -> DragResult:
     """One attitude, its arguments checked; ``sampling`` is ``(samples, tolerance, thermal_spread)``."""
     craft = model.craft
-    speed = float(np.linalg.norm(velocity))
+    speed = math.hypot(*velocity.tolist())
     u = unit_vector(velocity, "velocity_m_s")
     ref, ref_name = reference
     speed_ratio = atmosphere.mean_speed_ratio(speed)
-    if speed_ratio < LOW_SPEED_RATIO:
+    if speed_ratio < LOW_SPEED_RATIO and not clearance(craft).open_sky.all():
         warnings.warn(
-            f"speed ratio {speed_ratio:.2f} < {LOW_SPEED_RATIO:g}: flow shadowing of concave parts is "
-            "approximate at low speed ratio (convex shapes stay exact)",
+            f"speed ratio {speed_ratio:.2f} < {LOW_SPEED_RATIO:g}: this model can shadow itself (it is "
+            "not convex), and its flow shadowing is approximate at low speed ratio",
             LowSpeedRatioWarning,
             stacklevel=3,
         )

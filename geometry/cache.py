@@ -16,6 +16,8 @@ from typing import TypeVar
 
 import numpy as np
 
+from sunwind.geometry.progress import step
+
 T = TypeVar("T")
 
 
@@ -26,6 +28,11 @@ class CacheEntry:
     key: Hashable
     kind: str  # the type of the value kept
     nbytes: int  # bytes of the arrays it holds (estimate: arrays reached through attributes)
+
+
+def step_name(key: Hashable) -> str:
+    """The name a key gives its build's progress step: the key, or its first item (its name)."""
+    return str(key[0] if isinstance(key, tuple) and key else key)
 
 
 class ModelCache:
@@ -48,7 +55,8 @@ class ModelCache:
             pass
         with self._lock:
             if key not in self._values:
-                self._values[key] = build()
+                with step(step_name(key)):
+                    self._values[key] = build()
             return self._values[key]  # type: ignore[return-value]
 
     def __contains__(self, key: Hashable) -> bool:

@@ -3,7 +3,8 @@
 Every command parses its flags into library objects (:mod:`.options`), makes its call, and prints text
 or ``--json``. A :class:`~sunwind.geometry.errors.SunwindError` becomes ``sunwind: error: ...`` with the
 library's parameter names written as this program's flags, and exit status 1 (2 for a malformed command
-line); a warning (a result outside a model's range, still given) becomes ``sunwind: warning: ...``.
+line); a warning (a result outside a model's range, still given) becomes ``sunwind: warning: ...``;
+a precompute that takes more than a second shows ``sunwind: <step> ...`` lines (:mod:`.progress`).
 """
 
 from __future__ import annotations
@@ -16,10 +17,12 @@ import click
 from sunwind.forces.cli.attitude import drag, forces, srp
 from sunwind.forces.cli.mesh import info, mesh
 from sunwind.forces.cli.options import FLAGS
+from sunwind.forces.cli.progress import StepLines
 from sunwind.forces.cli.tables import plot, sweep_command
 from sunwind.forces.cli.tools import bench, validate
 from sunwind.geometry.errors import SunwindError
 from sunwind.geometry.memory import LIMIT_VARIABLE
+from sunwind.geometry.progress import reporting
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
@@ -45,7 +48,8 @@ def main(argv: list[str] | None = None) -> None:
     shown = warnings.showwarning
     warnings.showwarning = one_line
     try:
-        app.main(args=argv, prog_name="sunwind", standalone_mode=False)
+        with reporting(StepLines()):
+            app.main(args=argv, prog_name="sunwind", standalone_mode=False)
     except SunwindError as error:
         print(f"sunwind: error: {error.renamed(FLAGS)}", file=sys.stderr)
         sys.exit(1)

@@ -7,6 +7,7 @@ import click
 from sunwind.forces.cli.free_stream import FreeStream, flow_options
 from sunwind.forces.cli.options import (
     Sun,
+    drag_only,
     json_option,
     loaded,
     model_options,
@@ -62,7 +63,7 @@ def drag(
     as_json: bool,
 ) -> None:
     """Free-molecular force and torque for one flow direction: gas-surface law, shadowing, re-emission."""
-    model = loaded(source, **references)
+    model = loaded(drag_only(source), **references)
     result = drag_of(model, flow.velocity_m_s, flow.atmosphere, reflections=reflections, **sampling)
     craft = model.craft
     if as_json:

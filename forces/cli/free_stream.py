@@ -1,8 +1,9 @@
 """The free stream as the command line gives it: the flow velocity and the atmosphere.
 
 Either ``--velocity X Y Z`` (``v_rel`` in the body frame, m/s) or ``--flow-azel AZ EL`` with a speed:
-``--speed V``, else the circular-orbit speed at ``--altitude`` (relative to an atmosphere rotating
-with the Earth with ``--corotating``, for the ``--heading`` of the orbit at ``--lat``). Either
+``--speed V``, else the circular-orbit speed at ``--altitude``. With ``--corotating``, ``--flow-azel``
+is the direction of the orbit's inertial velocity, and ``v_rel`` is that velocity less the air turning
+with the Earth, for the ``--heading`` of the orbit at ``--lat``, its crosswind placed by ``--nadir``. Either
 NRLMSIS at ``--altitude`` (place, time and indices optional) or ``--density``, ``--temperature`` and
 ``--composition`` together. A sweep takes the flow directions from its grid or list: it needs only the
 speed.
@@ -19,7 +20,15 @@ from numpy.typing import NDArray
 
 from sunwind.forces.cli.options import group
 from sunwind.forces.drag import checked_velocities
-from sunwind.forces.gas import Atmosphere, circular_speed, corotation_speed, explicit, nrlmsis
+from sunwind.forces.gas import (
+    Atmosphere,
+    circular_speed,
+    corotation_speed,
+    corotation_velocity,
+    explicit,
+    nrlmsis,
+)
+from sunwind.forces.gas.flow import flow_speed
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
 
@@ -49,13 +58,16 @@ _FLOW = [
         type=float,
         default=None,
         metavar="AZ EL",
-        help="Direction of v_rel [deg], az = atan2(y, x), el = asin(z); with --speed or --altitude.",
+        help="Direction of v_rel [deg], az = atan2(y, x), el = asin(z); with --speed or --altitude "
+        "(with --corotating: of the inertial orbit velocity).",
     ),
 ]
 _SPEED = [
     click.option("--speed", type=float, help="|v_rel| [m/s] [default: circular orbit at --altitude]."),
     click.option(
-        "--corotating", is_flag=True, help="Subtract the Earth-rotating atmosphere from the orbit speed."
+        "--corotating",
+        is_flag=True,
+        help="v_rel relative to air turning with the Earth: v - omega x r (speed and direction).",
     ),
     click.option(
         "--heading",
@@ -63,6 +75,15 @@ _SPEED = [
         default=90.0,
         show_default=True,
         help="With --corotating: direction of motion [deg from north, 90 = east].",
+    ),
+    click.option(
+        "--nadir",
+        nargs=3,
+        type=float,
+        default=None,
+        metavar="X Y Z",
+        help="With --corotating: body-frame direction to the Earth's centre (places the crosswind; "
+        "not needed heading east or west, or at a pole).",
     ),
 ]
 _AIR = [
@@ -102,6 +123,11 @@ def flow_options(directed: bool) -> Callable:
 
 def _free_stream(values: dict, directed: bool) -> FreeStream:
     velocity, azel = values["velocity"], values["flow_azel"]
+    if values["nadir"] is not None and not (directed and values["corotating"]):
+        raise InputError(
+            "--nadir places the co-rotating air's crosswind of --corotating --flow-azel",
+            hint="drop --nadir" if not directed else "add --corotating, or drop --nadir",
+        )
     if not directed:
         if velocity is not None or azel is not None:
             raise InputError(
@@ -117,13 +143,19 @@ def _free_stream(values: dict, directed: bool) -> FreeStream:
         raise InputError("give the flow with --velocity X Y Z or --flow-azel AZ EL (one of them)")
     if values["corotating"] and (velocity is not None or values["speed"] is not None):
         raise InputError(
-            "--corotating changes the circular-orbit speed at --altitude only",
+            "--corotating takes v_rel from the circular orbit at --altitude and --flow-azel",
             hint="drop --speed/--velocity, or give the relative velocity itself",
         )
     if velocity is not None:
         v = checked_velocities(velocity)
         return FreeStream(v, float(np.linalg.norm(v)), _atmosphere(values))
     direction = azel_to_vector(*azel, "--flow-azel")
+    if values["corotating"]:
+        if values["altitude"] is None:
+            raise InputError("--corotating needs --altitude, the height of the circular orbit")
+        orbit = (values["altitude"], values["lat"], values["heading"])
+        v = checked_velocities(corotation_velocity(*orbit, direction, values["nadir"]))
+        return FreeStream(v, float(np.linalg.norm(v)), _atmosphere(values))
     speed = _speed(values)
     return FreeStream(speed * direction, speed, _atmosphere(values))
 
@@ -132,10 +164,7 @@ def _speed(values: dict) -> float:
     """``|v_rel|`` [m/s]: ``--speed``, else the circular-orbit speed at ``--altitude`` (relative to a
     co-rotating atmosphere with ``--corotating``)."""
     if values["speed"] is not None:
-        speed = float(values["speed"])
-        if not np.isfinite(speed) or speed <= 0:
-            raise InputError(f"--speed {speed} must be a positive number of m/s")
-        return speed
+        return flow_speed(values["speed"], "speed_m_s")
     if values["altitude"] is None:
         raise InputError("a flow direction needs --speed V, or --altitude for the circular-orbit speed")
     speed = circular_speed(values["altitude"])

@@ -11,7 +11,7 @@ from __future__ import annotations
 import functools
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import click
@@ -54,6 +54,8 @@ FLAGS = {
     "composition": "--composition",
     "normalise": "--normalise-composition",
     "heading_deg": "--heading",
+    "nadir": "--nadir",
+    "velocity_direction": "--flow-azel",
     "step_deg": "--step",
     "chunk": "--chunk",
     "workers": "--workers",
@@ -125,18 +127,11 @@ _MODEL_OPTIONS = [
 
 
 def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
-    """The command-line uniform material, or None when no flag gives one.
-
-    ``gas`` holds the gas-surface flags given (keys of a materials file); a drag-only run may give them
-    without optics, and the optics are then not used (all zero).
-    """
+    """The command-line uniform material, or None when no optics flag gives one; ``gas`` holds the
+    gas-surface flags given (keys of a materials file)."""
     rho, beta, sigma = values["reflectivity"], values["specular_fraction"], values["transmissivity"]
     if rho is None and beta is None and sigma is None:
-        if not gas:
-            return None
-        return Material.checked(
-            "uniform", {"reflectivity": 0.0, "specular_fraction": 0.0, **gas}, "command line"
-        )
+        return None
     if rho is None or beta is None:
         raise InputError(
             "a uniform material needs --reflectivity and --specular-fraction",
@@ -144,6 +139,16 @@ def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
         )
     optics = {"reflectivity": rho, "specular_fraction": beta, "transmissivity": sigma or 0.0}
     return Material.checked("uniform", {**optics, **(gas or {})}, source="command line")
+
+
+def drag_only(source: ModelSource) -> ModelSource:
+    """``source`` for a run that computes drag alone, which uses no optics: without a uniform material
+    on the command line, parts without a material take the gas law of the gas flags (their defaults
+    where none is given) and no optics."""
+    if source.uniform is not None:
+        return source
+    gas = {"reflectivity": 0.0, "specular_fraction": 0.0, **dict(source.gas)}
+    return replace(source, uniform=Material.checked("uniform", gas, "command line"))
 
 
 def _source(values: dict) -> ModelSource:

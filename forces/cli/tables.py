@@ -23,6 +23,7 @@ from rich.text import Text
 from sunwind.forces.cli.free_stream import flow_options
 from sunwind.forces.cli.options import (
     Sun,
+    drag_only,
     group,
     loaded,
     model_options,
@@ -203,7 +204,7 @@ def sweep_command(
     attitudes = None if table.attitudes is None else read_attitude_csv(table.attitudes)
     for kind in table.kinds if attitudes is not None else ():
         attitudes.directions(kind)
-    model = loaded(source.resolved(), **references)
+    model = loaded((source if "srp" in table.kinds else drag_only(source)).resolved(), **references)
     checkpoint = table.output.with_name(table.output.name + ".checkpoint")
     total = _count(table, attitudes)
     columns = (

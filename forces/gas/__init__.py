@@ -11,7 +11,7 @@ from sunwind.forces.gas.atmosphere import (
     explicit,
     parse_composition,
 )
-from sunwind.forces.gas.flow import circular_speed, corotation_speed
+from sunwind.forces.gas.flow import circular_speed, corotation_speed, corotation_velocity
 from sunwind.forces.gas.incident import STREAMS, incident_number_flux
 from sunwind.forces.gas.laws import (
     GSI_LAWS,
@@ -46,6 +46,7 @@ __all__ = [
     "circular_speed",
     "cll",
     "corotation_speed",
+    "corotation_velocity",
     "diffuse_emission",
     "dria",
     "explicit",

@@ -63,6 +63,11 @@ _ALIASES = {name.lower(): name for name in SPECIES_MASS_KG} | {
 COLLISION_DIAMETER = 3.65e-10
 
 
+#: Range of free-stream temperatures [K] taken as a neutral gas: from 1 K (colder than the cosmic
+#: background) to 1e5 K (beyond it the gas is a plasma; the thermosphere's is 200-2500 K).
+TEMPERATURE_RANGE_K = (1.0, 1e5)
+
+
 class AtmosphereWarning(UserWarning):
     """The atmosphere asked for is usable but outside where its model or free-molecular flow is sound."""
 
@@ -94,7 +99,7 @@ class Atmosphere:
         Number density [m^-3] of each species present (only ``n > 0``), keyed by canonical name
         (``SPECIES_MASS_KG``), in table order.
     temperature_K : float
-        Free-stream kinetic temperature [K].
+        Free-stream kinetic temperature [K], within :data:`TEMPERATURE_RANGE_K`.
     source : str
         Where the values came from, one line, e.g. ``"NRLMSIS 2.1 (pymsis 0.13.0): 400 km, ..."`` or
         ``"user: density ..., temperature ..., composition ..."``.
@@ -125,9 +130,7 @@ class Atmosphere:
             densities[key] = n
         if not densities:
             raise InputError("the atmosphere has no species with a positive number density")
-        temperature = float(self.temperature_K)
-        if not math.isfinite(temperature) or temperature <= 0:
-            raise InputError(f"temperature {temperature} K is not a finite positive number")
+        temperature = checked_temperature(self.temperature_K)
         ordered = {k: densities[k] for k in SPECIES_MASS_KG if k in densities}
         object.__setattr__(self, "number_density_m3", ordered)
         object.__setattr__(self, "temperature_K", temperature)
@@ -238,7 +241,7 @@ def explicit(
     density_kg_m3 : float
         Mass density [kg/m^3], finite and positive.
     temperature_K : float
-        Free-stream kinetic temperature [K], finite and positive.
+        Free-stream kinetic temperature [K], within :data:`TEMPERATURE_RANGE_K`.
     composition : str or Mapping[str, float]
         Mole (number) fraction of each species, not mass fraction: ``"O:0.7,N2:0.3"`` means 70 % of the
         molecules are O. Species names as :func:`species_name` accepts them; ``=`` may stand for ``:``.
@@ -255,11 +258,11 @@ def explicit(
     Raises
     ------
     InputError
-        Unknown species, a fraction that is negative or not finite, fractions that do not sum to 1, or a
-        density or temperature that is not finite and positive.
+        Unknown species, a fraction that is negative or not finite, fractions that do not sum to 1, a
+        density that is not finite and positive, or a temperature out of range.
     """
     rho = finite_number(density_kg_m3, "density_kg_m3", "kg/m^3", positive=True)
-    temperature = finite_number(temperature_K, "temperature_K", "K", positive=True)
+    temperature = checked_temperature(temperature_K)
     fractions = parse_composition(composition)
     total = math.fsum(fractions.values())
     if total <= 0:
@@ -328,6 +331,18 @@ def parse_composition(composition: str | Mapping[str, float]) -> dict[str, float
             )
         fractions[key] = x
     return fractions
+
+
+def checked_temperature(temperature_K: float) -> float:
+    """A free-stream temperature [K] as a float, finite and within :data:`TEMPERATURE_RANGE_K`.
+
+    Raises
+    ------
+    InputError
+        Not a number, not finite, or out of range (naming ``temperature_K``).
+    """
+    low, high = TEMPERATURE_RANGE_K
+    return finite_number(temperature_K, "temperature_K", "K", minimum=low, maximum=high)
 
 
 def finite_number(

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.exchange import gas_interference_criterion
+from sunwind.forces.gas.flow import flow_speed
 from sunwind.forces.model import Model
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure, solar_flux
 from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors, reflection_plan
@@ -131,12 +132,11 @@ class DragSetup(_Setup):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not (
-            isinstance(self.speed_m_s, int | float) and np.isfinite(self.speed_m_s) and self.speed_m_s > 0
-        ):
+        if isinstance(self.speed_m_s, bool) or not isinstance(self.speed_m_s, int | float):
             raise InputError(
-                f"speed_m_s {self.speed_m_s} must be a positive number of m/s", parameters=("speed_m_s",)
+                f"speed_m_s {self.speed_m_s!r} is not a number of m/s", parameters=("speed_m_s",)
             )
+        flow_speed(self.speed_m_s)
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of flow directions ``u`` (n, 3)."""

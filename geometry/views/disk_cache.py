@@ -1,9 +1,11 @@
 """Disk store of geometry-only precomputations: verified ``.npz`` entries keyed by a hash of their inputs.
 
 An entry is written atomically (a temporary file in the same directory, then ``os.replace``) and holds
-its arrays, the key it was made for and a SHA-256 checksum of both. Reading checks key and checksum, so a
-truncated, damaged or stale file is reported and never used. Cache keys hash the model's geometry
-(triangles, facet kinds and sides) and the caller's settings; materials do not enter.
+its arrays, the key it was made for and a SHA-256 checksum of both. Reading checks key and checksum, and
+then the values themselves (shapes, finite, shares in [0, 1], rows that balance), so a truncated,
+damaged, stale or forged file is reported (a :class:`CacheWarning`) and rebuilt, never used. Cache keys
+hash the model's geometry (triangles, facet kinds and sides) and the caller's settings; materials do not
+enter.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import hashlib
 import json
 import os
 import tempfile
+import warnings
 import zipfile
 from collections.abc import Callable, Mapping
 from dataclasses import replace
@@ -28,6 +31,9 @@ from sunwind.geometry.spacecraft import Spacecraft
 FORMAT_VERSION = 1
 #: Environment variable naming the cache directory.
 CACHE_ENV = "SUNWIND_CACHE_DIR"
+#: Largest departure of a stored share from [0, 1], and of a row's balance from 1, that an entry may
+#: have (computed entries balance to round-off, ~1e-15).
+VALUE_TOLERANCE = 1e-9
 
 _KEY, _CHECKSUM = "key", "checksum"
 T = TypeVar("T")
@@ -36,6 +42,10 @@ T = TypeVar("T")
 class CacheEntryError(Exception):
     """A cache entry that cannot be used; ``str()`` says why: "was corrupt (...)", "was stale (...)" or
     "could not be read (...)"."""
+
+
+class CacheWarning(UserWarning):
+    """A cache entry could not be used and was rebuilt (the answer is the computed one)."""
 
 
 def default_cache_dir() -> Path:
@@ -156,6 +166,7 @@ def kept_on_disk(
         pass
     except CacheEntryError as problem:
         notes.append(f"cache entry {path} {problem}: rebuilt")
+        warnings.warn(notes[-1], CacheWarning, stacklevel=2)
     value = compute()
     try:
         write_entry(path, key, encode(value))
@@ -180,12 +191,14 @@ def factor_fields(
     arrays: Mapping[str, NDArray], n_sides: int, columns: Mapping[str, int], numbers: tuple[str, ...]
 ) -> dict[str, object]:
     """The fields :func:`factor_arrays` stored, checked to fit ``n_sides`` sides: ``matrix`` (CSR), the
-    columns, and the numbers as Python scalars.
+    columns, and the numbers as Python scalars. Every value must be finite, the matrix's entries,
+    the numbers and the columns of width 1 (shares: escape, blind, truncated) not negative, and the
+    shares at most 1 (within :data:`VALUE_TOLERANCE`).
 
     Raises
     ------
     CacheEntryError
-        A missing array, or one of the wrong shape.
+        A missing array, one of the wrong shape, or values out of range.
     """
     try:
         indptr, indices, data = arrays["indptr"], arrays["indices"], arrays["data"]
@@ -193,8 +206,43 @@ def factor_fields(
         fits = indptr.shape == (n_sides + 1,) and indices.shape == data.shape == (indptr[-1],)
         if not fits or any(arrays[column].shape != shape for column, shape in shapes.items()):
             raise CacheEntryError("was corrupt (arrays of the wrong shape)")
+        shares = [arrays[column] for column, width in columns.items() if width == 1]
+        vectors = [arrays[column] for column, width in columns.items() if width != 1]
+        _check_values(
+            indptr, indices, n_sides, [data, *shares, *(arrays[n] for n in numbers)], shares, vectors
+        )
         matrix = scipy.sparse.csr_matrix((data, indices, indptr), shape=(n_sides, n_sides))
         fields: dict[str, object] = {"matrix": matrix, **{column: arrays[column] for column in columns}}
         return fields | {number: arrays[number].item() for number in numbers}
-    except (KeyError, IndexError, ValueError) as error:
+    except (KeyError, IndexError, ValueError, TypeError) as error:
         raise CacheEntryError(f"was corrupt ({type(error).__name__}: {error})") from error
+
+
+def _check_values(
+    indptr: NDArray,
+    indices: NDArray,
+    n_sides: int,
+    positive: list[NDArray],
+    shares: list[NDArray],
+    vectors: list[NDArray],
+) -> None:
+    """Raise :class:`CacheEntryError` unless ``indptr`` and ``indices`` are a CSR structure of
+    ``n_sides`` columns, every array is finite, those of ``positive`` not negative and those of
+    ``shares`` at most 1."""
+    structure = indptr[0] == 0 and np.all(np.diff(indptr) >= 0)
+    if not structure or (len(indices) and not (0 <= indices.min() and indices.max() < n_sides)):
+        raise CacheEntryError("was corrupt (matrix structure out of range)")
+    values = [np.asarray(array, dtype=np.float64) for array in (*positive, *vectors)]
+    if not all(np.all(np.isfinite(array)) for array in values):
+        raise CacheEntryError("was corrupt (values not finite)")
+    if any(np.any(array < -VALUE_TOLERANCE) for array in values[: len(positive)]):
+        raise CacheEntryError("was corrupt (negative shares or factors)")
+    if any(np.any(np.asarray(share, dtype=np.float64) > 1 + VALUE_TOLERANCE) for share in shares):
+        raise CacheEntryError("was corrupt (a share above 1)")
+
+
+def check_balance(error: NDArray[np.float64]) -> None:
+    """Raise :class:`CacheEntryError` if a row's balance ``error`` (n_sides,) exceeds
+    :data:`VALUE_TOLERANCE` or is not finite."""
+    if not np.all(np.isfinite(error)) or np.any(error > VALUE_TOLERANCE):
+        raise CacheEntryError(f"was corrupt (rows do not balance: off by up to {np.nanmax(error):.3g})")

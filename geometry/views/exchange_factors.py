@@ -64,6 +64,7 @@ from sunwind.geometry.sides import SOLID
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.disk_cache import (
     cache_directory,
+    check_balance,
     factor_arrays,
     factor_fields,
     geometry_key,
@@ -313,7 +314,9 @@ def exchange_factors(
 
     def decode(arrays, origin: str) -> ExchangeFactors:
         fields = factor_fields(arrays, len(view.escape_fraction), _COLUMNS, _NUMBERS)
-        return ExchangeFactors(**fields, rays_per_side=view.rays_per_side, seed=view.seed, origin=origin)
+        factors = ExchangeFactors(**fields, rays_per_side=view.rays_per_side, seed=view.seed, origin=origin)
+        check_balance(factors.row_sum_error(onward_share(craft)))
+        return factors
 
     return kept_on_disk(
         directory,

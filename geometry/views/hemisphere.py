@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.geometry.parallel import map_ranges, thread_count
+from sunwind.geometry.progress import advance
 from sunwind.geometry.spacecraft import Spacecraft
 
 #: Rays per batch of sides, made, cast and tallied in turn by one thread: ~60 bytes each, ~16 MB.
@@ -36,14 +37,19 @@ T = TypeVar("T")
 
 def map_side_batches(function: Callable[[int, int], T], n: int, rays_per_side: int) -> list[T]:
     """``[function(lo, hi) for each batch]`` over ``range(n)`` in batches of about ``_BATCH_RAYS`` rays
-    (``rays_per_side`` per item), made, cast and tallied in turn by one thread; results in order.
+    (``rays_per_side`` per item), made, cast and tallied in turn by one thread; results in order. Each
+    batch done advances the running progress step (:mod:`sunwind.geometry.progress`).
 
     Batch boundaries follow the thread count: ``function`` must treat every item on its own.
     """
     per_batch = max(1, _BATCH_RAYS // rays_per_side)
 
     def work(lo: int, hi: int) -> list[T]:
-        return [function(s, min(s + per_batch, hi)) for s in range(lo, hi, per_batch)]
+        out = []
+        for s in range(lo, hi, per_batch):
+            out.append(function(s, min(s + per_batch, hi)))
+            advance(min(s + per_batch, hi) - s, n)
+        return out
 
     return [t for chunk in map_ranges(work, n, per_batch) for t in chunk]
 

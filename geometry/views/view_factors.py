@@ -39,6 +39,7 @@ from sunwind.geometry.spacecraft import BLIND, ESCAPED, Spacecraft
 from sunwind.geometry.triangles import STRATIFIED_SEED
 from sunwind.geometry.views.disk_cache import (
     cache_directory,
+    check_balance,
     factor_arrays,
     factor_fields,
     geometry_key,
@@ -299,7 +300,8 @@ def view_factors(
 
     ``origin`` of the result says what happened: "cache <path>", "computed (stored in cache <path>)",
     or "computed (...)" naming a corrupt or stale entry that was rebuilt, or a cache that could not be
-    written. Cache trouble is never an error and never gives a wrong result.
+    written. Cache trouble is never an error and never gives a wrong result: an entry whose values are
+    not finite, out of [0, 1] or whose rows do not sum to 1 is rebuilt, with a ``CacheWarning``.
     """
     directory = cache_directory(cache_dir)
     if directory is None:
@@ -308,7 +310,9 @@ def view_factors(
 
     def decode(arrays, origin: str) -> ViewFactors:
         fields = factor_fields(arrays, craft.n_sides, _COLUMNS, _NUMBERS)
-        return ViewFactors(**fields, rays_per_side=rays, seed=int(seed), origin=origin)
+        view = ViewFactors(**fields, rays_per_side=rays, seed=int(seed), origin=origin)
+        check_balance(view.row_sum_error())  # F_ij, f_esc, f_blind each a share of one emission
+        return view
 
     return kept_on_disk(
         directory,

@@ -69,7 +69,9 @@ def test_convex_body_is_the_per_side_law_at_every_speed_ratio(body, ratio, refle
     craft = craft_of(CONVEX[body](), "schaaf-chambre", normal_accommodation=0.8, tangential_accommodation=0.9)
     velocity = speed_for(ratio) * np.array([0.6, -0.48, 0.64])
     ref = np.array([0.1, 0.2, -0.1])
-    result = drag(craft, velocity, AIR, reference_point_m=ref, reflections=reflections, samples=4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", LowSpeedRatioWarning)  # exact at every speed ratio: no warning
+        result = drag(craft, velocity, AIR, reference_point_m=ref, reflections=reflections, samples=4)
     force, torque = per_side_law(craft, velocity, AIR, ref)
     scale = np.linalg.norm(force)
     assert np.linalg.norm(result.force_N - force) <= 1e-12 * scale
@@ -143,19 +145,46 @@ def test_default_reference_area_is_the_mean_projected_area():
 
 def test_zero_velocity_and_light_only_modes_are_refused():
     craft = craft_of(primitives.sphere(1.0, subdivisions=8))
-    with pytest.raises(InputError, match="not all zero"):
+    with pytest.raises(InputError, match="zero length"):
         drag(craft, [0.0, 0.0, 0.0], AIR)
     with pytest.raises(InputError, match="light only"):
         drag(craft, [7000.0, 0, 0], AIR, reflections="specular")
 
 
-def test_low_speed_ratio_warns_and_names_the_limit():
-    craft = craft_of(primitives.sphere(1.0, subdivisions=8))
-    with pytest.warns(LowSpeedRatioWarning, match="speed ratio .* < 3"):
-        drag(craft, [speed_for(1.5), 0, 0], AIR, reflections="none")
+@pytest.mark.parametrize(
+    "velocity, message",
+    [
+        ([1e-300, 0, 0], "speed of 1e-300 m/s, below 1 m/s: too slow to be a flow"),
+        ([0.6, 0.0, 0.0], "below 1 m/s"),
+        ([[7000.0, 0, 0], [0, 0.5, 0]], "speed of 0.5 m/s, below 1 m/s"),
+        ([1e300, 0, 0], "above 1e\\+06 m/s"),
+        ([math.nan, 0, 0], "three finite numbers"),
+    ],
+)
+def test_speeds_that_are_no_flow_are_refused_with_the_threshold(velocity, message):
+    craft = craft_of(primitives.sphere(1.0, subdivisions=4))
+    with pytest.raises(InputError, match=message):
+        drag(craft, velocity, AIR)
+
+
+def test_a_table_setup_checks_its_speed_like_a_velocity():
+    from sunwind.forces.tables import DragSetup
+
+    with pytest.raises(InputError, match="below 1 m/s"):
+        DragSetup(speed_m_s=1e-300, atmosphere=AIR)
+    with pytest.raises(InputError, match="not a number"):
+        DragSetup(speed_m_s="7000", atmosphere=AIR)
+
+
+def test_low_speed_ratio_warns_on_a_concave_model_only_and_names_the_limit():
+    concave = craft_of(primitives.box_wing(facet_size=0.5))
+    with pytest.warns(LowSpeedRatioWarning, match="speed ratio .* < 3: this model can shadow itself"):
+        drag(concave, [speed_for(1.5), 0, 0], AIR, reflections="none")
+    convex = craft_of(primitives.sphere(1.0, subdivisions=8))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        drag(craft, [speed_for(8.0), 0, 0], AIR, reflections="none")
+        drag(concave, [speed_for(8.0), 0, 0], AIR, reflections="none")
+        drag(convex, [speed_for(1.5), 0, 0], AIR, reflections="none")  # convex: exact, no warning
 
 
 def test_re_emission_exchange_adds_drag_on_a_cavity_facing_the_flow():

@@ -208,13 +208,21 @@ def test_every_bad_drag_input_gives_one_line_and_a_non_zero_exit(run_cli, sphere
             assert word in line, (args, word, line)
 
 
-def test_low_speed_ratio_prints_a_one_line_warning_and_still_answers(run_cli, sphere_mesh):
-    code, out, err = run_cli(
-        "drag", sphere_mesh, "--velocity", "1500", "0", "0", *EXPLICIT_AIR, *SPHERE_ARGS, "--json"
-    )
+def test_low_speed_ratio_prints_a_one_line_warning_on_a_concave_model_and_still_answers(
+    run_cli, sphere_mesh, tmp_path
+):
+    from sunwind.geometry.io import save_mesh
+    from sunwind.meshes.primitives import box_wing
+
+    concave = tmp_path / "box_wing.usda"
+    save_mesh(box_wing(facet_size=0.5), concave)
+    slow = ["--velocity", "1500", "0", "0", *EXPLICIT_AIR, *SPHERE_ARGS, "--json"]
+    code, out, err = run_cli("drag", concave, *slow)
     assert code == 0
     assert err.strip().startswith("sunwind: warning:") and "speed ratio" in err and "< 3" in err
     assert json.loads(out)["speed_ratio"] < 3
+    code, out, err = run_cli("drag", sphere_mesh, *slow)
+    assert code == 0 and "warning" not in err  # a convex body: exact at any speed ratio
 
 
 def test_extrapolated_altitude_warns(run_cli, sphere_mesh):

@@ -16,7 +16,7 @@ from sunwind.forces.gas.atmosphere import (
     explicit,
     species_name,
 )
-from sunwind.forces.gas.flow import circular_speed, corotation_speed
+from sunwind.forces.gas.flow import circular_speed, corotation_speed, corotation_velocity
 from sunwind.forces.gas.msis import nrlmsis, parse_time
 from sunwind.geometry.errors import InputError
 
@@ -286,6 +286,53 @@ def test_corotation_matches_the_vector_form(altitude, latitude, heading, speed):
     )
 
 
+def test_corotation_turns_v_rel_by_the_crosswind_a_hand_computation_gives():
+    """Body frame x along the inertial velocity, z to the Earth's centre (y = z x x: east when
+    heading north). Prograde equatorial: V - omega r along x only. Polar orbit at the equator heading
+    north: the air moves east at omega r (~0.494 km/s at 400 km), so v_rel = (V, -omega r, 0)."""
+    omega_r = 7.292115e-5 * (6378.137e3 + 400e3)
+    v = circular_speed(400.0)
+    x, z = [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]
+    assert corotation_velocity(400.0, 0.0, 90.0, x) == pytest.approx([v - omega_r, 0.0, 0.0], rel=1e-14)
+    polar = corotation_velocity(400.0, 0.0, 0.0, x, z)
+    assert 490.0 < omega_r < 500.0
+    assert polar == pytest.approx([v, -omega_r, 0.0], rel=1e-14, abs=1e-9)
+    southbound = corotation_velocity(400.0, 0.0, 180.0, [0.0, 2.0, 0.0], [-3.0, 0.0, 0.0])  # any length
+    assert southbound == pytest.approx([0.0, v, -omega_r], rel=1e-14, abs=1e-9)  # -z: west
+    assert corotation_velocity(400.0, 90.0, 0.0, x) == pytest.approx([v, 0.0, 0.0])  # a pole: no wind
+    with pytest.raises(InputError, match=r"crosses the track at 494\.3 m/s"):
+        corotation_velocity(400.0, 0.0, 0.0, x)
+    with pytest.raises(InputError, match="nadir is 45 deg off perpendicular"):
+        corotation_velocity(400.0, 0.0, 0.0, x, [1.0, 0.0, 1.0])
+
+
+@settings(max_examples=50, deadline=None)
+@given(
+    st.floats(0, 2000),
+    st.floats(-90, 90),
+    st.floats(-360, 360),
+    st.floats(100, 12000),
+    st.floats(-math.pi, math.pi),
+    st.floats(-1.5, 1.5),
+)
+def test_corotation_velocity_matches_the_vector_form_in_any_body_frame(
+    altitude, latitude, heading, speed, yaw, pitch
+):
+    """v - omega x r in an Earth-centred frame, written in a body frame turned by (yaw, pitch)."""
+    phi, psi = math.radians(latitude), math.radians(heading)
+    r_hat = np.array([math.cos(phi), 0.0, math.sin(phi)])
+    north = np.array([-math.sin(phi), 0.0, math.cos(phi)])
+    east = np.array([0.0, 1.0, 0.0])
+    v_hat = math.cos(psi) * north + math.sin(psi) * east
+    relative = speed * v_hat - np.cross([0.0, 0.0, 7.292115e-5], (6378.137e3 + altitude * 1e3) * r_hat)
+    basis = np.array([v_hat, np.cross(-r_hat, v_hat), -r_hat])  # velocity, y, nadir
+    cy, sy, cp, sp = math.cos(yaw), math.sin(yaw), math.cos(pitch), math.sin(pitch)
+    turn = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]]) @ np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    expected = turn @ (basis @ relative)
+    got = corotation_velocity(altitude, latitude, heading, turn[:, 0], turn[:, 2], speed)
+    assert got == pytest.approx(expected, rel=1e-12, abs=1e-8)
+
+
 @pytest.mark.parametrize(
     ("kwargs", "names"),
     [
@@ -340,7 +387,8 @@ def test_date_errors_say_why():
         ((0.0, 1000.0, "O:1"), {}, r"density_kg_m3 0\.0 kg/m\^3 is not positive"),
         ((-1e-12, 1000.0, "O:1"), {}, r"density_kg_m3"),
         ((math.nan, 1000.0, "O:1"), {}, r"density_kg_m3 nan kg/m\^3 is not a finite number"),
-        ((1e-12, 0.0, "O:1"), {}, r"temperature_K 0\.0 K is not positive"),
+        ((1e-12, 0.0, "O:1"), {}, r"temperature_K 0\.0 K is below 1"),
+        ((1e-12, 1e300, "O:1"), {}, r"temperature_K 1e\+300 K is above 100000"),
         ((1e-12, math.inf, "O:1"), {}, r"temperature_K inf K is not a finite number"),
     ],
 )
@@ -367,7 +415,7 @@ def test_atmosphere_checks_its_fields():
         Atmosphere({"O": 0.0}, 1000.0, "test")
     with pytest.raises(InputError, match="species O is given twice"):
         Atmosphere({"O": 1.0, "o": 2.0}, 1000.0, "test")
-    with pytest.raises(InputError, match=r"temperature -1\.0 K"):
+    with pytest.raises(InputError, match=r"temperature_K -1\.0 K is below 1"):
         Atmosphere({"O": 1.0}, -1.0, "test")
     with pytest.raises(InputError, match="no species"):
         Atmosphere({}, 1000.0, "test")

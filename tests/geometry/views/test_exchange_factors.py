@@ -15,6 +15,7 @@ from sunwind.forces.reflection.diffuse import DiffuseExchange
 from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import build_spacecraft
+from sunwind.geometry.views.disk_cache import CacheWarning, write_entry
 from sunwind.geometry.views.exchange_factors import (
     CHAIN_RAYS,
     ExchangeFactors,
@@ -236,3 +237,18 @@ def test_the_disk_cache_keeps_factors_per_optics(tmp_path):
     other = exchange_factors(open_box((0.8, 0.4, 0.0)), view, tmp_path)
     assert other.origin.startswith("computed") and len(list(tmp_path.glob("exchange_factors-*.npz"))) == 2
     assert exchange_factors(craft, view).origin == "computed"  # no cache by default
+
+
+def test_a_forged_exchange_entry_that_does_not_balance_is_rebuilt(tmp_path):
+    craft = open_box((0.8, 0.5, 0.0))
+    view = compute_view_factors(craft, 256)
+    first = exchange_factors(craft, view, tmp_path)
+    [path] = tmp_path.glob("exchange_factors-*.npz")
+    stored = dict(np.load(path))
+    arrays = {name: value for name, value in stored.items() if name not in ("key", "checksum")}
+    arrays["truncated_fraction"] = np.full_like(arrays["truncated_fraction"], 0.5)  # shares, yet no balance
+    write_entry(path, str(stored["key"]), arrays)
+    with pytest.warns(CacheWarning, match="rows do not balance"):
+        again = exchange_factors(craft, view, tmp_path)
+    assert again.origin.startswith("computed (cache entry")
+    assert np.array_equal(again.truncated_fraction, first.truncated_fraction)

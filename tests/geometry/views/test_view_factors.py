@@ -17,7 +17,7 @@ from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.geometry.triangles import normals
-from sunwind.geometry.views.disk_cache import geometry_key, write_entry
+from sunwind.geometry.views.disk_cache import CacheWarning, geometry_key, write_entry
 from sunwind.geometry.views.near_field import edge_pair_view_factors
 from sunwind.geometry.views.view_factors import (
     VIEW_SEED,
@@ -315,7 +315,8 @@ def test_a_corrupt_entry_is_reported_and_rebuilt(tmp_path, damage):
     fresh = view_factors(craft, 64, cache_dir=tmp_path)
     [path] = entries(tmp_path)
     path.write_bytes(damage(path.read_bytes()))
-    rebuilt = view_factors(craft, 64, cache_dir=tmp_path)
+    with pytest.warns(CacheWarning, match="was corrupt"):
+        rebuilt = view_factors(craft, 64, cache_dir=tmp_path)
     assert rebuilt.origin.startswith(f"computed (cache entry {path} was corrupt (")
     assert "rebuilt" in rebuilt.origin
     assert_same(fresh, rebuilt)
@@ -329,12 +330,58 @@ def test_a_stale_or_tampered_entry_is_reported_and_rebuilt(tmp_path):
     stored = dict(np.load(path))
     arrays = {name: value for name, value in stored.items() if name not in ("key", "checksum")}
     write_entry(path, "0" * 64, arrays)  # a sound entry, made for other inputs
-    rebuilt = view_factors(craft, 64, cache_dir=tmp_path)
+    with pytest.warns(CacheWarning, match="was stale"):
+        rebuilt = view_factors(craft, 64, cache_dir=tmp_path)
     assert rebuilt.origin.startswith(f"computed (cache entry {path} was stale")
     assert_same(fresh, rebuilt)
     stored["escape_fraction"][0] -= 0.5  # altered data under the right key and the old checksum
     np.savez(path, **stored)
-    assert "was corrupt (checksum mismatch): rebuilt" in view_factors(craft, 64, cache_dir=tmp_path).origin
+    with pytest.warns(CacheWarning, match="checksum mismatch"):
+        assert (
+            "was corrupt (checksum mismatch): rebuilt" in view_factors(craft, 64, cache_dir=tmp_path).origin
+        )
+
+
+def _forge(path, key, change) -> None:
+    """Rewrite the entry at ``path`` with ``change(arrays)`` applied, under its own key and a valid
+    checksum: what the checksum cannot catch."""
+    stored = dict(np.load(path))
+    arrays = {name: value.copy() for name, value in stored.items() if name not in ("key", "checksum")}
+    change(arrays)
+    write_entry(path, key, arrays)
+
+
+@pytest.mark.parametrize(
+    "change, problem",
+    [
+        (lambda a: a["data"].fill(np.nan), "values not finite"),
+        (lambda a: a["escape_vector"].fill(np.inf), "values not finite"),
+        (lambda a: a["escape_fraction"].fill(-0.5), "negative"),
+        (lambda a: a["blind_fraction"].fill(1.5), "a share above 1"),
+        (lambda a: a["escape_fraction"].fill(0.25), "rows do not balance"),
+        (lambda a: a["indices"].fill(10**6), "matrix structure out of range"),
+        (lambda a: a.update(seconds=np.array(np.nan)), "values not finite"),
+    ],
+    ids=[
+        "nan factors",
+        "inf escape vector",
+        "negative share",
+        "share above 1",
+        "unbalanced",
+        "indices",
+        "seconds",
+    ],
+)
+def test_a_forged_entry_with_a_valid_checksum_is_checked_and_rebuilt(tmp_path, change, problem):
+    craft = corner(2)
+    fresh = view_factors(craft, 64, cache_dir=tmp_path)
+    [path] = entries(tmp_path)
+    _forge(path, geometry_key(craft, vf_module._settings(64, VIEW_SEED)), change)
+    with pytest.warns(CacheWarning, match=f"{path.name} was corrupt \\({problem}"):
+        rebuilt = view_factors(craft, 64, cache_dir=tmp_path)
+    assert rebuilt.origin.startswith("computed (cache entry") and "rebuilt" in rebuilt.origin
+    assert_same(fresh, rebuilt)
+    assert view_factors(craft, 64, cache_dir=tmp_path).origin == f"cache {path}"  # stored again
 
 
 def test_no_cache_writes_nothing_and_the_environment_names_the_default(tmp_path, monkeypatch):
