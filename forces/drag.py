@@ -158,9 +158,8 @@ def _one(
     else:
         reflected = GasReflected(mode, np.zeros(3), np.zeros(3), view, k_is)
     facing = flow.facing
-    projected = np.einsum(
-        "i,i->", craft.side_areas[facing], flow.lit_fraction[facing] * gamma[groups.side[facing]]
-    )
+    wetted = craft.side_areas[facing] * flow.lit_fraction[facing]
+    projected = np.einsum("i,i->", wetted, gamma[groups.side[facing]])
     area, length = model.reference_sizes
     return DragResult(
         force_N=panel.force_N + reflected.force_N,
@@ -171,6 +170,7 @@ def _one(
         settings=settings,
         reference_point_m=ref,
         reference_point=ref_name,
+        lit_area_m2=float(wetted.sum()),
         projected_area_m2=float(projected),
         rays=flow.rays,
         sampling=flow.sampling,

@@ -72,6 +72,9 @@ class AttitudeResult:
     reference_point : str
         Where it came from: "user" (given), "centre of mass (materials file)", or a default: "volume
         centroid (default)" or "area centroid (default)".
+    lit_area_m2 : float
+        Area of the side parts the attitude's beam reaches: lit by the Sun, or facing the flow and not
+        shadowed from it (the hyperthermal wetted area).
     projected_area_m2 : float
         Lit area projected on the plane normal to the attitude's direction: the shadow the spacecraft
         casts in the Sun or in the flow.
@@ -95,6 +98,7 @@ class AttitudeResult:
     settings: ReflectionSettings
     reference_point_m: NDArray[np.float64]
     reference_point: str
+    lit_area_m2: float
     projected_area_m2: float
     rays: int
     sampling: str
@@ -150,6 +154,7 @@ class AttitudeResult:
             },
             "reflections": self.reflections,
             "reflections_requested": self.settings.mode,
+            "lit_area_m2": self.lit_area_m2,
             "projected_area_m2": self.projected_area_m2,
             "rays": self.rays,
             "sampling": self.sampling,
@@ -169,8 +174,6 @@ class SrpResult(AttitudeResult):
         Solar flux at the spacecraft.
     pressure_Pa : float
         ``P = flux / c``.
-    lit_area_m2 : float
-        Area of all lit side parts.
     illumination : Illumination
         Lit share and lit centroid of every side.
 
@@ -180,7 +183,6 @@ class SrpResult(AttitudeResult):
     sun_vector: NDArray[np.float64] = field(kw_only=True)
     flux_W_m2: float = field(kw_only=True)
     pressure_Pa: float = field(kw_only=True)
-    lit_area_m2: float = field(kw_only=True)
     illumination: Illumination = field(kw_only=True, repr=False)
 
     @property
@@ -246,7 +248,6 @@ class SrpResult(AttitudeResult):
             "pressure_Pa": self.pressure_Pa,
             "k_is": self.k_is,
             "power": self.power.to_json(),
-            "lit_area_m2": self.lit_area_m2,
         }
         chains, view = self.reflected.chains, self.reflected.view
         if chains is not None:
@@ -446,6 +447,10 @@ class ResultBatch(Generic[R]):
         return self.stacked("reflected_torque_Nm").reshape(-1, 3)
 
     @property
+    def lit_area_m2(self) -> NDArray[np.float64]:
+        return self.stacked("lit_area_m2")
+
+    @property
     def projected_area_m2(self) -> NDArray[np.float64]:
         return self.stacked("projected_area_m2")
 
@@ -464,10 +469,6 @@ class SrpBatch(ResultBatch[SrpResult]):
     @property
     def sun_vector(self) -> NDArray[np.float64]:
         return self.direction
-
-    @property
-    def lit_area_m2(self) -> NDArray[np.float64]:
-        return self.stacked("lit_area_m2")
 
 
 class DragBatch(ResultBatch[DragResult]):

@@ -39,6 +39,10 @@ GAS_DEFAULTS = {
     "wall_temperature": 300.0,  # T_w [K]
 }
 
+#: Hottest wall temperature a material may give [K]: above any surface a spacecraft keeps (tungsten melts
+#: at 3695 K); a larger value is a unit slip, not a wall.
+MAX_WALL_TEMPERATURE_K = 1e4
+
 
 #: Most tables and arrays one inside another that a materials file may nest (a real one nests 2).
 MAX_TOML_DEPTH = 64
@@ -93,6 +97,13 @@ class GasSurface:
         for key in ("energy_accommodation", "normal_accommodation", "tangential_accommodation"):
             numbers[key] = _number(where, key, values.get(key, GAS_DEFAULTS[key]), source, 0.0, 1.0)
         wall = _number(where, "wall_temperature", values.get("wall_temperature", 300.0), source, 0.0, None)
+        if wall > MAX_WALL_TEMPERATURE_K:
+            raise MaterialError(
+                f"{where}: wall_temperature = {wall:g} K is above {MAX_WALL_TEMPERATURE_K:g} K, hotter than "
+                "any spacecraft wall",
+                path=source,
+                hint="give the surface temperature in kelvin",
+            )
         return cls(model=str(model), wall_temperature_K=wall, **numbers)
 
     @property
@@ -110,8 +121,9 @@ def _number(where: str, key: str, value: object, source: str | None, low: float,
         )
     inside = low <= value <= high if high is not None else value > low
     if not math.isfinite(value) or not inside:
-        unit = " K" if high is None else ""
-        raise MaterialError(f"{where}: {key} = {value}{unit} is outside {interval}", path=source)
+        if high is None:  # the wall temperature, in kelvin
+            raise MaterialError(f"{where}: {key} = {value:g} K is not above {low:g} K", path=source)
+        raise MaterialError(f"{where}: {key} = {value} is outside {interval}", path=source)
     return float(value)
 
 

@@ -49,7 +49,7 @@ def test_quick_start_sweep_and_plot_commands_run(run_cli, monkeypatch, tmp_path)
     ]
     code, out, err = run_cli(*plot)
     assert code == 0, err
-    assert len(list((tmp_path / "plots").glob("*.png"))) == 5
+    assert len(list((tmp_path / "plots").glob("*.png"))) == 6  # 2 x 2 maps, a view each
 
 
 def test_single_attitude_command_runs(run_cli, monkeypatch):

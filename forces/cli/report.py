@@ -17,10 +17,12 @@ def vector(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
 
 def about(point_m: np.ndarray, name: str) -> str:
     """The torque reference point and what it is; a default says how to give the centre of mass."""
-    text = f"{vector(point_m, '{:+.6f}')}  ({name})"
-    if name.endswith("(default)"):
-        text += "; give the centre of mass with --ref-point or [model] centre_of_mass_m"
-    return text
+    point = vector(point_m, "{:+.6f}")
+    if name.endswith(" (default)"):
+        what = name.removesuffix(" (default)")
+        fix = "give the centre of mass with --ref-point or [model] centre_of_mass_m"
+        return f"{point}  ({what}, a default: {fix})"
+    return f"{point}  ({name})"
 
 
 def header(craft: Spacecraft) -> dict:
@@ -93,6 +95,7 @@ def print_drag(result: DragResult, heading: str) -> None:
         f"{'':19}A_ref {result.reference_area_m2:.6g} m^2, L_ref {result.reference_length_m:.6g} m; "
         "C = F/(q A_ref), C_M = M/(q A_ref L_ref)"
     )
+    print(f"  lit area         {result.lit_area_m2:.6f} m^2 (facing the flow, not shadowed)")
     print(f"  projected area   {result.projected_area_m2:.6f} m^2 (normal to the flow)")
     k_is = "n/a" if result.k_is is None else f"{result.k_is:.4f}"
     print(f"  re-emission      {result.reflections} (asked: {result.settings.mode}); molecular K_IS = {k_is}")

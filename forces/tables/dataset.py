@@ -5,8 +5,8 @@ and tables"); the writers of its file formats are :mod:`sunwind.forces.export`.
 flow_elevation`` for drag (degrees, -180..180 and -90..90 with both ends), and ``component`` (x, y, z)
 for vectors. **List tables** have one dimension ``attitude`` (rows of the attitude CSV) shared by
 SRP and drag. Variables are ``srp_*`` (force, torque, their direct and reflected parts, lit and
-projected area, ``sun_vector``) and ``drag_*`` (the same parts, the coefficients ``CD, CS, CL`` and
-``CM``, ``projected_area_m2``, ``flow_vector``); every variable and coordinate has ``units`` and
+projected area, ``sun_vector``) and ``drag_*`` (the same parts and areas, the coefficients ``CD, CS,
+CL`` and ``CM``, ``flow_vector``); every variable and coordinate has ``units`` and
 ``long_name`` (CF-1.8, ``Conventions``); the global attributes hold the frame, the sign conventions
 (``comment``), reference point, solar flux, atmosphere (its source and altitude), coefficient
 references, the reflection mode each quantity used (``srp_reflections``, ``drag_reflections``: ``auto``
@@ -55,7 +55,7 @@ LONG_NAMES = {
     "direct_torque_Nm": "torque of the direct flux",
     "reflected_force_N": "force added by inter-reflection (light) or re-emission exchange (molecules)",
     "reflected_torque_Nm": "torque added by inter-reflection or re-emission exchange",
-    "lit_area_m2": "lit area",
+    "lit_area_m2": "lit area (SRP), or area facing the flow and not shadowed from it (drag)",
     "projected_area_m2": "lit area projected normal to the Sun vector (SRP) or the flow vector u (drag)",
     "CD": "drag coefficient F.(-u)/(q A_ref)",
     "CS": "side-force coefficient",

@@ -30,20 +30,21 @@ from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 
 #: Quantities a sweep can tabulate, each over its own direction.
 KINDS = ("srp", "drag")
-#: The loads every kind records: the result attribute and its width (1: a number, 3: a vector).
-_LOAD_FIELDS: dict[str, int] = {
+#: The loads and areas every kind records: the result attribute and its width (1: a number, 3: a vector).
+_SHARED_FIELDS: dict[str, int] = {
     "force_N": 3,
     "torque_Nm": 3,
     "direct_force_N": 3,
     "direct_torque_Nm": 3,
     "reflected_force_N": 3,
     "reflected_torque_Nm": 3,
-}
-#: Fields recorded at every attitude of each kind, as :data:`_LOAD_FIELDS`.
-SRP_FIELDS: dict[str, int] = {**_LOAD_FIELDS, "lit_area_m2": 1, "projected_area_m2": 1}
-DRAG_FIELDS: dict[str, int] = {
-    **_LOAD_FIELDS,
+    "lit_area_m2": 1,
     "projected_area_m2": 1,
+}
+#: Fields recorded at every attitude of each kind, as :data:`_SHARED_FIELDS`.
+SRP_FIELDS: dict[str, int] = dict(_SHARED_FIELDS)
+DRAG_FIELDS: dict[str, int] = {
+    **_SHARED_FIELDS,
     "CD": 1,
     "CS": 1,
     "CL": 1,

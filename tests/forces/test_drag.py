@@ -119,6 +119,22 @@ def test_shadowed_plate_keeps_only_its_thermal_flux():
     assert 0 < np.linalg.norm(shielded_back) < 0.1 * np.linalg.norm(lone.force_N)
 
 
+def test_lit_area_is_the_unshadowed_windward_area_and_projects_to_the_shadow():
+    """A 1 x 2 x 3 box in a flow along (1, 1, 1): the +x, +y, +z faces (6 + 3 + 2 m^2) face it and
+    cast a shadow of 11 / sqrt(3) m^2; a plate behind a larger one adds nothing."""
+    box = craft_of(primitives.box((1.0, 2.0, 3.0)))
+    oblique = drag(box, speed_for(8.0) * np.ones(3) / math.sqrt(3.0), AIR, reflections="none")
+    assert oblique.lit_area_m2 == pytest.approx(11.0, rel=1e-12)
+    assert oblique.projected_area_m2 == pytest.approx(11.0 / math.sqrt(3.0), rel=1e-12)
+    front = meshes.transform(primitives.plate(2.0, 2.0, 8), translation=(0.0, 0.0, 1.0))
+    back = meshes.label(primitives.plate(1.0, 1.0, 8), "back")
+    craft = craft_of(MeshData.concatenate([meshes.label(front, "front"), back]), two_sided=["*"])
+    shielded = drag(craft, speed_for(8.0) * np.array([0.0, 0.0, 1.0]), AIR, reflections="none")
+    assert shielded.lit_area_m2 == pytest.approx(4.0, rel=1e-12)
+    assert shielded.projected_area_m2 == pytest.approx(4.0, rel=1e-12)
+    assert shielded.to_json()["lit_area_m2"] == shielded.lit_area_m2
+
+
 def test_coefficients_use_the_stated_axes_and_normalisation():
     craft = craft_of(primitives.sphere(1.0, subdivisions=16))
     velocity = speed_for(8.0) * np.array([0.0, 1.0, 0.0])

@@ -56,6 +56,12 @@ CASES = {
         1,
         ["--temperature", "below 1"],
     ),
+    "wall temperature 1e300": (
+        ["drag", *V, *AIR, "--wall-temperature", "1e300"],
+        1,
+        ["wall_temperature = 1e+300 K is above 10000 K"],
+    ),
+    "wall temperature 0": (["drag", *V, *AIR, "--wall-temperature", "0"], 1, ["wall_temperature = 0 K"]),
     "density 1e300": (
         ["drag", *V, "--density", "1e300", "--temperature", "900", "--composition", "O:1"],
         1,

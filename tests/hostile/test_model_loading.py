@@ -272,7 +272,7 @@ CASES = {
         lambda d: (d / "m.obj").write_text(obj_text({"box": CUBE_QUADS})),
         ["srp", "m.obj", "--sun", "1", "0", "0", *UNIFORM],
         0,
-        ["(volume centroid (default)); give the centre of mass with --ref-point"],
+        ["(volume centroid, a default: give the centre of mass with --ref-point"],
     ),
     "ref-point-centre-of-mass": (
         lambda d: (

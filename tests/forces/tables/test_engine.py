@@ -159,6 +159,7 @@ def test_a_netcdf_table_states_its_coordinates_modes_and_atmosphere(model, air, 
     assert all("long_name" in table[name].attrs for name in (*table.data_vars, *table.coords))
     at = {"flow_azimuth": 0.0, "flow_elevation": 90.0}
     assert table.drag_projected_area_m2.sel(at).item() == gas.projected_area_m2 > 0
+    assert table.drag_lit_area_m2.sel(at).item() == gas.lit_area_m2 > 0
 
 
 def test_table_entry_equals_the_command_line(model, run_cli, tmp_path):
