@@ -25,23 +25,26 @@ def check_positive(**values: float) -> None:
     for name, value in values.items():
         real = isinstance(value, numbers.Real) and not isinstance(value, bool)
         if not (real and math.isfinite(value) and value > 0):
-            raise InputError(f"{name} = {value!r} must be a finite number > 0")
+            raise InputError(f"{name} {value!r} must be a finite number > 0", parameters=(name,))
 
 
 def check_count(minimum: int, **values: Any) -> None:
     """Raise :class:`InputError` unless every value is an integer >= ``minimum``."""
     for name, value in values.items():
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-            raise InputError(f"{name} = {value!r} must be an integer >= {minimum}")
+        if not _is_integer(value) or value < minimum:
+            raise InputError(f"{name} {value!r} must be an integer >= {minimum}", parameters=(name,))
 
 
 def per_axis(name: str, value: int | Sequence[int], n: int) -> tuple[int, ...]:
     """An int or a length-``n`` sequence of ints (each >= 1) as an ``n``-tuple."""
-    values = (value,) * n if isinstance(value, (int, np.integer)) else tuple(value)
-    if len(values) != n:
-        raise InputError(f"{name} = {value!r} must be an integer or {n} integers")
-    check_count(1, **{f"{name}[{i}]": v for i, v in enumerate(values)})
+    values = (value,) * n if _is_integer(value) else tuple(value) if isinstance(value, Sequence) else ()
+    if len(values) != n or not all(_is_integer(v) and v >= 1 for v in values):
+        raise InputError(f"{name} {value!r} must be an integer >= 1 or {n} of them", parameters=(name,))
     return tuple(int(v) for v in values)
+
+
+def _is_integer(value: object) -> bool:
+    return isinstance(value, (int, np.integer)) and not isinstance(value, bool)
 
 
 def check_triangles(

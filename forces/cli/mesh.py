@@ -133,13 +133,16 @@ def mesh(ctx: click.Context, kind: str, output: Path) -> None:
     from sunwind.geometry.io import save_mesh  # its readers load trimesh and USD: when a mesh is written
     from sunwind.geometry.io.registry import SINGLE_BODY_SUFFIXES
 
-    if kind == "sample":
-        built = meshes.sample_spacecraft(**builder_params(kind, meshes.sample_spacecraft, ctx.args))
-    elif kind in meshes.PRIMITIVES:
-        built = meshes.build(kind, **builder_params(kind, meshes.PRIMITIVES[kind], ctx.args))
-    else:
+    builder = meshes.sample_spacecraft if kind == "sample" else meshes.PRIMITIVES.get(kind)
+    if builder is None:
         kinds = ", ".join([*meshes.PRIMITIVES, "sample"])
         raise InputError(f"unknown mesh kind '{kind}'", hint=f"choose one of {kinds}")
+    params = builder_params(kind, builder, ctx.args)
+    try:
+        built = builder(**params) if kind == "sample" else meshes.build(kind, **params)
+    except SunwindError as error:  # the builder names its parameters: write them as this command's flags
+        flags = {name: "--" + name.replace("_", "-") for name in inspect.signature(builder).parameters}
+        raise error.renamed(flags) from None
     parts = len(np.unique(built.face_part))
     if output.suffix.lower() in SINGLE_BODY_SUFFIXES and (parts > 1 or len(built.material_names) > 1):
         raise InputError(

@@ -41,6 +41,8 @@ GRID_BYTES = 130
 SUN_COLUMNS = ("sun_x", "sun_y", "sun_z")
 FLOW_COLUMNS = ("flow_x", "flow_y", "flow_z")
 QUATERNION_COLUMNS = ("qw", "qx", "qy", "qz")
+#: How far from 1 a quaternion's length may be (rounding of printed digits); further is refused.
+QUATERNION_NORM_TOLERANCE = 1e-3
 
 
 @dataclass(frozen=True)
@@ -194,9 +196,15 @@ def read_attitude_csv(path: str | Path) -> AttitudeList:
     quaternions = _columns(columns, QUATERNION_COLUMNS, path)
     if quaternions is not None:
         norms = np.linalg.norm(quaternions, axis=1)
-        if np.any(norms == 0):
-            row = int(np.argmin(norms)) + 2
-            raise InputError(f"row {row}: the quaternion is zero", path=path)
+        off = np.abs(norms - 1.0)
+        if np.any(off > QUATERNION_NORM_TOLERANCE):
+            row = int(np.argmax(off))
+            raise InputError(
+                f"row {row + 2}: the quaternion has length {norms[row]:.6g}, not 1",
+                path=path,
+                hint="give unit quaternions, scalar first (qw, qx, qy, qz); a length off 1 by more than "
+                f"{QUATERNION_NORM_TOLERANCE:g} is a wrong column or convention, not rounding",
+            )
         body_from_inertial = Rotation.from_quat(quaternions[:, [1, 2, 3, 0]]).inv()
         sun = None if sun is None else body_from_inertial.apply(sun)
         flow = None if flow is None else body_from_inertial.apply(flow)

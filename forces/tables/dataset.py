@@ -213,8 +213,11 @@ def open_table(path: str | os.PathLike) -> xr.Dataset:
         with xr.open_dataset(path) as table:
             table = table.load()
     except (OSError, ValueError) as error:
+        reason = str(error).splitlines()[0] if str(error) else type(error).__name__
+        if "did not find a match" in reason:  # xarray has no backend that recognises the bytes
+            reason = "it is not a netCDF file"
         raise InputError(
-            f"cannot read the table: {error}", path=str(path), hint="give a .nc file sunwind wrote"
+            f"cannot read the table: {reason}", path=str(path), hint="give a .nc file sunwind wrote"
         ) from None
     if not kinds_of(table):
         raise InputError("not a sunwind table (no srp_force_N or drag_force_N)", path=str(path))

@@ -22,6 +22,8 @@ LISTS = {
     "missing.csv": b"sun_x,sun_y\n1,0\n",
     "bom.csv": b"\xef\xbb\xbfsun_x,sun_y,sun_z\n1,0,0\n",
     "latin1.csv": b"sun_x,sun_y,sun_z\n1,0,0\n# \xe9\n",
+    "long_quaternion.csv": b"qw,qx,qy,qz,sun_x,sun_y,sun_z\n1,0,0,0,1,0,0\n2,0,0,0,1,0,0\n",
+    "rounded_quaternion.csv": b"qw,qx,qy,qz,sun_x,sun_y,sun_z\n0.707107,0.707107,0,0,1,0,0\n",
 }
 
 
@@ -66,6 +68,20 @@ SWEEPS = [
         [],
     ),
     ("csv-not-utf8", ("--srp", "--attitudes", "latin1.csv", "-o", "t.nc"), 1, ["not UTF-8"], []),
+    (
+        "csv-quaternion-not-unit",
+        ("--srp", "--attitudes", "long_quaternion.csv", "-o", "t.nc"),
+        1,
+        ["row 3: the quaternion has length 2, not 1", "scalar first"],
+        [],
+    ),
+    (
+        "csv-quaternion-rounded",
+        ("--srp", "--attitudes", "rounded_quaternion.csv", "-o", "q.nc"),
+        0,
+        [],
+        ["q.nc"],
+    ),
     ("csv-byte-order-mark", ("--srp", "--attitudes", "bom.csv", "-o", "t.nc"), 0, [], ["t.nc"]),
     (
         "nc-name-csv-format",
@@ -227,3 +243,15 @@ def test_plot_refuses_a_mesh_edited_after_the_sweep(box, run_cli, monkeypatch, t
     mesh.unlink()
     code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
     assert code == 1 and "is not there for the 3-D view" in err and "--no-view" in err
+
+
+@pytest.mark.parametrize(
+    ("data", "reason"),
+    [(bytes(range(256)) * 8, "it is not a netCDF file"), (b"CDF\x01\x00", "cannot read the table")],
+    ids=["random-bytes", "truncated-netcdf"],
+)
+def test_plot_of_a_file_that_is_no_table_is_one_line(run_cli, tmp_path, data, reason):
+    table = tmp_path / "garbage.nc"
+    table.write_bytes(data)
+    code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
+    assert code == 1 and err.count("\n") == 1 and reason in err and "give a .nc file sunwind wrote" in err
