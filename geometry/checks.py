@@ -283,22 +283,21 @@ def _split_t_junctions(
     )
     edge, vertex = edge[ok], vertex[ok]
     split_faces, first = np.unique(edges[edge, 2], return_index=True)
-    chosen = {
-        int(face): (int(edges[e, 0]), int(edges[e, 1]), int(v))
-        for face, e, v in zip(split_faces, edge[first], vertex[first], strict=True)
-    }
-    if not chosen:
+    if not len(split_faces):
         return faces, origin, 0
-    halves = []
-    for face in split_faces:
-        x, y, v = chosen[int(face)]
-        f = faces[face].tolist()
-        i = next(k for k in range(3) if {f[k], f[(k + 1) % 3]} == {x, y})
-        p, q, r = f[i], f[(i + 1) % 3], f[(i + 2) % 3]
-        halves += [[p, v, r], [v, q, r]]
+    # each split face's corners p, q, r with its open edge (x, y) as p -> q, and the vertex v on it
+    x, y, v = edges[edge[first], 0], edges[edge[first], 1], vertex[first]
+    corners = faces[split_faces]
+    following = np.roll(corners, -1, axis=1)
+    on_edge = ((corners == x[:, None]) & (following == y[:, None])) | (
+        (corners == y[:, None]) & (following == x[:, None])
+    )
+    rows, at = np.arange(len(split_faces)), on_edge.argmax(axis=1)
+    p, q, r = corners[rows, at], corners[rows, (at + 1) % 3], corners[rows, (at + 2) % 3]
+    halves = np.stack([np.column_stack([p, v, r]), np.column_stack([v, q, r])], axis=1).reshape(-1, 3)
     keep = np.ones(len(faces), dtype=bool)
     keep[split_faces] = False
-    faces = np.concatenate([faces[keep], np.asarray(halves, dtype=np.int64)])
+    faces = np.concatenate([faces[keep], halves.astype(np.int64)])
     origin = np.concatenate([origin[keep], np.repeat(origin[split_faces], 2)])
     return faces, origin, len(split_faces)
 
