@@ -42,8 +42,26 @@ def parse_size(text: str) -> int:
     )
 
 
+#: A container's memory limit and use (cgroup v2, else v1): the kernel kills a process past the limit
+#: whatever the machine has free.
+CGROUP_FILES = (
+    ("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"),
+    ("/sys/fs/cgroup/memory/memory.limit_in_bytes", "/sys/fs/cgroup/memory/memory.usage_in_bytes"),
+)
+
+
 def available_memory() -> int:
-    """Memory the system can give without swapping [bytes]: ``MemAvailable``, else free pages."""
+    """Memory the system can give without swapping [bytes]: ``MemAvailable`` (else free pages), and no
+    more than what is left under the memory limit of the container (cgroup) the process runs in."""
+    free = _system_available()
+    for limit_file, usage_file in CGROUP_FILES:
+        limit, usage = _read_number(limit_file), _read_number(usage_file)
+        if limit is not None:
+            return max(0, min(free, limit - (usage or 0)))
+    return free
+
+
+def _system_available() -> int:
     try:
         with open("/proc/meminfo", encoding="ascii") as meminfo:
             for line in meminfo:
@@ -55,6 +73,15 @@ def available_memory() -> int:
         return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
     except (OSError, ValueError, AttributeError):  # no such query here: no limit known
         return 2**62
+
+
+def _read_number(path: str) -> int | None:
+    """The integer a cgroup file holds; None when absent, unreadable or unlimited (``max``)."""
+    try:
+        with open(path, encoding="ascii") as file:
+            return int(file.read().strip())
+    except (OSError, ValueError):
+        return None
 
 
 def memory_limit() -> tuple[int, str]:

@@ -48,6 +48,17 @@ def test_limit_is_the_setting_else_the_available_memory(monkeypatch):
     assert limit > 2**20 and source.startswith("available memory")
 
 
+def test_a_container_limit_caps_the_available_memory(monkeypatch, tmp_path):
+    """Under a cgroup limit, what is left of it counts, however much the machine has free."""
+    limit, usage = tmp_path / "memory.max", tmp_path / "memory.current"
+    limit.write_text("1073741824\n")
+    usage.write_text("268435456\n")
+    monkeypatch.setattr(memory, "CGROUP_FILES", ((str(limit), str(usage)),))
+    assert memory.available_memory() == min(memory._system_available(), 3 * 2**28)
+    limit.write_text("max\n")  # unlimited: the machine's own figure
+    assert memory.available_memory() == pytest.approx(memory._system_available(), rel=0.05)
+
+
 def test_require_names_estimate_limit_and_fix(monkeypatch):
     monkeypatch.setenv(memory.LIMIT_VARIABLE, "1G")
     memory.require(2**30, "exactly the limit", "n/a")
