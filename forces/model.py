@@ -15,6 +15,7 @@ import math
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
@@ -79,7 +80,7 @@ class ModelSource:
     def digests(self) -> dict[str, str | None]:
         """SHA-256 of the mesh file and of the materials file."""
         return {
-            "mesh_sha256": file_digest(self.mesh),
+            "mesh_sha256": mesh_digest(self.mesh),
             "materials_sha256": None if self.materials is None else file_digest(self.materials),
         }
 
@@ -138,6 +139,24 @@ def file_digest(path: str | os.PathLike) -> str:
     with open(path, "rb") as handle:
         for block in iter(lambda: handle.read(1 << 20), b""):
             digest.update(block)
+    return digest.hexdigest()
+
+
+def mesh_digest(path: str | os.PathLike) -> str:
+    """SHA-256 of a mesh file, hex; for a USD stage that composes other files (references, payloads,
+    sub-layers), of every file it reads, each named relative to the stage, so that editing any of them
+    changes it."""
+    path = Path(path)
+    if path.suffix.lower() not in (".usd", ".usda", ".usdc", ".usdz"):
+        return file_digest(path)
+    from sunwind.geometry.io.usd_ import composed_files  # USD is loaded only for USD files
+
+    files = composed_files(path)
+    if len(files) <= 1:
+        return file_digest(path)
+    digest, home = hashlib.sha256(), path.resolve().parent
+    for file in files:
+        digest.update(f"{os.path.relpath(file, home)}\0{file_digest(file)}\n".encode())
     return digest.hexdigest()
 
 

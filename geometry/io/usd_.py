@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
-from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdShade, Vt
+from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdShade, UsdUtils, Vt
 
 from sunwind.geometry.errors import MeshError, combine
 from sunwind.geometry.io.topology import bounds, check_transform, compact, fan_triangles, groups
@@ -95,6 +95,14 @@ def read_usd(path: Path) -> MeshData:
         file_optics=materials.optics,
         metadata={"declared_unit": declared} if declared else {},
     )
+
+
+def composed_files(path: Path) -> list[Path]:
+    """The stage file and every file its composition reads (sub-layers, references, payloads and the
+    assets they name), resolved and sorted: what a digest of the model must cover."""
+    layers, assets, _missing = UsdUtils.ComputeAllDependencies(str(path))
+    found = {Path(layer.realPath) for layer in layers if layer.realPath} | {Path(a) for a in assets if a}
+    return sorted({file.resolve() for file in found | {Path(path)} if file.is_file()})
 
 
 def _check_composition(stage: Usd.Stage, path: Path) -> None:

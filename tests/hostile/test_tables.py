@@ -255,3 +255,21 @@ def test_plot_of_a_file_that_is_no_table_is_one_line(run_cli, tmp_path, data, re
     table.write_bytes(data)
     code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
     assert code == 1 and err.count("\n") == 1 and reason in err and "give a .nc file sunwind wrote" in err
+
+
+def test_plot_refuses_a_usd_stage_whose_referenced_file_was_edited(run_cli, tmp_path):
+    """The table's mesh_sha256 covers every file a USD stage composes, not only the stage itself."""
+    code, _out, err = run_cli("mesh", "box", "-o", tmp_path / "arm.usda")
+    assert code == 0, err
+    stage = tmp_path / "craft.usda"
+    stage.write_text(
+        '#usda 1.0\n(\n    defaultPrim = "craft"\n    metersPerUnit = 1\n)\n'
+        'def Xform "craft" (references = @arm.usda@) {}\n'
+    )
+    table = tmp_path / "c.nc"
+    code, _out, err = run_cli("sweep", stage, *OPTICS, "--srp", "--step", "90", "-o", table)
+    assert code == 0, err
+    arm = tmp_path / "arm.usda"
+    arm.write_text(arm.read_text().replace("point3f[] points = [(-0.5,", "point3f[] points = [(-0.7,", 1))
+    code, _out, err = run_cli("plot", table, "-o", tmp_path / "plots")
+    assert code == 1 and "mesh_sha256 differs" in err and "Traceback" not in err
