@@ -2,6 +2,10 @@
 the cost of inter-reflection (view-factor precompute once, then time per attitude with full
 reflections), and free-molecular drag per attitude against SRP with the same reflection setting.
 
+Every time comes with the error of its setting: force and torque of each timed attitude against a
+reference on the same attitude and reflection mode, sampled adaptively to a tolerance ten times tighter
+than the default (:data:`REFERENCE_TOLERANCE`), as :class:`LoadError` (worst and median).
+
 The raw figure casts exactly the rays an attitude casts (same origins, directions, threads) with
 nothing else, so ``overhead = time per attitude / raw Embree time`` is what sunwind adds around Embree.
 """
@@ -14,7 +18,7 @@ import resource
 import tempfile
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -30,9 +34,57 @@ from sunwind.forces.tables.cluster import timed_on_local_cluster
 from sunwind.forces.tables.engine import precompute
 from sunwind.geometry import memory
 from sunwind.geometry.parallel import thread_count
-from sunwind.geometry.rays.shadows import level_for_samples, side_sampler
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.meshes.samples import write_sample_files
+
+#: Shadow tolerance of the references the timed settings are measured against: ten times the default's.
+REFERENCE_TOLERANCE = DEFAULT_TOLERANCE / 10
+#: A result's loads: force [N] and torque [N m], body frame.
+Loads = tuple[np.ndarray, np.ndarray]
+#: What the benchmark reports on while it runs: (stage, attitudes done, attitudes in the stage).
+BenchProgress = Callable[[str, int, int], None]
+
+
+@dataclass(frozen=True)
+class LoadError:
+    """Error of a timed setting over its attitudes: ``|F - F_ref| / |F_ref|`` and ``|M - M_ref| / |M_ref|``
+    against the reference of each attitude, worst and median [-]."""
+
+    force_worst: float
+    force_median: float
+    torque_worst: float
+    torque_median: float
+
+    @classmethod
+    def of(cls, loads: list[Loads], references: list[Loads]) -> LoadError:
+        """The errors of ``loads`` against the first ``len(loads)`` ``references``, attitude by attitude."""
+        got, exact = np.array(loads), np.array(references[: len(loads)])  # (n, 2 loads, 3)
+        error = np.linalg.norm(got - exact, axis=2) / np.linalg.norm(exact, axis=2)
+        worst, median = error.max(axis=0), np.median(error, axis=0)
+        return cls(float(worst[0]), float(median[0]), float(worst[1]), float(median[1]))
+
+    def __str__(self) -> str:
+        return (
+            f"error force {self.force_worst:.1e} worst, {self.force_median:.1e} median; "
+            f"torque {self.torque_worst:.1e} worst, {self.torque_median:.1e} median"
+        )
+
+
+def _loads(result) -> Loads:
+    return result.force_N, result.torque_Nm
+
+
+def _references(
+    evaluate: Callable[[np.ndarray], object], directions: np.ndarray, stage: str, progress
+) -> list:
+    """Loads of ``evaluate(u)`` (a reference setting) at every direction, reporting ``stage``."""
+    out = []
+    for k, u in enumerate(directions):
+        out.append(_loads(evaluate(u)))
+        if progress:
+            progress(stage, k + 1, len(directions))
+    return out
 
 
 @dataclass(frozen=True)
@@ -49,6 +101,7 @@ class BenchReport:
     first_call_s: float
     per_attitude_ms: float
     per_attitude_median_ms: float
+    direct_error: LoadError
     rays_per_attitude: float
     rays_per_s: float
     raw_embree_ms: float
@@ -56,6 +109,7 @@ class BenchReport:
     overhead: float
     adaptive_per_attitude_ms: float
     adaptive_rays_per_attitude: float
+    adaptive_error: LoadError
     view_factor_s: float
     view_factor_rays_per_side: int
     view_factor_MB: float
@@ -64,13 +118,17 @@ class BenchReport:
     full_per_attitude_ms: float
     full_per_attitude_median_ms: float
     full_over_direct: float
+    full_error: LoadError
     beam_rays_per_attitude: float
     adaptive_full_per_attitude_ms: float
     adaptive_full_over_direct: float
+    adaptive_full_error: LoadError
     drag_per_attitude_ms: float
     drag_over_srp: float
+    drag_error: LoadError
     drag_full_per_attitude_ms: float
     drag_full_over_srp_full: float
+    drag_full_error: LoadError
     drag_atmosphere: str
     peak_memory_MB: float
     machine: str
@@ -90,10 +148,12 @@ def _reflection_figures(
     samples: int,
     direct_times: list[float],
     adaptive_times: list[float],
+    progress: BenchProgress | None,
 ) -> tuple[dict, list[float]]:
     """View-factor precompute (never from the disk cache), the diffuse balance's one-off solves, and
     time per attitude with full reflections on the attitudes timed direct-only, with ``samples`` points
-    per side and adaptively (the first ``len(adaptive_times)``); and the former times [s]."""
+    per side and adaptively (the first ``len(adaptive_times)``), each with its error; and the former
+    times [s]."""
     settings = ReflectionSettings("full", cache_dir=False)
     start = time.perf_counter()
     view = model_view_factors(craft, settings)
@@ -103,17 +163,25 @@ def _reflection_figures(
     _ = diffuse_exchange(craft, settings).responses
     setup_s = time.perf_counter() - start
     srp(craft, directions[0], samples=samples, reflections=settings)
-    times, rays = [], 0
+    times, loads, rays = [], [], 0
     for u in directions:
         start = time.perf_counter()
         result = srp(craft, u, samples=samples, reflections=settings)
         times.append(time.perf_counter() - start)
+        loads.append(_loads(result))
         rays += result.reflected.chains.rays
-    adaptive_full = []
+    adaptive_full, adaptive_loads = [], []
     for u in directions[: len(adaptive_times)]:
         start = time.perf_counter()
-        srp(craft, u, reflections=settings)
+        result = srp(craft, u, reflections=settings)
         adaptive_full.append(time.perf_counter() - start)
+        adaptive_loads.append(_loads(result))
+    references = _references(
+        lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections=settings),
+        directions,
+        "reference, full reflections",
+        progress,
+    )
     return {
         "view_factor_s": view_s,
         "view_factor_rays_per_side": view.rays_per_side,
@@ -123,33 +191,49 @@ def _reflection_figures(
         "full_per_attitude_ms": 1e3 * float(np.mean(times)),
         "full_per_attitude_median_ms": 1e3 * float(np.median(times)),
         "full_over_direct": float(np.median(times) / np.median(direct_times)),
+        "full_error": LoadError.of(loads, references),
         "beam_rays_per_attitude": rays / len(directions),
-        "adaptive_full_per_attitude_ms": 1e3 * float(np.mean(adaptive_full)) if adaptive_full else 0.0,
-        "adaptive_full_over_direct": float(np.sum(adaptive_full) / np.sum(adaptive_times))
-        if adaptive_full
-        else 0.0,
+        "adaptive_full_per_attitude_ms": 1e3 * float(np.mean(adaptive_full)),
+        "adaptive_full_over_direct": float(np.sum(adaptive_full) / np.sum(adaptive_times)),
+        "adaptive_full_error": LoadError.of(adaptive_loads, references),
     }, times
 
 
 def _drag_figures(
-    craft: Spacecraft, directions: np.ndarray, samples: int, srp_times: list[float], srp_full: list[float]
+    craft: Spacecraft,
+    directions: np.ndarray,
+    samples: int,
+    srp_times: list[float],
+    srp_full: list[float],
+    progress: BenchProgress | None,
 ) -> dict:
     """Drag per attitude (NRLMSIS at 400 km, circular-orbit speed, ``v_rel`` along each direction of
-    the SRP timing) without and with re-emission exchange, against SRP with the same setting."""
+    the SRP timing) without and with re-emission exchange, against SRP with the same setting, each with
+    its error against the reference."""
     air = nrlmsis(400.0)
     speed = circular_speed(400.0)
-    figures = {"drag_atmosphere": air.source}
+    figures: dict = {"drag_atmosphere": air.source}
     for mode, reference, key in (("none", srp_times, "drag"), ("full", srp_full, "drag_full")):
         settings = ReflectionSettings(mode, cache_dir=False)
         drag(craft, speed * directions[0], air, samples=samples, reflections=settings)
-        times = []
+        times, loads = [], []
         for u in directions:
             start = time.perf_counter()
-            drag(craft, speed * u, air, samples=samples, reflections=settings)
+            result = drag(craft, speed * u, air, samples=samples, reflections=settings)
             times.append(time.perf_counter() - start)
+            loads.append(_loads(result))
+        references = _references(
+            lambda u, settings=settings: drag(
+                craft, speed * u, air, tolerance=REFERENCE_TOLERANCE, reflections=settings
+            ),
+            directions,
+            f"reference, drag ({mode})",
+            progress,
+        )
         figures[f"{key}_per_attitude_ms"] = 1e3 * float(np.median(times))
         ratio_key = "drag_over_srp" if mode == "none" else "drag_full_over_srp_full"
         figures[ratio_key] = float(np.median(times) / np.median(reference))
+        figures[f"{key}_error"] = LoadError.of(loads, references)
     return figures
 
 
@@ -169,9 +253,10 @@ def benchmark(
     samples: int = 1,
     adaptive_attitudes: int = 10,
     load_s: float = 0.0,
-    progress: Callable[[int], None] | None = None,
+    progress: BenchProgress | None = None,
 ) -> BenchReport:
-    """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions."""
+    """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions, then the other
+    settings, each with its error against :data:`REFERENCE_TOLERANCE` (``adaptive_attitudes >= 1``)."""
     what = f"{memory.count(attitudes)} timed Sun directions"
     memory.require(_ATTITUDE_BYTES * attitudes, what, "lower attitudes", ("attitudes",))
     directions = sun_directions(attitudes)
@@ -185,7 +270,7 @@ def benchmark(
     # each attitude is timed and its rays are cast alone, back to back, so that drifts in machine speed
     # affect both figures alike; which goes first alternates, since the second finds the first's rays
     # in the caches
-    times, raw_times, rays = [], [], 0
+    times, raw_times, loads, rays = [], [], [], 0
     for k, u in enumerate(directions):
         _, origins = side_sampler(craft).facing_rays(u, level)
         flat = origins.reshape(-1, 3)
@@ -193,20 +278,30 @@ def benchmark(
         for turn in (k % 2, 1 - k % 2):
             start = time.perf_counter()
             if turn == 0:
-                rays += srp(craft, u, samples=samples, reflections="none").rays
+                result = srp(craft, u, samples=samples, reflections="none")
                 times.append(time.perf_counter() - start)
+                loads.append(_loads(result))
+                rays += result.rays
             else:
                 scene.occluded(flat, along)
                 raw_times.append(time.perf_counter() - start)
         if progress:
-            progress(k + 1)
-    adaptive_times, adaptive_rays = [], 0
+            progress("timing attitudes", k + 1, attitudes)
+    adaptive_times, adaptive_loads, adaptive_rays = [], [], 0
     for u in directions[:adaptive_attitudes]:
         start = time.perf_counter()
-        adaptive_rays += srp(craft, u, reflections="none").rays
+        result = srp(craft, u, reflections="none")
         adaptive_times.append(time.perf_counter() - start)
-    reflections, full_times = _reflection_figures(craft, directions, samples, times, adaptive_times)
-    gas = _drag_figures(craft, directions, samples, times, full_times)
+        adaptive_loads.append(_loads(result))
+        adaptive_rays += result.rays
+    references = _references(
+        lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections="none"),
+        directions,
+        "reference, direct",
+        progress,
+    )
+    reflections, full_times = _reflection_figures(craft, directions, samples, times, adaptive_times, progress)
+    gas = _drag_figures(craft, directions, samples, times, full_times, progress)
     total, raw = float(np.sum(times)), float(np.sum(raw_times))
     return BenchReport(
         triangles=craft.n_facets,
@@ -219,13 +314,15 @@ def benchmark(
         first_call_s=first_call,
         per_attitude_ms=1e3 * total / attitudes,
         per_attitude_median_ms=1e3 * float(np.median(times)),
+        direct_error=LoadError.of(loads, references),
         rays_per_attitude=rays / attitudes,
         rays_per_s=rays / total,
         raw_embree_ms=1e3 * raw / attitudes,
         raw_embree_rays_per_s=rays / raw,
         overhead=float(np.median(np.array(times) / np.array(raw_times))),
-        adaptive_per_attitude_ms=1e3 * float(np.mean(adaptive_times)) if adaptive_times else 0.0,
-        adaptive_rays_per_attitude=adaptive_rays / max(1, len(adaptive_times)),
+        adaptive_per_attitude_ms=1e3 * float(np.mean(adaptive_times)),
+        adaptive_rays_per_attitude=adaptive_rays / len(adaptive_times),
+        adaptive_error=LoadError.of(adaptive_loads, references),
         **reflections,
         **gas,
         peak_memory_MB=_peak_MB(),
@@ -247,6 +344,9 @@ class SweepReport:
     sweep_s: float
     srp_per_attitude_ms: float
     drag_per_attitude_ms: float
+    checked_directions: int
+    srp_error: LoadError
+    drag_error: LoadError
     dask_attitudes: int
     dask_1_worker_s: float
     dask_2_workers_s: float
@@ -256,6 +356,21 @@ class SweepReport:
 
     def to_json(self) -> dict:
         return asdict(self)
+
+
+#: Grid directions, spread over the grid, at which a sweep's entries are checked against the reference.
+CHECKED_DIRECTIONS = 24
+
+
+def _setup_error(model, setup: SrpSetup | DragSetup, directions: np.ndarray) -> LoadError:
+    """Error of the entries ``setup`` gives at ``directions`` against the same setup sampled adaptively
+    at :data:`REFERENCE_TOLERANCE`."""
+    reference = replace(setup, samples=None, tolerance=REFERENCE_TOLERANCE)
+    got, exact = (
+        list(zip(records["force_N"], records["torque_Nm"], strict=True))
+        for records in (setup.evaluate(model, directions), reference.evaluate(model, directions))
+    )
+    return LoadError.of(got, exact)
 
 
 def sweep_benchmark(
@@ -302,6 +417,8 @@ def sweep_benchmark(
             run_jobs(model, [job], SweepRun(progress=counted))
             timings[job.kind] = time.perf_counter() - began
         sweep_s = time.perf_counter() - start
+        checked = directions[:: max(1, len(directions) // CHECKED_DIRECTIONS)][:CHECKED_DIRECTIONS]
+        errors = {f"{job.kind}_error": _setup_error(model, job.setup, checked) for job in jobs}
         subset = [Job(job.setup, directions[:dask_attitudes]) for job in jobs]
         pending = [(job, lo, hi) for job in subset for lo, hi in job.chunks(8)]
         one, first = timed_on_local_cluster(model, pending, 1)
@@ -317,6 +434,8 @@ def sweep_benchmark(
         sweep_s=sweep_s,
         srp_per_attitude_ms=1e3 * timings["srp"] / len(directions),
         drag_per_attitude_ms=1e3 * timings["drag"] / len(directions),
+        checked_directions=len(checked),
+        **errors,
         dask_attitudes=2 * min(dask_attitudes, len(directions)),
         dask_1_worker_s=one,
         dask_2_workers_s=two,

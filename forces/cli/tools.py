@@ -9,7 +9,7 @@ from pathlib import Path
 import click
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-from sunwind.forces.bench import benchmark, sweep_benchmark
+from sunwind.forces.bench import REFERENCE_TOLERANCE, benchmark, sweep_benchmark
 from sunwind.forces.tables import direction_grid
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import build_spacecraft, load_spacecraft
@@ -64,7 +64,13 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     with Progress(*columns, transient=True, disable=as_json) as bar:
         task = bar.add_task("timing attitudes", total=attitudes)
         report = benchmark(
-            craft, attitudes, samples, load_s=load_s, progress=lambda done: bar.update(task, completed=done)
+            craft,
+            attitudes,
+            samples,
+            load_s=load_s,
+            progress=lambda stage, done, total: bar.update(
+                task, description=stage, completed=done, total=total
+            ),
         )
     if as_json:
         print(json.dumps({"mesh": craft.source, **report.to_json()}, indent=2))
@@ -77,6 +83,7 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
         f"  direct SRP, {report.samples_per_side} pt/side   {report.per_attitude_ms:.2f} ms per attitude "
         f"(median {report.per_attitude_median_ms:.2f}), {report.attitudes} attitudes"
     )
+    print(f"{'':26}{report.direct_error}")
     print(
         f"  rays                    {report.rays_per_attitude:.0f} per attitude, "
         f"{report.rays_per_s / 1e6:.2f} M rays/s"
@@ -97,19 +104,28 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
         f"(median {report.full_per_attitude_median_ms:.2f}), {report.full_over_direct:.2f}x direct-only, "
         f"{report.beam_rays_per_attitude:.0f} beam rays"
     )
+    print(f"{'':26}{report.full_error}")
     print(
         f"  drag, no re-emission    {report.drag_per_attitude_ms:.2f} ms per attitude (median), "
         f"{report.drag_over_srp:.2f}x SRP direct-only"
     )
+    print(f"{'':26}{report.drag_error}")
     print(
         f"  drag, full re-emission  {report.drag_full_per_attitude_ms:.2f} ms per attitude (median), "
         f"{report.drag_full_over_srp_full:.2f}x SRP with full reflections"
     )
+    print(f"{'':26}{report.drag_full_error}")
     print(
         f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "
-        f"{report.adaptive_rays_per_attitude:.0f} rays; with full reflections "
-        f"{report.adaptive_full_per_attitude_ms:.1f} ms, {report.adaptive_full_over_direct:.2f}x"
+        f"{report.adaptive_rays_per_attitude:.0f} rays"
     )
+    print(f"{'':26}{report.adaptive_error}")
+    print(
+        f"  adaptive, full refl.    {report.adaptive_full_per_attitude_ms:.1f} ms per attitude, "
+        f"{report.adaptive_full_over_direct:.2f}x adaptive direct-only"
+    )
+    print(f"{'':26}{report.adaptive_full_error}")
+    print(f"  errors against          adaptive sampling at tolerance {REFERENCE_TOLERANCE:g} (10x tighter)")
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
 
 
@@ -143,6 +159,12 @@ def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> No
     print(
         f"  sweep SRP + drag        {report.sweep_s:.1f} s ({report.srp_per_attitude_ms:.1f} ms SRP, "
         f"{report.drag_per_attitude_ms:.1f} ms drag per attitude)"
+    )
+    print(f"  SRP entries             {report.srp_error}")
+    print(f"  drag entries            {report.drag_error}")
+    print(
+        f"  errors against          adaptive sampling at tolerance {REFERENCE_TOLERANCE:g} at "
+        f"{report.checked_directions} grid directions"
     )
     print(
         f"  Dask, {report.dask_attitudes} attitudes      1 worker {report.dask_1_worker_s:.1f} s, "

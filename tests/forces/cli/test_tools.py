@@ -4,8 +4,10 @@ tests/validation; the quick validation run once, slow)."""
 
 import json
 
+import numpy as np
 import pytest
 
+from sunwind.forces.bench import LoadError
 from sunwind.validation import runner
 from sunwind.validation.checks import Check, Family, Measure
 
@@ -73,5 +75,32 @@ def test_bench_times_a_small_model_and_reports_json(run_cli):
     report = json.loads(out)
     assert report["attitudes"] == 2 and report["samples_per_side"] == 1
     assert report["overhead"] > 0 and report["full_over_direct"] > 0 and report["drag_over_srp"] > 0
+    # every timed setting has its error against the tighter reference beside it; the adaptive default
+    # converges (its error is below its own tolerance, 1e-3), one point per side does not
+    for key in ("direct", "adaptive", "full", "adaptive_full", "drag", "drag_full"):
+        error = report[f"{key}_error"]
+        assert 0 <= error["force_median"] <= error["force_worst"] and error["torque_worst"] >= 0, key
+    assert report["adaptive_error"]["force_worst"] < 1e-3 < report["direct_error"]["force_worst"]
     code, _, err = run_cli("bench", "--attitudes", "0")
     assert code == 1 and err.startswith("sunwind: error: --attitudes 0 must be at least 1")
+
+
+def test_load_error_is_relative_to_the_reference_attitude_by_attitude():
+    unit = np.eye(3)
+    references = [(unit[0], unit[1]), (2 * unit[0], unit[2]), (unit[2], unit[0])]
+    loads = [(unit[0] * 1.01, unit[1]), (2 * unit[0] + 0.002 * unit[1], unit[2] * 0.5)]  # the first two
+    error = LoadError.of(loads, references)
+    assert error.force_worst == pytest.approx(0.01) and error.force_median == pytest.approx(0.0055)
+    assert error.torque_worst == pytest.approx(0.5) and error.torque_median == pytest.approx(0.25)
+    assert str(error).startswith("error force 1.0e-02 worst, 5.5e-03 median; torque 5.0e-01 worst")
+
+
+@pytest.mark.slow
+def test_bench_sweep_reports_the_error_of_its_entries(run_cli):
+    code, out, err = run_cli("bench", "--sweep", "--triangles", "3000", "--step", "45", "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    assert report["distinct_directions"] == 26 and report["checked_directions"] == 24
+    for key in ("srp_error", "drag_error"):
+        assert 0 < report[key]["force_median"] <= report[key]["force_worst"] < 0.1, key
+    assert report["dask_identical"] is True
