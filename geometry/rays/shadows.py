@@ -35,6 +35,7 @@ from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import count, require
 from sunwind.geometry.parallel import map_ranges
+from sunwind.geometry.rays.outline import outline_sides
 from sunwind.geometry.rays.shadow_kernels import (
     BLOCK,
     facing_origins,
@@ -406,9 +407,10 @@ class SideSampler:
     ) -> int:
         """Refine the sides on a shadow edge in place; return the rays cast.
 
-        Suspect at the base level: mixed sides, the sides sharing a vertex with them, and edge
-        neighbours whose uniform states differ. Whenever refinement finds a side mixed, its
-        unexamined facing vertex neighbours join.
+        Suspect at the base level: mixed sides, the sides sharing a vertex with them, edge neighbours
+        whose uniform states differ, and the sides a shadow outline crosses (:mod:`.outline`), which
+        are never taken as uniform. Whenever refinement finds a side mixed, its unexamined facing
+        vertex neighbours join.
         """
         craft = self.craft
         is_facing = np.zeros(craft.n_sides, dtype=bool)
@@ -421,6 +423,9 @@ class SideSampler:
         mixed = facing[(count > 0) & (count < lit.shape[1])]
         examined = np.zeros(craft.n_sides, dtype=bool)
         examined[np.r_[a[differ], b[differ], mixed, self._neighbours(mixed)]] = True
+        outlined = np.zeros(craft.n_sides, dtype=bool)  # an outline crosses them: never taken as uniform
+        outlined[outline_sides(craft, direction, facing)] = True
+        examined |= outlined
         examined &= is_facing
         active = np.flatnonzero(examined)
         level, rays = BASE_LEVEL, 0
@@ -436,7 +441,7 @@ class SideSampler:
             joining = self._neighbours(active[partly])
             joining = joining[is_facing[joining] & ~examined[joining]]
             examined[joining] = True
-            uniform = ~partly & (now == previous) & (level >= UNIFORM_LEVEL)
+            uniform = ~partly & (now == previous) & (level >= UNIFORM_LEVEL) & ~outlined[active]
             converged = (np.abs(now - previous) <= tolerance) & (level**-2 <= tolerance)
             active = np.r_[active[~(uniform | converged)], joining]
         return rays

@@ -80,9 +80,10 @@ def exact_loads(craft, u):
     return force.sum(axis=0), np.cross(centre, force).sum(axis=0), area.sum()
 
 
-@pytest.mark.parametrize("sun", [(1.0, 0.4, 0.1), (0.6, -0.2, 0.8), (1.0, -1.0, 0.2)])
+@pytest.mark.parametrize("sun", [(1.0, 0.05, 0.3), (1.0, 0.4, 0.1), (0.6, -0.2, 0.8), (1.0, -1.0, 0.2)])
 def test_default_sampling_finds_shadows_cast_across_large_sides(sun):
-    """The strut's and the wing's shadows cross the bus's big triangles; the default converges to its
+    """The strut's and the wing's shadows cross the bus's big triangles (at (1, 0.05, 0.3) the strut's
+    touches none of their starting points: the outline probes find it); the default converges to its
     tolerance (1e-3 of each side's lit share) against the exact answer."""
     u = np.array(sun) / np.linalg.norm(sun)
     craft = strut_model()
@@ -95,10 +96,10 @@ def test_default_sampling_finds_shadows_cast_across_large_sides(sun):
 
 @pytest.mark.xfail(
     strict=True,
-    reason="issue 18: a 1 cm strut's shadow inside the bus's big triangles leaves every starting sample "
-    "point lit, so adaptive sampling never refines there and misses it (0.4 % of the force, measured)",
+    reason="issue 18: sampling converges to its tolerance (1e-3 of a side's lit share), not to the 1e-4 "
+    "of exact clipping the issue asks for on low-polygon models (measured 7e-4 of the force here)",
 )
-def test_default_sampling_finds_a_thin_shadow_that_misses_every_starting_point():
+def test_default_sampling_meets_the_exact_answer_to_1e_4_on_a_thin_shadow():
     u = np.array([1.0, 0.05, 0.3]) / np.linalg.norm([1.0, 0.05, 0.3])
     craft = strut_model()
     force, _torque, lit = exact_loads(craft, u)
