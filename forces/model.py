@@ -146,12 +146,10 @@ def mesh_digest(path: str | os.PathLike) -> str:
     """SHA-256 of a mesh file, hex; for a USD stage that composes other files (references, payloads,
     sub-layers), of every file it reads, each named relative to the stage, so that editing any of them
     changes it."""
-    path = Path(path)
-    if path.suffix.lower() not in (".usd", ".usda", ".usdc", ".usdz"):
-        return file_digest(path)
-    from sunwind.geometry.io.usd_ import composed_files  # USD is loaded only for USD files
+    from sunwind.geometry.io.registry import mesh_files  # the readers, loaded when a mesh is
 
-    files = composed_files(path)
+    path = Path(path)
+    files = mesh_files(path)
     if len(files) <= 1:
         return file_digest(path)
     digest, home = hashlib.sha256(), path.resolve().parent

@@ -55,13 +55,7 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     else:
         craft = build_spacecraft(sample_spacecraft(triangles))
     load_s = time.perf_counter() - start
-    columns = (
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TextColumn("{task.completed}/{task.total}"),
-        TimeRemainingColumn(),
-    )
-    with Progress(*columns, transient=True, disable=as_json) as bar:
+    with _progress_bar(as_json) as bar:
         task = bar.add_task("timing attitudes", total=attitudes)
         report = benchmark(
             craft,
@@ -129,16 +123,21 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
 
 
-def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> None:
-    """``sunwind bench --sweep``: run and print :func:`sunwind.forces.bench.sweep_benchmark`."""
-    direction_grid(step)
+def _progress_bar(as_json: bool) -> Progress:
+    """The benchmark's progress bar on stderr (stage, bar, count, time left); none with ``--json``."""
     columns = (
         TextColumn("{task.description}"),
         BarColumn(),
         TextColumn("{task.completed}/{task.total}"),
         TimeRemainingColumn(),
     )
-    with Progress(*columns, transient=True, disable=as_json) as bar:
+    return Progress(*columns, transient=True, disable=as_json)
+
+
+def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> None:
+    """``sunwind bench --sweep``: run and print :func:`sunwind.forces.bench.sweep_benchmark`."""
+    direction_grid(step)
+    with _progress_bar(as_json) as bar:
         task = bar.add_task("sweeping", total=None)
         report = sweep_benchmark(
             triangles,

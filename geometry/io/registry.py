@@ -18,7 +18,7 @@ from sunwind.geometry.io.gltf import write_gltf
 from sunwind.geometry.io.obj import read_obj, write_obj
 from sunwind.geometry.io.trimesh_ import read_gltf, read_single, read_stl, write_ply, write_stl
 from sunwind.geometry.io.units import parse_unit, resolve_unit
-from sunwind.geometry.io.usd_ import PXR_NAMESPACE, read_usd, write_usd
+from sunwind.geometry.io.usd_ import PXR_NAMESPACE, composed_files, read_usd, write_usd
 from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
 
 #: Reader of each file suffix (lower case); it returns the file's data in file units.
@@ -48,6 +48,13 @@ WRITERS: dict[str, Callable[[MeshData, Path], None]] = {
 SINGLE_BODY_SUFFIXES: tuple[str, ...] = (".stl", ".ply")
 #: Suffixes :func:`load_mesh` reads.
 SUPPORTED_SUFFIXES: tuple[str, ...] = tuple(LOADERS)
+
+
+def mesh_files(path: str | os.PathLike) -> list[Path]:
+    """Every file loading ``path`` reads: a USD stage and what it composes (references, payloads,
+    sub-layers), else the file itself."""
+    path = Path(path)
+    return composed_files(path) if LOADERS.get(path.suffix.lower()) is read_usd else [path]
 
 
 def load_mesh(path: str | os.PathLike[str], unit: str | None = None) -> MeshData:
