@@ -2,12 +2,15 @@
 the cost of inter-reflection (view-factor precompute once, then time per attitude with full
 reflections), and free-molecular drag per attitude against SRP with the same reflection setting.
 
-Every time comes with the error of its setting: force and torque of each timed attitude against a
-reference on the same attitude and reflection mode, sampled adaptively to a tolerance ten times tighter
-than the default (:data:`REFERENCE_TOLERANCE`), as :class:`LoadError` (worst and median).
+The default shadow pass and a fixed number of points per side (``samples``, 1 by default) are timed
+in the same run, attitude by attitude. Every time comes with the error of its setting: force and torque
+of each timed attitude against a reference on the same attitude and reflection mode, the default pass
+at a tolerance ten times tighter than the default (:data:`REFERENCE_TOLERANCE`), as
+:class:`LoadError` (worst and median).
 
-The raw figure casts exactly the rays an attitude casts (same origins, directions, threads) with
-nothing else, so ``overhead = time per attitude / raw Embree time`` is what sunwind adds around Embree.
+The raw figure casts exactly the rays a fixed-sampling attitude casts (same origins, directions,
+threads) with nothing else, so ``overhead = time per attitude / raw Embree time`` is what sunwind adds
+around Embree.
 """
 
 from __future__ import annotations
@@ -89,7 +92,8 @@ def _references(
 
 @dataclass(frozen=True)
 class BenchReport:
-    """Benchmark figures; times in seconds unless the name says ms."""
+    """Benchmark figures; times in seconds unless the name says ms. ``default_*``: the default shadow
+    pass (no ``samples``); ``fixed_*``: ``samples_per_side`` fixed points per side, timed beside it."""
 
     triangles: int
     sides: int
@@ -99,34 +103,37 @@ class BenchReport:
     load_s: float
     scene_build_s: float
     first_call_s: float
-    per_attitude_ms: float
-    per_attitude_median_ms: float
-    direct_error: LoadError
-    rays_per_attitude: float
-    rays_per_s: float
+    default_ms: float
+    default_median_ms: float
+    default_rays_per_attitude: float
+    default_error: LoadError
+    fixed_ms: float
+    fixed_median_ms: float
+    fixed_rays_per_attitude: float
+    fixed_error: LoadError
+    default_over_fixed: float
+    fixed_rays_per_s: float
     raw_embree_ms: float
     raw_embree_rays_per_s: float
     overhead: float
-    adaptive_per_attitude_ms: float
-    adaptive_rays_per_attitude: float
-    adaptive_error: LoadError
     view_factor_s: float
     view_factor_rays_per_side: int
     view_factor_MB: float
     view_factor_peak_MB: float
     exchange_setup_s: float
-    full_per_attitude_ms: float
-    full_per_attitude_median_ms: float
+    full_ms: float
+    full_median_ms: float
     full_over_direct: float
     full_error: LoadError
     beam_rays_per_attitude: float
-    adaptive_full_per_attitude_ms: float
-    adaptive_full_over_direct: float
-    adaptive_full_error: LoadError
-    drag_per_attitude_ms: float
+    fixed_full_ms: float
+    fixed_full_error: LoadError
+    drag_ms: float
     drag_over_srp: float
     drag_error: LoadError
-    drag_full_per_attitude_ms: float
+    fixed_drag_ms: float
+    fixed_drag_error: LoadError
+    drag_full_ms: float
     drag_full_over_srp_full: float
     drag_full_error: LoadError
     drag_atmosphere: str
@@ -142,18 +149,31 @@ def _peak_MB() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
+def _timed(
+    evaluate: Callable[[np.ndarray, int | None], object], directions: np.ndarray, samples: int
+) -> dict:
+    """Time ``evaluate(u, samples)`` of the default (``samples`` None) and of ``samples`` fixed points
+    at every direction, alternating which goes first, after one call of each that compiles and keeps
+    what they need. Returns the times [s], loads and results of each, keyed by "default" and "fixed"."""
+    for setting in (None, samples):
+        evaluate(directions[0], setting)
+    out: dict = {key: {"times": [], "loads": [], "results": []} for key in ("default", "fixed")}
+    for k, u in enumerate(directions):
+        for key in ("default", "fixed")[:: 1 if k % 2 == 0 else -1]:
+            start = time.perf_counter()
+            result = evaluate(u, None if key == "default" else samples)
+            out[key]["times"].append(time.perf_counter() - start)
+            out[key]["loads"].append(_loads(result))
+            out[key]["results"].append(result)
+    return out
+
+
 def _reflection_figures(
-    craft: Spacecraft,
-    directions: np.ndarray,
-    samples: int,
-    direct_times: list[float],
-    adaptive_times: list[float],
-    progress: BenchProgress | None,
+    craft: Spacecraft, directions: np.ndarray, samples: int, direct: dict, progress: BenchProgress | None
 ) -> tuple[dict, list[float]]:
     """View-factor precompute (never from the disk cache), the diffuse balance's one-off solves, and
-    time per attitude with full reflections on the attitudes timed direct-only, with ``samples`` points
-    per side and adaptively (the first ``len(adaptive_times)``), each with its error; and the former
-    times [s]."""
+    time per attitude with full reflections at the default and with ``samples`` points, each with its
+    error; and the default's times [s]. ``direct``: the direct-only timings of :func:`_timed`."""
     settings = ReflectionSettings("full", cache_dir=False)
     start = time.perf_counter()
     view = model_view_factors(craft, settings)
@@ -162,41 +182,28 @@ def _reflection_figures(
     start = time.perf_counter()
     _ = diffuse_exchange(craft, settings).responses
     setup_s = time.perf_counter() - start
-    srp(craft, directions[0], samples=samples, reflections=settings)
-    times, loads, rays = [], [], 0
-    for u in directions:
-        start = time.perf_counter()
-        result = srp(craft, u, samples=samples, reflections=settings)
-        times.append(time.perf_counter() - start)
-        loads.append(_loads(result))
-        rays += result.reflected.chains.rays
-    adaptive_full, adaptive_loads = [], []
-    for u in directions[: len(adaptive_times)]:
-        start = time.perf_counter()
-        result = srp(craft, u, reflections=settings)
-        adaptive_full.append(time.perf_counter() - start)
-        adaptive_loads.append(_loads(result))
+    timed = _timed(lambda u, n: srp(craft, u, samples=n, reflections=settings), directions, samples)
     references = _references(
         lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections=settings),
         directions,
         "reference, full reflections",
         progress,
     )
+    full, fixed = timed["default"], timed["fixed"]
     return {
         "view_factor_s": view_s,
         "view_factor_rays_per_side": view.rays_per_side,
         "view_factor_MB": view.nbytes / 1e6,
         "view_factor_peak_MB": view_peak,
         "exchange_setup_s": setup_s,
-        "full_per_attitude_ms": 1e3 * float(np.mean(times)),
-        "full_per_attitude_median_ms": 1e3 * float(np.median(times)),
-        "full_over_direct": float(np.median(times) / np.median(direct_times)),
-        "full_error": LoadError.of(loads, references),
-        "beam_rays_per_attitude": rays / len(directions),
-        "adaptive_full_per_attitude_ms": 1e3 * float(np.mean(adaptive_full)),
-        "adaptive_full_over_direct": float(np.sum(adaptive_full) / np.sum(adaptive_times)),
-        "adaptive_full_error": LoadError.of(adaptive_loads, references),
-    }, times
+        "full_ms": 1e3 * float(np.mean(full["times"])),
+        "full_median_ms": 1e3 * float(np.median(full["times"])),
+        "full_over_direct": float(np.median(full["times"]) / np.median(direct["default"]["times"])),
+        "full_error": LoadError.of(full["loads"], references),
+        "beam_rays_per_attitude": float(np.mean([r.reflected.chains.rays for r in full["results"]])),
+        "fixed_full_ms": 1e3 * float(np.mean(fixed["times"])),
+        "fixed_full_error": LoadError.of(fixed["loads"], references),
+    }, full["times"]
 
 
 def _drag_figures(
@@ -208,20 +215,28 @@ def _drag_figures(
     progress: BenchProgress | None,
 ) -> dict:
     """Drag per attitude (NRLMSIS at 400 km, circular-orbit speed, ``v_rel`` along each direction of
-    the SRP timing) without and with re-emission exchange, against SRP with the same setting, each with
-    its error against the reference."""
+    the SRP timing) without re-emission exchange at the default and with ``samples`` points, and with
+    full exchange at the default, against default SRP with the same reflection setting, each with its
+    error against the reference."""
     air = nrlmsis(400.0)
     speed = circular_speed(400.0)
     figures: dict = {"drag_atmosphere": air.source}
-    for mode, reference, key in (("none", srp_times, "drag"), ("full", srp_full, "drag_full")):
+    for mode, srp_reference, key in (("none", srp_times, "drag"), ("full", srp_full, "drag_full")):
         settings = ReflectionSettings(mode, cache_dir=False)
-        drag(craft, speed * directions[0], air, samples=samples, reflections=settings)
-        times, loads = [], []
-        for u in directions:
-            start = time.perf_counter()
-            result = drag(craft, speed * u, air, samples=samples, reflections=settings)
-            times.append(time.perf_counter() - start)
-            loads.append(_loads(result))
+
+        def evaluate(u, n, settings=settings):
+            return drag(craft, speed * u, air, samples=n, reflections=settings)
+
+        if mode == "none":
+            timed = _timed(evaluate, directions, samples)
+        else:  # the default only
+            evaluate(directions[0], None)
+            timed = {"default": {"times": [], "loads": []}}
+            for u in directions:
+                start = time.perf_counter()
+                result = evaluate(u, None)
+                timed["default"]["times"].append(time.perf_counter() - start)
+                timed["default"]["loads"].append(_loads(result))
         references = _references(
             lambda u, settings=settings: drag(
                 craft, speed * u, air, tolerance=REFERENCE_TOLERANCE, reflections=settings
@@ -230,15 +245,19 @@ def _drag_figures(
             f"reference, drag ({mode})",
             progress,
         )
-        figures[f"{key}_per_attitude_ms"] = 1e3 * float(np.median(times))
+        times = timed["default"]["times"]
+        figures[f"{key}_ms"] = 1e3 * float(np.median(times))
         ratio_key = "drag_over_srp" if mode == "none" else "drag_full_over_srp_full"
-        figures[ratio_key] = float(np.median(times) / np.median(reference))
-        figures[f"{key}_error"] = LoadError.of(loads, references)
+        figures[ratio_key] = float(np.median(times) / np.median(srp_reference))
+        figures[f"{key}_error"] = LoadError.of(timed["default"]["loads"], references)
+        if mode == "none":
+            figures["fixed_drag_ms"] = 1e3 * float(np.median(timed["fixed"]["times"]))
+            figures["fixed_drag_error"] = LoadError.of(timed["fixed"]["loads"], references)
     return figures
 
 
-#: Bytes per timed attitude: its direction as drawn and normalised, and two timings.
-_ATTITUDE_BYTES = 120
+#: Bytes per timed attitude: its direction as drawn and normalised, and four timings.
+_ATTITUDE_BYTES = 140
 
 
 def sun_directions(count: int, seed: int = 2026) -> np.ndarray:
@@ -251,12 +270,12 @@ def benchmark(
     craft: Spacecraft,
     attitudes: int = 50,
     samples: int = 1,
-    adaptive_attitudes: int = 10,
     load_s: float = 0.0,
     progress: BenchProgress | None = None,
 ) -> BenchReport:
-    """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions, then the other
-    settings, each with its error against :data:`REFERENCE_TOLERANCE` (``adaptive_attitudes >= 1``)."""
+    """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions, at the default and
+    with ``samples`` fixed points per side in the same run, then the other settings, each with its error
+    against :data:`REFERENCE_TOLERANCE`."""
     what = f"{memory.count(attitudes)} timed Sun directions"
     memory.require(_ATTITUDE_BYTES * attitudes, what, "lower attitudes", ("attitudes",))
     directions = sun_directions(attitudes)
@@ -265,44 +284,31 @@ def benchmark(
     scene = craft.scene
     scene_build = time.perf_counter() - start
     start = time.perf_counter()
-    srp(craft, directions[0], samples=samples, reflections="none")  # compiles kernels, keeps origins
+    srp(craft, directions[0], reflections="none")  # compiles kernels, keeps origins
     first_call = time.perf_counter() - start
-    # each attitude is timed and its rays are cast alone, back to back, so that drifts in machine speed
-    # affect both figures alike; which goes first alternates, since the second finds the first's rays
-    # in the caches
-    times, raw_times, loads, rays = [], [], [], 0
+    direct = _timed(lambda u, n: srp(craft, u, samples=n, reflections="none"), directions, samples)
+    # the raw figure casts the fixed setting's rays alone, right after each attitude was timed
+    raw_times = []
     for k, u in enumerate(directions):
         _, origins = side_sampler(craft).facing_rays(u, level)
         flat = origins.reshape(-1, 3)
         along = np.broadcast_to(u.astype(np.float32), flat.shape)
-        for turn in (k % 2, 1 - k % 2):
-            start = time.perf_counter()
-            if turn == 0:
-                result = srp(craft, u, samples=samples, reflections="none")
-                times.append(time.perf_counter() - start)
-                loads.append(_loads(result))
-                rays += result.rays
-            else:
-                scene.occluded(flat, along)
-                raw_times.append(time.perf_counter() - start)
-        if progress:
-            progress("timing attitudes", k + 1, attitudes)
-    adaptive_times, adaptive_loads, adaptive_rays = [], [], 0
-    for u in directions[:adaptive_attitudes]:
+        srp(craft, u, samples=samples, reflections="none")
         start = time.perf_counter()
-        result = srp(craft, u, reflections="none")
-        adaptive_times.append(time.perf_counter() - start)
-        adaptive_loads.append(_loads(result))
-        adaptive_rays += result.rays
+        scene.occluded(flat, along)
+        raw_times.append(time.perf_counter() - start)
+        if progress:
+            progress("timing raw Embree", k + 1, attitudes)
     references = _references(
         lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections="none"),
         directions,
         "reference, direct",
         progress,
     )
-    reflections, full_times = _reflection_figures(craft, directions, samples, times, adaptive_times, progress)
-    gas = _drag_figures(craft, directions, samples, times, full_times, progress)
-    total, raw = float(np.sum(times)), float(np.sum(raw_times))
+    default, fixed = direct["default"], direct["fixed"]
+    reflections, full_times = _reflection_figures(craft, directions, samples, direct, progress)
+    gas = _drag_figures(craft, directions, samples, default["times"], full_times, progress)
+    fixed_rays = sum(r.rays for r in fixed["results"])
     return BenchReport(
         triangles=craft.n_facets,
         sides=craft.n_sides,
@@ -312,17 +318,19 @@ def benchmark(
         load_s=load_s,
         scene_build_s=scene_build,
         first_call_s=first_call,
-        per_attitude_ms=1e3 * total / attitudes,
-        per_attitude_median_ms=1e3 * float(np.median(times)),
-        direct_error=LoadError.of(loads, references),
-        rays_per_attitude=rays / attitudes,
-        rays_per_s=rays / total,
-        raw_embree_ms=1e3 * raw / attitudes,
-        raw_embree_rays_per_s=rays / raw,
-        overhead=float(np.median(np.array(times) / np.array(raw_times))),
-        adaptive_per_attitude_ms=1e3 * float(np.mean(adaptive_times)),
-        adaptive_rays_per_attitude=adaptive_rays / len(adaptive_times),
-        adaptive_error=LoadError.of(adaptive_loads, references),
+        default_ms=1e3 * float(np.mean(default["times"])),
+        default_median_ms=1e3 * float(np.median(default["times"])),
+        default_rays_per_attitude=float(np.mean([r.rays for r in default["results"]])),
+        default_error=LoadError.of(default["loads"], references),
+        fixed_ms=1e3 * float(np.mean(fixed["times"])),
+        fixed_median_ms=1e3 * float(np.median(fixed["times"])),
+        fixed_rays_per_attitude=fixed_rays / attitudes,
+        fixed_error=LoadError.of(fixed["loads"], references),
+        default_over_fixed=float(np.median(default["times"]) / np.median(fixed["times"])),
+        fixed_rays_per_s=fixed_rays / float(np.sum(fixed["times"])),
+        raw_embree_ms=1e3 * float(np.mean(raw_times)),
+        raw_embree_rays_per_s=fixed_rays / float(np.sum(raw_times)),
+        overhead=float(np.median(np.array(fixed["times"]) / np.array(raw_times))),
         **reflections,
         **gas,
         peak_memory_MB=_peak_MB(),
@@ -338,12 +346,13 @@ class SweepReport:
     step_deg: float
     grid_nodes: int
     distinct_directions: int
-    samples_per_side: int
+    samples_per_side: int | None
     reflections: str
     precompute_s: float
     sweep_s: float
     srp_per_attitude_ms: float
     drag_per_attitude_ms: float
+    projected_1_deg_s: float
     checked_directions: int
     srp_error: LoadError
     drag_error: LoadError
@@ -363,8 +372,8 @@ CHECKED_DIRECTIONS = 24
 
 
 def _setup_error(model, setup: SrpSetup | DragSetup, directions: np.ndarray) -> LoadError:
-    """Error of the entries ``setup`` gives at ``directions`` against the same setup sampled adaptively
-    at :data:`REFERENCE_TOLERANCE`."""
+    """Error of the entries ``setup`` gives at ``directions`` against the same setup with the default
+    shadow pass at :data:`REFERENCE_TOLERANCE`."""
     reference = replace(setup, samples=None, tolerance=REFERENCE_TOLERANCE)
     got, exact = (
         list(zip(records["force_N"], records["torque_Nm"], strict=True))
@@ -377,7 +386,7 @@ def sweep_benchmark(
     triangles: int = 100_000,
     step_deg: float = 5.0,
     dask_attitudes: int = 64,
-    samples: int = 1,
+    samples: int | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> SweepReport:
     """A whole grid sweep of SRP and drag with full reflections on the generated sample, then the
@@ -428,12 +437,13 @@ def sweep_benchmark(
         step_deg=grid.step_deg,
         grid_nodes=grid.vectors.shape[0] * grid.vectors.shape[1],
         distinct_directions=len(directions),
-        samples_per_side=level_for_samples(samples) ** 2,
+        samples_per_side=None if samples is None else level_for_samples(samples) ** 2,
         reflections="full",
         precompute_s=precompute_s,
         sweep_s=sweep_s,
         srp_per_attitude_ms=1e3 * timings["srp"] / len(directions),
         drag_per_attitude_ms=1e3 * timings["drag"] / len(directions),
+        projected_1_deg_s=sweep_s * len(direction_grid(1.0).distinct[0]) / len(directions),
         checked_directions=len(checked),
         **errors,
         dask_attitudes=2 * min(dask_attitudes, len(directions)),

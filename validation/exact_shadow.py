@@ -61,6 +61,22 @@ def lit_side(triangles: NDArray[np.float64], index: int, normal: NDArray, sun: N
     return LitSide(float(areas.sum()), origin + centre[0] * axis_u + centre[1] * axis_v)
 
 
+def exact_sides(craft, sun: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Exact lit area [m^2] (n_sides,) and lit centroid [m] (n_sides, 3) of every side of a
+    :class:`~sunwind.geometry.spacecraft.Spacecraft` under the unit Sun direction ``sun``."""
+    triangles = craft.vertices[craft.faces]
+    lit = [lit_side(triangles, f, n, sun) for f, n in zip(craft.side_facet, craft.side_normals, strict=True)]
+    return np.array([s.area_m2 for s in lit]), np.array([s.centroid_m for s in lit])
+
+
+def exact_absorber_srp(craft, sun: NDArray[np.float64]) -> tuple[NDArray, NDArray, float]:
+    """Direct SRP of a wholly absorbing model under a radiation pressure of 1 Pa from its exact lit
+    polygons: force [N], torque about the origin [N m] and lit area [m^2]."""
+    area, centre = exact_sides(craft, sun)
+    force = -(area * np.clip(craft.side_normals @ sun, 0, None))[:, None] * sun
+    return force.sum(axis=0), np.cross(centre, force).sum(axis=0), float(area.sum())
+
+
 def _front_parts(triangles: NDArray, origin: NDArray, normal: NDArray, size: float) -> list[NDArray]:
     """Each triangle clipped to the open half-space in front of the plane through ``origin``."""
     out = []

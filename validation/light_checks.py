@@ -13,11 +13,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, SPEED_OF_LIGHT, radiation_pressure
 from sunwind.forces.srp import srp
 from sunwind.validation.analytic_srp_law import Optics
 from sunwind.validation.analytic_v_groove import v_groove_srp
-from sunwind.validation.cases import REFINEMENT_CASES, SHADOW_CASE, SRP_CASES, ShadowCase, SrpCase
+from sunwind.validation.cases import (
+    LOW_POLY_CASE,
+    REFINEMENT_CASES,
+    SHADOW_CASE,
+    SRP_CASES,
+    ShadowCase,
+    SrpCase,
+)
 from sunwind.validation.checks import Check, Measure
 from sunwind.validation.concave import (
     CONCAVE_CASES,
@@ -30,6 +37,7 @@ from sunwind.validation.concave import (
     torque_scale,
     trace_case,
 )
+from sunwind.validation.exact_shadow import exact_absorber_srp
 
 #: The tracer's standard error may be at most this share of the tolerance.
 SIGMA_SHARE = 0.25
@@ -141,6 +149,28 @@ def srp_closed_form_checks(quick: bool) -> Iterator[Check]:
 def shadow_checks(quick: bool) -> Iterator[Check]:
     """Plate A's force and torque under plate B's partial shadow, every Sun direction of the case."""
     yield from (_row_check("partial shadow", row) for row in run_shadow_case())
+
+
+def low_poly_checks(quick: bool) -> Iterator[Check]:
+    """Lit area, force and torque of the default shadow pass on :data:`LOW_POLY_CASE` against exact
+    clipping, relative to the exact values (quick: its first Sun directions)."""
+    case = LOW_POLY_CASE
+    craft = case.spacecraft()
+    for sun in case.sun_vectors[: case.quick_suns if quick else None]:
+        u = np.asarray(sun) / np.linalg.norm(sun)
+        force, torque, lit = exact_absorber_srp(craft, u)
+        # a flux of c W/m^2 is a pressure of 1 Pa, as the reference assumes
+        result = srp(craft, u, flux_W_m2=SPEED_OF_LIGHT, reflections="none", reference_point_m=np.zeros(3))
+        yield Check(
+            "low-polygon shadows",
+            case.name,
+            "u " + " ".join(f"{x:+.2f}" for x in u),
+            (
+                Measure("lit area", abs(result.lit_area_m2 - lit) / lit, case.rel_tol),
+                Measure("force", _relative(result.force_N, force), case.rel_tol),
+                Measure("torque", _relative(result.torque_Nm, torque), case.rel_tol),
+            ),
+        )
 
 
 def refinement_checks(quick: bool) -> Iterator[Check]:

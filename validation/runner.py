@@ -27,6 +27,11 @@ FAMILIES: tuple[Family, ...] = (
         "analytic_shadow: the exact shadow of one plate on another",
         light_checks.shadow_checks,
     ),
+    Family(
+        "low-polygon shadows",
+        "exact_shadow: lit polygons of a 12-triangle bus, a wing and a 1 cm strut by clipping",
+        light_checks.low_poly_checks,
+    ),
     Family("mesh refinement", "second-order fall of the faceting error", light_checks.refinement_checks),
     Family(
         "V-groove closed form", "analytic_v_groove: mirror inter-reflection", light_checks.v_groove_checks

@@ -32,7 +32,12 @@ from sunwind.meshes.samples import sample_spacecraft
     help="Size of the generated sample spacecraft.",
 )
 @click.option("--attitudes", type=int, default=50, show_default=True, help="Sun directions timed.")
-@click.option("--samples", type=int, default=1, show_default=True, help="Shadow-ray points per side.")
+@click.option(
+    "--samples",
+    type=int,
+    help="Fixed shadow-ray points per side timed beside the default pass [default: 1]; with --sweep, the "
+    "sweep's sampling [default: the default pass].",
+)
 @click.option(
     "--sweep",
     is_flag=True,
@@ -60,7 +65,7 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
         report = benchmark(
             craft,
             attitudes,
-            samples,
+            1 if samples is None else samples,
             load_s=load_s,
             progress=lambda stage, done, total: bar.update(
                 task, description=stage, completed=done, total=total
@@ -73,20 +78,24 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     print(f"  machine                 {report.machine}; Embree on {report.threads} threads")
     print(f"  load / scene build      {report.load_s:.2f} s / {report.scene_build_s:.3f} s")
     print(f"  first call (compile)    {report.first_call_s:.2f} s")
+    fixed = f"{report.samples_per_side} pt/side"
     print(
-        f"  direct SRP, {report.samples_per_side} pt/side   {report.per_attitude_ms:.2f} ms per attitude "
-        f"(median {report.per_attitude_median_ms:.2f}), {report.attitudes} attitudes"
+        f"  direct SRP, default     {report.default_ms:.2f} ms per attitude (median "
+        f"{report.default_median_ms:.2f}), {report.attitudes} attitudes, "
+        f"{report.default_rays_per_attitude:.0f} rays"
     )
-    print(f"{'':26}{report.direct_error}")
+    print(f"{'':26}{report.default_error}")
     print(
-        f"  rays                    {report.rays_per_attitude:.0f} per attitude, "
-        f"{report.rays_per_s / 1e6:.2f} M rays/s"
+        f"  direct SRP, {fixed:<12}{report.fixed_ms:.2f} ms per attitude "
+        f"(median {report.fixed_median_ms:.2f}), {report.fixed_rays_per_attitude:.0f} rays, "
+        f"{report.fixed_rays_per_s / 1e6:.2f} M rays/s"
     )
+    print(f"{'':26}{report.fixed_error}")
+    print(f"  default / {fixed:<14}{report.default_over_fixed:.2f}x (medians)")
     print(
-        f"  raw Embree, same rays   {report.raw_embree_ms:.2f} ms per attitude, "
-        f"{report.raw_embree_rays_per_s / 1e6:.2f} M rays/s"
+        f"  raw Embree, {fixed:<12}{report.raw_embree_ms:.2f} ms per attitude, "
+        f"{report.raw_embree_rays_per_s / 1e6:.2f} M rays/s; overhead {report.overhead:.2f}x"
     )
-    print(f"  overhead                {report.overhead:.2f}x raw Embree")
     print(
         f"  view factors            {report.view_factor_s:.1f} s once per model "
         f"({report.view_factor_rays_per_side} rays per side), {report.view_factor_MB:.0f} MB, "
@@ -94,32 +103,26 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     )
     print(f"  diffuse balance setup   {report.exchange_setup_s:.2f} s once per model and materials")
     print(
-        f"  full reflections        {report.full_per_attitude_ms:.2f} ms per attitude "
-        f"(median {report.full_per_attitude_median_ms:.2f}), {report.full_over_direct:.2f}x direct-only, "
+        f"  full reflections        {report.full_ms:.2f} ms per attitude "
+        f"(median {report.full_median_ms:.2f}), {report.full_over_direct:.2f}x direct-only, "
         f"{report.beam_rays_per_attitude:.0f} beam rays"
     )
     print(f"{'':26}{report.full_error}")
+    print(f"  full refl., {fixed:<12}{report.fixed_full_ms:.2f} ms per attitude")
+    print(f"{'':26}{report.fixed_full_error}")
     print(
-        f"  drag, no re-emission    {report.drag_per_attitude_ms:.2f} ms per attitude (median), "
+        f"  drag, no re-emission    {report.drag_ms:.2f} ms per attitude (median), "
         f"{report.drag_over_srp:.2f}x SRP direct-only"
     )
     print(f"{'':26}{report.drag_error}")
+    print(f"  drag, {fixed:<18}{report.fixed_drag_ms:.2f} ms per attitude (median)")
+    print(f"{'':26}{report.fixed_drag_error}")
     print(
-        f"  drag, full re-emission  {report.drag_full_per_attitude_ms:.2f} ms per attitude (median), "
+        f"  drag, full re-emission  {report.drag_full_ms:.2f} ms per attitude (median), "
         f"{report.drag_full_over_srp_full:.2f}x SRP with full reflections"
     )
     print(f"{'':26}{report.drag_full_error}")
-    print(
-        f"  adaptive sampling       {report.adaptive_per_attitude_ms:.1f} ms per attitude, "
-        f"{report.adaptive_rays_per_attitude:.0f} rays"
-    )
-    print(f"{'':26}{report.adaptive_error}")
-    print(
-        f"  adaptive, full refl.    {report.adaptive_full_per_attitude_ms:.1f} ms per attitude, "
-        f"{report.adaptive_full_over_direct:.2f}x adaptive direct-only"
-    )
-    print(f"{'':26}{report.adaptive_full_error}")
-    print(f"  errors against          adaptive sampling at tolerance {REFERENCE_TOLERANCE:g} (10x tighter)")
+    print(f"  errors against          the default at tolerance {REFERENCE_TOLERANCE:g} (10x tighter)")
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
 
 
@@ -134,7 +137,7 @@ def _progress_bar(as_json: bool) -> Progress:
     return Progress(*columns, transient=True, disable=as_json)
 
 
-def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> None:
+def _bench_sweep(triangles: int, step: float, samples: int | None, as_json: bool) -> None:
     """``sunwind bench --sweep``: run and print :func:`sunwind.forces.bench.sweep_benchmark`."""
     direction_grid(step)
     with _progress_bar(as_json) as bar:
@@ -151,7 +154,8 @@ def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> No
     print(f"sunwind bench --sweep: generated sample, {report.triangles} triangles; {report.machine}")
     print(
         f"  grid                    {report.step_deg:g} deg: {report.grid_nodes} nodes, "
-        f"{report.distinct_directions} distinct directions, {report.samples_per_side} pt/side, "
+        f"{report.distinct_directions} distinct directions, "
+        f"{'default shadows' if report.samples_per_side is None else f'{report.samples_per_side} pt/side'}, "
         f"reflections {report.reflections}"
     )
     print(f"  precompute              {report.precompute_s:.1f} s (view factors, exchange, first calls)")
@@ -159,10 +163,12 @@ def _bench_sweep(triangles: int, step: float, samples: int, as_json: bool) -> No
         f"  sweep SRP + drag        {report.sweep_s:.1f} s ({report.srp_per_attitude_ms:.1f} ms SRP, "
         f"{report.drag_per_attitude_ms:.1f} ms drag per attitude)"
     )
+    minutes = report.projected_1_deg_s / 60
+    print(f"  1-degree grid           {minutes:.0f} min projected (same time per direction)")
     print(f"  SRP entries             {report.srp_error}")
     print(f"  drag entries            {report.drag_error}")
     print(
-        f"  errors against          adaptive sampling at tolerance {REFERENCE_TOLERANCE:g} at "
+        f"  errors against          the default at tolerance {REFERENCE_TOLERANCE:g} at "
         f"{report.checked_directions} grid directions"
     )
     print(

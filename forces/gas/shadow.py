@@ -110,9 +110,13 @@ def flow_shadow(
     facing, kept = (None, None) if level is None else sampler.facing_rays(u, level)
     # with one point per side the flow's shadow is lit shares of 0 or 1: its rays join the batch
     own_flow = level == 1 and kept is not None
-    flow = None if own_flow else sampler.illuminate(u, samples, tolerance)
-    facing = facing if flow is None else flow.facing
     directions = _spread_directions(u, speed_ratio) if spread else np.empty((0, 3))
+    passes = None  # with no kept origins, a shadow pass along u and each spread direction
+    if not own_flow:
+        along = np.concatenate([u[None], directions]) if kept is None else u[None]
+        passes = _shadow_passes(sampler, along, samples, tolerance)
+    flow = None if own_flow else passes[0]
+    facing = facing if flow is None else flow.facing
     if own_flow:
         directions = np.concatenate([u[None], directions])
     shadow = None
@@ -137,10 +141,20 @@ def flow_shadow(
         if lit is None:  # a shadow pass along each direction
             incidence = np.empty((len(facing), len(directions)))
             incidences(facing, craft.side_normals, directions, incidence, 0, len(facing))
-            passes = [sampler.illuminate(d, samples, tolerance).lit_fraction[facing] for d in directions]
-            lit = np.column_stack(passes)
+            lit = np.column_stack([light.lit_fraction[facing] for light in passes[1:]])
         spread_visibility(facing, incidence, lit, visible)
     return flow, visible
+
+
+def _shadow_passes(sampler, directions: NDArray[np.float64], samples: int | None, tolerance: float) -> list:
+    """:meth:`~sunwind.geometry.rays.shadows.SideSampler.illuminate` along each of ``directions``, the
+    passes shared among the threads (each runs serially inside its thread)."""
+    chunks = map_ranges(
+        lambda lo, hi: [sampler.illuminate(d, samples, tolerance) for d in directions[lo:hi]],
+        len(directions),
+        1,
+    )
+    return [light for chunk in chunks for light in chunk]
 
 
 def _clearance_arrays(craft: Spacecraft) -> tuple[NDArray, ...]:

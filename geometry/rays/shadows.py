@@ -1,21 +1,16 @@
-"""Which share of each side a distant source lights, by shadow rays from quadrature points.
+"""Which share of each side a distant source lights, and where: shadow rays toward the source.
 
 METHOD.md "Shadowing and sampling".
 
-A side has one sample point in each of its ``level**2`` congruent sub-triangles (the centroid at
-level 1, a seeded stratified point above: :func:`sunwind.geometry.triangles.subdivision_barycentric`). A
-point is lit when a ray from it toward the source leaves the model. On a flat side under a uniform
-beam the force per unit lit area is the same everywhere, so the lit share and the centroid of the
-lit points carry all that force and torque need.
+By default every side facing the source casts one ray from its centroid, and the sides a shadow edge
+crosses get their lit polygon from :mod:`.shadow_edges` (rays at the corners of a quadtree of nodes,
+each cut along the shadow's outline or a bisected chord) to ``tolerance`` of their area. On a flat
+side under a uniform beam the force per unit lit area is the same everywhere, so the lit share and
+the centroid of the lit part carry all that force and torque need.
 
-Sampling is fixed (``level**2`` points on every side facing the source) or adaptive: every facing
-side starts at ``BASE_LEVEL``. Sides whose points disagree, the sides sharing a vertex with them, and
-edge neighbours with different uniform states are refined by doubling ``level``; a side found mixed
-brings its vertex neighbours in. A side stops when it is uniformly lit or dark at two successive
-levels, the finer with at least ``UNIFORM_LEVEL**2`` points, or when its lit share has changed by at
-most ``tolerance`` between levels while one sub-triangle's share ``1 / level**2`` is also within
-``tolerance`` (lit shares move in steps of ``1 / level**2``, so coarse levels can agree by chance);
-``MAX_LEVEL`` caps it. Fine meshes make shadow edges cross small sides, where this converges fast.
+Fixed sampling (``samples``) instead puts one point in each of a side's ``level**2`` congruent
+sub-triangles (the centroid at level 1, a seeded stratified point above:
+:func:`sunwind.geometry.triangles.subdivision_barycentric`) and takes the lit share of its points.
 
 Transmissive sheets cast full shadows here: light they transmit is not traced onward.
 """
@@ -28,14 +23,13 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-import scipy.sparse
 from numpy.typing import NDArray
 
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import count, require
 from sunwind.geometry.parallel import map_ranges
-from sunwind.geometry.rays.outline import outline_sides
+from sunwind.geometry.rays.shadow_edges import refine_edges
 from sunwind.geometry.rays.shadow_kernels import (
     BLOCK,
     facing_origins,
@@ -46,14 +40,7 @@ from sunwind.geometry.rays.shadow_kernels import (
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.triangles import STRATIFIED_SEED
 
-#: Level of the first pass of adaptive sampling: 4 points per side.
-BASE_LEVEL = 2
-#: Finest level of adaptive sampling: 4096 points per side.
-MAX_LEVEL = 64
-#: Level at which a side near a shadow edge, lit or dark at every point of two successive levels, is
-#: accepted as uniform: 64 points, so a shadow nicking ~2 % of it or more is not missed.
-UNIFORM_LEVEL = 8
-#: Default convergence threshold on a refined side's lit share between successive levels.
+#: Default share of a refined side's area that its lit part is found to (:mod:`.shadow_edges`).
 DEFAULT_TOLERANCE = 1e-3
 #: Rays cast per batch when origins are made on the fly, to bound memory.
 _BATCH_RAYS = 1 << 21
@@ -90,14 +77,15 @@ class Illumination:
         area of each that is lit, float64 (or bool with one point per side), in runs as the threads
         found them; joined on first use as :attr:`facing` and :attr:`facing_share`.
     lit_centroid : (n_sides, 3) float64
-        Centroid of the side's lit sample points [m]; the facet centroid where nothing is lit.
+        Centroid of the side's lit part (of its lit points with fixed sampling) [m]; the facet centroid
+        where nothing is lit.
     rays : int
         Shadow rays cast.
     sampling : str
         How sides were sampled, in words.
     level : int or None
-        Subdivision level of fixed sampling (``level**2`` points on every facing side); None when
-        adaptive.
+        Subdivision level of fixed sampling (``level**2`` points on every facing side); None for the
+        default pass.
     """
 
     direction: NDArray[np.float64]
@@ -142,7 +130,7 @@ def level_for_samples(samples: int) -> int:
     Raises
     ------
     InputError
-        ``samples`` is not a whole number, or is above ``MAX_LEVEL**2`` (the finest adaptive level).
+        ``samples`` is not a whole number >= 1.
     """
     if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
         raise InputError(
@@ -196,7 +184,10 @@ class SideSampler:
             need = _BARYCENTRIC_BYTES * points + _BATCH_BYTES * batch + _LIT_BYTES * n * points
         what = f"{count(points)} points per side x {n} sides"
         require(
-            need, what, "lower samples (points per side), or leave it out for adaptive sampling", ("samples",)
+            need,
+            what,
+            "lower samples (points per side), or leave it out for the default shadow pass",
+            ("samples",),
         )
         self._sized.add(level)
 
@@ -329,17 +320,19 @@ class SideSampler:
     ) -> Illumination:
         """Lit share and lit centroid of every side for a source along unit vector ``direction``.
 
-        ``samples`` fixes the points per side (rounded up to a square, ``level**2``); None samples
-        adaptively to ``tolerance`` on each refined side's lit share. ``reduce``, if given, is called
+        ``samples`` fixes the points per side (rounded up to a square, ``level**2``); None casts one
+        ray per side and finds the lit part of each side a shadow edge crosses to ``tolerance`` of its
+        area (:mod:`.shadow_edges`). ``reduce``, if given, is called
         on the facing sides once their lit shares are final (see ``Reduction``), in the worker
         threads where possible.
         """
         craft = self.craft
         fixed = samples is not None
-        level = level_for_samples(samples) if fixed else BASE_LEVEL
+        level = level_for_samples(samples) if fixed else 1
         self.check_memory(level)
-        # the lit centroid differs from the side centroid only on partly lit sides, which level 1 has not
-        centroid = craft.side_centroids if level == 1 else craft.side_centroids.copy()
+        # the lit centroid differs from the side centroid only on partly lit sides, which one fixed
+        # point per side has not
+        centroid = craft.side_centroids if fixed and level == 1 else craft.side_centroids.copy()
         if self._keeps(level):
             facing, share, lit = self._cast_kept(direction, level, centroid, reduce if fixed else None)
             reduce = None if fixed else reduce  # a fixed count reduces chunk by chunk as it goes
@@ -350,14 +343,16 @@ class SideSampler:
         rays = sum(map(len, facing)) * level**2
         sampling = f"{level**2} points per side"
         if not fixed:
-            sides = _joined(facing)
+            sides, centre_lit = _joined(facing), _joined(share)
             fraction = np.zeros(craft.n_sides)
-            fraction[sides] = _joined(share)
-            rays += self._refine(direction, sides, lit, fraction, centroid, tolerance)
-            facing, share = (sides,), (fraction[sides],)
-            sampling = f"adaptive, {BASE_LEVEL**2} to {MAX_LEVEL**2} points per side, tolerance {tolerance:g}"
-        if reduce is not None:
-            reduce(facing[0], share[0], centroid)
+            fraction[sides] = centre_lit
+            rays += refine_edges(craft, direction, sides, centre_lit, fraction, centroid, tolerance)
+            share = tuple(fraction[run] for run in facing)
+            sampling = f"shadow edges located, tolerance {tolerance:g}"
+        if reduce is not None:  # each run is whole blocks: the threads sum them side by side
+            map_ranges(
+                lambda lo, hi: [reduce(facing[k], share[k], centroid) for k in range(lo, hi)], len(facing), 1
+            )
         return Illumination(
             direction, craft.side_normals, facing, share, centroid, rays, sampling, level if fixed else None
         )
@@ -377,74 +372,6 @@ class SideSampler:
         barycentric = tri.subdivision_barycentric(level)
         lit_centroids(sides, lit, barycentric, craft.triangles, craft.side_facet, centroid)
         return lit_shares(lit)
-
-    @cached_property
-    def _adjacency(self) -> scipy.sparse.csr_matrix:
-        """Sides sharing a vertex and facing the same way, as a sparse matrix (a shadow edge can
-        leave a side through a corner)."""
-        craft = self.craft
-        n_vertices = len(craft.vertices)
-        # a back side's vertices are numbered apart, so front and back sides never neighbour
-        corner = craft.faces[craft.side_facet] + n_vertices * (craft.side_sign < 0)[:, None]
-        rows = np.repeat(np.arange(craft.n_sides), 3)
-        incidence = scipy.sparse.csr_matrix(
-            (np.ones(len(rows)), (rows, corner.reshape(-1))), shape=(craft.n_sides, 2 * n_vertices)
-        )
-        return (incidence @ incidence.T).tocsr()
-
-    def _neighbours(self, sides: NDArray[np.int64]) -> NDArray[np.int64]:
-        """Sides adjacent to any of ``sides``."""
-        return np.unique(self._adjacency[sides].indices)
-
-    def _refine(
-        self,
-        direction: NDArray[np.float64],
-        facing: NDArray[np.int64],
-        lit: NDArray[np.bool_],
-        fraction: NDArray[np.float64],
-        centroid: NDArray[np.float64],
-        tolerance: float,
-    ) -> int:
-        """Refine the sides on a shadow edge in place; return the rays cast.
-
-        Suspect at the base level: mixed sides, the sides sharing a vertex with them, edge neighbours
-        whose uniform states differ, and the sides a shadow outline crosses (:mod:`.outline`), which
-        are never taken as uniform. Whenever refinement finds a side mixed, its unexamined facing
-        vertex neighbours join.
-        """
-        craft = self.craft
-        is_facing = np.zeros(craft.n_sides, dtype=bool)
-        is_facing[facing] = True
-        count = lit.sum(axis=1)
-        state = np.full(craft.n_sides, -1)  # -1 facing away or mixed, 0 dark, 1 lit
-        state[facing] = np.where(count == lit.shape[1], 1, np.where(count == 0, 0, -1))
-        a, b = craft.side_neighbours
-        differ = (state[a] >= 0) & (state[b] >= 0) & (state[a] != state[b])
-        mixed = facing[(count > 0) & (count < lit.shape[1])]
-        examined = np.zeros(craft.n_sides, dtype=bool)
-        examined[np.r_[a[differ], b[differ], mixed, self._neighbours(mixed)]] = True
-        outlined = np.zeros(craft.n_sides, dtype=bool)  # an outline crosses them: never taken as uniform
-        outlined[outline_sides(craft, direction, facing)] = True
-        examined |= outlined
-        examined &= is_facing
-        active = np.flatnonzero(examined)
-        level, rays = BASE_LEVEL, 0
-        while len(active) and level < MAX_LEVEL:
-            level *= 2
-            previous = fraction[active].copy()
-            centroid[active] = craft.side_centroids[active]
-            lit = self._cast(active, level, direction)
-            fraction[active] = self._shares(active, lit, level, centroid)
-            rays += lit.size
-            now = fraction[active]
-            partly = (now > 0) & (now < 1)
-            joining = self._neighbours(active[partly])
-            joining = joining[is_facing[joining] & ~examined[joining]]
-            examined[joining] = True
-            uniform = ~partly & (now == previous) & (level >= UNIFORM_LEVEL) & ~outlined[active]
-            converged = (np.abs(now - previous) <= tolerance) & (level**-2 <= tolerance)
-            active = np.r_[active[~(uniform | converged)], joining]
-        return rays
 
     def _cast(
         self, sides: NDArray[np.int64], level: int, direction: NDArray[np.float64]

@@ -1,5 +1,5 @@
-"""The exact lit polygons (validation.exact_shadow) against closed forms, and the ray-cast shadows of
-the default sampling against them on a low-polygon model with a thin strut."""
+"""The exact lit polygons (validation.exact_shadow) against closed forms, and the default shadow pass
+against them on a low-polygon model with a thin strut."""
 
 from __future__ import annotations
 
@@ -7,21 +7,14 @@ import numpy as np
 import pytest
 
 from helpers import ABSORBER, quad_sheet
-from sunwind import meshes
 from sunwind.forces.srp import srp
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes import primitives
-from sunwind.validation.exact_shadow import lit_side
+from sunwind.validation.cases import LOW_POLY_CASE, LOW_POLY_SUNS
+from sunwind.validation.exact_shadow import exact_absorber_srp, exact_sides
 
 C = 299792458.0  # a flux of c W/m^2: a pressure of 1 Pa
-
-
-def exact_sides(craft, sun):
-    """Exact lit area (n_sides,) and lit centroid (n_sides, 3) of every side."""
-    triangles = craft.vertices[craft.faces]
-    lit = [lit_side(triangles, f, n, sun) for f, n in zip(craft.side_facet, craft.side_normals, strict=True)]
-    return np.array([s.area_m2 for s in lit]), np.array([s.centroid_m for s in lit])
 
 
 def square(centre, size, z, part):
@@ -65,44 +58,15 @@ def test_a_convex_body_is_lit_wherever_it_faces_the_sun():
     assert centre[facing] == pytest.approx(sides[facing], abs=1e-12)
 
 
-def strut_model():
-    """A 12-triangle 1 m bus, a 1 cm strut 0.2 m off its +x face and a two-sided wing."""
-    bus = meshes.label(primitives.box((1.0, 1.0, 1.0)), "bus")
-    strut = meshes.transform(primitives.box((0.01, 0.01, 1.6)), translation=(0.7, 0.0, 0.3))
-    wing = np.array([[0.55, -0.5, -0.5], [0.55, -0.5, 0.5], [0.55, -2.5, 0.5], [0.55, -2.5, -0.5]])
-    parts = [bus, meshes.label(strut, "strut"), quad_sheet(wing, "wing")]
-    return build_spacecraft(MeshData.concatenate(parts), uniform=ABSORBER, two_sided=["wing"])
-
-
-def exact_loads(craft, u):
-    area, centre = exact_sides(craft, u)
-    force = -(area * np.clip(craft.side_normals @ u, 0, None))[:, None] * u
-    return force.sum(axis=0), np.cross(centre, force).sum(axis=0), area.sum()
-
-
-@pytest.mark.parametrize("sun", [(1.0, 0.05, 0.3), (1.0, 0.4, 0.1), (0.6, -0.2, 0.8), (1.0, -1.0, 0.2)])
-def test_default_sampling_finds_shadows_cast_across_large_sides(sun):
-    """The strut's and the wing's shadows cross the bus's big triangles (at (1, 0.05, 0.3) the strut's
-    touches none of their starting points: the outline probes find it); the default converges to its
-    tolerance (1e-3 of each side's lit share) against the exact answer."""
+@pytest.mark.parametrize("sun", LOW_POLY_SUNS, ids=[f"sun{k}" for k in range(len(LOW_POLY_SUNS))])
+def test_the_default_shadow_pass_meets_the_exact_answer_to_1e_4_on_a_low_polygon_model(sun):
+    """A 12-triangle bus with a wing and a 1 cm strut whose shadows fall across its large triangles:
+    lit area, force and torque of the default pass within 1e-4 of exact clipping (measured worst over
+    these 23 directions: 3.7e-5 lit area, 4.0e-5 force, 8.0e-5 torque; exact to round-off at 13)."""
     u = np.array(sun) / np.linalg.norm(sun)
-    craft = strut_model()
-    force, torque, lit = exact_loads(craft, u)
-    result = srp(craft, u, flux_W_m2=C, reflections="none", reference_point_m=np.zeros(3))
-    assert result.lit_area_m2 == pytest.approx(lit, rel=1e-3)
-    assert np.linalg.norm(result.force_N - force) <= 1e-3 * np.linalg.norm(force)
-    assert np.linalg.norm(result.torque_Nm - torque) <= 1e-3 * np.linalg.norm(torque)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 18: sampling converges to its tolerance (1e-3 of a side's lit share), not to the 1e-4 "
-    "of exact clipping the issue asks for on low-polygon models (measured 7e-4 of the force here)",
-)
-def test_default_sampling_meets_the_exact_answer_to_1e_4_on_a_thin_shadow():
-    u = np.array([1.0, 0.05, 0.3]) / np.linalg.norm([1.0, 0.05, 0.3])
-    craft = strut_model()
-    force, _torque, lit = exact_loads(craft, u)
+    craft = LOW_POLY_CASE.spacecraft()
+    force, torque, lit = exact_absorber_srp(craft, u)
     result = srp(craft, u, flux_W_m2=C, reflections="none", reference_point_m=np.zeros(3))
     assert result.lit_area_m2 == pytest.approx(lit, rel=1e-4)
     assert np.linalg.norm(result.force_N - force) <= 1e-4 * np.linalg.norm(force)
+    assert np.linalg.norm(result.torque_Nm - torque) <= 1e-4 * np.linalg.norm(torque)

@@ -1,4 +1,4 @@
-"""Shadow sampling: no false shadows on convex bodies, exact lit shares in a partial shadow."""
+"""Shadow passes: no false shadows on convex bodies, exact lit shares in a partial shadow."""
 
 import numpy as np
 import pytest
@@ -7,7 +7,7 @@ import trimesh
 from helpers import ABSORBER, mesh_from_trimesh, quad_sheet
 from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
-from sunwind.geometry.rays.shadows import BASE_LEVEL, level_for_samples, side_sampler
+from sunwind.geometry.rays.shadows import level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft
 
 
@@ -21,8 +21,10 @@ def test_a_convex_body_has_no_shadow_on_any_side_facing_the_sun(samples):
         facing = light.cos_incidence > 0
         assert np.array_equal(light.lit_fraction, facing.astype(float))
         assert np.array_equal(np.sort(light.facing), np.flatnonzero(facing))
-        points = (BASE_LEVEL if samples is None else level_for_samples(samples)) ** 2
-        assert light.rays == facing.sum() * points
+        if samples is None:  # a centroid ray per side, and the probes of the outline (all escaping)
+            assert facing.sum() < light.rays < 2 * facing.sum()
+        else:
+            assert light.rays == facing.sum() * level_for_samples(samples) ** 2
 
 
 @pytest.mark.parametrize("samples, level", [(1, 1), (2, 2), (4, 2), (5, 3), (16, 4), (17, 5)])
@@ -47,8 +49,13 @@ def shaded_floor(n: int = 8) -> tuple:
     return craft, c, h
 
 
-def test_partial_shadow_lit_area_and_lit_centroid_are_exact_to_sampling_precision():
-    craft, c, h = shaded_floor()
+@pytest.mark.parametrize("n", [8, 2])
+@pytest.mark.parametrize("tolerance", [0.1, 1e-3])
+def test_a_straight_shadow_edge_is_located_exactly_at_any_tolerance(n, tolerance):
+    """The blind's shadow on the floor is a square (a closed form): the default pass cuts the sides its
+    outline crosses along that outline, so lit area and lit centroid are exact to round-off, on an
+    8 x 8 grid and on a 2 x 2 grid whose triangles hold the shadow's corners."""
+    craft, c, h = shaded_floor(n)
     u = np.array([0.3, -0.2, 1.0])
     u /= np.linalg.norm(u)
     shift = -0.5 * u[:2] / u[2]  # the blind's shadow is the blind moved along -u onto z = 0
@@ -57,29 +64,16 @@ def test_partial_shadow_lit_area_and_lit_centroid_are_exact_to_sampling_precisio
     shadow_centroid = (np.clip(lo, 0, 1) + np.clip(hi, 0, 1)) / 2
     exact_centroid = (np.array([0.5, 0.5]) - shadow * shadow_centroid) / (1 - shadow)
     floor = (craft.facet_part[craft.side_facet] == craft.part_names.index("floor")) & (craft.side_sign > 0)
-    light = side_sampler(craft).illuminate(u)
+    light = side_sampler(craft).illuminate(u, tolerance=tolerance)
     areas = craft.side_areas[floor] * light.lit_fraction[floor]
     centroid = areas @ light.lit_centroid[floor][:, :2] / areas.sum()
-    # ~24 sides on the shadow edge, each refined until its lit share is within ~1e-3: 1e-4 of the area
-    assert abs(areas.sum() - (1 - shadow)) < 1e-4
-    assert np.allclose(centroid, exact_centroid, atol=1e-4)
-    # only sides near the shadow edge are refined: far fewer rays than the finest level everywhere
-    assert light.rays < 0.3 * (light.cos_incidence > 0).sum() * 64**2
+    assert abs(areas.sum() - (1 - shadow)) < 1e-12
+    assert np.allclose(centroid, exact_centroid, rtol=0, atol=1e-12)
+    # on the fine grid only sides near the shadow edge are refined, with a few rays each
+    assert n < 8 or light.rays < 10 * (light.cos_incidence > 0).sum()
     # with one sample per facet the error is that of the facet size, far larger
     coarse = side_sampler(craft).illuminate(u, samples=1)
     assert abs(craft.side_areas[floor] @ coarse.lit_fraction[floor] - (1 - shadow)) > 1e-3
-
-
-def test_adaptive_refinement_converges_as_the_tolerance_tightens():
-    craft, _, _ = shaded_floor(n=8)
-    u = np.array([0.1, 0.25, 1.0]) / np.linalg.norm([0.1, 0.25, 1.0])
-    reference = side_sampler(craft).illuminate(u, samples=64**2)  # the finest level on every side
-    errors = []
-    for tolerance in (0.1, 1e-2, 1e-3):
-        light = side_sampler(craft).illuminate(u, tolerance=tolerance)
-        errors.append(np.abs(craft.side_areas @ (light.lit_fraction - reference.lit_fraction)))
-    assert errors[2] < errors[1] < errors[0]
-    assert errors[2] < 1e-4
 
 
 def test_a_two_sided_sheet_is_lit_on_the_side_facing_the_sun():

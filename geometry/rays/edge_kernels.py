@@ -1,0 +1,458 @@
+"""Numba kernels of the shadow-edge pass (:mod:`sunwind.geometry.rays.shadow_edges`).
+
+Points of a side are given by their coordinates ``(w1, w2)`` on its facet's triangle ``A, B, C``:
+``P = A + w1 (B - A) + w2 (C - A)``; the whole side is the triangle (0, 0), (1, 0), (0, 1) of area 1/2.
+A node is a sub-triangle of a side in these coordinates, with the lit flags of its three corners.
+Each kernel runs serially over its rows, so its results do not depend on threads.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+#: What becomes of a node: wholly lit or dark, cut exactly along the outline, cut along the outline
+#: once a ray from inside the region it bounds gives that region's state, checked by rays at its edge
+#: midpoints (then uniform, a chord or split), cut along the chord its two mixed edges are bisected
+#: to, or split into four.
+UNIFORM, EXACT_CUT, REGION, CHECK, BISECT, SPLIT = 0, 1, 2, 3, 4, 5
+#: Most outline segments crossing one node that are cut along together.
+MAX_LINES = 6
+#: Margin in side coordinates within which a point counts as on a line or a node's boundary.
+_MARGIN = 1e-9
+
+
+@numba.njit(cache=True, nogil=True)
+def boundary_sides(
+    corner_ids: NDArray[np.int64], facing: NDArray[np.int64], lit: NDArray[np.bool_], n_ids: int
+) -> NDArray[np.int64]:
+    """The sides of ``facing`` (lit flag ``lit`` of each) that share a corner with a facing side of the
+    other flag; ``corner_ids[s]`` numbers side ``s``'s corners (a back side's apart from the front's)."""
+    seen = np.zeros((n_ids, 2), dtype=np.bool_)
+    for k in range(facing.shape[0]):
+        for c in range(3):
+            seen[corner_ids[facing[k], c], 1 if lit[k] else 0] = True
+    out = np.empty(facing.shape[0], dtype=np.int64)
+    count = 0
+    for k in range(facing.shape[0]):
+        for c in range(3):
+            i = corner_ids[facing[k], c]
+            if seen[i, 0] and seen[i, 1]:
+                out[count] = facing[k]
+                count += 1
+                break
+    return out[:count]
+
+
+@numba.njit(cache=True, nogil=True)
+def node_origins(
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    node_side: NDArray[np.int64],
+    points: NDArray[np.float64],
+    centre: NDArray[np.float64],
+    half_size: float,
+    offset_m: float,
+    inset: float,
+) -> NDArray[np.float32]:
+    """Ray origins of side points ``points`` (n, 2) of sides ``node_side`` (n,): drawn ``inset`` of the
+    way toward the side's centroid (a corner or edge point is not cast from exactly on an edge),
+    pushed ``offset_m`` along the normal, in float32 scene coordinates, (n, 3)."""
+    out = np.empty((points.shape[0], 3), dtype=np.float32)
+    keep = 1.0 - inset
+    for k in range(points.shape[0]):
+        s = node_side[k]
+        f = side_facet[s]
+        w1 = keep * points[k, 0] + inset / 3.0
+        w2 = keep * points[k, 1] + inset / 3.0
+        for d in range(3):
+            a = triangles[f, 0, d]
+            x = a + w1 * (triangles[f, 1, d] - a) + w2 * (triangles[f, 2, d] - a)
+            out[k, d] = (x + offset_m * normals[s, d] - centre[d]) / half_size
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _project(
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    side: int,
+    ends: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    out: NDArray[np.float64],
+) -> bool:
+    """Write the shadow of edge ``ends`` (2, 3) [m] on the plane of ``side`` along ``direction`` into
+    ``out`` (2, 2), in side coordinates: the part of the edge in front of the plane (between it and the
+    source), projected. False where no part of it is in front."""
+    f = side_facet[side]
+    facing = h0 = h1 = 0.0
+    for d in range(3):
+        facing += normals[side, d] * direction[d]
+        h0 += (ends[0, d] - triangles[f, 0, d]) * normals[side, d]
+        h1 += (ends[1, d] - triangles[f, 0, d]) * normals[side, d]
+    if facing <= 0.0:
+        return False
+    if h0 <= 0.0 and h1 <= 0.0:
+        return False
+    lo, hi = 0.0, 1.0  # the part with positive height, as a share of the edge
+    if h0 <= 0.0:
+        lo = h0 / (h0 - h1)
+    elif h1 <= 0.0:
+        hi = h0 / (h0 - h1)
+    g11 = g12 = g22 = 0.0
+    for d in range(3):
+        ab, ac = triangles[f, 1, d] - triangles[f, 0, d], triangles[f, 2, d] - triangles[f, 0, d]
+        g11 += ab * ab
+        g12 += ab * ac
+        g22 += ac * ac
+    det = g11 * g22 - g12 * g12
+    for e in range(2):
+        t = lo if e == 0 else hi
+        h = h0 + t * (h1 - h0)
+        r1 = r2 = 0.0
+        for d in range(3):
+            along = ends[0, d] + t * (ends[1, d] - ends[0, d]) - (h / facing) * direction[d]
+            flat = along - triangles[f, 0, d]
+            r1 += flat * (triangles[f, 1, d] - triangles[f, 0, d])
+            r2 += flat * (triangles[f, 2, d] - triangles[f, 0, d])
+        out[e, 0] = (g22 * r1 - g12 * r2) / det
+        out[e, 1] = (g11 * r2 - g12 * r1) / det
+    # an edge along the source direction casts a point, not an outline
+    return hi > lo and abs(out[1, 0] - out[0, 0]) + abs(out[1, 1] - out[0, 1]) > _MARGIN
+
+
+@numba.njit(cache=True, nogil=True)
+def outline_segments(
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    seed_side: NDArray[np.int64],
+    seed_edge: NDArray[np.int64],
+    edge_ends: NDArray[np.float64],
+    corner_ids: NDArray[np.int64],
+    id_start: NDArray[np.int64],
+    id_sides: NDArray[np.int64],
+    is_facing: NDArray[np.bool_],
+) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """The shadows of silhouette edges on the sides they cross, in side coordinates: each edge's from
+    the sides its probes landed on (``seed_side``, ``seed_edge``, grouped by edge; ``edge_ends`` (m, 2, 3)
+    the edge of each seed) outward over the facing sides sharing a corner with a side it crosses, so a
+    shadow stretched across many small or grazing sides is found on all of them. ``id_start`` and
+    ``id_sides`` list the sides at each corner number of ``corner_ids``. Returns the sides and their
+    segments (k, 2, 2), in the order found."""
+    mark = np.full(normals.shape[0], -1, dtype=np.int64)
+    whole = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    capacity = max(16, 4 * seed_side.shape[0])
+    out_side = np.empty(capacity, dtype=np.int64)
+    out_segment = np.empty((capacity, 2, 2))
+    queue = np.empty(normals.shape[0], dtype=np.int64)
+    segment = np.empty((2, 2))
+    count = k = 0
+    while k < seed_side.shape[0]:
+        edge, head, tail = seed_edge[k], 0, 0
+        ends = edge_ends[k]
+        while k < seed_side.shape[0] and seed_edge[k] == edge:
+            if mark[seed_side[k]] != edge:
+                mark[seed_side[k]] = edge
+                queue[tail] = seed_side[k]
+                tail += 1
+            k += 1
+        while head < tail:
+            side = queue[head]
+            head += 1
+            if not _project(triangles, side_facet, normals, side, ends, direction, segment):
+                continue
+            if _through(whole, segment[0], segment[1]) == 0:
+                continue
+            if count == capacity:
+                capacity *= 2
+                grown_side = np.empty(capacity, dtype=np.int64)
+                grown_segment = np.empty((capacity, 2, 2))
+                grown_side[:count], grown_segment[:count] = out_side[:count], out_segment[:count]
+                out_side, out_segment = grown_side, grown_segment
+            out_side[count], out_segment[count] = side, segment
+            count += 1
+            for c in range(3):
+                i = corner_ids[side, c]
+                for j in range(id_start[i], id_start[i + 1]):
+                    other = id_sides[j]
+                    if is_facing[other] and mark[other] != edge:
+                        mark[other] = edge
+                        queue[tail] = other
+                        tail += 1
+    return out_side[:count], out_segment[:count]
+
+
+@numba.njit(cache=True, nogil=True)
+def _through(corners: NDArray[np.float64], p: NDArray[np.float64], q: NDArray[np.float64]) -> int:
+    """How segment ``p``-``q`` meets triangle ``corners`` (3, 2): 0 not at all, 1 with an end inside,
+    2 passing through (both ends outside). Cyrus-Beck clipping of the segment by the three edges."""
+    orient = (corners[1, 0] - corners[0, 0]) * (corners[2, 1] - corners[0, 1]) - (
+        corners[1, 1] - corners[0, 1]
+    ) * (corners[2, 0] - corners[0, 0])
+    sign = 1.0 if orient > 0 else -1.0
+    enter, leave = 0.0, 1.0
+    for i in range(3):
+        a, b = corners[i], corners[(i + 1) % 3]
+        ex, ey = b[0] - a[0], b[1] - a[1]
+        # inside where sign * cross(e, x - a) > 0
+        at_p = sign * (ex * (p[1] - a[1]) - ey * (p[0] - a[0]))
+        at_q = sign * (ex * (q[1] - a[1]) - ey * (q[0] - a[0]))
+        if at_p <= _MARGIN and at_q <= _MARGIN:
+            return 0
+        if at_p < _MARGIN:
+            enter = max(enter, (_MARGIN - at_p) / (at_q - at_p))
+        elif at_q < _MARGIN:
+            leave = min(leave, (at_p - _MARGIN) / (at_p - at_q))
+    if leave - enter <= 0.0:
+        return 0
+    return 2 if enter > 0.0 and leave < 1.0 else 1
+
+
+@numba.njit(cache=True, nogil=True)
+def _line(p: NDArray[np.float64], q: NDArray[np.float64]) -> tuple[float, float, float]:
+    """``(a, b, c)`` of the line through ``p`` and ``q``, positive on the left of ``p -> q``."""
+    a, b = -(q[1] - p[1]), q[0] - p[0]
+    return a, b, -(a * p[0] + b * p[1])
+
+
+@numba.njit(cache=True, nogil=True)
+def _side_of(line: NDArray[np.float64], point: NDArray[np.float64]) -> int:
+    """+1 or -1 as ``point`` lies on the positive or negative side of ``line``, 0 on it."""
+    value = line[0] * point[0] + line[1] * point[1] + line[2]
+    if abs(value) <= _MARGIN * (abs(line[0]) + abs(line[1])):
+        return 0
+    return 1 if value > 0 else -1
+
+
+@numba.njit(cache=True, nogil=True)
+def clip_moments(
+    corners: NDArray[np.float64],
+    lines: NDArray[np.float64],
+    n_lines: int,
+    scratch: NDArray[np.float64],
+    out: NDArray[np.float64],
+) -> None:
+    """Write ``(area, area * w1, area * w2)`` of the part of triangle ``corners`` (3, 2) where the
+    first ``n_lines`` of ``lines`` (., 3) are all positive into ``out`` (3,), by Sutherland-Hodgman
+    clipping in ``scratch`` (2, 3 + n_lines or more, 2)."""
+    polygon, clipped = scratch[0], scratch[1]
+    polygon[:3] = corners
+    count = 3
+    for j in range(n_lines):
+        kept = 0
+        for i in range(count):
+            a, b = polygon[i], polygon[(i + 1) % count]
+            fa = lines[j, 0] * a[0] + lines[j, 1] * a[1] + lines[j, 2]
+            fb = lines[j, 0] * b[0] + lines[j, 1] * b[1] + lines[j, 2]
+            if fa >= 0.0:
+                clipped[kept] = a
+                kept += 1
+            if (fa >= 0.0) != (fb >= 0.0):
+                t = fa / (fa - fb)
+                clipped[kept, 0] = a[0] + t * (b[0] - a[0])
+                clipped[kept, 1] = a[1] + t * (b[1] - a[1])
+                kept += 1
+        polygon[:kept] = clipped[:kept]
+        count = kept
+    out[:] = 0.0
+    for i in range(1, count - 1):  # a fan from the first vertex of the convex polygon
+        p, q, r = polygon[0], polygon[i], polygon[i + 1]
+        piece = 0.5 * abs((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]))
+        out[0] += piece
+        out[1] += piece * (p[0] + q[0] + r[0]) / 3.0
+        out[2] += piece * (p[1] + q[1] + r[1]) / 3.0
+
+
+@numba.njit(cache=True, nogil=True)
+def _cut(
+    corners: NDArray[np.float64],
+    lit: NDArray[np.bool_],
+    lines: NDArray[np.float64],
+    n_lines: int,
+    scratch: NDArray[np.float64],
+    out: NDArray[np.float64],
+) -> bool:
+    """Write the lit moments of a node cut by an outline into ``out``: the region where the ``n_lines``
+    lines (oriented so that it is their common positive side) are all positive is one state and the
+    rest the other, as its corners say. False, writing nothing, when the corners do not say it cleanly
+    (a corner of each state on one side, or no corner on one side)."""
+    inside = outside = 0  # +1 lit, -1 dark, 0 no corner yet
+    for i in range(3):
+        where = 1
+        for j in range(n_lines):
+            where = min(where, _side_of(lines[j], corners[i]))
+        if where == 0:
+            continue
+        state = 1 if lit[i] else -1
+        if where > 0:
+            if inside == -state:
+                return False
+            inside = state
+        else:
+            if outside == -state:
+                return False
+            outside = state
+    if inside * outside != -1:
+        return False
+    clip_moments(corners, lines, n_lines, scratch, out)
+    if inside == -1:  # the rest is lit: the whole node less the clipped part
+        area, w1, w2 = out[0], out[1], out[2]
+        clip_moments(corners, lines, 0, scratch, out)
+        out[0] -= area
+        out[1] -= w1
+        out[2] -= w2
+    return True
+
+
+@numba.njit(cache=True, nogil=True)
+def classify_nodes(
+    node_side: NDArray[np.int64],
+    corners: NDArray[np.float64],
+    lit: NDArray[np.bool_],
+    depth: int,
+    centre_differs: NDArray[np.bool_],
+    segment_side: NDArray[np.int64],
+    segments: NDArray[np.float64],
+    depths: NDArray[np.int64],
+) -> tuple[NDArray[np.int8], NDArray[np.float64]]:
+    """What becomes of each node at ``depth`` (``UNIFORM``, ``EXACT_CUT``, ``REGION``, ``CHECK``,
+    ``BISECT``, ``SPLIT``) and moments ``(area, area * w1, area * w2)``, (n, 3): the lit part of a
+    leaf, or the region a ``REGION`` node's ray is to be cast from the centroid of.
+
+    ``segments`` (m, 2, 2) are the outline segments on the sides ``segment_side`` (ascending).
+    ``centre_differs``: the side's centroid ray disagrees with the node's corners (whole sides only).
+    The outline in a node is one segment passing through it, two meeting inside it at a shared end (an
+    outline's corner), or two passing through it without meeting (the two sides of a thin shadow). A
+    node whose corners disagree is cut along it exactly when its corners of each state lie on their own
+    side of it. A node whose corners agree and lie outside the region the outline bounds (a shadow's
+    corner nicking it, a thin shadow across it) is a ``REGION``: one ray from inside the region says
+    its state. Otherwise, with ``depths`` = (uniform, mixed, most): a node with disagreeing corners is
+    split below depth ``mixed`` if a segment crosses it, else checked (a chord if its edge midpoints
+    confirm one crossing per mixed edge), and cut along a bisected chord at that depth; a node with
+    agreeing corners that a segment crosses is split below ``uniform`` (an outline whose edge is
+    shadowed elsewhere), or below ``most`` while two or more pass through it; a whole side with
+    agreeing corners and no segment is checked (a shadow thinner than it, between its corners).
+    """
+    n = node_side.shape[0]
+    action = np.empty(n, dtype=np.int8)
+    moments = np.zeros((n, 3))
+    lines = np.empty((MAX_LINES, 3))
+    scratch = np.empty((2, 3 + MAX_LINES, 2))
+    chosen = np.empty(MAX_LINES, dtype=np.int64)
+    for k in range(n):
+        first = np.searchsorted(segment_side, node_side[k])
+        last = np.searchsorted(segment_side, node_side[k], side="right")
+        crossing = through = 0
+        for j in range(first, last):
+            how = _through(corners[k], segments[j, 0], segments[j, 1])
+            if how:
+                if crossing < MAX_LINES:
+                    chosen[crossing] = j
+                crossing += 1
+                through += how == 2
+        agree = lit[k, 0] == lit[k, 1] and lit[k, 1] == lit[k, 2]
+        n_lines = _outline_lines(corners[k], segments, chosen, crossing, lines)
+        if n_lines and not agree and _cut(corners[k], lit[k], lines, n_lines, scratch, moments[k]):
+            action[k] = EXACT_CUT
+            continue
+        region = n_lines >= 2 and agree and not centre_differs[k]
+        if region and _region(corners[k], lines, n_lines, scratch, moments[k]):
+            action[k] = REGION
+            continue
+        if not agree:
+            action[k] = BISECT if depth >= depths[1] else (SPLIT if crossing else CHECK)
+        elif centre_differs[k]:
+            action[k] = SPLIT if depth < depths[1] else UNIFORM
+        elif crossing and (depth < depths[0] or (through >= 2 and depth < depths[2])):
+            action[k] = SPLIT
+        else:
+            action[k] = CHECK if depth == 0 else UNIFORM
+        if action[k] == UNIFORM and lit[k, 0]:
+            clip_moments(corners[k], lines, 0, scratch, moments[k])
+    return action, moments
+
+
+@numba.njit(cache=True, nogil=True)
+def _inside(corners: NDArray[np.float64], point: NDArray[np.float64]) -> bool:
+    """Whether ``point`` lies strictly inside triangle ``corners`` (3, 2)."""
+    total = 0
+    for i in range(3):
+        a, b = corners[i], corners[(i + 1) % 3]
+        value = (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0])
+        total += 0 if abs(value) <= _MARGIN else (1 if value > 0 else -1)
+    return abs(total) == 3
+
+
+@numba.njit(cache=True, nogil=True)
+def _shared(segments: NDArray, chosen: NDArray[np.int64], crossing: int, j: int, point: NDArray) -> bool:
+    """Whether ``point`` is (within round-off) an end of a chosen segment other than ``j``."""
+    for i in range(crossing):
+        if i == j:
+            continue
+        for e in range(2):
+            other = segments[chosen[i], e]
+            if max(abs(other[0] - point[0]), abs(other[1] - point[1])) <= 1e3 * _MARGIN:
+                return True
+    return False
+
+
+@numba.njit(cache=True, nogil=True)
+def _outline_lines(
+    corners: NDArray[np.float64],
+    segments: NDArray[np.float64],
+    chosen: NDArray[np.int64],
+    crossing: int,
+    lines: NDArray[np.float64],
+) -> int:
+    """Write the lines of the outline segments crossing a node (``chosen``, ``crossing`` of them) into
+    ``lines`` and return how many, or 0 if they do not bound one convex region. One segment: its line.
+    Several: each line is oriented toward the other segments, which must all lie on its positive side,
+    so their common positive side is the convex region they bound (the wedge of an outline's corner,
+    the strip between the two sides of a thin shadow, its end). Segments that cross, or that end inside
+    the node (``corners``) other than at another's end, are refused."""
+    if crossing == 0 or crossing > lines.shape[0]:
+        return 0
+    for j in range(crossing):
+        for e in range(2):  # an end inside the node must be another segment's: the outline turns there
+            point = segments[chosen[j], e]
+            if _inside(corners, point) and not _shared(segments, chosen, crossing, j, point):
+                return 0
+        lines[j, 0], lines[j, 1], lines[j, 2] = _line(segments[chosen[j], 0], segments[chosen[j], 1])
+    if crossing == 1:
+        return 1
+    for j in range(crossing):
+        low = high = 0
+        for i in range(crossing):
+            if i == j:
+                continue
+            for e in range(2):
+                side = _side_of(lines[j], segments[chosen[i], e])
+                low, high = min(low, side), max(high, side)
+        if low < 0 and high > 0:
+            return 0
+        if low < 0:
+            for c in range(3):
+                lines[j, c] = -lines[j, c]
+    return crossing
+
+
+@numba.njit(cache=True, nogil=True)
+def _region(
+    corners: NDArray[np.float64], lines: NDArray[np.float64], n_lines: int, scratch: NDArray, out: NDArray
+) -> bool:
+    """Write the moments of the part of a node where the first ``n_lines`` of ``lines`` are all positive
+    into ``out``; False when a corner lies inside it (the corners would then have said its state) or it
+    is empty."""
+    for i in range(3):
+        inside = 1
+        for j in range(n_lines):
+            inside = min(inside, _side_of(lines[j], corners[i]))
+        if inside > 0:
+            return False
+    clip_moments(corners, lines, n_lines, scratch, out)
+    return out[0] > 0.0
