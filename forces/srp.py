@@ -45,9 +45,11 @@ def srp(
         Torque reference point [m] (the centre of mass); default the model's, else the volume
         centroid of a closed model, else the area centroid.
     samples : int, optional
-        Shadow-ray points per side, rounded up to a square; default adaptive.
+        Fixed shadow-ray points per side, rounded up to a square; default: shadow edges located and
+        cut along the outline (:mod:`sunwind.geometry.rays.shadow_edges`).
     tolerance : float
-        Adaptive sampling's convergence threshold on a side's lit share, in (0, 1).
+        The default pass's tolerance: the share of a refined side's area its lit part is found to, in
+        (0, 1).
     reflections : str or ReflectionSettings
         ``"none"``, ``"specular"``, ``"full"`` or ``"auto"`` (full when ``K_IS >= 0.1``), or settings
         with chain cutoff, depth and view-factor sampling

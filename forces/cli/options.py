@@ -281,14 +281,14 @@ def sampling_options(command: Callable) -> Callable:
         click.option(
             "--samples",
             type=int,
-            help="Shadow-ray points per facet side, rounded up to a square [default: adaptive].",
+            help="Fixed shadow-ray points per facet side, rounded up to a square [default: edges located].",
         ),
         click.option(
             "--tolerance",
             type=float,
             default=DEFAULT_TOLERANCE,
             show_default=True,
-            help="Adaptive sampling: convergence threshold on a side's lit share.",
+            help="Default shadow pass: share of a side's area its lit part is found to.",
         ),
     ]
     return group("sampling", options, _sampling)(command)

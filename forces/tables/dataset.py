@@ -181,7 +181,7 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
         "reference_point_m": point,
         "reference_point": name,
         "grid_step_deg": step_deg,
-        "samples": "adaptive" if first.samples is None else first.samples,
+        "samples": "shadow edges located" if first.samples is None else first.samples,
         "tolerance": first.tolerance,
         "reflections_requested": first.settings.mode,  # what each quantity used: srp_/drag_reflections
         "mesh": source.pop("mesh"),

@@ -2,23 +2,16 @@
 outline itself: the default shadow pass after one ray from each side's centroid.
 
 METHOD.md "Shadowing and sampling". The sides examined are those sharing a corner with a side whose
-centroid ray has the other answer, and those a shadow outline lands on (:mod:`.outline`). Each is
-split into nodes, sub-triangles of a quadtree in its own coordinates, with a ray at every node
-corner:
-
-* a node whose corners agree and that no outline segment crosses is wholly lit or dark;
-* a node one outline segment passes through, with its lit corners on one side of the segment's line
-  and its dark corners on the other, is cut along that line: its lit polygon is exact;
-* a node with disagreeing corners and no clean segment is split while a segment crosses it, to a
-  depth where a node holds ``tolerance / 16`` of its side; then it is cut along the chord through
-  the points where its two mixed edges change state, each bisected to ``tolerance`` of its length;
-* a node with agreeing corners that a segment crosses is split to ``tolerance`` of the side's area,
-  and deeper (``MOST_EXTRA_DEPTH`` levels more) while two or more cross it: a thin occluder's
-  shadow between its corners is found when the nodes become narrower than the shadow.
-
-Shadow outlines on a flat side are straight (projected silhouette edges), so a node cut by one
-segment is exact and the error lies in the few nodes holding an outline's corner or the end of a thin
-shadow, each at most the node's area.
+centroid ray has the other answer, and those an outline segment crosses: the shadow of a silhouette
+edge whose probe landed there (:mod:`.outline`), carried over the facing sides it crosses. Each side
+is the root of a quadtree of nodes (sub-triangles in its own coordinates) with a ray at every node
+corner. A node is cut exactly along the outline segments crossing it when they bound one convex
+region and its corners agree with them (:func:`~.edge_kernels.classify_nodes`); when its corners all
+agree, one ray from inside that region gives the region's state. A node with no such outline is
+uniform if its corners (and, for a whole side, its edge midpoints) agree, cut along a chord bisected
+to ``tolerance`` if they do not, or split, to depths set by ``tolerance``
+(:func:`_depths`). Shadow outlines on a flat side are straight (projected silhouette edges), so the
+error lies only in chords and in nodes accepted at a depth limit.
 """
 
 from __future__ import annotations
@@ -163,7 +156,8 @@ def _lit_moments(
 ) -> NDArray[np.float64]:
     """Lit area and its first moments ``(a, a w1, a w2)`` of each of ``sides`` in side coordinates
     (the whole side has area 1/2), (len(sides), 3). Each round casts one batch: the edge midpoints of
-    the nodes being split and the next bisection points of every chord still being located."""
+    the nodes being split or checked, the next bisection points of every chord still being located,
+    and the ray of each region."""
     n = len(sides)
     moments = np.zeros((n, 3))
     root = np.arange(n)

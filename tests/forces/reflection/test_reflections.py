@@ -138,7 +138,7 @@ def test_results_with_reflections_are_the_same_bits_whatever_the_threads(monkeyp
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("samples", [1, None], ids=["one-point", "adaptive"])
+@pytest.mark.parametrize("samples", [1, None], ids=["one-point", "default"])
 def test_the_diffuse_light_the_direct_pass_hands_on_equals_the_side_by_side_sums(samples):
     """The direct pass sums what each lit side hands the diffuse balance from block moments
     (:func:`sunwind.forces.radiation.direct.weight_moments`); side by side, from each side's first diffuse
