@@ -100,3 +100,23 @@ def test_on_the_sample_no_partly_lit_side_of_dense_sampling_is_left_whole():
         missed = np.abs(ours.lit_fraction - dense.lit_fraction)[whole] @ craft.side_areas[whole]
         lit = ours.lit_fraction @ craft.side_areas
         assert missed < 1e-5 * lit
+
+
+@pytest.mark.parametrize("sun", [(0.0, 0.0, 1.0), (0.3, -0.2, 1.0), (-0.5, 0.4, 0.8)])
+def test_a_lit_sliver_on_a_large_mostly_shadowed_triangle_is_found(sun):
+    """Two blinds 0.3 m over a 2 m plate of two triangles leave a 1 cm slit between them: the plate's
+    only light is a strip through the slit, inside triangles whose corners and centroids are all dark
+    (the case of facets that came out wholly dark though a few per cent lit)."""
+    plate = quad_sheet(np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], float), "plate")
+    left = quad_sheet(np.array([[-3, -3, 0.3], [0.0, -3, 0.3], [0.0, 3, 0.3], [-3, 3, 0.3]]), "left")
+    right = quad_sheet(np.array([[0.01, -3, 0.3], [3, -3, 0.3], [3, 3, 0.3], [0.01, 3, 0.3]]), "right")
+    parts = MeshData.concatenate([plate, left, right])
+    craft = build_spacecraft(parts, uniform=ABSORBER, two_sided=["plate", "left", "right"])
+    u = np.array(sun) / np.linalg.norm(sun)
+    light = side_sampler(craft).illuminate(u)
+    exact = exact_lit_areas(craft, u)
+    plate_sides = craft.facet_part[craft.side_facet] == craft.part_names.index("plate")
+    ours = (light.lit_fraction * craft.side_areas)[plate_sides].sum()
+    sliver = exact[plate_sides].sum()
+    assert 0.01 < sliver < 0.05  # a 1 cm strip across the plate, stretched by the slant
+    assert ours == pytest.approx(sliver, rel=1e-6)
