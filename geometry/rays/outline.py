@@ -83,6 +83,7 @@ def outline(craft: Spacecraft, direction: NDArray[np.float64], facing: NDArray[n
         edges.points,
         craft.vertices,
         craft.side_centroids,
+        craft.side_normals,
         direction,
         scene.centre,
         scene.half_size,
@@ -108,6 +109,7 @@ def _probes(
     points: NDArray[np.int64],
     vertices: NDArray[np.float64],
     side_centroids: NDArray[np.float64],
+    normals: NDArray[np.float64],
     direction: NDArray[np.float64],
     centre: NDArray[np.float64],
     half_size: float,
@@ -115,9 +117,9 @@ def _probes(
 ) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.float32]]:
     """The probe points of the silhouette edges (those with exactly one adjacent facing side): the
     edge of each and its ray origins toward and away from the source, float32 scene coordinates. The
-    ray away from the source starts ``offset_m`` off the edge across the source direction, away from
-    its facing side, so that it passes the occluder rather than running along its surface where a
-    side is edge-on to the source."""
+    ray toward the source starts ``offset_m`` off the edge along its facing side's normal (and the
+    source direction); the ray away from it, across the source direction away from that side, so
+    that neither runs along a face edge-on to the source."""
     count = np.zeros(edge_vertices.shape[0], dtype=np.int32)
     owner = np.empty(edge_vertices.shape[0], dtype=np.int64)
     for k in range(facing.shape[0]):
@@ -159,7 +161,7 @@ def _probes(
             edge[k] = e
             for d in range(3):
                 x = a[d] + t * (b[d] - a[d]) - centre[d]
-                up[k, d] = (x + offset_m * direction[d]) / half_size
+                up[k, d] = (x + offset_m * (normals[owner[e], d] + direction[d])) / half_size
                 down[k, d] = (x + offset_m * (away[d] - direction[d])) / half_size
             k += 1
     return edge, up, down

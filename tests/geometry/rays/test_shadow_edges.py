@@ -120,3 +120,21 @@ def test_a_lit_sliver_on_a_large_mostly_shadowed_triangle_is_found(sun):
     sliver = exact[plate_sides].sum()
     assert 0.01 < sliver < 0.05  # a 1 cm strip across the plate, stretched by the slant
     assert ours == pytest.approx(sliver, rel=1e-6)
+
+
+@pytest.mark.parametrize("sun", [(1.0, 1e-13, 0.0), (0.7, 1e-15, 0.7), (1.0, -1e-12, 0.2)])
+def test_a_sun_a_hair_off_an_axis_gives_the_exact_force_and_torque(sun):
+    """Faces then face the Sun at a cosine of 1e-13: a silhouette edge lies on a face grazed by the
+    light, and its probes must neither run along that face nor be taken as shadowed by it. Force and
+    torque against exact clipping; the lit area of the grazed faces is left out (their rays start an
+    origin offset off the face, where a sheet touching it can block them: they carry no force)."""
+    from sunwind.forces.srp import srp
+    from sunwind.validation.cases import LOW_POLY_CASE
+    from sunwind.validation.exact_shadow import exact_absorber_srp
+
+    craft = LOW_POLY_CASE.spacecraft()
+    u = np.array(sun) / np.linalg.norm(sun)
+    force, torque, _ = exact_absorber_srp(craft, u)
+    result = srp(craft, u, flux_W_m2=299792458.0, reflections="none", reference_point_m=np.zeros(3))
+    assert np.linalg.norm(result.force_N - force) <= 1e-9 * np.linalg.norm(force)
+    assert np.linalg.norm(result.torque_Nm - torque) <= 1e-9 * np.linalg.norm(torque)
