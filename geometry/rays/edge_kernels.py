@@ -332,8 +332,9 @@ def classify_nodes(
     side of it. A node whose corners agree and lie outside the region the outline bounds (a shadow's
     corner nicking it, a thin shadow across it) is a ``REGION``: one ray from inside the region says
     its state. Otherwise, with ``depths`` = (uniform, mixed, most): a node with disagreeing corners is
-    split below depth ``mixed`` if a segment crosses it, else checked (a chord if its edge midpoints
-    confirm one crossing per mixed edge), and cut along a bisected chord at that depth; a node with
+    split below depth ``mixed`` if a segment crosses it (below ``most`` while two or more do), else
+    checked (a chord if its edge midpoints confirm one crossing per mixed edge), and cut along a
+    bisected chord at the limit; a node with
     agreeing corners that a segment crosses is split below ``uniform`` (an outline whose edge is
     shadowed elsewhere), or below ``most`` while two or more pass through it; a whole side with
     agreeing corners and no segment is checked (a shadow thinner than it, between its corners).
@@ -365,7 +366,8 @@ def classify_nodes(
             action[k] = REGION
             continue
         if not agree:
-            action[k] = BISECT if depth >= depths[1] else (SPLIT if crossing else CHECK)
+            deeper = crossing and (depth < depths[1] or (crossing >= 2 and depth < depths[2]))
+            action[k] = SPLIT if deeper else (CHECK if depth < depths[1] else BISECT)
         elif centre_differs[k]:
             action[k] = SPLIT if depth < depths[1] else UNIFORM
         elif crossing and (depth < depths[0] or (through >= 2 and depth < depths[2])):

@@ -19,10 +19,17 @@ from numpy.typing import NDArray
 
 from sunwind.geometry.spacecraft import Spacecraft
 
-#: Probe spacing along a silhouette edge, as a share of the model's median edge length.
-SPACING_SHARE = 0.125
+#: Probe spacing along a silhouette edge, as a share of the width of the model's narrow sides (the
+#: ``WIDTH_PERCENTILE`` percentile of the facets' least altitudes): a shadow outline crossing a side
+#: that narrow meets a probe or two.
+SPACING_SHARE = 0.25
+WIDTH_PERCENTILE = 10.0
 #: Most probe points on one edge.
-MAX_POINTS_PER_EDGE = 64
+MAX_POINTS_PER_EDGE = 1024
+#: Probes over all edges at most this many per edge, or ``MIN_PROBE_BUDGET``: the spacing is doubled
+#: until they fit (a mesh of many slivers would otherwise ask for millions).
+PROBES_PER_EDGE = 8
+MIN_PROBE_BUDGET = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -40,8 +47,15 @@ def _edges(craft: Spacecraft) -> _Edges:
     pairs = np.sort(pairs, axis=1)
     unique, inverse = np.unique(pairs, axis=0, return_inverse=True)
     length = np.linalg.norm(craft.vertices[unique[:, 0]] - craft.vertices[unique[:, 1]], axis=1)
-    spacing = SPACING_SHARE * float(np.median(length))
-    points = np.clip(np.ceil(length / spacing), 1, MAX_POINTS_PER_EDGE).astype(np.int64)
+    # a facet's width: its least altitude, twice its area over its longest edge
+    longest = np.max(length[inverse.reshape(-1, 3)], axis=1)
+    width = 2 * craft.side_areas / np.maximum(longest, np.finfo(float).tiny)
+    spacing = SPACING_SHARE * float(np.percentile(width, WIDTH_PERCENTILE))
+    for _ in range(64):  # widen the spacing until the probes of all edges fit the budget
+        points = np.clip(np.ceil(length / spacing), 1, MAX_POINTS_PER_EDGE).astype(np.int64)
+        if points.sum() <= max(PROBES_PER_EDGE * len(length), MIN_PROBE_BUDGET):
+            break
+        spacing *= 2
     return _Edges(inverse.reshape(-1, 3), unique, points)
 
 

@@ -41,8 +41,9 @@ from sunwind.geometry.spacecraft import Spacecraft
 
 #: Share of the way toward the side's centroid that corner and edge points are drawn in before casting.
 INSET = 1e-4
-#: Levels below the ``tolerance`` depth to which nodes that two or more outlines cross are split.
-MOST_EXTRA_DEPTH = 3
+#: Levels below the ``tolerance`` depth to which nodes that two or more outline segments cross are split
+#: (a thin shadow between a node's corners, two thin shadows crossing).
+MOST_EXTRA_DEPTH = 5
 _WHOLE_SIDE = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
 
 
