@@ -49,7 +49,7 @@ def srp(
         cut along the outline (:mod:`sunwind.geometry.rays.shadow_edges`).
     tolerance : float
         The default pass's tolerance: the share of a refined side's area its lit part is found to, in
-        (0, 1).
+        [1e-6, 1).
     reflections : str or ReflectionSettings
         ``"none"``, ``"specular"``, ``"full"`` or ``"auto"`` (full when ``K_IS >= 0.1``), or settings
         with chain cutoff, depth and view-factor sampling

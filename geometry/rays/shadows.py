@@ -42,6 +42,9 @@ from sunwind.geometry.triangles import STRATIFIED_SEED
 
 #: Default share of a refined side's area that its lit part is found to (:mod:`.shadow_edges`).
 DEFAULT_TOLERANCE = 1e-3
+#: Tightest tolerance: the quadtree's depth limits grow as log4(1 / tolerance), and below this the
+#: nodes along a thin shadow would run to millions.
+MIN_TOLERANCE = 1e-6
 #: Rays cast per batch when origins are made on the fly, to bound memory.
 _BATCH_RAYS = 1 << 21
 
@@ -147,13 +150,17 @@ def check_sampling(samples: int | None, tolerance: float) -> None:
     Raises
     ------
     InputError
-        ``samples`` refused by :func:`level_for_samples`, or ``tolerance`` outside (0, 1).
+        ``samples`` refused by :func:`level_for_samples`, or ``tolerance`` outside
+        [``MIN_TOLERANCE``, 1).
     """
     if samples is not None:
         level_for_samples(samples)
-    if isinstance(tolerance, bool) or not isinstance(tolerance, int | float) or not 0 < tolerance < 1:
+    number = not isinstance(tolerance, bool) and isinstance(tolerance, int | float)
+    if not number or not MIN_TOLERANCE <= tolerance < 1:
         raise InputError(
-            f"tolerance {tolerance!r} must lie in (0, 1)", hint="default 1e-3", parameters=("tolerance",)
+            f"tolerance {tolerance!r} must lie in [{MIN_TOLERANCE:g}, 1)",
+            hint="default 1e-3",
+            parameters=("tolerance",),
         )
 
 

@@ -25,7 +25,14 @@ def test_an_error_renamed_writes_the_flags_of_its_parameters_only():
     ("args", "expected"),
     [
         (["srp", SAMPLE, "--sun", "1", "0", "0", "--flux", "-1"], "--flux -1.0 is not a finite non-negative"),
-        (["srp", SAMPLE, "--sun", "1", "0", "0", "--tolerance", "2"], "--tolerance 2.0 must lie in (0, 1)"),
+        (
+            ["srp", SAMPLE, "--sun", "1", "0", "0", "--tolerance", "2"],
+            "--tolerance 2.0 must lie in [1e-06, 1)",
+        ),
+        (
+            ["srp", SAMPLE, "--sun", "1", "0", "0", "--tolerance", "1e-7"],
+            "--tolerance 1e-07 must lie in [1e-06, 1)",
+        ),
         (["srp", SAMPLE, "--sun", "1", "0", "0", "--samples", "0"], "--samples 0 must be a whole number"),
         (
             ["srp", SAMPLE, "--sun", "1", "0", "0", "--reflection-cutoff", "2"],
