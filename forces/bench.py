@@ -150,17 +150,18 @@ def _peak_MB() -> float:
 
 
 def _timed(
-    evaluate: Callable[[np.ndarray, int | None], object], directions: np.ndarray, samples: int
+    evaluate: Callable[[np.ndarray, int | None], object], directions: np.ndarray, samples: int | None
 ) -> dict:
     """Time ``evaluate(u, samples)`` of the default (``samples`` None) and of ``samples`` fixed points
-    at every direction, alternating which goes first, after one call of each that compiles and keeps
-    what they need. Returns the times [s], loads, shadow rays and beam rays (0 without reflections) of
-    each, keyed by "default" and "fixed"."""
-    for setting in (None, samples):
-        evaluate(directions[0], setting)
-    out: dict = {key: {"times": [], "loads": [], "rays": [], "beam_rays": []} for key in ("default", "fixed")}
+    (none when ``samples`` is None) at every direction, alternating which goes first, after one call
+    of each that compiles and keeps what they need. Returns the times [s], loads, shadow rays and beam
+    rays (0 without reflections) of each, keyed by "default" and "fixed"."""
+    keys = ("default",) if samples is None else ("default", "fixed")
+    for key in keys:
+        evaluate(directions[0], None if key == "default" else samples)
+    out: dict = {key: {"times": [], "loads": [], "rays": [], "beam_rays": []} for key in keys}
     for k, u in enumerate(directions):
-        for key in ("default", "fixed")[:: 1 if k % 2 == 0 else -1]:
+        for key in keys[:: 1 if k % 2 == 0 else -1]:
             start = time.perf_counter()
             result = evaluate(u, None if key == "default" else samples)
             out[key]["times"].append(time.perf_counter() - start)
@@ -230,16 +231,7 @@ def _drag_figures(
         def evaluate(u, n, settings=settings):
             return drag(craft, speed * u, air, samples=n, reflections=settings)
 
-        if mode == "none":
-            timed = _timed(evaluate, directions, samples)
-        else:  # the default only
-            evaluate(directions[0], None)
-            timed = {"default": {"times": [], "loads": []}}
-            for u in directions:
-                start = time.perf_counter()
-                result = evaluate(u, None)
-                timed["default"]["times"].append(time.perf_counter() - start)
-                timed["default"]["loads"].append(_loads(result))
+        timed = _timed(evaluate, directions, samples if mode == "none" else None)  # full: the default only
         references = _references(
             lambda u, settings=settings: drag(
                 craft, speed * u, air, tolerance=REFERENCE_TOLERANCE, reflections=settings

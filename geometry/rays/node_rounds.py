@@ -92,9 +92,15 @@ def _new_chords(n: int) -> tuple:
 
 
 @numba.njit(cache=True, nogil=True)
+def _lone(lit: NDArray[np.bool_]) -> int:
+    """The corner of a node with disagreeing corner flags ``lit`` (3,) whose flag the other two share not."""
+    return 2 if lit[0] == lit[1] else (1 if lit[0] == lit[2] else 0)
+
+
+@numba.njit(cache=True, nogil=True)
 def _start_chord(chords: tuple, j: int, root: int, corners: NDArray, lit: NDArray[np.bool_]) -> int:
     """Write chord ``j`` of a node with disagreeing corners; return its apex (the lone corner)."""
-    lone = 2 if lit[0] == lit[1] else (1 if lit[0] == lit[2] else 0)
+    lone = _lone(lit)
     chords[0][j], chords[1][j] = root, corners
     apex, apex_lit = corners[lone], lit[lone]
     chords[2][j], chords[3][j] = apex, apex_lit
@@ -131,7 +137,7 @@ def resolve_splits(
             if mid_lit[k, 0] == lit[k, 0] and mid_lit[k, 1] == lit[k, 0] and mid_lit[k, 2] == lit[k, 0]:
                 kind[k] = 1
         else:
-            lone = 2 if lit[k, 0] == lit[k, 1] else (1 if lit[k, 0] == lit[k, 2] else 0)
+            lone = _lone(lit[k])
             if mid_lit[k, (lone + 1) % 3] == lit[k, (lone + 1) % 3]:
                 kind[k] = 2
     n_children, n_chords = 4 * int(np.sum(kind == 0)), int(np.sum(kind == 2))

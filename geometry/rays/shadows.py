@@ -298,25 +298,23 @@ class SideSampler:
         level: int,
         centroid: NDArray[np.float64],
         reduce: Reduction | None,
-    ) -> tuple[tuple[NDArray[np.int64], ...], tuple[NDArray[np.float64], ...], NDArray[np.bool_] | None]:
+    ) -> tuple[tuple[NDArray[np.int64], ...], tuple[NDArray[np.float64], ...]]:
         """Cast every facing side's kept rays at ``level``; write lit centroids of part-lit sides.
 
         Threads take runs of whole blocks of :attr:`_balanced_order` through the facing test, Embree,
         the lit shares and ``reduce``, in one dispatch. Returns the facing sides and their lit shares,
-        in runs, and, only when ``reduce`` is None, the lit flags of all of them (n_facing, level**2).
+        in runs.
         """
 
         def work(first: int, last: int) -> tuple:
             facing, mine = self._facing_origins(direction, level, first, last)
-            lit = self._lit(mine, direction)
-            share = self._shares(facing, lit, level, centroid)
+            share = self._shares(facing, self._lit(mine, direction), level, centroid)
             if reduce is not None:
                 reduce(facing, share, centroid)
-                return facing, share, None
-            return facing, share, lit
+            return facing, share
 
-        facing, share, lit = zip(*map_ranges(work, self.n_blocks, _MIN_BLOCKS_PER_CHUNK), strict=True)
-        return facing, share, None if reduce is not None else _joined(lit)
+        facing, share = zip(*map_ranges(work, self.n_blocks, _MIN_BLOCKS_PER_CHUNK), strict=True)
+        return facing, share
 
     def illuminate(
         self,
@@ -341,7 +339,7 @@ class SideSampler:
         # point per side has not
         centroid = craft.side_centroids if fixed and level == 1 else craft.side_centroids.copy()
         if self._keeps(level):
-            facing, share, lit = self._cast_kept(direction, level, centroid, reduce if fixed else None)
+            facing, share = self._cast_kept(direction, level, centroid, reduce if fixed else None)
             reduce = None if fixed else reduce  # a fixed count reduces chunk by chunk as it goes
         else:
             sides, _ = self.facing_rays(direction, level)
