@@ -8,10 +8,10 @@ nothing.
 
 Cases (:data:`DRAG_CASES`): the 90 deg V-groove, the open box and the sample spacecraft's dish of
 :mod:`sunwind.validation.concave_meshes`, each a two-sided sheet, in one species (atomic oxygen at
-1000 K) at speed ratio :data:`SPEED_RATIO`, with diffuse re-emission fully accommodated to the 300 K
-wall (Sentman, ``alpha_E = 1``: the kernel the tracer follows exactly) and with specular reflection,
-at flow directions into the opening and across it. Flow directions are the azimuth and elevation of
-``v_rel`` (molecules arrive along ``-v_rel``).
+1000 K) at speed ratio :data:`SPEED_RATIO` unless told, with diffuse re-emission fully accommodated to
+the 300 K wall (Sentman, ``alpha_E = 1``: the kernel the tracer follows exactly), with Maxwell's kernel
+of diffuse share 0.5 and with specular reflection, at flow directions into the opening and across it.
+Flow directions are the azimuth and elevation of ``v_rel`` (molecules arrive along ``-v_rel``).
 """
 
 from __future__ import annotations
@@ -45,8 +45,21 @@ WALL_TEMPERATURE_K = 300.0
 TOLERANCE = 0.02
 #: Molecules the tracer launches per comparison.
 MOLECULES = 200_000
-#: Gas-surface laws compared, with the tracer's diffuse share for each.
-LAWS = {"diffuse": ("sentman", 1.0), "specular": ("specular", 0.0)}
+#: Gas-surface laws compared: the solver's finish and the tracer's diffuse share for each (Maxwell's
+#: kernel with diffuse share ``sigma`` is Schaaf-Chambre with ``sigma_n = sigma_t = sigma``).
+LAWS = {
+    "diffuse": (GasSurface(model="sentman", wall_temperature_K=WALL_TEMPERATURE_K), 1.0),
+    "maxwell-0.5": (
+        GasSurface(
+            model="schaaf-chambre",
+            normal_accommodation=0.5,
+            tangential_accommodation=0.5,
+            wall_temperature_K=WALL_TEMPERATURE_K,
+        ),
+        0.5,
+    ),
+    "specular": (GasSurface(model="specular", wall_temperature_K=WALL_TEMPERATURE_K), 0.0),
+}
 
 
 @dataclass(frozen=True)
@@ -60,8 +73,9 @@ class DragCase:
 
     def spacecraft(self, law: str) -> Spacecraft:
         """The shape as two-sided sheets with gas-surface law ``law`` (a key of :data:`LAWS`)."""
-        gas = GasSurface(model=LAWS[law][0], wall_temperature_K=WALL_TEMPERATURE_K)
-        return build_spacecraft(self.mesh(), uniform=Material("wall", 0.0, 0.0, gas=gas), two_sided=["*"])
+        return build_spacecraft(
+            self.mesh(), uniform=Material("wall", 0.0, 0.0, gas=LAWS[law][0]), two_sided=["*"]
+        )
 
 
 DRAG_CASES = (
@@ -71,10 +85,10 @@ DRAG_CASES = (
 )
 
 
-def free_stream() -> tuple[Atmosphere, float]:
-    """The comparison's atmosphere and the speed [m/s] that gives :data:`SPEED_RATIO`."""
+def free_stream(speed_ratio: float = SPEED_RATIO) -> tuple[Atmosphere, float]:
+    """The comparison's atmosphere and the speed [m/s] that gives ``speed_ratio``."""
     air = Atmosphere({SPECIES: NUMBER_DENSITY_M3}, TEMPERATURE_K, "validation: atomic oxygen")
-    speed = SPEED_RATIO * math.sqrt(2 * BOLTZMANN * TEMPERATURE_K / SPECIES_MASS_KG[SPECIES])
+    speed = speed_ratio * math.sqrt(2 * BOLTZMANN * TEMPERATURE_K / SPECIES_MASS_KG[SPECIES])
     return air, speed
 
 
@@ -110,10 +124,15 @@ class DragRow:
 
 
 def trace_case(
-    case: DragCase, law: str, flow_deg: tuple[float, float], molecules: int, seed: int
+    case: DragCase,
+    law: str,
+    flow_deg: tuple[float, float],
+    molecules: int,
+    seed: int,
+    speed_ratio: float = SPEED_RATIO,
 ) -> TpmcResult:
-    """The tracer's force and torque for one case, law and flow direction."""
-    air, speed = free_stream()
+    """The tracer's force and torque for one case, law, flow direction and speed ratio."""
+    air, speed = free_stream(speed_ratio)
     stream = SpeciesStream(speed, air.temperature_K, NUMBER_DENSITY_M3, SPECIES_MASS_KG[SPECIES])
     walls = WallInteraction(diffuse_fraction=LAWS[law][1], wall_temperature_K=WALL_TEMPERATURE_K)
     return trace_molecules(
@@ -122,16 +141,22 @@ def trace_case(
 
 
 def compare(
-    case: DragCase, law: str, flow_deg: tuple[float, float], molecules: int = MOLECULES, seed: int = 0
+    case: DragCase,
+    law: str,
+    flow_deg: tuple[float, float],
+    molecules: int = MOLECULES,
+    seed: int = 0,
+    speed_ratio: float = SPEED_RATIO,
 ) -> DragRow:
-    """Solver (with and without re-emission exchange) against tracer, torques about the tracer's point."""
+    """Solver (with and without re-emission exchange) against tracer at ``speed_ratio``, torques about
+    the tracer's point."""
     from sunwind.forces.drag import drag  # the solver under test; the tracer needs none of it
 
     craft = case.spacecraft(law)
     start = time.perf_counter()
-    mc = trace_case(case, law, flow_deg, molecules, seed)
+    mc = trace_case(case, law, flow_deg, molecules, seed, speed_ratio)
     tracer_seconds = time.perf_counter() - start
-    air, speed = free_stream()
+    air, speed = free_stream(speed_ratio)
     velocity = speed * sun_from_az_el(*flow_deg)
     start = time.perf_counter()
     full = drag(craft, velocity, air, reference_point_m=mc.reference_point_m, reflections="full")
