@@ -106,6 +106,7 @@ class DragRow:
     law: str
     azimuth_deg: float
     elevation_deg: float
+    speed_ratio: float
     force_mc_N: float
     force_difference: float
     force_difference_none: float
@@ -176,6 +177,7 @@ def compare(
         law=law,
         azimuth_deg=flow_deg[0],
         elevation_deg=flow_deg[1],
+        speed_ratio=speed_ratio,
         force_mc_N=f_mc,
         force_difference=force_gap(full),
         force_difference_none=force_gap(none),
