@@ -12,6 +12,7 @@ the direct pass), :mod:`~sunwind.forces.reflection` (beam chains and the diffuse
 >>> srp(model, [0.3, -0.5, 0.8]).force_N  # doctest: +SKIP
 """
 
+from sunwind.forces.batches import DragBatch, ResultBatch, SrpBatch
 from sunwind.forces.drag import drag
 from sunwind.forces.gas import (
     Atmosphere,
@@ -30,7 +31,7 @@ from sunwind.forces.radiation import (
     surface_forces,
 )
 from sunwind.forces.reflection import PowerBalance, ReflectionSettings, model_view_factors
-from sunwind.forces.results import AttitudeResult, DragBatch, DragResult, ResultBatch, SrpBatch, SrpResult
+from sunwind.forces.results import AttitudeResult, DragResult, SrpResult
 from sunwind.forces.srp import srp
 from sunwind.forces.tables import DragSetup, SrpSetup, SweepRun, sweep
 

@@ -28,6 +28,8 @@ import numpy as np
 
 from sunwind.forces.drag import drag
 from sunwind.forces.gas import circular_speed, nrlmsis
+from sunwind.forces.gas.sampling import GasSampling
+from sunwind.forces.gas.visible import model_sky
 from sunwind.forces.model import load
 from sunwind.forces.reflection import ReflectionSettings, model_view_factors
 from sunwind.forces.reflection.diffuse import diffuse_exchange
@@ -43,6 +45,9 @@ from sunwind.meshes.samples import write_sample_files
 
 #: Shadow tolerance of the references the timed settings are measured against: ten times the default's.
 REFERENCE_TOLERANCE = DEFAULT_TOLERANCE / 10
+#: Drag's reference also samples the open-sky integral and the chains more finely: four times the sky
+#: rays per side and sixteen times the core rays and chain molecules per attitude of the default.
+REFERENCE_GAS_FACTORS = (4, 16, 16)
 #: A result's loads: force [N] and torque [N m], body frame.
 Loads = tuple[np.ndarray, np.ndarray]
 #: What the benchmark reports on while it runs: (stage, attitudes done, attitudes in the stage).
@@ -51,27 +56,39 @@ BenchProgress = Callable[[str, int, int], None]
 
 @dataclass(frozen=True)
 class LoadError:
-    """Error of a timed setting over its attitudes: ``|F - F_ref| / |F_ref|`` and ``|M - M_ref| / |M_ref|``
-    against the reference of each attitude, worst and median [-]."""
+    """Error of a timed setting over its attitudes against the reference of each attitude, worst and
+    median [-]: ``|F - F_ref| / |F_ref|``, ``|M - M_ref| / |M_ref|``, and the torque's on the scale of a
+    torque the force could give, ``|M - M_ref| / (|F_ref| L)`` with ``L`` the model's size (the
+    diagonal of its box), which stays meaningful where the torque is small."""
 
     force_worst: float
     force_median: float
     torque_worst: float
     torque_median: float
+    torque_of_force_worst: float
 
     @classmethod
-    def of(cls, loads: list[Loads], references: list[Loads]) -> LoadError:
-        """The errors of ``loads`` against the first ``len(loads)`` ``references``, attitude by attitude."""
+    def of(cls, loads: list[Loads], references: list[Loads], size_m: float) -> LoadError:
+        """The errors of ``loads`` against the first ``len(loads)`` ``references``, attitude by attitude,
+        on a model of size ``size_m`` [m]."""
         got, exact = np.array(loads), np.array(references[: len(loads)])  # (n, 2 loads, 3)
-        error = np.linalg.norm(got - exact, axis=2) / np.linalg.norm(exact, axis=2)
+        difference, scale = np.linalg.norm(got - exact, axis=2), np.linalg.norm(exact, axis=2)
+        error = difference / scale
         worst, median = error.max(axis=0), np.median(error, axis=0)
-        return cls(float(worst[0]), float(median[0]), float(worst[1]), float(median[1]))
+        of_force = float(np.max(difference[:, 1] / (scale[:, 0] * size_m)))
+        return cls(float(worst[0]), float(median[0]), float(worst[1]), float(median[1]), of_force)
 
     def __str__(self) -> str:
         return (
             f"error force {self.force_worst:.1e} worst, {self.force_median:.1e} median; "
-            f"torque {self.torque_worst:.1e} worst, {self.torque_median:.1e} median"
+            f"torque {self.torque_worst:.1e} worst, {self.torque_median:.1e} median, "
+            f"{self.torque_of_force_worst:.1e} of |F| L worst"
         )
+
+
+def model_size(craft: Spacecraft) -> float:
+    """The diagonal of the model's box [m]: the ``L`` of :class:`LoadError`."""
+    return float(np.linalg.norm(np.ptp(craft.vertices, axis=0)))
 
 
 def _loads(result) -> Loads:
@@ -137,6 +154,9 @@ class BenchReport:
     drag_full_over_srp_full: float
     drag_full_error: LoadError
     drag_atmosphere: str
+    sky_s: float
+    sky_rays_per_side: int
+    sky_MB: float
     peak_memory_MB: float
     machine: str
 
@@ -203,10 +223,10 @@ def _reflection_figures(
         "full_ms": 1e3 * float(np.mean(full["times"])),
         "full_median_ms": 1e3 * float(np.median(full["times"])),
         "full_over_direct": float(np.median(full["times"]) / np.median(direct["default"]["times"])),
-        "full_error": LoadError.of(full["loads"], references),
+        "full_error": LoadError.of(full["loads"], references, model_size(craft)),
         "beam_rays_per_attitude": float(np.mean(full["beam_rays"])),
         "fixed_full_ms": 1e3 * float(np.mean(fixed["times"])),
-        "fixed_full_error": LoadError.of(fixed["loads"], references),
+        "fixed_full_error": LoadError.of(fixed["loads"], references, model_size(craft)),
     }, full["times"]
 
 
@@ -221,10 +241,20 @@ def _drag_figures(
     """Drag per attitude (NRLMSIS at 400 km, circular-orbit speed, ``v_rel`` along each direction of
     the SRP timing) without re-emission exchange at the default and with ``samples`` points, and with
     full exchange at the default, against default SRP with the same reflection setting, each with its
-    error against the reference."""
+    error against the reference (shadows to :data:`REFERENCE_TOLERANCE`, the gas sampled
+    :data:`REFERENCE_GAS_FACTORS` times more finely); and the sky sampling's time (never from the disk
+    cache) and size."""
     air = nrlmsis(400.0)
     speed = circular_speed(400.0)
-    figures: dict = {"drag_atmosphere": air.source}
+    start = time.perf_counter()
+    sky = model_sky(craft, None, False)
+    figures: dict = {
+        "drag_atmosphere": air.source,
+        "sky_s": time.perf_counter() - start,
+        "sky_rays_per_side": sky.rays_per_side,
+        "sky_MB": sky.nbytes / 1e6,
+    }
+    reference_gas = _reference_gas(GasSampling(sky.rays_per_side))
     for mode, srp_reference, key in (("none", srp_times, "drag"), ("full", srp_full, "drag_full")):
         settings = ReflectionSettings(mode, cache_dir=False)
 
@@ -234,7 +264,12 @@ def _drag_figures(
         timed = _timed(evaluate, directions, samples if mode == "none" else None)  # full: the default only
         references = _references(
             lambda u, settings=settings: drag(
-                craft, speed * u, air, tolerance=REFERENCE_TOLERANCE, reflections=settings
+                craft,
+                speed * u,
+                air,
+                tolerance=REFERENCE_TOLERANCE,
+                reflections=settings,
+                gas_sampling=reference_gas,
             ),
             directions,
             f"reference, drag ({mode})",
@@ -244,10 +279,10 @@ def _drag_figures(
         figures[f"{key}_ms"] = 1e3 * float(np.median(times))
         ratio_key = "drag_over_srp" if mode == "none" else "drag_full_over_srp_full"
         figures[ratio_key] = float(np.median(times) / np.median(srp_reference))
-        figures[f"{key}_error"] = LoadError.of(timed["default"]["loads"], references)
+        figures[f"{key}_error"] = LoadError.of(timed["default"]["loads"], references, model_size(craft))
         if mode == "none":
             figures["fixed_drag_ms"] = 1e3 * float(np.median(timed["fixed"]["times"]))
-            figures["fixed_drag_error"] = LoadError.of(timed["fixed"]["loads"], references)
+            figures["fixed_drag_error"] = LoadError.of(timed["fixed"]["loads"], references, model_size(craft))
     return figures
 
 
@@ -316,11 +351,11 @@ def benchmark(
         default_ms=1e3 * float(np.mean(default["times"])),
         default_median_ms=1e3 * float(np.median(default["times"])),
         default_rays_per_attitude=float(np.mean(default["rays"])),
-        default_error=LoadError.of(default["loads"], references),
+        default_error=LoadError.of(default["loads"], references, model_size(craft)),
         fixed_ms=1e3 * float(np.mean(fixed["times"])),
         fixed_median_ms=1e3 * float(np.median(fixed["times"])),
         fixed_rays_per_attitude=fixed_rays / attitudes,
-        fixed_error=LoadError.of(fixed["loads"], references),
+        fixed_error=LoadError.of(fixed["loads"], references, model_size(craft)),
         default_over_fixed=float(np.median(default["times"]) / np.median(fixed["times"])),
         fixed_rays_per_s=fixed_rays / float(np.sum(fixed["times"])),
         raw_embree_ms=1e3 * float(np.mean(raw_times)),
@@ -366,15 +401,26 @@ class SweepReport:
 CHECKED_DIRECTIONS = 24
 
 
+def _reference_gas(gas: GasSampling) -> GasSampling:
+    """``gas`` sampled :data:`REFERENCE_GAS_FACTORS` times more finely (``gas.sky_rays`` must be set)."""
+    sky, core, chains = REFERENCE_GAS_FACTORS
+    return GasSampling(gas.sky_rays * sky, gas.core_rays * core, gas.chain_molecules * chains)
+
+
 def _setup_error(model, setup: SrpSetup | DragSetup, directions: np.ndarray) -> LoadError:
     """Error of the entries ``setup`` gives at ``directions`` against the same setup with the default
-    shadow pass at :data:`REFERENCE_TOLERANCE`."""
+    shadow pass at :data:`REFERENCE_TOLERANCE` (and, for drag, the gas sampled more finely)."""
     reference = replace(setup, samples=None, tolerance=REFERENCE_TOLERANCE)
+    if isinstance(setup, DragSetup):
+        sky = model_sky(model.craft, setup.sky_rays, setup.settings.cache_dir).rays_per_side
+        gas = _reference_gas(GasSampling(sky, setup.core_rays, setup.chain_molecules))
+        reference = replace(reference, sky_rays=gas.sky_rays, core_rays=gas.core_rays)
+        reference = replace(reference, chain_molecules=gas.chain_molecules)
     got, exact = (
         list(zip(records["force_N"], records["torque_Nm"], strict=True))
         for records in (setup.evaluate(model, directions), reference.evaluate(model, directions))
     )
-    return LoadError.of(got, exact)
+    return LoadError.of(got, exact, model_size(model.craft))
 
 
 def sweep_benchmark(

@@ -1,47 +1,42 @@
-"""Free-molecular force and torque at one attitude or a batch: the panel law with flow shadowing, and
-the exchange of re-emitted molecules (METHOD.md "Free-molecular flow", "Shadowing and sampling").
+"""Free-molecular force and torque at one attitude or a batch: the incident stream integrated over each
+side's open sky, and the molecules re-emitted from side to side (METHOD.md "Free-molecular flow").
 
-Per species and side the gas-surface law (:mod:`sunwind.forces.gas.laws`) acts on the share of the
-side's incident molecules that arrives unobstructed (:mod:`sunwind.forces.gas.shadow`); on a convex
-body nothing is blocked and the result is the per-side sum of the law, lee faces included, at every
-speed ratio. With ``full``, re-emitted molecules landing on other sides are re-emitted again
-(:mod:`sunwind.forces.gas.exchange`).
+Per side, the gas-surface law (:mod:`sunwind.forces.gas.laws`) acts on the drifting Maxwellian that
+reaches it (:mod:`sunwind.forces.gas.visible`): its closed form where the side sees open sky all round
+(on a convex body, every side, at every speed ratio), else the integral over the directions from which
+it does, at any speed ratio. With ``full``, molecules a side sends on unaccommodated (mirrored, CLL's
+lobe) are followed surface to surface (:mod:`sunwind.forces.gas.chains`), and those re-emitted
+diffusely are exchanged between sides (:mod:`sunwind.forces.gas.exchange`).
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.batches import DragBatch
 from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.gas.chains import ChainLaws, molecular_chains
 from sunwind.forces.gas.exchange import gas_interference_criterion, molecular_exchange
 from sunwind.forces.gas.flow import flow_speed
-from sunwind.forces.gas.panel import gas_groups, panel_forces, summed_laws
-from sunwind.forces.gas.shadow import flow_shadow
+from sunwind.forces.gas.panel import closed_loads, gas_groups, species_streams, summed_laws
+from sunwind.forces.gas.sampling import GasSampling
+from sunwind.forces.gas.visible import arrival, model_sky, stream_tables
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors
-from sunwind.forces.results import DragBatch, DragResult, GasReflected
+from sunwind.forces.results import DragResult, GasReflected
 from sunwind.geometry.directions import unit_vector, unit_vectors
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import using_threads
-from sunwind.geometry.rays.hull import clearance
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
 
-#: Inter-reflection modes of molecules (specular chains are followed for light only).
+#: Inter-reflection modes of molecules: none, or chains and exchange (``full``), or ``full`` when the
+#: molecular ``K_IS`` >= the threshold (``auto``).
 DRAG_MODES = ("none", "full", "auto")
-#: Speed ratio below which the panel method's flow shadowing is a rough approximation on concave
-#: shapes (the directed/thermal split; convex shapes stay exact).
-LOW_SPEED_RATIO = 3.0
-
-
-class LowSpeedRatioWarning(UserWarning):
-    """The flow's speed ratio is below :data:`LOW_SPEED_RATIO` on a model one side of which can shadow
-    another (on a convex model nothing is blocked and the result is exact)."""
 
 
 def drag(
@@ -53,9 +48,9 @@ def drag(
     samples: int | None = None,
     tolerance: float = DEFAULT_TOLERANCE,
     reflections: str | ReflectionSettings = "auto",
-    thermal_spread: bool = True,
+    gas_sampling: GasSampling | None = None,
 ) -> DragResult | DragBatch:
-    """Free-molecular force and torque with flow shadowing and molecular inter-reflection.
+    """Free-molecular force and torque with the open-sky integral and molecular inter-reflection.
 
     Parameters
     ----------
@@ -70,22 +65,18 @@ def drag(
     reference_point_m : (3,) array_like, optional
         Torque reference point [m]; default as :func:`sunwind.forces.srp.srp`.
     samples, tolerance
-        Shadow-ray sampling along the flow, as for sunlight.
+        Shadow-ray sampling along the flow, as for sunlight: the core of the open-sky integral.
     reflections : str or ReflectionSettings
         ``"none"``, ``"full"`` or ``"auto"`` (full when the molecular ``K_IS >= 0.1``).
-    thermal_spread : bool
-        Give shadows the penumbra of the molecules' thermal spread (four more shadow passes); False
-        for the hyperthermal shadow along ``v_rel`` alone (faster; exact as ``S -> infinity`` and on
-        convex bodies).
+    gas_sampling : GasSampling, optional
+        Sampling of the open-sky integral and the chains (:class:`~sunwind.forces.gas.sampling.
+        GasSampling`): rays per side of each side's sky, sampled once per model; core rays and chain
+        molecules per attitude. Default ``GasSampling()``.
 
     Returns
     -------
     DragResult, or DragBatch for a batch of velocities
 
-    Warns
-    -----
-    LowSpeedRatioWarning
-        Below speed ratio :data:`LOW_SPEED_RATIO`, on a model that can shadow itself (not convex).
     """
     model = as_model(model)
     settings = ReflectionSettings.of(reflections)
@@ -100,12 +91,13 @@ def drag(
         raise InputError("atmosphere must be an Atmosphere (nrlmsis or explicit)", parameters=("atmosphere",))
     reference = model.reference(reference_point_m)
     check_sampling(samples, tolerance)
+    gas = GasSampling() if gas_sampling is None else gas_sampling
+    if not isinstance(gas, GasSampling):
+        raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
     results = []
     with using_threads(model.threads):
         for v in velocities.reshape(-1, 3):  # a loop, not a comprehension: warnings point at the caller
-            results.append(
-                _one(model, v, atmosphere, reference, (samples, tolerance, thermal_spread), settings)
-            )
+            results.append(_one(model, v, atmosphere, reference, (samples, tolerance), gas, settings))
     return results[0] if velocities.ndim == 1 else DragBatch(tuple(results))
 
 
@@ -124,22 +116,15 @@ def _one(
     velocity: NDArray[np.float64],
     atmosphere: Atmosphere,
     reference: tuple[NDArray[np.float64], str],
-    sampling: tuple[int | None, float, bool],
+    sampling: tuple[int | None, float],
+    gas: GasSampling,
     settings: ReflectionSettings,
 ) -> DragResult:
-    """One attitude, its arguments checked; ``sampling`` is ``(samples, tolerance, thermal_spread)``."""
+    """One attitude, its arguments checked; ``sampling`` is ``(samples, tolerance)``."""
     craft = model.craft
     speed = math.hypot(*velocity.tolist())
     u = unit_vector(velocity, "velocity_m_s")
     ref, ref_name = reference
-    speed_ratio = atmosphere.mean_speed_ratio(speed)
-    if speed_ratio < LOW_SPEED_RATIO and not clearance(craft).open_sky.all():
-        warnings.warn(
-            f"speed ratio {speed_ratio:.2f} < {LOW_SPEED_RATIO:g}: this model can shadow itself (it is "
-            "not convex), and its flow shadowing is approximate at low speed ratio",
-            LowSpeedRatioWarning,
-            stacklevel=3,
-        )
     mode, view, k_is = settings.mode, None, None
     if mode in ("full", "auto"):
         view = model_view_factors(craft, settings)
@@ -148,37 +133,51 @@ def _one(
             mode = "full" if k_is >= AUTO_THRESHOLD else "none"
     groups = gas_groups(craft)
     gamma = np.einsum("ij,j->i", groups.normals, u)  # per group; einsum: BLAS threads cost more here
-    samples, tolerance, spread = sampling
-    flow, visible = flow_shadow(craft, u, gamma[groups.side], speed_ratio, spread, samples, tolerance)
-    sums = summed_laws(groups, gamma, atmosphere, speed, mode == "full")
-    panel = panel_forces(craft, groups, gamma, sums, visible, flow.lit_centroid, u, ref)
+    stream = stream_tables(craft, groups.surfaces, atmosphere, speed)
+    laws = stream.laws
+    closed = closed_loads(groups, gamma, summed_laws(groups, gamma, laws, atmosphere.temperature_K), u)
+    sky = model_sky(craft, gas.sky_rays, settings.cache_dir)
+    flow = side_sampler(craft).illuminate(u, *sampling)
+    panel = arrival(craft, groups, (closed, stream), flow, ref, sky, gas.core_rays)
     if mode == "full":
-        exchange = molecular_exchange(craft, settings).totals(panel.emitted[0], panel.emitted[1], ref)
-        reflected = GasReflected(mode, exchange.force_N, exchange.torque_Nm, view, k_is)
+        masses, densities = species_streams(atmosphere)
+        chains = molecular_chains(
+            craft, groups, laws, (masses, densities, speed), u, ref, gas.chain_molecules
+        )
+        mirrored = ChainLaws.of(groups.surfaces).mirrored[groups.law[groups.side]]
+        exchange = molecular_exchange(craft, settings, mirrored).totals(
+            panel.emitted[0], panel.emitted[1], ref, chains.deposit
+        )
+        force, torque = exchange.force_N + chains.force_N, exchange.torque_Nm + chains.torque_Nm
+        reflected = GasReflected(mode, force, torque, view, k_is, chains)
     else:
-        reflected = GasReflected(mode, np.zeros(3), np.zeros(3), view, k_is)
+        reflected = GasReflected(mode, np.zeros(3), np.zeros(3), view, k_is, None)
+    side_force, side_torque = panel.force_N, panel.torque_Nm
+    panel_force, panel_torque = side_force.sum(axis=0), side_torque.sum(axis=0)
     facing = flow.facing
     wetted = craft.side_areas[facing] * flow.lit_fraction[facing]
     projected = np.einsum("i,i->", wetted, gamma[groups.side[facing]])
     area, length = model.reference_sizes
     return DragResult(
-        force_N=panel.force_N + reflected.force_N,
-        torque_Nm=panel.torque_Nm + reflected.torque_Nm,
-        direct_force_N=panel.force_N,
-        direct_torque_Nm=panel.torque_Nm,
+        force_N=panel_force + reflected.force_N,
+        torque_Nm=panel_torque + reflected.torque_Nm,
+        direct_force_N=panel_force,
+        direct_torque_Nm=panel_torque,
         reflected=reflected,
         settings=settings,
         reference_point_m=ref,
         reference_point=ref_name,
         lit_area_m2=float(wetted.sum()),
         projected_area_m2=float(projected),
-        rays=flow.rays,
+        rays=panel.rays,
         sampling=flow.sampling,
         craft=craft,
         velocity_m_s=velocity,
         atmosphere=atmosphere,
         reference_area_m2=area,
         reference_length_m=length,
-        side_force_N=panel.side_force_N,
-        side_torque_Nm=panel.side_torque_Nm,
+        side_force_N=side_force,
+        side_torque_Nm=side_torque,
+        open_sky=sky,
+        core_half_angle_rad=panel.core_half_angle,
     )

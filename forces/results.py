@@ -9,20 +9,21 @@ field stacked over them, ``(n,)`` or ``(n, 3)``.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Generic, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.gas.chains import ChainTotals
 from sunwind.forces.radiation.law import surface_forces
 from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings, interference
 from sunwind.geometry.directions import vector_to_azel
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
+from sunwind.geometry.views.sky import OpenSky
 from sunwind.geometry.views.view_factors import ViewFactors
 
 #: The frame every vector is given in.
@@ -36,20 +37,23 @@ AXES = (
 )
 #: What the panel method is good for, stated in every drag result.
 VALIDITY = (
-    "free-molecular flow (Knudsen number >> 1, above ~150 km); flow shadowing exact on convex shapes "
-    "at any speed ratio, approximate on concave ones below speed ratio 3"
+    "free-molecular flow (Knudsen number >> 1, above ~150 km); the incident stream integrated over each "
+    "side's open sky at any speed ratio; with reflections full, re-emitted molecules followed from side "
+    "to side (diffuse by the exchange, mirrored and CLL by sampled chains)"
 )
 
 
 @dataclass(frozen=True)
 class GasReflected:
-    """What the exchange of re-emitted molecules between sides adds to the panel law."""
+    """What the molecules re-emitted from side to side add to the panel law: the diffuse exchange and
+    the chains of unaccommodated molecules (``chains`` None without them)."""
 
     mode: str
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
     view: ViewFactors | None
     k_is: float | None
+    chains: ChainTotals | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -289,6 +293,10 @@ class DragResult(AttitudeResult):
         Normalisation of the coefficients.
     side_force_N, side_torque_Nm : (n_sides, 3) float64
         Panel-law force on each side, and its torque about the reference point.
+    open_sky : OpenSky
+        The model's sampled open sky the incident stream was integrated over.
+    core_half_angle_rad : float
+        Half-angle of the core cone about the flow followed by rays per attitude [rad].
     """
 
     velocity_m_s: NDArray[np.float64] = field(kw_only=True)
@@ -297,6 +305,8 @@ class DragResult(AttitudeResult):
     reference_length_m: float = field(kw_only=True)
     side_force_N: NDArray[np.float64] = field(kw_only=True, repr=False)
     side_torque_Nm: NDArray[np.float64] = field(kw_only=True, repr=False)
+    open_sky: OpenSky = field(kw_only=True, repr=False)
+    core_half_angle_rad: float = field(kw_only=True)
 
     @property
     def direction(self) -> NDArray[np.float64]:
@@ -386,105 +396,11 @@ class DragResult(AttitudeResult):
             "reference_length_m": self.reference_length_m,
             "coefficients": {"normalisation": NORMALISATION, "axes": AXES},
             "k_is": self.k_is,
+            "open_sky": self.open_sky.to_json(),
+            "core_half_angle_deg": math.degrees(self.core_half_angle_rad),
+            **({} if self.reflected.chains is None else {"chains": self.reflected.chains.to_json()}),
             "validity": VALIDITY,
         }
-
-
-R = TypeVar("R", bound=AttitudeResult)
-
-
-@dataclass(frozen=True, eq=False)
-class ResultBatch(Generic[R]):
-    """Results of several attitudes, in the order asked; a numeric field of every result stacked is
-    the same name on the batch: ``batch.force_N`` is (n, 3), ``batch.rays`` (n,)."""
-
-    results: tuple[R, ...]
-
-    def __len__(self) -> int:
-        return len(self.results)
-
-    def __getitem__(self, index: int) -> R:
-        return self.results[index]
-
-    def __iter__(self) -> Iterator[R]:
-        return iter(self.results)
-
-    def stacked(self, name: str) -> NDArray:
-        """Field ``name`` of every result, stacked: (n,) for numbers, (n, 3) for vectors."""
-        return np.array([np.asarray(getattr(result, name)) for result in self.results])
-
-    @property
-    def direction(self) -> NDArray[np.float64]:
-        return self.stacked("direction").reshape(-1, 3)
-
-    @property
-    def azel_deg(self) -> NDArray[np.float64]:
-        """Azimuth and elevation of every attitude's direction [deg], (n, 2)."""
-        return self.stacked("azel_deg").reshape(-1, 2)
-
-    @property
-    def force_N(self) -> NDArray[np.float64]:
-        return self.stacked("force_N").reshape(-1, 3)
-
-    @property
-    def torque_Nm(self) -> NDArray[np.float64]:
-        return self.stacked("torque_Nm").reshape(-1, 3)
-
-    @property
-    def direct_force_N(self) -> NDArray[np.float64]:
-        return self.stacked("direct_force_N").reshape(-1, 3)
-
-    @property
-    def direct_torque_Nm(self) -> NDArray[np.float64]:
-        return self.stacked("direct_torque_Nm").reshape(-1, 3)
-
-    @property
-    def reflected_force_N(self) -> NDArray[np.float64]:
-        return self.stacked("reflected_force_N").reshape(-1, 3)
-
-    @property
-    def reflected_torque_Nm(self) -> NDArray[np.float64]:
-        return self.stacked("reflected_torque_Nm").reshape(-1, 3)
-
-    @property
-    def lit_area_m2(self) -> NDArray[np.float64]:
-        return self.stacked("lit_area_m2")
-
-    @property
-    def projected_area_m2(self) -> NDArray[np.float64]:
-        return self.stacked("projected_area_m2")
-
-    @property
-    def rays(self) -> NDArray[np.int64]:
-        return self.stacked("rays")
-
-    def to_json(self) -> list[dict]:
-        """One JSON summary per attitude."""
-        return [result.to_json() for result in self.results]
-
-
-class SrpBatch(ResultBatch[SrpResult]):
-    """:class:`SrpResult` of several Sun directions."""
-
-    @property
-    def sun_vector(self) -> NDArray[np.float64]:
-        return self.direction
-
-
-class DragBatch(ResultBatch[DragResult]):
-    """:class:`DragResult` of several flow velocities."""
-
-    @property
-    def velocity_m_s(self) -> NDArray[np.float64]:
-        return self.stacked("velocity_m_s").reshape(-1, 3)
-
-    @property
-    def force_coefficients(self) -> NDArray[np.float64]:
-        return self.stacked("force_coefficients").reshape(-1, 3)
-
-    @property
-    def moment_coefficients(self) -> NDArray[np.float64]:
-        return self.stacked("moment_coefficients").reshape(-1, 3)
 
 
 def _per_facet(side_facet: NDArray[np.int64], values: NDArray[np.float64], n: int) -> NDArray[np.float64]:

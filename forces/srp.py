@@ -8,11 +8,12 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.batches import SrpBatch
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.radiation.direct import direct_pass
 from sunwind.forces.radiation.law import radiation_pressure, solar_flux
 from sunwind.forces.reflection import ReflectionSettings, reflected_part, reflection_plan
-from sunwind.forces.results import SrpBatch, SrpResult
+from sunwind.forces.results import SrpResult
 from sunwind.geometry.directions import unit_vectors
 from sunwind.geometry.parallel import using_threads
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling

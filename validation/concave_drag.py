@@ -2,111 +2,249 @@
 
 The reference is :mod:`sunwind.validation.tpmc`, which samples molecules from the drifting Maxwellian and
 follows every wall interaction. :func:`compare` runs the solver (``sunwind.forces.drag.drag``) with and
-without
-the exchange of re-emitted molecules beside it; :func:`drag_table` does every case. Both print
-nothing.
+without the exchange of re-emitted molecules beside it at one case, law, flow direction and gas;
+:mod:`sunwind.validation.drag_matrix` runs the matrix of them. Neither prints anything.
 
-Cases (:data:`DRAG_CASES`): the 90 deg V-groove, the open box and the sample spacecraft's dish of
-:mod:`sunwind.validation.concave_meshes`, each a two-sided sheet, in one species (atomic oxygen at
-1000 K) at speed ratio :data:`SPEED_RATIO` unless told, with diffuse re-emission fully accommodated to
-the 300 K wall (Sentman, ``alpha_E = 1``: the kernel the tracer follows exactly), with Maxwell's kernel
-of diffuse share 0.5 and with specular reflection, at flow directions into the opening and across it.
+Cases (:data:`DRAG_CASES`): the 90 deg V-groove, the L, the open box and the sample spacecraft's dish of
+:mod:`sunwind.validation.concave_meshes`, each a two-sided sheet, and a closed 1 m cube bus with one
+two-sided wing 0.2 m beside it, each at three flow directions: into the opening, across it, and last
+one off every symmetry plane (the dish is a body of revolution: every flow lies on one of its planes).
 Flow directions are the azimuth and elevation of ``v_rel`` (molecules arrive along ``-v_rel``).
+
+Gas-surface laws (:data:`LAWS`), walls at 300 K, each a solver finish and the tracer kernel it stands
+for: diffuse re-emission fully accommodated (Sentman, ``alpha_E = 1``), Maxwell's kernel of diffuse share
+0.5 (Schaaf-Chambre with ``sigma_n = sigma_t = 0.5``), specular reflection, and Cercignani-Lampis-Lord
+with ``alpha_n = sigma_t = 0.2`` and ``0.8``.
+
+Gases (:class:`Gas`): one species (atomic oxygen at 1000 K) at the speed that gives a speed ratio
+(:func:`oxygen`), or the NRLMSIS mixture at circular-orbit speed (:func:`msis_mixture`), each species at
+its own speed ratio. The tracer traces each species apart and the loads are summed, standard errors in
+quadrature.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+import zlib
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
+from numpy.typing import NDArray
 
 from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
 from sunwind.geometry.materials import GasSurface, Material
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
 from sunwind.validation.concave import sun_from_az_el, torque_scale
-from sunwind.validation.concave_meshes import dish_mesh, open_box_mesh, v_groove_mesh
+from sunwind.validation.concave_meshes import box_wing_mesh, dish_mesh, l_mesh, open_box_mesh, v_groove_mesh
 from sunwind.validation.sampling import Sampling
 from sunwind.validation.tpmc import TpmcResult, trace_molecules
 from sunwind.validation.tpmc_kernels import WallInteraction
 from sunwind.validation.tpmc_source import SpeciesStream
 
-#: Speed ratio of the comparison (the panel method's flow shadow is a quadrature that is good at large S:
-#: METHOD.md "Approximations and limits").
-SPEED_RATIO = 8.0
-#: Free-stream gas: one species, its temperature [K] and number density [m^-3].
+#: Single-species free stream: the species, its temperature [K] and number density [m^-3].
 SPECIES, TEMPERATURE_K, NUMBER_DENSITY_M3 = "O", 1000.0, 1e15
 #: Wall temperature [K].
 WALL_TEMPERATURE_K = 300.0
 #: Solver with re-emission against tracer: largest force and torque difference over their scales.
 TOLERANCE = 0.02
-#: Molecules the tracer launches per comparison.
-MOLECULES = 200_000
-#: Gas-surface laws compared: the solver's finish and the tracer's diffuse share for each (Maxwell's
-#: kernel with diffuse share ``sigma`` is Schaaf-Chambre with ``sigma_n = sigma_t = sigma``).
+#: The tracer's standard errors (force and torque, over the same scales) at most this share of
+#: :data:`TOLERANCE`.
+SIGMA_SHARE = 0.25
+#: Independent batches of every tracer run (its standard errors scatter by ``1 / sqrt(2 (40 - 1))``, 11 %).
+BATCHES = 40
+
+
+@dataclass(frozen=True)
+class Law:
+    """A gas-surface law as the solver's finish (``surface``) and as the tracer's kernel (``walls``)."""
+
+    surface: GasSurface
+    walls: WallInteraction
+
+
+def _cll(accommodation: float) -> Law:
+    """CLL with ``alpha_n = sigma_t = accommodation`` in the solver and in the tracer."""
+    surface = GasSurface(
+        model="cll",
+        normal_accommodation=accommodation,
+        tangential_accommodation=accommodation,
+        wall_temperature_K=WALL_TEMPERATURE_K,
+    )
+    walls = WallInteraction(
+        kernel="cll",
+        diffuse_fraction=None,
+        normal_accommodation=accommodation,
+        tangential_accommodation=accommodation,
+        wall_temperature_K=WALL_TEMPERATURE_K,
+    )
+    return Law(surface, walls)
+
+
+def _maxwell(diffuse_share: float, surface: GasSurface) -> Law:
+    """Maxwell's kernel of diffuse share ``diffuse_share`` in the tracer, ``surface`` in the solver."""
+    return Law(
+        surface, WallInteraction(diffuse_fraction=diffuse_share, wall_temperature_K=WALL_TEMPERATURE_K)
+    )
+
+
+#: Gas-surface laws compared, by name (Maxwell's kernel with diffuse share ``sigma`` is Schaaf-Chambre
+#: with ``sigma_n = sigma_t = sigma``).
 LAWS = {
-    "diffuse": (GasSurface(model="sentman", wall_temperature_K=WALL_TEMPERATURE_K), 1.0),
-    "maxwell-0.5": (
+    "diffuse": _maxwell(1.0, GasSurface(model="sentman", wall_temperature_K=WALL_TEMPERATURE_K)),
+    "maxwell-0.5": _maxwell(
+        0.5,
         GasSurface(
             model="schaaf-chambre",
             normal_accommodation=0.5,
             tangential_accommodation=0.5,
             wall_temperature_K=WALL_TEMPERATURE_K,
         ),
-        0.5,
     ),
-    "specular": (GasSurface(model="specular", wall_temperature_K=WALL_TEMPERATURE_K), 0.0),
+    "specular": _maxwell(0.0, GasSurface(model="specular", wall_temperature_K=WALL_TEMPERATURE_K)),
+    "cll-0.2": _cll(0.2),
+    "cll-0.8": _cll(0.8),
 }
 
 
 @dataclass(frozen=True)
 class DragCase:
-    """One concave shape and the flow directions (azimuth, elevation of ``v_rel`` [deg]) it is run at."""
+    """A shape, the flow directions (azimuth, elevation of ``v_rel`` [deg]) it is run at, its size [m]
+    for :func:`sunwind.validation.concave.torque_scale`, and its two-sided parts (globs; the rest are
+    closed bodies)."""
 
     name: str
     mesh: Callable[[], MeshData]
     flows_deg: tuple[tuple[float, float], ...]
     size_m: float
-
-    def spacecraft(self, law: str) -> Spacecraft:
-        """The shape as two-sided sheets with gas-surface law ``law`` (a key of :data:`LAWS`)."""
-        return build_spacecraft(
-            self.mesh(), uniform=Material("wall", 0.0, 0.0, gas=LAWS[law][0]), two_sided=["*"]
-        )
+    two_sided: tuple[str, ...] = ("*",)
 
 
 DRAG_CASES = (
     DragCase("v-groove", v_groove_mesh, ((0.0, 90.0), (0.0, 60.0), (35.0, 70.0)), 3.0),
-    DragCase("open box", open_box_mesh, ((0.0, 90.0), (20.0, 65.0), (45.0, 40.0)), 1.0),
+    DragCase("L", l_mesh, ((0.0, 45.0), (30.0, 60.0), (160.0, 25.0)), 1.2),
+    DragCase("open box", open_box_mesh, ((0.0, 90.0), (45.0, 40.0), (20.0, 65.0)), 1.0),
     DragCase("dish", lambda: dish_mesh(20_000), ((0.0, 90.0), (25.0, 60.0), (140.0, 35.0)), 1.2),
+    DragCase("box-wing", box_wing_mesh, ((0.0, 0.0), (-60.0, 20.0), (120.0, 30.0)), 3.2, ("wing",)),
 )
 
 
-def free_stream(speed_ratio: float = SPEED_RATIO) -> tuple[Atmosphere, float]:
-    """The comparison's atmosphere and the speed [m/s] that gives ``speed_ratio``."""
+@dataclass(frozen=True, eq=False)
+class Gas:
+    """A row's free stream: the solver's atmosphere, the speed ``|v_rel|`` [m/s] and a name for reports."""
+
+    name: str
+    atmosphere: Atmosphere
+    speed_m_s: float
+
+    @property
+    def speed_ratios(self) -> dict[str, float]:
+        """Speed ratio ``V / sqrt(2 k T / m_k)`` of each species [-]."""
+        return self.atmosphere.speed_ratio(self.speed_m_s)
+
+    def streams(self) -> dict[str, SpeciesStream]:
+        """The tracer's free stream of each species (all have number density > 0), by name."""
+        air = self.atmosphere
+        return {
+            k: SpeciesStream(self.speed_m_s, air.temperature_K, n, air.mass_kg[k])
+            for k, n in air.number_density_m3.items()
+        }
+
+
+def oxygen(speed_ratio: float) -> Gas:
+    """Atomic oxygen at 1000 K, 1e15 m^-3, at the speed that gives ``speed_ratio``."""
     air = Atmosphere({SPECIES: NUMBER_DENSITY_M3}, TEMPERATURE_K, "validation: atomic oxygen")
     speed = speed_ratio * math.sqrt(2 * BOLTZMANN * TEMPERATURE_K / SPECIES_MASS_KG[SPECIES])
-    return air, speed
+    return Gas(f"O, S {speed_ratio:g}", air, speed)
+
+
+@lru_cache(maxsize=4)
+def msis_mixture(altitude_km: float = 900.0) -> Gas:
+    """NRLMSIS at ``altitude_km`` (default place, time and indices) at circular-orbit speed there."""
+    from sunwind.forces.gas import nrlmsis
+    from sunwind.forces.gas.flow import circular_speed
+
+    return Gas(f"NRLMSIS {altitude_km:g} km", nrlmsis(altitude_km), circular_speed(altitude_km))
+
+
+@lru_cache(maxsize=8)
+def spacecraft(case: DragCase, law: str) -> Spacecraft:
+    """``case``'s shape with gas-surface law ``law`` (a key of :data:`LAWS`) on every side."""
+    material = Material("wall", 0.0, 0.0, gas=LAWS[law].surface)
+    return build_spacecraft(case.mesh(), uniform=material, two_sided=case.two_sided)
+
+
+def run_key(case: DragCase, law: str, flow_deg: tuple[float, float], gas: Gas, species: str) -> str:
+    """The name of one species' tracer run, from which its seeds come (:func:`seed_of`)."""
+    return f"{case.name}/{law}/{flow_deg[0]:g}/{flow_deg[1]:g}/{gas.name}/{species}"
+
+
+def seed_of(key: str) -> int:
+    """A seed from a run's name: the same on every machine and in every process."""
+    return zlib.crc32(key.encode())
+
+
+def trace_gas(
+    case: DragCase, law: str, flow_deg: tuple[float, float], gas: Gas, samplings: Mapping[str, Sampling]
+) -> list[TpmcResult]:
+    """The tracer's loads of each species ``k`` of ``gas`` on ``case`` with ``law``, sampled as
+    ``samplings[k]``, about the model's default reference point; in the atmosphere's order."""
+    craft, flow = spacecraft(case, law), sun_from_az_el(*flow_deg)
+    return [
+        trace_molecules(craft, flow, stream, LAWS[law].walls, samplings[k])
+        for k, stream in gas.streams().items()
+    ]
+
+
+@dataclass(frozen=True)
+class TracedGas:
+    """The tracer's loads summed over a gas's species: force [N], torque [N m] about
+    ``reference_point_m`` [m], their standard errors (in quadrature over species), molecules, seconds."""
+
+    force_N: NDArray[np.float64]
+    torque_Nm: NDArray[np.float64]
+    force_se_N: NDArray[np.float64]
+    torque_se_Nm: NDArray[np.float64]
+    reference_point_m: NDArray[np.float64]
+    molecules: int
+    seconds: float
+
+
+def summed(results: list[TpmcResult]) -> TracedGas:
+    """Loads of the species traced apart, summed; standard errors added in quadrature."""
+    return TracedGas(
+        force_N=np.sum([r.force_N for r in results], axis=0),
+        torque_Nm=np.sum([r.torque_Nm for r in results], axis=0),
+        force_se_N=np.sqrt(np.sum([r.force_se_N**2 for r in results], axis=0)),
+        torque_se_Nm=np.sqrt(np.sum([r.torque_se_Nm**2 for r in results], axis=0)),
+        reference_point_m=results[0].reference_point_m,
+        molecules=sum(r.molecules for r in results),
+        seconds=sum(r.seconds for r in results),
+    )
 
 
 @dataclass(frozen=True)
 class DragRow:
-    """Solver against tracer for one case, law and flow direction; differences over the tracer's scales.
+    """Solver against tracer for one case, law, flow direction and gas; differences over the tracer's
+    scales.
 
     ``force_difference`` is ``|F_solver - F_mc| / |F_mc|`` with the exchange of re-emitted molecules,
     ``force_difference_none`` without it (every re-emitted molecule escaping); torques likewise over
-    :func:`sunwind.validation.concave.torque_scale`. ``*_sigma`` are the tracer's standard errors on the same
-    scales.
+    :func:`sunwind.validation.concave.torque_scale`. ``*_sigma`` are the tracer's standard errors on the
+    same scales. ``speed_ratios`` holds each species and its speed ratio; ``molecules`` the tracer's in
+    all; ``tracer_seconds`` and ``solver_seconds`` [s] the wall-clock times of the tracer's runs and of
+    the solver with exchange.
     """
 
     case: str
     law: str
     azimuth_deg: float
     elevation_deg: float
-    speed_ratio: float
+    gas: str
+    speed_ratios: tuple[tuple[str, float], ...]
     force_mc_N: float
     force_difference: float
     force_difference_none: float
@@ -114,88 +252,65 @@ class DragRow:
     torque_difference: float
     torque_difference_none: float
     torque_mc_sigma: float
-    k_is: float
     molecules: int
     tracer_seconds: float
     solver_seconds: float
 
     @property
     def passed(self) -> bool:
-        return max(self.force_difference, self.torque_difference) <= TOLERANCE
-
-
-def trace_case(
-    case: DragCase,
-    law: str,
-    flow_deg: tuple[float, float],
-    molecules: int,
-    seed: int,
-    speed_ratio: float = SPEED_RATIO,
-) -> TpmcResult:
-    """The tracer's force and torque for one case, law, flow direction and speed ratio."""
-    air, speed = free_stream(speed_ratio)
-    stream = SpeciesStream(speed, air.temperature_K, NUMBER_DENSITY_M3, SPECIES_MASS_KG[SPECIES])
-    walls = WallInteraction(diffuse_fraction=LAWS[law][1], wall_temperature_K=WALL_TEMPERATURE_K)
-    return trace_molecules(
-        case.spacecraft(law), sun_from_az_el(*flow_deg), stream, walls, Sampling(molecules, seed=seed)
-    )
+        """Force and torque within :data:`TOLERANCE`, the tracer's standard errors within their share."""
+        differences = max(self.force_difference, self.torque_difference) <= TOLERANCE
+        return differences and max(self.force_mc_sigma, self.torque_mc_sigma) <= SIGMA_SHARE * TOLERANCE
 
 
 def compare(
-    case: DragCase,
-    law: str,
-    flow_deg: tuple[float, float],
-    molecules: int = MOLECULES,
-    seed: int = 0,
-    speed_ratio: float = SPEED_RATIO,
+    case: DragCase, law: str, flow_deg: tuple[float, float], gas: Gas, molecules: Mapping[str, int]
 ) -> DragRow:
-    """Solver (with and without re-emission exchange) against tracer at ``speed_ratio``, torques about
-    the tracer's point."""
-    from sunwind.forces.drag import drag  # the solver under test; the tracer needs none of it
-
-    craft = case.spacecraft(law)
-    start = time.perf_counter()
-    mc = trace_case(case, law, flow_deg, molecules, seed, speed_ratio)
-    tracer_seconds = time.perf_counter() - start
-    air, speed = free_stream(speed_ratio)
-    velocity = speed * sun_from_az_el(*flow_deg)
-    start = time.perf_counter()
-    full = drag(craft, velocity, air, reference_point_m=mc.reference_point_m, reflections="full")
-    solver_seconds = time.perf_counter() - start
-    none = drag(craft, velocity, air, reference_point_m=mc.reference_point_m, reflections="none")
+    """Solver (with and without re-emission exchange) against the tracer, ``molecules[k]`` of each
+    species ``k`` of ``gas`` (seeds from :func:`run_key`), torques about the tracer's point."""
+    samplings = {
+        k: Sampling(n, seed_of(run_key(case, law, flow_deg, gas, k)), BATCHES) for k, n in molecules.items()
+    }
+    mc = summed(trace_gas(case, law, flow_deg, gas, samplings))
+    velocity = gas.speed_m_s * sun_from_az_el(*flow_deg)
+    full, none, solver_seconds = _solve(spacecraft(case, law), velocity, gas, mc)
     f_mc = float(np.linalg.norm(mc.force_N))
     scale = torque_scale(mc.force_N, mc.torque_Nm, case.size_m)
 
-    def force_gap(result) -> float:
-        return float(np.linalg.norm(result.force_N - mc.force_N)) / f_mc
+    def force_gap(force_N: NDArray[np.float64]) -> float:
+        return float(np.linalg.norm(force_N - mc.force_N)) / f_mc
 
-    def torque_gap(result) -> float:
-        return float(np.linalg.norm(result.torque_Nm - mc.torque_Nm)) / scale
+    def torque_gap(torque_Nm: NDArray[np.float64]) -> float:
+        return float(np.linalg.norm(torque_Nm - mc.torque_Nm)) / scale
 
     return DragRow(
         case=case.name,
         law=law,
         azimuth_deg=flow_deg[0],
         elevation_deg=flow_deg[1],
-        speed_ratio=speed_ratio,
+        gas=gas.name,
+        speed_ratios=tuple(gas.speed_ratios.items()),
         force_mc_N=f_mc,
-        force_difference=force_gap(full),
-        force_difference_none=force_gap(none),
+        force_difference=force_gap(full.force_N),
+        force_difference_none=force_gap(none.force_N),
         force_mc_sigma=float(np.linalg.norm(mc.force_se_N)) / f_mc,
-        torque_difference=torque_gap(full),
-        torque_difference_none=torque_gap(none),
+        torque_difference=torque_gap(full.torque_Nm),
+        torque_difference_none=torque_gap(none.torque_Nm),
         torque_mc_sigma=float(np.linalg.norm(mc.torque_se_Nm)) / scale,
-        k_is=float(full.reflected.k_is),
         molecules=mc.molecules,
-        tracer_seconds=tracer_seconds,
+        tracer_seconds=mc.seconds,
         solver_seconds=solver_seconds,
     )
 
 
-def drag_table(
-    cases: tuple[DragCase, ...] = DRAG_CASES, molecules: int = MOLECULES, seed: int = 0
-) -> list[DragRow]:
-    """:func:`compare` for every case, law and flow direction."""
-    return [
-        compare(case, law, flow, molecules, seed) for case in cases for law in LAWS for flow in case.flows_deg
-    ]
+def _solve(craft: Spacecraft, velocity_m_s: NDArray[np.float64], gas: Gas, mc: TracedGas):
+    """The solver's results with and without exchange about the tracer's point, and the seconds of the
+    first."""
+    from sunwind.forces.drag import drag  # the solver under test; the tracer needs none of it
+
+    point = mc.reference_point_m
+    start = time.perf_counter()
+    full = drag(craft, velocity_m_s, gas.atmosphere, reference_point_m=point, reflections="full")
+    seconds = time.perf_counter() - start
+    none = drag(craft, velocity_m_s, gas.atmosphere, reference_point_m=point, reflections="none")
+    return full, none, seconds

@@ -1,7 +1,9 @@
-"""Meshes of the concave validation shapes: flat sheets, a V-groove, an L, an open box and a dish.
+"""Meshes of the concave validation shapes: flat sheets, a V-groove, an L, an open box, a dish and a
+box with one wing.
 
-Every plate is a sheet meshed in cells (:func:`sheet`); the dish is the sample spacecraft's. None has
-materials: :func:`sunwind.validation.concave.finished_spacecraft` gives them their finishes.
+Every plate is a sheet meshed in cells (:func:`sheet`); the dish is the sample spacecraft's; the box-wing's
+bus is a closed box. None has materials: :func:`sunwind.validation.concave.finished_spacecraft` and
+:mod:`sunwind.validation.concave_drag` give them their finishes.
 """
 
 from __future__ import annotations
@@ -13,10 +15,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.meshes.assembly import label
+from sunwind.meshes.primitives import box
 from sunwind.meshes.samples import sample_spacecraft
 from sunwind.meshes.triangulation import grid_faces
 
-__all__ = ["dish_mesh", "l_mesh", "open_box_mesh", "sheet", "v_groove_mesh"]
+__all__ = ["box_wing_mesh", "dish_mesh", "l_mesh", "open_box_mesh", "sheet", "v_groove_mesh"]
 
 
 def sheet(
@@ -122,3 +126,19 @@ def dish_mesh(triangles: int = 20_000) -> MeshData:
         np.full(n, -1, np.int32),
         source="<sample dish>",
     )
+
+
+def box_wing_mesh(
+    wing_m: tuple[float, float] = (2.0, 1.0), gap_m: float = 0.2, divisions: int = 8
+) -> MeshData:
+    """A closed 1 m cube bus centred at the origin and one flat wing in the plane x = 0 beside its +y face.
+
+    The wing spans ``0.5 + gap_m <= y <= 0.5 + gap_m + wing_m[0]`` and ``|z| <= wing_m[1] / 2``, front
+    +x, so the bus's +y face and the wing's root see each other across the gap. Parts ``"bus"``
+    (``divisions`` cells along each cube edge) and ``"wing"`` (square cells of about the bus's).
+    """
+    span, width = wing_m
+    cells = (max(1, round(span * divisions)), max(1, round(width * divisions)))
+    root = (0.0, 0.5 + gap_m, -width / 2)
+    wing = sheet(root, (0.0, span, 0.0), (0.0, 0.0, width), cells, "wing")
+    return MeshData.concatenate([label(box((1.0, 1.0, 1.0), divisions), "bus"), wing], source="<box-wing>")

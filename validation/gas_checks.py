@@ -3,34 +3,36 @@
 Each family function yields :class:`sunwind.validation.checks.Check` rows with the limits of
 ``tests/validation/test_analytic_drag.py``, ``test_drag_validation.py`` and ``test_tpmc.py``. The
 gas is that of :mod:`sunwind.validation.concave_drag` (atomic oxygen at 1000 K, 1e15 m^-3, walls at
-300 K). ``quick`` keeps a subset of the cases and runs the tracer at a quarter of its molecules; the
-limits stay those of the tests.
+300 K; the concave matrix adds an NRLMSIS mixture). ``quick`` keeps a subset of the cases and runs the
+closed-form tracer checks at a quarter of their molecules (the concave matrix keeps its molecule rule);
+the limits stay those of the tests.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Callable, Iterator
 
 import numpy as np
 
-from sunwind.forces.drag import LowSpeedRatioWarning, drag
+from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import SPECIES_MASS_KG, Atmosphere
 from sunwind.geometry.materials import Material, parse_materials
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
 from sunwind.meshes import primitives
-from sunwind.validation import concave_drag
+from sunwind.validation import drag_matrix
 from sunwind.validation.analytic_drag import FmfLoad, cone_drag, cylinder_drag, plate_drag, sphere_drag
 from sunwind.validation.analytic_gas_law import FreeStream, GasLaw, flow_vector_from_alpha
 from sunwind.validation.checks import Check, Measure
 from sunwind.validation.concave_drag import (
-    DRAG_CASES,
     NUMBER_DENSITY_M3,
+    SIGMA_SHARE,
     SPECIES,
     TEMPERATURE_K,
+    TOLERANCE,
     WALL_TEMPERATURE_K,
+    DragRow,
 )
 from sunwind.validation.sampling import Sampling
 from sunwind.validation.tpmc import trace_molecules
@@ -48,8 +50,6 @@ SPEED_RATIOS, ALPHAS_DEG = (2.0, 5.0, 8.0, 15.0), (0.0, 30.0, 60.0, 90.0, 120.0,
 #: Closed-form checks: ``max(|dC_D|, |dC_L|) / max(|C_D|, |C_L|)`` at most this; scales below the
 #: second value (a body wholly in the lee at high S) are not checked.
 DRAG_TOL, DRAG_MIN_SCALE = 1e-3, 1e-3
-#: Concave drag: the tracer's standard error of force / torque at most these shares of the tolerance.
-CONCAVE_SIGMA_SHARES = (0.25, 0.5)
 #: Standard errors an estimate may lie from the exact value. The standard error comes from 20 batches,
 #: so ``gap / se`` follows Student's t with 19 degrees of freedom, whose tails are heavier than the
 #: normal's: P(|t| > 4) = 7.7e-4 but P(|t| > 5) = 8e-5, i.e. < 0.5 % that any of the ~50 checks here
@@ -128,16 +128,14 @@ def drag_closed_form_checks(quick: bool) -> Iterator[Check]:
         for model, surface in SURFACES.items():
             craft = _gas_body(name, surface)
             for ratio in SPEED_RATIOS:
-                with warnings.catch_warnings():  # the low-S warning concerns concave bodies: convex are exact
-                    warnings.simplefilter("ignore", LowSpeedRatioWarning)
-                    batch = drag(
-                        craft,
-                        ratio * _C_M * directions,
-                        air,
-                        reference_point_m=np.zeros(3),
-                        samples=1,
-                        reflections="none",
-                    )
+                batch = drag(
+                    craft,
+                    ratio * _C_M * directions,
+                    air,
+                    reference_point_m=np.zeros(3),
+                    samples=1,
+                    reflections="none",
+                )
                 worst, at = 0.0, "all below scale"
                 for alpha, u, force in zip(ALPHAS_DEG, directions, batch.force_N, strict=True):
                     ref = closed(u, surface, FreeStream(u, ratio, TEMPERATURE_K))
@@ -160,28 +158,26 @@ def drag_closed_form_checks(quick: bool) -> Iterator[Check]:
 
 
 def concave_drag_checks(quick: bool) -> Iterator[Check]:
-    """Concave shapes at S = 8 with re-emission exchange against the TPMC tracer, every flow (quick:
-    each shape's first flow, a quarter of the molecules)."""
-    molecules = concave_drag.MOLECULES // 4 if quick else concave_drag.MOLECULES
-    for case in DRAG_CASES:
-        for flow in case.flows_deg[:1] if quick else case.flows_deg:
-            yield concave_drag_check(concave_drag.compare(case, "diffuse", flow, molecules=molecules))
+    """The matrix of :mod:`sunwind.validation.drag_matrix`, one check per row: the solver with re-emission
+    exchange against the TPMC tracer on concave shapes (quick: its subset, the same molecule rule)."""
+    for point in drag_matrix.matrix(quick):
+        yield concave_drag_check(drag_matrix.run_point(point))
 
 
-def concave_drag_check(row: concave_drag.DragRow) -> Check:
+def concave_drag_check(row: DragRow) -> Check:
     """One solver-against-tracer drag comparison as a check: force and torque (with re-emission
-    exchange) within the tolerance, the tracer's standard errors within :data:`CONCAVE_SIGMA_SHARES`."""
-    force_share, torque_share = CONCAVE_SIGMA_SHARES
-    tol = concave_drag.TOLERANCE
+    exchange) within the tolerance, the tracer's standard errors within ``SIGMA_SHARE`` of it."""
+    single = len(row.speed_ratios) == 1
+    where = f"az {row.azimuth_deg:g} el {row.elevation_deg:g}, {row.molecules} molecules"
     return Check(
         "concave drag (TPMC)",
-        f"{row.case}/{row.law}",
-        f"az {row.azimuth_deg:g} el {row.elevation_deg:g}, {row.molecules} molecules",
+        f"{row.case}/{row.law}" + ("" if single else f", {row.gas}"),
+        f"S {row.speed_ratios[0][1]:g}, {where}" if single else where,
         (
-            Measure("force", row.force_difference, tol),
-            Measure("torque", row.torque_difference, tol),
-            Measure("tracer sigma (force)", row.force_mc_sigma, force_share * tol),
-            Measure("tracer sigma (torque)", row.torque_mc_sigma, torque_share * tol),
+            Measure("force", row.force_difference, TOLERANCE),
+            Measure("torque", row.torque_difference, TOLERANCE),
+            Measure("tracer sigma (force)", row.force_mc_sigma, SIGMA_SHARE * TOLERANCE),
+            Measure("tracer sigma (torque)", row.torque_mc_sigma, SIGMA_SHARE * TOLERANCE),
         ),
     )
 

@@ -44,7 +44,9 @@ FAMILIES: tuple[Family, ...] = (
         gas_checks.drag_closed_form_checks,
     ),
     Family(
-        "concave drag (TPMC)", "tpmc: re-emission exchange on concave shapes", gas_checks.concave_drag_checks
+        "concave drag (TPMC)",
+        "drag_matrix: 5 concave shapes x 5 laws x 5 speed ratios, and a mixture",
+        gas_checks.concave_drag_checks,
     ),
     Family("TPMC closed forms", "the molecule tracer against plates and spheres", gas_checks.tpmc_checks),
 )

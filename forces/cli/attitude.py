@@ -18,8 +18,9 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.report import forces_document, print_drag, print_forces, print_json, print_srp
 from sunwind.forces.drag import drag as drag_of
-from sunwind.forces.model import ModelSource
+from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.results import DragResult
 from sunwind.forces.srp import srp as srp_of
 
 
@@ -64,7 +65,7 @@ def drag(
 ) -> None:
     """Free-molecular force and torque for one flow direction: gas-surface law, shadowing, re-emission."""
     model = loaded(drag_only(source), **references)
-    result = drag_of(model, flow.velocity_m_s, flow.atmosphere, reflections=reflections, **sampling)
+    result = _drag(model, flow, reflections, sampling)
     craft = model.craft
     if as_json:
         print_json(craft, result.to_json())
@@ -92,8 +93,20 @@ def forces(
     """Solar-radiation pressure and free-molecular drag together for one attitude, and their total."""
     model = loaded(source, **references)
     light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
-    gas = drag_of(model, flow.velocity_m_s, flow.atmosphere, reflections=reflections, **sampling)
+    gas = _drag(model, flow, reflections, sampling)
     if as_json:
         print_json(model.craft, forces_document(light, gas))
     else:
         print_forces(light, gas)
+
+
+def _drag(model: Model, flow: FreeStream, reflections: ReflectionSettings, sampling: dict) -> DragResult:
+    """Drag of ``model`` in the command's ``flow``, with its reflection and shadow sampling settings."""
+    return drag_of(
+        model,
+        flow.velocity_m_s,
+        flow.atmosphere,
+        reflections=reflections,
+        gas_sampling=flow.sampling,
+        **sampling,
+    )

@@ -12,7 +12,7 @@ speed.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import click
 import numpy as np
@@ -29,6 +29,7 @@ from sunwind.forces.gas import (
     nrlmsis,
 )
 from sunwind.forces.gas.flow import flow_speed
+from sunwind.forces.gas.sampling import GasSampling
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
 
@@ -36,11 +37,13 @@ from sunwind.geometry.errors import InputError
 @dataclass(frozen=True)
 class FreeStream:
     """The flow of a command: ``v_rel`` [m/s] (None for a sweep, which has only the speed), its speed
-    [m/s] and the atmosphere; all None where the command computes no drag."""
+    [m/s] and the atmosphere, all None where the command computes no drag; and how its integral over
+    each side's open sky is sampled."""
 
     velocity_m_s: NDArray[np.float64] | None
     speed_m_s: float | None
     atmosphere: Atmosphere | None
+    sampling: GasSampling = field(default_factory=GasSampling)
 
 
 _FLOW = [
@@ -100,6 +103,12 @@ _AIR = [
     click.option(
         "--normalise-composition", is_flag=True, help="Rescale mole fractions that do not sum to 1."
     ),
+    click.option(
+        "--sky-rays",
+        type=int,
+        help="Rays per side sampling each side's open sky, once per model and cached "
+        "[default: by model size, 36 to 4096].",
+    ),
 ]
 
 
@@ -122,6 +131,11 @@ def flow_options(directed: bool) -> Callable:
 
 
 def _free_stream(values: dict, directed: bool) -> FreeStream:
+    stream = _flow(values, directed)
+    return replace(stream, sampling=GasSampling(sky_rays=values["sky_rays"]))
+
+
+def _flow(values: dict, directed: bool) -> FreeStream:
     velocity, azel = values["velocity"], values["flow_azel"]
     if values["nadir"] is not None and not (directed and values["corotating"]):
         raise InputError(

@@ -40,6 +40,7 @@ FLAGS = {
     "cutoff": "--reflection-cutoff",
     "depth": "--reflection-depth",
     "rays_per_side": "--view-rays",
+    "sky_rays": "--sky-rays",
     "velocity_m_s": "--velocity",
     "speed_m_s": "--speed",
     "altitude_km": "--altitude",

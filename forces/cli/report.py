@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 
@@ -99,7 +100,18 @@ def print_drag(result: DragResult, heading: str) -> None:
     print(f"  projected area   {result.projected_area_m2:.6f} m^2 (normal to the flow)")
     k_is = "n/a" if result.k_is is None else f"{result.k_is:.4f}"
     print(f"  re-emission      {result.reflections} (asked: {result.settings.mode}); molecular K_IS = {k_is}")
-    print(f"  shadow rays      {result.rays} ({result.sampling})")
+    chains = result.reflected.chains
+    if chains is not None and chains.packets:
+        print(
+            f"  chains           {chains.packets} molecules sent on unaccommodated, {chains.rays} rays, "
+            f"{chains.truncated:.1e} of their weight cut off"
+        )
+    sky = result.open_sky
+    print(
+        f"  rays             {result.rays} (shadow along the flow: {result.sampling}; core cone "
+        f"{math.degrees(result.core_half_angle_rad):.1f} deg)"
+    )
+    print(f"  open sky         {sky.rays_per_side} rays per side, {sky.origin}")
     print(f"  validity         {VALIDITY}")
 
 

@@ -200,7 +200,8 @@ def sweep_command(
     srp = SrpSetup(flux_W_m2=sun.flux_W_m2, **setups) if "srp" in table.kinds else None
     drag = None
     if "drag" in table.kinds:
-        drag = DragSetup(speed_m_s=stream.speed_m_s, atmosphere=stream.atmosphere, **setups)
+        gas = {"sky_rays": stream.sampling.sky_rays}
+        drag = DragSetup(speed_m_s=stream.speed_m_s, atmosphere=stream.atmosphere, **setups, **gas)
     attitudes = None if table.attitudes is None else read_attitude_csv(table.attitudes)
     for kind in table.kinds if attitudes is not None else ():
         attitudes.directions(kind)

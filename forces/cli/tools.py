@@ -9,7 +9,7 @@ from pathlib import Path
 import click
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-from sunwind.forces.bench import REFERENCE_TOLERANCE, benchmark, sweep_benchmark
+from sunwind.forces.bench import REFERENCE_GAS_FACTORS, REFERENCE_TOLERANCE, benchmark, sweep_benchmark
 from sunwind.forces.tables import direction_grid
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import build_spacecraft, load_spacecraft
@@ -111,6 +111,10 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     print(f"  full refl., {fixed:<12}{report.fixed_full_ms:.2f} ms per attitude")
     print(f"{'':26}{report.fixed_full_error}")
     print(
+        f"  open sky (drag)         {report.sky_s:.1f} s once per model "
+        f"({report.sky_rays_per_side} rays per side), {report.sky_MB:.0f} MB"
+    )
+    print(
         f"  drag, no re-emission    {report.drag_ms:.2f} ms per attitude (median), "
         f"{report.drag_over_srp:.2f}x SRP direct-only"
     )
@@ -123,6 +127,8 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     )
     print(f"{'':26}{report.drag_full_error}")
     print(f"  errors against          the default at tolerance {REFERENCE_TOLERANCE:g} (10x tighter)")
+    sky, core, chains = REFERENCE_GAS_FACTORS
+    print(f"{'':26}drag: also {sky}x the sky rays, {core}x the core rays, {chains}x the chain molecules")
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
 
 

@@ -1,7 +1,8 @@
 """The rarefied gas: the atmosphere (NRLMSIS or given), the flow speed, the drifting Maxwellian's
-incident stream, one function per gas-surface law and their species sums, the flow's shadow, the
-panel law of an attitude, and the exchange of re-emitted molecules (METHOD.md "Free-molecular flow",
-"Atmosphere")."""
+incident stream (closed forms and per direction), one function per gas-surface law and their species
+sums, the panel law of an attitude, the stream integrated over each side's open sky, the chains of
+unaccommodated molecules and the exchange of re-emitted ones (METHOD.md "Free-molecular flow", "The
+open-sky integral", "Molecular chains", "Atmosphere")."""
 
 from sunwind.forces.gas.atmosphere import (
     BOLTZMANN,
@@ -29,6 +30,7 @@ from sunwind.forces.gas.laws import (
     specular,
 )
 from sunwind.forces.gas.msis import nrlmsis
+from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.gas.sums import diffuse_emission, summed_coefficients
 
 __all__ = [
@@ -41,6 +43,7 @@ __all__ = [
     "Atmosphere",
     "AtmosphereWarning",
     "Coefficients",
+    "GasSampling",
     "GasSurfaces",
     "Reemission",
     "circular_speed",

@@ -1,24 +1,28 @@
-"""Molecules re-emitted by one side that strike another, and what of them escapes (METHOD.md
-"Free-molecular flow", "Inter-reflection").
+"""Molecules re-emitted diffusely by one side that strike another, and what of them escapes (METHOD.md
+"Molecular chains", "Inter-reflection").
 
-The paper treats re-emitted molecules as diffuse light with ``rho = 1``: the same view factors ``F``,
-the same escape vectors, the same balance ``(I - F^T) W = S`` in molecules per second. A diffusely
-re-emitted molecule of mass ``m`` at temperature ``T`` leaves along a cosine-law direction with mean
-speed ``(3 sqrt(pi)/4) sqrt(2 k T / m)``, so a stream of ``N`` molecules per second carries momentum
-``N m v_mean`` spread like diffuse light: what escapes is ``N m v_mean e_esc`` (``(2/3) N m v_mean n``
-from a side that sees only sky, which is the re-emission term of the panel law).
+The paper treats re-emitted molecules as diffuse light with ``rho = 1``: the same view factors, the same
+escape vectors, the same balance in molecules per second. Here the exchange factors ``E`` of the
+molecular optics (``rho = 1``, ``beta`` = the share a side mirrors, :class:`~sunwind.forces.gas.chains.
+ChainLaws`) carry a diffusely re-emitted molecule on through mirrors with its speed; ``E = F`` where no
+side mirrors. A molecule of mass ``m`` re-emitted diffusely at ``T`` leaves along a cosine-law direction
+with mean speed ``(3 sqrt(pi)/4) sqrt(2 k T / m)``, so a stream of ``N`` molecules per second carries
+momentum ``N m v_mean`` spread like diffuse light: what escapes is ``N m v_mean e_esc`` (``(2/3) N m
+v_mean n`` from a side that sees only sky, which is the re-emission term of the panel law).
 
 * First re-emission: side ``i`` re-emits ``N_ik`` molecules of species ``k`` at the temperature its
   gas-surface law gives (``T_r``). The panel law let all of them escape as from an open plate; here
-  only ``e_esc,i`` escapes, the rest lands on other sides.
+  only ``e_esc,i`` escapes, the rest lands on other sides. What the chains land on a side and it
+  re-emits diffusely is a first re-emission too, of which nothing escaped yet.
 * Later re-emissions: a molecule that lands on side ``j`` after a first bounce is re-emitted at the
   wall temperature ``T_w,j`` (it arrives already slowed to about the temperature of the side that sent
-  it; exact for full energy accommodation ``alpha_E = 1``, an approximation otherwise).
+  it; exact for full energy accommodation ``alpha_E = 1``, an approximation otherwise), the share
+  ``rho_d,j`` it does not mirror.
 
 The molecules a side sends through later bounces escape as ``sum_j W_j sqrt(m) c_w,j e_esc,j`` with
 ``c_w,j = (3 sqrt(pi)/4) sqrt(2 k T_w,j)``, linear in what the first re-emission lands, so the
-escaping force and torque per model are ``h^T (sum_k sqrt(m_k) N_k)`` with ``h = F M^-T w`` solved
-once per model, view factors and wall temperatures (METHOD.md "Speed").
+escaping force and torque per model are ``h^T (sum_k sqrt(m_k) N_k)`` with ``h = E diag(rho_d) M^-T w``
+solved once per model, view factors and materials (METHOD.md "Speed").
 """
 
 from __future__ import annotations
@@ -56,51 +60,69 @@ class ExchangeTotals:
 
 
 class MolecularExchange:
-    """The exchange of re-emitted molecules between the sides of one model (``rho = 1``).
+    """The exchange of diffusely re-emitted molecules between the sides of one model (``rho = 1``).
 
     Parameters
     ----------
     craft : Spacecraft
     view : ViewFactors
         View factors of ``craft``'s sides.
+    mirrored : (n_sides,) float64
+        Share of arriving molecules each side sends on mirrored (:class:`~sunwind.forces.gas.chains.
+        ChainLaws`); the exchange factors follow diffusely re-emitted molecules through such mirrors.
+    cache_dir : path, bool or None
+        Where those exchange factors are kept on disk.
     """
 
-    def __init__(self, craft: Spacecraft, view: ViewFactors) -> None:
+    def __init__(
+        self, craft: Spacecraft, view: ViewFactors, mirrored: NDArray[np.float64], cache_dir=False
+    ) -> None:
         self.craft = craft
         self.view = view
-        self.balance = DiffuseExchange(craft, view, re_emit_all=True)
+        self.balance = DiffuseExchange(craft, view, mirrored=mirrored, cache_dir=cache_dir)
+        factors = self.balance.factors
         wall_speed = MEAN_SPEED_FACTOR * np.sqrt(2.0 * BOLTZMANN * craft.side_gas["wall_temperature_K"])
-        moment = np.cross(craft.side_centroids, view.escape_vector) + view.escape_moment
-        weights = wall_speed[:, None] * np.column_stack([view.escape_vector, moment])
-        #: (n_sides, 6): escaping momentum [kg m/s per sqrt(kg)] and its moment about the origin
-        #: of every later bounce, per sqrt(kg)-weighted molecule the first re-emission sends from a side
-        self.later = np.asarray(view.matrix @ self.balance.adjoint(weights))
-        open_vector = view.escape_vector - LAMBERT_FACTOR * craft.side_normals
-        #: (n_sides, 6): what escapes of a side's first re-emission beyond the open-plate assumption,
-        #: per unit momentum re-emitted, and its moment about the origin
-        self.first = np.column_stack(
-            [open_vector, np.cross(craft.side_centroids, open_vector) + view.escape_moment]
-        )
+        moment = np.cross(craft.side_centroids, factors.escape_vector) + factors.escape_moment
+        #: (n_sides, 6): escaping momentum (after mirrors) per unit momentum a side re-emits diffusely,
+        #: and its moment about the origin
+        self.escape = np.column_stack([factors.escape_vector, moment])
+        re_emitted = 1.0 - mirrored
+        adjoint = self.balance.adjoint(wall_speed[:, None] * self.escape)
+        #: (n_sides, 6): escaping momentum [kg m/s per sqrt(kg)] and its moment about the origin of every
+        #: later re-emission, per sqrt(kg)-weighted molecule a side's re-emission sends off
+        self.later = np.asarray(factors.matrix @ (re_emitted[:, None] * adjoint))
+        open_vector = LAMBERT_FACTOR * craft.side_normals
+        #: (n_sides, 6): what the panel law let escape of a unit of momentum re-emitted, and its moment
+        self.open_plate = np.column_stack([open_vector, np.cross(craft.side_centroids, open_vector)])
 
     def totals(
         self,
         momentum_emitted: NDArray[np.float64],
         root_mass_emitted: NDArray[np.float64],
         reference_m: NDArray[np.float64],
+        landed: NDArray[np.float64] | None = None,
     ) -> ExchangeTotals:
         """Correction to the panel law for one attitude.
 
         Parameters
         ----------
         momentum_emitted : (n_sides,)
-            ``sum_k N_ik m_k v_mean(T_r,ik)``: momentum per second of each side's first re-emission [N].
+            ``sum_k N_ik m_k v_mean(T_r,ik)``: momentum per second of each side's first re-emission [N],
+            which the panel law let escape as from an open plate.
         root_mass_emitted : (n_sides,)
             ``sum_k N_ik sqrt(m_k)``: molecules per second of the first re-emission, weighted by the
             square root of their mass [sqrt(kg)/s].
         reference_m : (3,)
             Torque reference point [m].
+        landed : (2, n_sides), optional
+            The same two rates of the diffuse re-emission of molecules the chains brought
+            (:class:`~sunwind.forces.gas.chains.ChainTotals`), which nothing has let escape yet.
         """
-        escaping = _escaping(self.first, momentum_emitted, self.later, root_mass_emitted)
+        momentum, root_mass = momentum_emitted, root_mass_emitted
+        if landed is not None:
+            momentum, root_mass = momentum + landed[0], root_mass + landed[1]
+        escaping = _escaping(self.escape, momentum, self.later, root_mass)
+        escaping -= _escaping(self.open_plate, momentum_emitted, self.later, np.zeros_like(root_mass))
         momentum, moment = escaping[0:3], escaping[3:6]
         return ExchangeTotals(force_N=-momentum, torque_Nm=-(moment - np.cross(reference_m, momentum)))
 
@@ -130,10 +152,15 @@ def gas_interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
     return returning / escaping if escaping > 0 else float("inf")
 
 
-def molecular_exchange(craft: Spacecraft, settings: ReflectionSettings) -> MolecularExchange:
-    """The :class:`MolecularExchange` of ``craft`` with its view factors for ``settings``, built once
-    and kept in its cache."""
+def molecular_exchange(
+    craft: Spacecraft, settings: ReflectionSettings, mirrored: NDArray[np.float64]
+) -> MolecularExchange:
+    """The :class:`MolecularExchange` of ``craft`` with its view factors for ``settings`` and the share
+    ``mirrored`` (n_sides,) each side mirrors (fixed by its materials), built once and kept in its
+    cache."""
     return craft.cache.get(
         ("molecular exchange", *settings.view_key),
-        lambda: MolecularExchange(craft, model_view_factors(craft, settings)),
+        lambda: MolecularExchange(
+            craft, model_view_factors(craft, settings), mirrored, cache_dir=settings.cache_dir
+        ),
     )

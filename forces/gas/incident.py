@@ -111,7 +111,7 @@ def diffuse_normal(
     return flux * _SQRT_PI * np.sqrt(temperature_ratio) / speed_ratio
 
 
-def _rice_mean(x: NDArray[np.float64], alpha_n: NDArray[np.float64], tau_w: NDArray[np.float64]) -> NDArray:
+def rice_mean(x: NDArray[np.float64], alpha_n: NDArray[np.float64], tau_w: NDArray[np.float64]) -> NDArray:
     """Mean reflected normal speed of the CLL kernel at incident normal speed ``x`` (over ``sqrt(2kT/m)``).
 
     Rice distribution with ``nu = sqrt(1 - alpha_n) x`` and ``sigma^2 = alpha_n tau_w / 2``; its mean is
@@ -140,7 +140,7 @@ def cll_reflected_normal(
 
     The CLL normal kernel gives, for an incident normal speed ``v_i``, a reflected normal speed with
     the Rice distribution of parameters ``nu = sqrt(1 - alpha_n) v_i``, ``sigma^2 = alpha_n k T_w / m``
-    (:func:`_rice_mean` ``h``). Directed: ``2 gamma h(S gamma) / S`` for ``gamma > 0``. Full, with
+    (:func:`rice_mean` ``h``). Directed: ``2 gamma h(S gamma) / S`` for ``gamma > 0``. Full, with
     ``s = S gamma`` and ``x`` the incident normal speed over ``sqrt(2kT/m)``::
 
         (2 / (S^2 sqrt(pi))) int_0^inf x exp(-(x - s)^2) h(x) dx
@@ -157,7 +157,7 @@ def cll_reflected_normal(
     ``_CLL_CHUNK`` to bound memory.
     """
     windward = np.maximum(gamma, 0.0)
-    directed = 2.0 * windward * _rice_mean(speed_ratio * windward, alpha_n, tau_w) / speed_ratio
+    directed = 2.0 * windward * rice_mean(speed_ratio * windward, alpha_n, tau_w) / speed_ratio
     if stream == "directed":
         return directed
     full = np.empty_like(gamma)
@@ -186,7 +186,7 @@ def _cll_full_integral(
     left, right = left[:, used, None], right[:, used, None]
     x = 0.5 * (left + right) + 0.5 * (right - left) * _GL_X
     weight = 0.5 * (right - left) * _GL_W
-    h = _rice_mean(x, alpha_n[:, None, None], tau_w[:, None, None])
+    h = rice_mean(x, alpha_n[:, None, None], tau_w[:, None, None])
     return np.sum(weight * x * np.exp(-((x - s[:, None, None]) ** 2)) * h, axis=(1, 2))
 
 

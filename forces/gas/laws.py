@@ -39,9 +39,9 @@ tangential momentum kept (``shear_scale``), and a share re-emitted diffusely at 
 
 **Molecular exchange.** What a law re-emits diffusely travels on to other sides through the view
 factors (:mod:`sunwind.forces.gas.exchange`), as :attr:`Reemission.emission_share` at
-:attr:`Reemission.emission_temperature_K`: the diffuse share of sentman, dria and schaaf-chambre; for
-CLL, whose reflected molecules are a lobe about the mirror direction, an approximation: the share
-``sigma_t`` at ``T_w`` (the law itself uses the exact kernel).
+:attr:`Reemission.emission_temperature_K`: the diffuse share of sentman, dria and schaaf-chambre. What
+it sends on unaccommodated (the specular law, Schaaf-Chambre's ``1 - sigma_n``, everything CLL sends
+back, a lobe about the mirror direction) is followed by the chains of :mod:`sunwind.forces.gas.chains`.
 
 :func:`panel_coefficients` evaluates laws mixed element by element (by model code), in numpy: the
 reference the fast species sums (:func:`sunwind.forces.gas.sums.summed_coefficients`) are tested
@@ -230,8 +230,8 @@ def cll(
     tangential_accommodation: ArrayLike = 1.0,
     wall_temperature_K: ArrayLike = 300.0,
 ) -> Reemission:
-    """The Cercignani-Lampis-Lord kernel, exact (module Notes); in the molecular exchange the share
-    ``sigma_t`` is carried on as re-emitted diffusely at ``T_w``.
+    """The Cercignani-Lampis-Lord kernel, exact (module Notes); it re-emits nothing as a diffuse stream:
+    the molecular chains follow its whole lobe.
 
     Parameters
     ----------
@@ -253,7 +253,7 @@ def cll(
     )
     tau_w = t_wall / temperature_K
     ones, zeros = np.ones_like(tau_w), np.zeros_like(tau_w)
-    return Reemission(speed_ratio, ones, sigma_t, zeros, tau_w, sigma_t, t_wall.copy(), alpha_n, tau_w)
+    return Reemission(speed_ratio, ones, sigma_t, zeros, tau_w, zeros.copy(), t_wall.copy(), alpha_n, tau_w)
 
 
 def specular(speed_ratio: float, temperature_K: float, *, size: int = 1) -> Reemission:

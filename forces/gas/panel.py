@@ -1,12 +1,10 @@
-"""The panel law of one attitude: the gas-surface laws evaluated once per group of sides of one law and
-one normal, summed over species, and the force and torque they put on every side (METHOD.md
-"Free-molecular flow").
+"""The panel law of one attitude on unobstructed sides: the free stream by species and how each
+gas-surface law answers it, and the laws evaluated once per group of sides of one law and one normal,
+summed over species (METHOD.md "Free-molecular flow").
 
-Per species ``k`` and side the law gives pressure and shear for the incident drifting Maxwellian, split
-exactly into a *directed* stream (a cold beam along the flow) and the *thermal* rest; both are scaled
-by the share of the side's incident molecules that arrives unobstructed (:mod:`.shadow`). Per-side
-kernels run on the threads of :mod:`sunwind.geometry.parallel` and write per-side results, summed
-afterwards: results do not depend on the number of threads.
+What a side that sees only sky takes is this closed form; :mod:`.visible` takes off what its neighbours
+block. Per-group kernels run on the threads of :mod:`sunwind.geometry.parallel` and write their own rows:
+results do not depend on the number of threads.
 """
 
 from __future__ import annotations
@@ -16,13 +14,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.gas.angular import SpeciesLaws
 from sunwind.forces.gas.atmosphere import BOLTZMANN, Atmosphere
 from sunwind.forces.gas.exchange import mean_momentum
-from sunwind.forces.gas.laws import GasSurfaces
-from sunwind.forces.gas.shadow import MIN_SIDES_PER_CHUNK
-from sunwind.forces.gas.sum_kernels import group_stresses, side_forces
-from sunwind.forces.gas.sums import diffuse_emission, summed_coefficients
-from sunwind.geometry.parallel import map_ranges
+from sunwind.forces.gas.incident import diffuse_normal
+from sunwind.forces.gas.laws import GasSurfaces, reemission
+from sunwind.forces.gas.sum_kernels import group_stresses
+from sunwind.forces.gas.sums import summed_coefficients
 from sunwind.geometry.spacecraft import Spacecraft
 
 #: Columns of :func:`summed_laws` from which the first re-emission's momentum and molecules follow.
@@ -69,74 +67,68 @@ def _grouped(craft: Spacecraft) -> GasGroups:
     )
 
 
-def summed_laws(
-    groups: GasGroups, gamma: NDArray[np.float64], atmosphere: Atmosphere, speed_m_s: float, re_emission: bool
-) -> NDArray[np.float64]:
-    """The gas-surface laws of each group (``gamma = n . u`` of each) summed over the species, each
-    weighted by its dynamic pressure ``q_k`` [Pa]: :func:`~sunwind.forces.gas.sums.summed_coefficients`,
-    (n_groups, 4), and with ``re_emission`` two more columns (:data:`EMISSION`): per unit area of the
-    group and per unit share arriving unobstructed, the first re-emission's momentum per second [N/m^2]
-    and its molecules per second weighted by the square root of their mass [sqrt(kg)/(s m^2)]
-    (:mod:`sunwind.forces.gas.exchange`)."""
-    temperature = atmosphere.temperature_K
-    # species of equal mass (O and anomalous O) move alike: one stream of their summed density
+def species_streams(atmosphere: Atmosphere) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Mass [kg] and number density [m^-3] of each stream of ``atmosphere``: species of equal mass (O
+    and anomalous O) move alike, one stream of their summed density; by increasing mass."""
     names = list(atmosphere.number_density_m3)
     mass, species = np.unique([atmosphere.mass_kg[name] for name in names], return_inverse=True)
-    density = np.bincount(species, weights=list(atmosphere.number_density_m3.values()))
+    return mass, np.bincount(species, weights=list(atmosphere.number_density_m3.values()))
+
+
+def species_laws(surfaces: GasSurfaces, atmosphere: Atmosphere, speed_m_s: float) -> SpeciesLaws:
+    """The free stream of one attitude by species (:func:`species_streams`), and how each law of
+    ``surfaces`` answers it (:class:`~sunwind.forces.gas.angular.SpeciesLaws`)."""
+    temperature = atmosphere.temperature_K
+    mass, density = species_streams(atmosphere)
     ratio = speed_m_s / np.sqrt(2 * BOLTZMANN * temperature / mass)
-    emission = None
-    if re_emission:
-        emission = np.empty((len(groups.surfaces), len(mass), 2))
-        for k in range(len(mass)):
-            share, re_temperature = diffuse_emission(groups.surfaces, ratio[k], temperature)
-            rate = (
-                share * density[k] * speed_m_s
-            )  # molecules per second and unit area, per unit incident flux
-            emission[:, k, 0] = rate * mean_momentum(re_temperature, mass[k])
-            emission[:, k, 1] = rate * np.sqrt(mass[k])
-    q = 0.5 * density * mass * speed_m_s**2
-    return summed_coefficients(groups.surfaces, groups.law, gamma, ratio, q, temperature, emission)
+    n_laws, n_species = len(surfaces), len(mass)
+    push, emission = np.empty((n_laws, n_species)), np.empty((n_laws, n_species, 2))
+    for k in range(n_species):
+        law = reemission(surfaces, float(ratio[k]), temperature)
+        push[:, k] = law.diffuse_share * diffuse_normal(1.0, law.temperature_ratio, law.speed_ratio)
+        share, re_temperature = law.emission_share, law.emission_temperature_K
+        rate = share * density[k] * speed_m_s  # molecules per second and unit area, per unit incident flux
+        emission[:, k, 0] = rate * mean_momentum(re_temperature, mass[k])
+        emission[:, k, 1] = rate * np.sqrt(mass[k])
+    cll_alpha_n = np.full(n_laws, np.nan) if law.cll_alpha_n is None else law.cll_alpha_n
+    cll_tau_w = np.zeros(n_laws) if law.cll_tau_w is None else law.cll_tau_w
+    return SpeciesLaws(
+        speed_ratio=ratio,
+        dynamic_pressure_Pa=0.5 * density * mass * speed_m_s**2,
+        pressure_scale=law.pressure_scale,
+        shear_scale=law.shear_scale,
+        push=push,
+        emission=emission,
+        cll_alpha_n=cll_alpha_n,
+        cll_tau_w=cll_tau_w,
+    )
 
 
-@dataclass(frozen=True, eq=False)
-class PanelForces:
-    """The panel law on every side of one attitude, and its totals; body frame, SI."""
+def summed_laws(
+    groups: GasGroups, gamma: NDArray[np.float64], laws: SpeciesLaws, temperature_K: float
+) -> NDArray[np.float64]:
+    """The gas-surface laws of each group (``gamma = n . u`` of each) on an unobstructed side, summed over
+    the species, each weighted by its dynamic pressure ``q_k`` [Pa]:
+    :func:`~sunwind.forces.gas.sums.summed_coefficients`, (n_groups, 4), and two more columns
+    (:data:`EMISSION`): per unit area the first re-emission's momentum per second [N/m^2] and its
+    molecules per second weighted by the square root of their mass [sqrt(kg)/(s m^2)]
+    (:mod:`sunwind.forces.gas.exchange`)."""
+    return summed_coefficients(
+        groups.surfaces,
+        groups.law,
+        gamma,
+        laws.speed_ratio,
+        laws.dynamic_pressure_Pa,
+        temperature_K,
+        laws.emission,
+    )
 
-    force_N: NDArray[np.float64]  # (3,)
-    torque_Nm: NDArray[np.float64]  # (3,) about the reference point
-    side_force_N: NDArray[np.float64]  # (n_sides, 3)
-    side_torque_Nm: NDArray[np.float64]  # (n_sides, 3)
-    emitted: NDArray[np.float64]  # (k, n_sides): the EMISSION columns times area and arriving share
 
-
-def panel_forces(
-    craft: Spacecraft,
-    groups: GasGroups,
-    gamma: NDArray[np.float64],
-    sums: NDArray[np.float64],
-    visible: NDArray[np.float64],
-    lit_centroid: NDArray[np.float64],
-    u: NDArray[np.float64],
-    reference_m: NDArray[np.float64],
-) -> PanelForces:
-    """Force and torque about ``reference_m`` [m] of every side from its group's :func:`summed_laws`
-    ``sums`` (``gamma = n . u`` of each group), on the share ``visible`` (n_sides,) of its incident
-    molecules that arrives unobstructed, acting at ``lit_centroid`` (n_sides, 3) on sides facing the flow."""
+def closed_loads(
+    groups: GasGroups, gamma: NDArray[np.float64], sums: NDArray[np.float64], u: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """What the whole incident stream does on an unobstructed side of each group, (n_groups, 5): the
+    force per unit area [Pa] (3) from :func:`summed_laws` ``sums`` and the first re-emission (2,
+    :data:`EMISSION`)."""
     stresses = group_stresses(gamma, sums, groups.normals, u)
-    side_force, side_torque = np.empty((3, craft.n_sides)), np.empty((3, craft.n_sides))  # sum fast by rows
-    emitted = np.empty((sums.shape[1] - 4, craft.n_sides))
-    args = (
-        groups.side,
-        stresses,
-        sums[:, EMISSION],
-        craft.side_areas,
-        visible,
-        craft.side_centroids,
-        lit_centroid,
-    )
-    map_ranges(
-        lambda lo, hi: side_forces(*args, reference_m, side_force, side_torque, emitted, lo, hi),
-        craft.n_sides,
-        MIN_SIDES_PER_CHUNK,
-    )
-    return PanelForces(side_force.sum(axis=1), side_torque.sum(axis=1), side_force.T, side_torque.T, emitted)
+    return np.column_stack([stresses[:, :3] + stresses[:, 3:], sums[:, EMISSION]])

@@ -1,5 +1,5 @@
-"""Numba kernels of the gas-surface laws summed over species, and the force and torque they give each
-side (:mod:`sunwind.forces.gas.sums`, :mod:`sunwind.forces.gas.panel`).
+"""Numba kernels of the gas-surface laws summed over species, and the force per unit area they give each
+group of sides (:mod:`sunwind.forces.gas.sums`, :mod:`sunwind.forces.gas.panel`).
 
 :func:`species_sums` is the fast twin of :func:`sunwind.forces.gas.laws.panel_coefficients` for every
 law but the reflected normal momentum of CLL, in the form each law reduces to (its
@@ -7,10 +7,9 @@ law but the reflected normal momentum of CLL, in the form each law reduces to (i
 
     c_n = a c_n_inc + b N / (n_k V),    c_t = c c_t_inc,
 
-with ``a``, ``c`` per law and ``b`` per law and species. :func:`group_stresses` and
-:func:`side_forces` turn the summed coefficients into force and torque on each side. Kernels taking
-``lo, hi`` write rows ``lo:hi`` of their outputs only, so threads given disjoint ranges produce the
-same bits as one.
+with ``a``, ``c`` per law and ``b`` per law and species. :func:`group_stresses` turns the summed
+coefficients into the force per unit area of each group. Kernels taking ``lo, hi`` write rows ``lo:hi``
+of their outputs only, so threads given disjoint ranges produce the same bits as one.
 """
 
 from __future__ import annotations
@@ -126,49 +125,3 @@ def group_stresses(
         out[g, 0], out[g, 1], out[g, 2] = -pn * n0 + pt * t0, -pn * n1 + pt * t1, -pn * n2 + pt * t2
         out[g, 3], out[g, 4], out[g, 5] = -hn * n0 + ht * t0, -hn * n1 + ht * t1, -hn * n2 + ht * t2
     return out
-
-
-@numba.njit(cache=True, nogil=True)
-def side_forces(
-    side_group: NDArray[np.int64],
-    stresses: NDArray[np.float64],
-    flux_sums: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    visible: NDArray[np.float64],
-    centroids: NDArray[np.float64],
-    lit_centroids: NDArray[np.float64],
-    reference: NDArray[np.float64],
-    force: NDArray[np.float64],
-    torque: NDArray[np.float64],
-    emitted: NDArray[np.float64],
-    lo: int,
-    hi: int,
-) -> None:
-    """Force [N] and torque [N m] (columns of ``force``, ``torque``: (3, n_sides)) and first
-    re-emission of sides ``lo:hi``.
-
-    Side ``i`` takes the :func:`group_stresses` of group ``side_group[i]`` on ``visible * area``; the
-    directed force acts at the lit centroid, the thermal one at the centroid. ``emitted[:, i]`` is
-    ``visible * area`` times the group's ``flux_sums`` (n_groups, m).
-    """
-    for i in range(lo, hi):
-        group = side_group[i]
-        scale = visible[i] * areas[i]
-        d0, d1, d2 = scale * stresses[group, 0], scale * stresses[group, 1], scale * stresses[group, 2]
-        h0, h1, h2 = scale * stresses[group, 3], scale * stresses[group, 4], scale * stresses[group, 5]
-        force[0, i], force[1, i], force[2, i] = d0 + h0, d1 + h1, d2 + h2
-        l0, l1, l2 = (
-            lit_centroids[i, 0] - reference[0],
-            lit_centroids[i, 1] - reference[1],
-            lit_centroids[i, 2] - reference[2],
-        )
-        c0, c1, c2 = (
-            centroids[i, 0] - reference[0],
-            centroids[i, 1] - reference[1],
-            centroids[i, 2] - reference[2],
-        )
-        torque[0, i] = (l1 * d2 - l2 * d1) + (c1 * h2 - c2 * h1)
-        torque[1, i] = (l2 * d0 - l0 * d2) + (c2 * h0 - c0 * h2)
-        torque[2, i] = (l0 * d1 - l1 * d0) + (c0 * h1 - c1 * h0)
-        for j in range(emitted.shape[0]):
-            emitted[j, i] = scale * flux_sums[group, j]

@@ -98,7 +98,7 @@ def diffuse_emission(
     """Share of the incident molecules re-emitted diffusely (Lambertian) and their temperature [K],
     each (n,), as the molecular exchange carries them
     (:attr:`~sunwind.forces.gas.laws.Reemission.emission_share`): 1 (sentman, dria), ``sigma_n``
-    (schaaf-chambre), ``sigma_t`` (cll, approximate), 0 (specular).
+    (schaaf-chambre), 0 (cll and specular, whose molecules the chains follow).
 
     For sentman, dria and schaaf-chambre the diffuse term of the laws' ``c_n`` is exactly
     ``share N m sqrt(pi k T_r / (2 m)) / q`` with ``N`` the incident number flux, for every stream.

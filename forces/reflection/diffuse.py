@@ -21,7 +21,8 @@ leaves the model is linear in ``W``: force ``-(1/c) sum W_i e_esc,i``, torque ab
 still travelling when a chain was dropped counts as absorbed). So ``g = M^-T w`` for these eight
 functionals is solved once per model and material set, and every attitude's totals are ``g^T S``.
 
-Molecules (``re_emit_all``) use the view factors with every side re-emitting all that lands.
+Molecules (``mirrored``) use the same balance with ``rho = 1`` and the share each side mirrors as its
+``beta``: the view factors where no side mirrors.
 """
 
 from __future__ import annotations
@@ -95,10 +96,11 @@ class DiffuseExchange:
     craft : Spacecraft
     view : ViewFactors
         View factors of ``craft``'s sides.
-    re_emit_all : bool
-        Rarefied gas: every molecule that lands is re-emitted diffusely (``rho_d = 1``, ``E = F``,
-        nothing passes a sheet); only molecules reaching a side the model does not have (``BLIND``)
-        count as absorbed.
+    mirrored : (n_sides,) float64, optional
+        Rarefied gas: the share of arriving molecules each side sends on mirrored; the rest it
+        re-emits diffusely (``rho = 1``, ``beta`` = that share, nothing passes a sheet), so ``E = F``
+        where no side mirrors. Only molecules reaching a side the model does not have (``BLIND``)
+        count as absorbed. None (default): light, with the model's optics.
     cache_dir : path, bool or None
         Where exchange factors are kept on disk
         (:func:`sunwind.geometry.views.exchange_factors.exchange_factors`);
@@ -110,15 +112,21 @@ class DiffuseExchange:
         craft: Spacecraft,
         view: ViewFactors,
         *,
-        re_emit_all: bool = False,
+        mirrored: NDArray[np.float64] | None = None,
         cache_dir: str | os.PathLike | bool | None = False,
     ) -> None:
         self.craft = craft
         self.view = view
-        if re_emit_all:
-            self.factors = ExchangeFactors.of_view(view)
-            re_emitted = np.ones(craft.n_sides)
-            self.absorptance = np.zeros(craft.n_sides)
+        if mirrored is not None:
+            n = craft.n_sides
+            optics = np.column_stack([np.ones(n), mirrored, np.zeros(n)])
+            self.factors = (
+                exchange_factors(craft, view, cache_dir, optics)
+                if np.any(mirrored > 0)
+                else ExchangeFactors.of_view(view)
+            )
+            re_emitted = 1.0 - mirrored
+            self.absorptance = np.zeros(n)
         else:
             rho, beta, sigma = craft.side_optics.T
             self.factors = exchange_factors(craft, view, cache_dir)

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import xarray as xr
 
+from sunwind.forces.gas.visible import model_sky
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.reflection import model_view_factors
 from sunwind.forces.tables.attitudes import GRID_BYTES, AttitudeList, DirectionGrid, direction_grid
@@ -204,8 +205,10 @@ def _fill(records: Records, lo: int, hi: int, values: Records) -> None:
 
 
 def precompute(model: Model, jobs: list[Job]) -> None:
-    """The view factors every attitude reuses, made once before the first when a job reflects (Dask
-    workers then read them from the disk cache)."""
+    """What every attitude reuses, made once before the first: the view factors when a job reflects,
+    each side's open sky when it computes drag (Dask workers then read them from the disk cache)."""
     for job in jobs:
         if job.setup.settings.mode in ("full", "auto"):
             model_view_factors(model.craft, job.setup.settings)
+        if job.kind == "drag":
+            model_sky(model.craft, job.setup.sky_rays, job.setup.settings.cache_dir)

@@ -20,6 +20,7 @@ from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.exchange import gas_interference_criterion
 from sunwind.forces.gas.flow import flow_speed
+from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.model import Model
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure, solar_flux
 from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors, reflection_plan
@@ -130,6 +131,9 @@ class DragSetup(_Setup):
     kind: ClassVar[str] = "drag"
     speed_m_s: float = field(kw_only=True)
     atmosphere: Atmosphere = field(kw_only=True)
+    sky_rays: int | None = field(default=None, kw_only=True)
+    core_rays: int = field(default=GasSampling.core_rays, kw_only=True)
+    chain_molecules: int = field(default=GasSampling.chain_molecules, kw_only=True)
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -138,6 +142,12 @@ class DragSetup(_Setup):
                 f"speed_m_s {self.speed_m_s!r} is not a number of m/s", parameters=("speed_m_s",)
             )
         flow_speed(self.speed_m_s)
+        GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
+
+    def options(self) -> dict:
+        """The keyword arguments every attitude's call takes."""
+        gas = GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
+        return super().options() | {"gas_sampling": gas}
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of flow directions ``u`` (n, 3)."""

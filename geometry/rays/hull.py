@@ -61,6 +61,11 @@ class Clearance:
     box_low: NDArray[np.float64]
     box_high: NDArray[np.float64]
 
+    @property
+    def arrays(self) -> tuple[NDArray, ...]:
+        """The arrays in the order :func:`~sunwind.geometry.rays.clear_kernels.may_be_blocked` takes them."""
+        return self.open_sky, self.own_part_clear, self.blockers, self.box_low, self.box_high
+
 
 def clearance(craft: Spacecraft) -> Clearance:
     """The :class:`Clearance` of ``craft``, made once and kept in its cache."""

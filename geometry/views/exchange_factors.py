@@ -168,9 +168,10 @@ class ExchangeFactors:
         return m.data.nbytes + m.indices.nbytes + m.indptr.nbytes + sum(a.nbytes for a in arrays)
 
 
-def onward_share(craft: Spacecraft) -> NDArray[np.float64]:
-    """``rho beta + sigma`` of each side (n_sides,): the share of arriving light it sends on as a ray."""
-    rho, beta, sigma = craft.side_optics.T
+def onward_share(optics: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``rho beta + sigma`` of each side of ``optics`` (n_sides, 3): the share of arriving light it sends
+    on as a ray."""
+    rho, beta, sigma = optics.T
     return rho * beta + sigma
 
 
@@ -178,7 +179,11 @@ def onward_share(craft: Spacecraft) -> NDArray[np.float64]:
 
 
 def compute_exchange_factors(
-    craft: Spacecraft, view: ViewFactors, cutoff: float = EXCHANGE_CUTOFF, depth: int = EXCHANGE_DEPTH
+    craft: Spacecraft,
+    view: ViewFactors,
+    cutoff: float = EXCHANGE_CUTOFF,
+    depth: int = EXCHANGE_DEPTH,
+    optics: NDArray[np.float64] | None = None,
 ) -> ExchangeFactors:
     """Exchange factors of ``craft`` from its view factors ``view`` (see the module docstring).
 
@@ -187,15 +192,19 @@ def compute_exchange_factors(
     craft : Spacecraft
     view : ViewFactors
         View factors of ``craft``; their rays (at most :data:`CHAIN_RAYS` per side) are cast again.
+    optics : (n_sides, 3) float64, optional
+        ``rho, beta, sigma`` of every side; default ``craft.side_optics`` (sunlight's). Molecules give
+        their own (:mod:`sunwind.forces.gas.exchange`).
     cutoff : float
         A chain ends below this share of its first weight.
     depth : int
         A chain ends after meeting this many surfaces.
     """
     start = time.perf_counter()
-    onward = onward_share(craft)
+    optics = np.ascontiguousarray(craft.side_optics if optics is None else optics, dtype=np.float64)
+    onward = onward_share(optics)
     onward_weight = np.asarray(view.matrix @ onward)
-    rho, beta, _ = craft.side_optics.T
+    rho, beta, _ = optics.T
     emits = rho * (1 - beta) > 0
     traced = np.flatnonzero((onward_weight > 0) & emits)
     unfollowed = np.where(emits, 0.0, onward_weight)
@@ -205,7 +214,7 @@ def compute_exchange_factors(
     grid = math.isqrt(min(view.rays_per_side, CHAIN_RAYS))
     scene = craft.scene
     tables = ChainTables(
-        optics=craft.side_optics,
+        optics=optics,
         onward=np.ascontiguousarray(onward),
         solid=craft.facet_kind[craft.side_facet] == SOLID,
         normals=np.ascontiguousarray(craft.side_normals),
@@ -252,12 +261,12 @@ def compute_exchange_factors(
 # ----------------------------------------------------------------------------------------- disk cache
 
 
-def _settings(craft: Spacecraft, view: ViewFactors, cutoff: float, depth: int) -> dict[str, object]:
+def _settings(optics: NDArray[np.float64], view: ViewFactors, cutoff: float, depth: int) -> dict[str, object]:
     """What besides the geometry the result depends on: the optics, the view factors and the method."""
     digest = hashlib.sha256()
     m = view.matrix
     for array in (
-        craft.side_optics,
+        optics,
         m.data,
         m.indices,
         m.indptr,
@@ -292,14 +301,17 @@ _NUMBERS = ("chains", "seconds")
 
 
 def exchange_factors(
-    craft: Spacecraft, view: ViewFactors, cache_dir: str | os.PathLike | bool | None = False
+    craft: Spacecraft,
+    view: ViewFactors,
+    cache_dir: str | os.PathLike | bool | None = False,
+    optics: NDArray[np.float64] | None = None,
 ) -> ExchangeFactors:
     """:func:`compute_exchange_factors`, kept on disk and read back when geometry, optics and view
     factors match; ``E = F`` at no cost where no side sends light on.
 
     Parameters
     ----------
-    craft, view
+    craft, view, optics
         As for :func:`compute_exchange_factors`.
     cache_dir : path, bool or None
         Directory of the cache as for :func:`sunwind.geometry.views.view_factors.view_factors` (None or True:
@@ -309,20 +321,21 @@ def exchange_factors(
     ``origin`` says what happened, as for the view factors. Cache trouble is never an error.
     """
     directory = cache_directory(cache_dir)
-    if directory is None or not np.any(onward_share(craft) > 0):
-        return compute_exchange_factors(craft, view)
+    optics = np.ascontiguousarray(craft.side_optics if optics is None else optics, dtype=np.float64)
+    if directory is None or not np.any(onward_share(optics) > 0):
+        return compute_exchange_factors(craft, view, optics=optics)
 
     def decode(arrays, origin: str) -> ExchangeFactors:
         fields = factor_fields(arrays, len(view.escape_fraction), _COLUMNS, _NUMBERS)
         factors = ExchangeFactors(**fields, rays_per_side=view.rays_per_side, seed=view.seed, origin=origin)
-        check_balance(factors.row_sum_error(onward_share(craft)))
+        check_balance(factors.row_sum_error(onward_share(optics)))
         return factors
 
     return kept_on_disk(
         directory,
         "exchange_factors",
-        geometry_key(craft, _settings(craft, view, EXCHANGE_CUTOFF, EXCHANGE_DEPTH)),
-        lambda: compute_exchange_factors(craft, view),
+        geometry_key(craft, _settings(optics, view, EXCHANGE_CUTOFF, EXCHANGE_DEPTH)),
+        lambda: compute_exchange_factors(craft, view, optics=optics),
         lambda factors: factor_arrays(factors, _COLUMNS, _NUMBERS),
         decode,
     )

@@ -115,7 +115,7 @@ def _disk(a: float, b: float) -> tuple[float, float]:
 
 
 @numba.njit(cache=True, nogil=True)
-def _square_to_triangle(a: float, b: float) -> tuple[float, float]:
+def square_to_triangle(a: float, b: float) -> tuple[float, float]:
     """Low-distortion area-preserving map (Heitz 2019) of the unit square onto barycentrics (b1, b2)."""
     if b > a:
         a *= 0.5
@@ -186,7 +186,7 @@ def _emission_rays(
             )
             z = math.sqrt(max(0.0, 1.0 - x * x - y * y))
             c = order[i]
-            b1, b2 = _square_to_triangle(
+            b1, b2 = square_to_triangle(
                 (c // grid + uniform(key, 2 * n + 2 * c)) / grid,
                 (c % grid + uniform(key, 2 * n + 2 * c + 1)) / grid,
             )

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from sunwind import meshes
-from sunwind.forces.drag import LowSpeedRatioWarning, drag
+from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
 from sunwind.forces.gas.laws import GasSurfaces, panel_coefficients
 from sunwind.forces.model import Model
@@ -70,7 +70,7 @@ def test_convex_body_is_the_per_side_law_at_every_speed_ratio(body, ratio, refle
     velocity = speed_for(ratio) * np.array([0.6, -0.48, 0.64])
     ref = np.array([0.1, 0.2, -0.1])
     with warnings.catch_warnings():
-        warnings.simplefilter("error", LowSpeedRatioWarning)  # exact at every speed ratio: no warning
+        warnings.simplefilter("error")  # exact at every speed ratio: nothing to warn of
         result = drag(craft, velocity, AIR, reference_point_m=ref, reflections=reflections, samples=4)
     force, torque = per_side_law(craft, velocity, AIR, ref)
     scale = np.linalg.norm(force)
@@ -192,17 +192,6 @@ def test_a_table_setup_checks_its_speed_like_a_velocity():
         DragSetup(speed_m_s="7000", atmosphere=AIR)
 
 
-def test_low_speed_ratio_warns_on_a_concave_model_only_and_names_the_limit():
-    concave = craft_of(primitives.box_wing(facet_size=0.5))
-    with pytest.warns(LowSpeedRatioWarning, match="speed ratio .* < 3: this model can shadow itself"):
-        drag(concave, [speed_for(1.5), 0, 0], AIR, reflections="none")
-    convex = craft_of(primitives.sphere(1.0, subdivisions=8))
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        drag(concave, [speed_for(8.0), 0, 0], AIR, reflections="none")
-        drag(convex, [speed_for(1.5), 0, 0], AIR, reflections="none")  # convex: exact, no warning
-
-
 def test_re_emission_exchange_adds_drag_on_a_cavity_facing_the_flow():
     """Molecules the walls of an open box re-emit can leave only through its opening, upstream, so
     more of their momentum leaves against the flow than the open-plate law lets the walls send
@@ -215,4 +204,5 @@ def test_re_emission_exchange_adds_drag_on_a_cavity_facing_the_flow():
     full = drag(craft, velocity, AIR, reflections="full")
     assert full.reflected.k_is > 0.1
     assert full.force_N[2] < (1 + 0.005) * none.force_N[2] < 0
-    assert np.linalg.norm(full.force_N[:2]) < 1e-4 * abs(full.force_N[2])  # view-factor sampling only
+    # the sampling of the core rays and of the view factors only
+    assert np.linalg.norm(full.force_N[:2]) < 5e-4 * abs(full.force_N[2])

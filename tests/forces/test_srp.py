@@ -8,9 +8,9 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from helpers import ABSORBER, MIXED, mesh_from_trimesh, quad_sheet
+from sunwind.forces.batches import SrpBatch
 from sunwind.forces.model import Model
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, SPEED_OF_LIGHT
-from sunwind.forces.results import SrpBatch
 from sunwind.forces.srp import srp
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import Material

@@ -208,9 +208,8 @@ def test_every_bad_drag_input_gives_one_line_and_a_non_zero_exit(run_cli, sphere
             assert word in line, (args, word, line)
 
 
-def test_low_speed_ratio_prints_a_one_line_warning_on_a_concave_model_and_still_answers(
-    run_cli, sphere_mesh, tmp_path
-):
+def test_a_low_speed_ratio_on_a_concave_model_answers_without_a_warning(run_cli, tmp_path):
+    """The open-sky integral holds at every speed ratio: nothing to warn of, the speed ratio reported."""
     from sunwind.geometry.io import save_mesh
     from sunwind.meshes.primitives import box_wing
 
@@ -218,11 +217,10 @@ def test_low_speed_ratio_prints_a_one_line_warning_on_a_concave_model_and_still_
     save_mesh(box_wing(facet_size=0.5), concave)
     slow = ["--velocity", "1500", "0", "0", *EXPLICIT_AIR, *SPHERE_ARGS, "--json"]
     code, out, err = run_cli("drag", concave, *slow)
-    assert code == 0
-    assert err.strip().startswith("sunwind: warning:") and "speed ratio" in err and "< 3" in err
-    assert json.loads(out)["speed_ratio"] < 3
-    code, out, err = run_cli("drag", sphere_mesh, *slow)
-    assert code == 0 and "warning" not in err  # a convex body: exact at any speed ratio
+    assert code == 0 and "warning" not in err
+    document = json.loads(out)
+    assert document["speed_ratio"] < 3
+    assert document["open_sky"]["rays_per_side"] >= 64 and 0 < document["core_half_angle_deg"] <= 17.2
 
 
 def test_extrapolated_altitude_warns(run_cli, sphere_mesh):

@@ -59,7 +59,7 @@ def test_a_family_that_raises_is_a_failed_check_and_the_others_still_run(run_cli
 
 @pytest.mark.slow
 def test_validate_quick_runs_every_family_within_its_limits(run_cli):
-    """Every family but the refinement study (full run only); 16-25 s on 2 cores (not asserted: the
+    """Every family but the refinement study (full run only); about 30 s on 2 cores (not asserted: the
     machine may be shared)."""
     code, out, err = run_cli("validate", "--quick")
     assert code == 0, out + err
@@ -90,10 +90,12 @@ def test_load_error_is_relative_to_the_reference_attitude_by_attitude():
     unit = np.eye(3)
     references = [(unit[0], unit[1]), (2 * unit[0], unit[2]), (unit[2], unit[0])]
     loads = [(unit[0] * 1.01, unit[1]), (2 * unit[0] + 0.002 * unit[1], unit[2] * 0.5)]  # the first two
-    error = LoadError.of(loads, references)
+    error = LoadError.of(loads, references, size_m=2.0)
     assert error.force_worst == pytest.approx(0.01) and error.force_median == pytest.approx(0.0055)
     assert error.torque_worst == pytest.approx(0.5) and error.torque_median == pytest.approx(0.25)
+    assert error.torque_of_force_worst == pytest.approx(0.5 / (2.0 * 2.0))  # |dM| 0.5 over |F| 2 x L 2
     assert str(error).startswith("error force 1.0e-02 worst, 5.5e-03 median; torque 5.0e-01 worst")
+    assert str(error).endswith("1.2e-01 of |F| L worst")
 
 
 @pytest.mark.slow
@@ -102,9 +104,13 @@ def test_bench_sweep_reports_the_error_of_its_entries(run_cli):
     assert code == 0, err
     report = json.loads(out)
     assert report["distinct_directions"] == 26 and report["checked_directions"] == 24
-    # the sweep runs the default shadow pass: within its tolerance (1e-3) of the tighter reference
-    for key in ("srp_error", "drag_error"):
-        assert 0 <= report[key]["force_median"] <= report[key]["force_worst"] < 1e-3, key
-        assert report[key]["torque_worst"] < 1e-3, key
+    # SRP runs the default shadow pass: within its tolerance (1e-3) of the tighter reference
+    srp_error, drag_error = report["srp_error"], report["drag_error"]
+    assert 0 <= srp_error["force_median"] <= srp_error["force_worst"] < 1e-3
+    assert srp_error["torque_worst"] < 1e-3
+    # drag's open-sky integral is sampled: against the reference sampled 16 times as finely, its noise
+    # is reported (not zero) and well inside the 2 % the molecule tracer validates it to
+    assert 0 < drag_error["force_median"] <= drag_error["force_worst"] < 1e-2
+    assert 0 < drag_error["torque_of_force_worst"] < 1e-3
     assert report["projected_1_deg_s"] > 0
     assert report["dask_identical"] is True

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from sunwind import meshes
-from sunwind.forces.gas.shadow_kernels import may_be_blocked
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.clear_kernels import may_be_blocked
 from sunwind.geometry.rays.hull import HULL_TOLERANCE, MAX_PARTS, clearance, supporting_planes
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft

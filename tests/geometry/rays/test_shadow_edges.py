@@ -48,7 +48,15 @@ def sphere_over_plate(subdivisions: int) -> object:
     return build_spacecraft(MeshData.concatenate([ball, plate]), uniform=ABSORBER, two_sided=["plate"])
 
 
-@pytest.mark.parametrize("sun", [(0.0, 0.0, 1.0), (0.4, 0.3, 1.0), (-0.9, 0.2, 0.5), (0.2, -1.5, 0.4)])
+@pytest.mark.parametrize(
+    "sun",
+    [
+        (0.0, 0.0, 1.0),
+        pytest.param((0.4, 0.3, 1.0), marks=pytest.mark.slow),
+        pytest.param((-0.9, 0.2, 0.5), marks=pytest.mark.slow),
+        (0.2, -1.5, 0.4),
+    ],
+)
 def test_a_faceted_sphere_shadow_on_one_large_triangle_is_exact(sun):
     """The sphere's shadow on the plate is the projection of its silhouette: a polygon with one corner
     per silhouette edge, lying inside the plate's two triangles. Cut along those edges, the plate's
@@ -153,7 +161,14 @@ def crossing_struts(count: int = 8, seed: int = 3):
     return build_spacecraft(MeshData.concatenate(parts), uniform=ABSORBER, two_sided=["plate"])
 
 
-@pytest.mark.parametrize("sun", [(0.0, 0.0, 1.0), (0.3, 0.2, 1.0), (0.9, -0.8, 0.4)])
+@pytest.mark.parametrize(
+    "sun",
+    [
+        (0.0, 0.0, 1.0),
+        pytest.param((0.3, 0.2, 1.0), marks=pytest.mark.slow),
+        pytest.param((0.9, -0.8, 0.4), marks=pytest.mark.slow),
+    ],
+)
 def test_crossing_thin_struts_over_a_plate_against_exact_clipping(sun):
     """A truss: strip shadows crossing inside one large triangle (cut by splitting where the strips
     cross, down to nodes of a few millimetres) and strut faces 1 cm wide, which only probes spaced by

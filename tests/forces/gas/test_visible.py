@@ -60,12 +60,12 @@ def counting_rays(monkeypatch, craft):
 
 
 @pytest.mark.parametrize("samples", [1, 4])
-@pytest.mark.parametrize("spread", [True, False])
-def test_convex_body_casts_no_ray_beyond_the_flow_shadow(monkeypatch, samples, spread):
+def test_convex_body_casts_no_ray_beyond_the_flow_shadow(monkeypatch, samples):
     craft = build_spacecraft(primitives.box((1.0, 2.0, 0.5), divisions=4), uniform=Material("m", 0.3, 0.5))
     batches = counting_rays(monkeypatch, craft)
-    result = drag(craft, SPEED * FLOWS[0], AIR, samples=samples, reflections="none", thermal_spread=spread)
-    assert sum(batches) == result.rays  # the shadow pass along the flow only
+    result = drag(craft, SPEED * FLOWS[0], AIR, samples=samples, reflections="full")
+    assert sum(batches) == result.rays  # the shadow pass along the flow only: no core rays, no chains
+    assert len(result.open_sky.direction) == 0  # and no side's sky was sampled
 
 
 def test_every_side_of_a_convex_body_is_its_own_gas_surface_law():
@@ -90,9 +90,9 @@ def test_every_side_of_a_convex_body_is_its_own_gas_surface_law():
     assert np.all(error <= 1e-12 * np.linalg.norm(expected, axis=1) + 1e-15 * np.abs(expected).max())
 
 
-@pytest.mark.parametrize(("samples", "spread"), [(1, True), (4, True), (1, False), (None, True)])
-def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, samples, spread):
-    kwargs = {"samples": samples, "thermal_spread": spread, "reflections": "full"}
+@pytest.mark.parametrize("samples", [1, 4, None])
+def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, samples):
+    kwargs = {"samples": samples, "reflections": "full"}
     fast = [drag(sample, SPEED * u, AIR, **kwargs) for u in FLOWS]
     batches = counting_rays(monkeypatch, sample)
     nothing_cleared = Clearance(
@@ -103,7 +103,7 @@ def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, sa
         np.zeros((0, 3)),
     )
     monkeypatch.setattr(
-        importlib.import_module("sunwind.forces.gas.shadow"), "clearance", lambda craft: nothing_cleared
+        importlib.import_module("sunwind.forces.gas.core_rays"), "clearance", lambda craft: nothing_cleared
     )
     for u, result in zip(FLOWS, fast, strict=True):
         slow = drag(sample, SPEED * u, AIR, **kwargs)

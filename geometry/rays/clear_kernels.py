@@ -1,9 +1,8 @@
-"""Numba kernels of the flow's shadows (:mod:`sunwind.forces.gas.shadow`).
+"""Numba kernel of the hull tests (:mod:`sunwind.geometry.rays.hull`): which rays provably meet nothing.
 
-:func:`may_be_blocked` sorts out the rays that provably meet nothing (:mod:`sunwind.geometry.rays.hull`);
-:func:`lee_rays`, :func:`incidences`, :func:`gather_rays`, :func:`lit_shares` and
-:func:`spread_visibility` build the other rays and read their answers. Kernels taking ``lo, hi`` write
-rows ``lo:hi`` of their outputs only, so threads given disjoint ranges produce the same bits as one.
+:func:`may_be_blocked` sorts out the rays leaving sides that a :class:`~sunwind.geometry.rays.hull.Clearance`
+vouches for; the others are cast. Kernels taking ``lo, hi`` write rows ``lo:hi`` of their outputs only,
+so threads given disjoint ranges produce the same bits as one.
 """
 
 from __future__ import annotations
@@ -119,128 +118,52 @@ def may_be_blocked(
 
 
 @numba.njit(cache=True, nogil=True)
-def lee_rays(
+def cone_may_be_blocked(
     sides: NDArray[np.int64],
-    gamma: NDArray[np.float64],
-    normals: NDArray[np.float64],
-    centroids: NDArray[np.float64],
-    u: NDArray[np.float64],
-    elevation: float,
-    frame: tuple[NDArray[np.float64], float, float],
-    origins: NDArray[np.float32],
-    probes: NDArray[np.float32],
+    spheres: NDArray[np.float64],
+    axis: NDArray[np.float64],
+    half_angle: float,
+    clearance: tuple,
+    out: NDArray[np.bool_],
     lo: int,
     hi: int,
 ) -> None:
-    """Probe rays of lee sides ``lo:hi`` (``gamma`` = ``n . u`` of each): ``origins`` and ``probes``,
-    (n, 1, 3).
+    """Whether any ray leaving sides ``lo:hi`` of ``sides`` within ``half_angle`` [rad] of the unit
+    ``axis`` may meet the model, into ``out``: False where the side is on the model's hull, or on its
+    own part's hull with the cone from the side missing every other part's box in front of it (each box
+    taken as its bounding sphere, the side as ``spheres`` (n_sides, 4): centre and radius round its
+    corners, scene coordinates).
 
-    The probe leaves the side's centroid pushed ``offset`` [m] along its normal, in scene coordinates
-    ``(p - centre) / half_size`` (``frame``, as :meth:`sunwind.geometry.rays.scene.SceneFrame.origins`),
-    upstream
-    along the side, ``(u - gamma n)/|...|`` (0 where that length is below 1e-12), raised by
-    ``elevation`` [rad] toward the normal; both rounded to float32.
-    """
-    centre, half_size, offset = frame
-    along, rise = math.cos(elevation), math.sin(elevation)
+    A sphere of radius ``r`` (both spheres' radii) whose centre lies at ``t`` from the side's, ``D =
+    |t| > r``, is missed when ``t`` lies more than ``half_angle + asin(r / D)`` off the axis: ``t . axis
+    < cos(half_angle) sqrt(D^2 - r^2) - sin(half_angle) r`` (``half_angle <= pi / 2``, so that the
+    cone and the sphere's cone, under ``pi / 2``, never span the sky)."""
+    open_sky, own_part_clear, blockers, box_low, box_high = clearance
+    n_boxes = box_low.shape[0]
+    box_centre, box_radius = np.empty((n_boxes, 3)), np.empty(n_boxes)
+    for box in range(n_boxes):
+        box_centre[box] = 0.5 * (box_low[box] + box_high[box])
+        box_radius[box] = 0.5 * math.sqrt(np.sum((box_high[box] - box_low[box]) ** 2))
+    cos_cone, sin_cone = math.cos(half_angle), math.sin(half_angle)
     for k in range(lo, hi):
         s = sides[k]
-        n0, n1, n2 = normals[s, 0], normals[s, 1], normals[s, 2]
-        for d in range(3):
-            origins[k, 0, d] = np.float32((centroids[s, d] + offset * normals[s, d] - centre[d]) / half_size)
-        a0, a1, a2 = u[0] - gamma[k] * n0, u[1] - gamma[k] * n1, u[2] - gamma[k] * n2
-        length = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
-        if length > 1e-12:
-            a0, a1, a2 = a0 / length, a1 / length, a2 / length
-        else:
-            a0 = a1 = a2 = 0.0
-        p0, p1, p2 = along * a0 + rise * n0, along * a1 + rise * n1, along * a2 + rise * n2
-        size = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
-        probes[k, 0, 0], probes[k, 0, 1], probes[k, 0, 2] = p0 / size, p1 / size, p2 / size
-
-
-@numba.njit(cache=True, nogil=True)
-def incidences(
-    sides: NDArray[np.int64],
-    normals: NDArray[np.float64],
-    directions: NDArray[np.float64],
-    out: NDArray[np.float64],
-    lo: int,
-    hi: int,
-) -> None:
-    """``max(n . d, 0)`` of sides ``lo:hi`` on each of ``directions`` (m, 3), into ``out`` (n, m)."""
-    for k in range(lo, hi):
-        s = sides[k]
-        for j in range(directions.shape[0]):
-            c = (
-                normals[s, 0] * directions[j, 0]
-                + normals[s, 1] * directions[j, 1]
-                + normals[s, 2] * directions[j, 2]
-            )
-            out[k, j] = max(c, 0.0)
-
-
-@numba.njit(cache=True, nogil=True)
-def gather_rays(
-    cast: NDArray[np.bool_],
-    incidence: NDArray[np.float64],
-    origins: NDArray[np.float32],
-    rays: NDArray[np.float32],
-) -> tuple[NDArray[np.int64], NDArray[np.float32], NDArray[np.float32]]:
-    """The rays to cast from ``origins`` (n, p, 3) along ``rays`` (m, 3), direction by direction: those
-    with ``cast`` (n, m, p) where the side faces the direction (``incidence`` (n, m) > 0).
-
-    Returns ``i m + j`` of each (side row ``i``, direction ``j``), and the rays' origins and directions.
-    """
-    n, m, points = cast.shape
-    count = 0
-    for j in range(m):
-        for i in range(n):
-            if incidence[i, j] > 0.0:
-                for p in range(points):
-                    count += cast[i, j, p]
-    pair = np.empty(count, dtype=np.int64)
-    ray_origins = np.empty((count, 3), dtype=np.float32)
-    ray_directions = np.empty((count, 3), dtype=np.float32)
-    r = 0
-    for j in range(m):
-        for i in range(n):
-            if incidence[i, j] > 0.0:
-                for p in range(points):
-                    if cast[i, j, p]:
-                        pair[r] = i * m + j
-                        for d in range(3):
-                            ray_origins[r, d] = origins[i, p, d]
-                            ray_directions[r, d] = rays[j, d]
-                        r += 1
-    return pair, ray_origins, ray_directions
-
-
-@numba.njit(cache=True, nogil=True)
-def lit_shares(
-    pair: NDArray[np.int64], blocked: NDArray[np.bool_], points: int, n: int, m: int
-) -> NDArray[np.float64]:
-    """Lit share (n, m) of ``points`` rays per side and direction, where only the rays ``pair``
-    (``i m + j``) were cast and ``blocked`` says which of them met the model."""
-    hits = np.zeros(n * m, dtype=np.int64)
-    for r in range(pair.shape[0]):
-        hits[pair[r]] += blocked[r]
-    return ((points - hits) / points).reshape(n, m)
-
-
-@numba.njit(cache=True, nogil=True)
-def spread_visibility(
-    facing: NDArray[np.int64],
-    incidence: NDArray[np.float64],
-    lit: NDArray[np.float64],
-    visible: NDArray[np.float64],
-) -> None:
-    """``visible[facing[i]] = sum_j incidence[i, j] lit[i, j] / sum_j incidence[i, j]`` where the
-    denominator is positive, summed in the order of ``j``."""
-    for i in range(facing.shape[0]):
-        weighted = weights = 0.0
-        for j in range(incidence.shape[1]):
-            weighted += incidence[i, j] * lit[i, j]
-            weights += incidence[i, j]
-        if weights > 0.0:
-            visible[facing[i]] = weighted / weights
+        if open_sky[s] or not own_part_clear[s]:
+            out[k] = not open_sky[s]
+            continue
+        hit = False
+        for box in range(n_boxes):
+            if not blockers[s, box]:
+                continue
+            t0 = box_centre[box, 0] - spheres[s, 0]
+            t1 = box_centre[box, 1] - spheres[s, 1]
+            t2 = box_centre[box, 2] - spheres[s, 2]
+            radius = spheres[s, 3] + box_radius[box]
+            clear_of = t0 * t0 + t1 * t1 + t2 * t2 - radius * radius
+            if clear_of <= 0.0:  # the spheres overlap
+                hit = True
+                break
+            along = t0 * axis[0] + t1 * axis[1] + t2 * axis[2]
+            if along >= cos_cone * math.sqrt(clear_of) - sin_cone * radius:
+                hit = True
+                break
+        out[k] = hit

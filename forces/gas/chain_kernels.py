@@ -1,0 +1,331 @@
+"""Numba kernels of the molecular chains (:mod:`sunwind.forces.gas.chains`).
+
+:func:`starts` draws the molecules that strike each sending side, :func:`bounce` turns arriving
+molecules into what a side sends on (the mirrored share, or a CLL draw) and takes their momentum as
+escaping, :func:`land` books a leg that meets a side: its momentum stays, its diffuse share goes to the
+exchange. Random numbers are counter hashes of ``(seed, side, packet, bounce, slot)``
+(:func:`sunwind.geometry.views.hemisphere.uniform`), and every kernel runs its packets in order, so the
+results are the same bits whatever the thread count.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.geometry.spacecraft import BLIND
+from sunwind.geometry.views.hemisphere import side_key, square_to_triangle, uniform
+
+#: Boltzmann constant [J/K] (exact, SI 2019); the same as :data:`sunwind.forces.gas.atmosphere.BOLTZMANN`.
+_BOLTZMANN = 1.380649e-23
+_SQRT_PI = math.sqrt(math.pi)
+#: Mean speed of an effusing Maxwellian stream over ``sqrt(2 k T / m)``.
+_MEAN_SPEED = 3.0 * _SQRT_PI / 4.0
+#: Random-number slots of one packet and bounce, and bounces of one packet: index = (packet *
+#: _BOUNCES + bounce) * _SLOTS + slot.
+_SLOTS, _BOUNCES = 64, 1024
+#: Re-emission temperature rules of :class:`sunwind.forces.gas.chains.ChainLaws`: at the wall; Sentman's
+#: ``alpha_E T_w + (1 - alpha_E) m v^2 / (3 k)``; DRIA's ``... m v^2 / (4 k)``.
+AT_WALL, SENTMAN, DRIA = 0, 1, 2
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _random(key: np.uint64, packet: int, bounce: int, slot: int) -> float:
+    return uniform(key, (packet * _BOUNCES + bounce) * _SLOTS + slot)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _half_normal(key: np.uint64, packet: int, slot: int) -> float:
+    """A normal draw of variance 1/2 (Box-Muller) from slots ``slot``, ``slot + 1`` of bounce 0."""
+    radius = math.sqrt(-math.log(1.0 - _random(key, packet, 0, slot)))
+    return radius * math.cos(2.0 * math.pi * _random(key, packet, 0, slot + 1))
+
+
+@numba.njit(cache=True, nogil=True)
+def _flux_normal_speed(s: float, key: np.uint64, packet: int, bounce: int) -> float:
+    """A draw of ``x > 0`` from ``p(x) ~ x exp(-(x - s)^2)``: the normal speed (over the thermal speed)
+    of a molecule of a drifting Maxwellian crossing a plane, drift ``s`` along the crossing. Rejection
+    from a proposal that covers ``p`` in each of three ranges of ``s`` (acceptance at least 1/2); at most
+    ``_SLOTS / 3 - 1`` tries, the last accepted."""
+    slot = 8
+    x = 0.0
+    for _ in range(18):
+        u1, u2 = _random(key, packet, bounce, slot), _random(key, packet, bounce, slot + 1)
+        u3 = _random(key, packet, bounce, slot + 2)
+        slot += 3
+        if s >= 0.0:
+            # proposal (|y| + s) exp(-y^2) for y = x - s: |y| exp(-y^2) (weight 1) or s exp(-y^2)
+            # (weight s sqrt(pi))
+            if u1 * (1.0 + s * _SQRT_PI) < 1.0:
+                y = math.sqrt(-math.log(1.0 - u2)) * (1.0 if u3 < 0.5 else -1.0)
+                accept = _random(key, packet, bounce, slot)
+            else:
+                # a normal draw of variance 1/2 from two uniforms (Box-Muller)
+                y = math.sqrt(-math.log(1.0 - u2)) * math.cos(2.0 * math.pi * u3)
+                accept = _random(key, packet, bounce, slot)
+            slot += 1
+            x = y + s
+            if y > -s and accept * (abs(y) + s) < y + s:
+                return x
+        elif s > -1.0:
+            a = -s
+            y = math.sqrt(a * a - math.log(1.0 - u1))
+            x = y - a
+            if u2 * y < y - a:
+                return x
+        else:
+            a = -s
+            x = -(math.log(1.0 - u1) + math.log(1.0 - u2)) / (2.0 * a)  # Gamma(2, 1 / (2 a))
+            if u3 < math.exp(-x * x):
+                return x
+    return max(x, 0.0)
+
+
+@numba.njit(cache=True, nogil=True)
+def _tangents(n: NDArray[np.float64], along: NDArray[np.float64]) -> tuple:
+    """Unit tangent ``e1`` along the part of ``along`` in the plane of unit ``n`` (any tangent if none)
+    and ``e2 = n x e1``."""
+    dot = along[0] * n[0] + along[1] * n[1] + along[2] * n[2]
+    t0, t1, t2 = along[0] - dot * n[0], along[1] - dot * n[1], along[2] - dot * n[2]
+    size = math.sqrt(t0 * t0 + t1 * t1 + t2 * t2)
+    if size <= 1e-12 * max(1.0, math.sqrt(along[0] ** 2 + along[1] ** 2 + along[2] ** 2)):
+        helper = (1.0, 0.0, 0.0) if abs(n[0]) < 0.9 else (0.0, 1.0, 0.0)
+        t0 = helper[1] * n[2] - helper[2] * n[1]
+        t1 = helper[2] * n[0] - helper[0] * n[2]
+        t2 = helper[0] * n[1] - helper[1] * n[0]
+        size = math.sqrt(t0 * t0 + t1 * t1 + t2 * t2)
+    e1 = (t0 / size, t1 / size, t2 / size)
+    e2 = (n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0])
+    return e1, e2
+
+
+@numba.njit(cache=True, nogil=True)
+def starts(
+    senders: NDArray[np.int64],
+    per_side: int,
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    species_flux: NDArray[np.float64],
+    species_pick: NDArray[np.float64],
+    thermal_speed: NDArray[np.float64],
+    drift: NDArray[np.float64],
+    seed: np.uint64,
+) -> tuple[NDArray, ...]:
+    """``per_side`` molecules striking each of ``senders`` from the free stream (before shadowing).
+
+    Parameters
+    ----------
+    species_flux : (n_senders, k) float64
+        Incident number flux of each species on each sender if unobstructed [1/(s m^2)].
+    species_pick : (n_senders, k) float64
+        Probability of drawing each species (rows sum to 1).
+    thermal_speed : (k,) float64
+        ``sqrt(2 k T / m_k)`` [m/s].
+    drift : (3,) float64
+        The gas velocity relative to the body, ``-V u`` [m/s].
+
+    Returns
+    -------
+    side, species : (n,) int64
+    point : (n, 3) float64
+        Where on the side it strikes [m] (stratified over the side).
+    velocity : (n, 3) float64
+        Its velocity [m/s], into the side.
+    weight : (n,) float64
+        Molecules per second it stands for: ``A N_k / (p_k per_side)``.
+    """
+    n = senders.shape[0] * per_side
+    side = np.empty(n, dtype=np.int64)
+    species = np.empty(n, dtype=np.int64)
+    point = np.empty((n, 3))
+    velocity = np.empty((n, 3))
+    weight = np.empty(n)
+    k_count = thermal_speed.shape[0]
+    for row in range(senders.shape[0]):
+        s = senders[row]
+        key = side_key(seed, s)
+        corners = triangles[side_facet[s]]
+        normal = normals[s]
+        into = -(drift[0] * normal[0] + drift[1] * normal[1] + drift[2] * normal[2])  # drift into the side
+        e1, e2 = _tangents(normal, drift)
+        along1 = drift[0] * e1[0] + drift[1] * e1[1] + drift[2] * e1[2]
+        along2 = drift[0] * e2[0] + drift[1] * e2[1] + drift[2] * e2[2]
+        for m in range(per_side):
+            i = row * per_side + m
+            side[i] = s
+            # species by stratified inversion of the pick probabilities
+            target = (m + _random(key, m, 0, 0)) / per_side
+            k = 0
+            cumulative = species_pick[row, 0]
+            while cumulative < target and k < k_count - 1:
+                k += 1
+                cumulative += species_pick[row, k]
+            species[i] = k
+            weight[i] = areas[s] * species_flux[row, k] / (species_pick[row, k] * per_side)
+            # a point of the side: stratified along one edge, area-preserving square-to-triangle map
+            b1, b2 = square_to_triangle((m + _random(key, m, 0, 1)) / per_side, _random(key, m, 0, 2))
+            b0 = 1.0 - b1 - b2
+            for d in range(3):
+                point[i, d] = b0 * corners[0, d] + b1 * corners[1, d] + b2 * corners[2, d]
+            c = thermal_speed[k]
+            normal_speed = c * _flux_normal_speed(into / c, key, m, 0)
+            g1 = math.sqrt(-math.log(1.0 - _random(key, m, 0, 3))) * math.cos(
+                2 * math.pi * _random(key, m, 0, 4)
+            )
+            g2 = math.sqrt(-math.log(1.0 - _random(key, m, 0, 5))) * math.cos(
+                2 * math.pi * _random(key, m, 0, 6)
+            )
+            t1, t2 = along1 + c * g1, along2 + c * g2  # g1, g2: normal draws of variance 1/2
+            for d in range(3):
+                velocity[i, d] = -normal_speed * normal[d] + t1 * e1[d] + t2 * e2[d]
+    return side, species, point, velocity, weight
+
+
+@numba.njit(cache=True, nogil=True)
+def bounce(
+    side: NDArray[np.int64],
+    species: NDArray[np.int64],
+    point: NDArray[np.float64],
+    velocity: NDArray[np.float64],
+    weight: NDArray[np.float64],
+    packet: NDArray[np.int64],
+    depth: int,
+    side_law: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    mass: NDArray[np.float64],
+    laws: tuple,
+    seed: np.uint64,
+    reference: NDArray[np.float64],
+    totals: NDArray[np.float64],
+    book: bool,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """What each molecule arriving with ``velocity`` on ``side`` at ``point`` sends on: the mirrored
+    share of its law (``v - 2 (v . n) n``, weight times the share) or, for CLL, one draw of Lord's
+    kernel (weight kept; random numbers keyed by ``packet``, each molecule's own number, and ``depth``).
+    With ``book``, each outgoing leg's momentum ``w m v'`` is taken as escaping: subtracted from
+    ``totals`` (force, then moment about ``reference``); without (the first bounce), the panel law has
+    taken it so already. Returns the outgoing velocities, weights,
+    and which molecules send anything on.
+
+    ``laws`` = (mirrored share, CLL flag, CLL ``alpha_n``, CLL ``sigma_t``, wall temperature [K]) per law.
+    """
+    mirrored, is_cll, alpha_n, sigma_t, wall = laws[0], laws[1], laws[2], laws[3], laws[4]
+    n = side.shape[0]
+    out_velocity = np.zeros((n, 3))
+    out_weight = np.zeros(n)
+    sends = np.zeros(n, dtype=np.bool_)
+    for i in range(n):
+        s = side[i]
+        law = side_law[s]
+        normal = normals[s]
+        v = velocity[i]
+        vn = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2]
+        if is_cll[law]:
+            key = side_key(seed, packet[i])
+            m = mass[species[i]]
+            c_w = math.sqrt(2.0 * _BOLTZMANN * wall[law] / m)
+            a_n, s_t = alpha_n[law], sigma_t[law]
+            a_t = s_t * (2.0 - s_t)
+            r = math.sqrt(-a_n * math.log(1.0 - _random(key, 0, depth, 40)))
+            theta = 2.0 * math.pi * _random(key, 0, depth, 41)
+            u_m = math.sqrt(1.0 - a_n) * (-vn / c_w)
+            u_n = math.sqrt(max(r * r + u_m * u_m + 2.0 * r * u_m * math.cos(theta), 0.0))
+            e1, e2 = _tangents(normal, v)
+            tangential = v[0] * e1[0] + v[1] * e1[1] + v[2] * e1[2]
+            r = math.sqrt(-a_t * math.log(1.0 - _random(key, 0, depth, 42)))
+            theta = 2.0 * math.pi * _random(key, 0, depth, 43)
+            u_1 = (1.0 - s_t) * tangential / c_w + r * math.cos(theta)
+            u_2 = r * math.sin(theta)
+            for d in range(3):
+                out_velocity[i, d] = c_w * (u_n * normal[d] + u_1 * e1[d] + u_2 * e2[d])
+            out_weight[i] = weight[i]
+        elif mirrored[law] > 0.0:
+            for d in range(3):
+                out_velocity[i, d] = v[d] - 2.0 * vn * normal[d]
+            out_weight[i] = weight[i] * mirrored[law]
+        else:
+            continue
+        sends[i] = True
+        if not book:
+            continue
+        scale = -out_weight[i] * mass[species[i]]
+        _push_moment(totals, point[i], reference, scale * out_velocity[i, 0], scale * out_velocity[i, 1],
+                     scale * out_velocity[i, 2])  # fmt: skip
+    return out_velocity, out_weight, sends
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _push_moment(
+    totals: NDArray[np.float64],
+    at: NDArray[np.float64],
+    reference: NDArray[np.float64],
+    x: float,
+    y: float,
+    z: float,
+) -> None:
+    """Add the vector ``(x, y, z)`` acting at ``at`` to ``totals[0:3]`` and its moment about ``reference``
+    to ``totals[3:6]``."""
+    r0, r1, r2 = at[0] - reference[0], at[1] - reference[1], at[2] - reference[2]
+    totals[0] += x
+    totals[1] += y
+    totals[2] += z
+    totals[3] += r1 * z - r2 * y
+    totals[4] += r2 * x - r0 * z
+    totals[5] += r0 * y - r1 * x
+
+
+@numba.njit(cache=True, nogil=True)
+def land(
+    struck: NDArray[np.int64],
+    origin: NDArray[np.float64],
+    species: NDArray[np.int64],
+    velocity: NDArray[np.float64],
+    weight: NDArray[np.float64],
+    side_law: NDArray[np.int64],
+    mass: NDArray[np.float64],
+    laws: tuple,
+    reference: NDArray[np.float64],
+    totals: NDArray[np.float64],
+    deposit: NDArray[np.float64],
+) -> NDArray[np.bool_]:
+    """Book each leg (leaving ``origin`` with ``velocity``, ``weight``) that meets a side: its momentum
+    ``w m v`` stays with the model (added to ``totals`` with its moment; any point of the leg's line
+    gives the same moment), and the diffuse share of the struck side's law is re-emitted there, its
+    momentum rate and sqrt(mass)-weighted rate added to ``deposit`` (2, n_sides) (at the temperature
+    of the law's rule for this molecule's energy). A leg meeting a side the model does not have
+    (``BLIND``) is absorbed. Returns which legs struck a side that can send them on.
+
+    ``laws`` = (diffuse share, temperature rule, ``alpha_E``, wall temperature [K]) per law.
+    """
+    diffuse, rule, alpha_e, wall = laws[0], laws[1], laws[2], laws[3]
+    n = struck.shape[0]
+    goes_on = np.zeros(n, dtype=np.bool_)
+    for i in range(n):
+        s = struck[i]
+        if s < 0 and s != BLIND:  # escaped
+            continue
+        m = mass[species[i]]
+        scale = weight[i] * m
+        _push_moment(totals, origin[i], reference, scale * velocity[i, 0], scale * velocity[i, 1],
+                     scale * velocity[i, 2])  # fmt: skip
+        if s == BLIND:
+            continue
+        law = side_law[s]
+        share = diffuse[law]
+        if share > 0.0:
+            temperature = wall[law]
+            energy = m * (velocity[i, 0] ** 2 + velocity[i, 1] ** 2 + velocity[i, 2] ** 2)
+            if rule[law] == SENTMAN:
+                temperature = alpha_e[law] * wall[law] + (1.0 - alpha_e[law]) * energy / (3.0 * _BOLTZMANN)
+            elif rule[law] == DRIA:
+                temperature = alpha_e[law] * wall[law] + (1.0 - alpha_e[law]) * energy / (4.0 * _BOLTZMANN)
+            rate = weight[i] * share
+            deposit[0, s] += rate * m * _MEAN_SPEED * math.sqrt(2.0 * _BOLTZMANN * temperature / m)
+            deposit[1, s] += rate * math.sqrt(m)
+        goes_on[i] = share < 1.0
+    return goes_on

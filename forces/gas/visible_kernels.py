@@ -1,0 +1,365 @@
+"""Numba kernels of what reaches each side of the incident stream (:mod:`sunwind.forces.gas.visible`).
+
+:func:`core_samples` makes the core cone's rays, :func:`core_shares` reads their answers,
+:func:`sky_sums` sums the kernel over each side's kept sky rays, and :func:`side_loads` puts the pieces
+together into each side's force, torque and first re-emission. Kernels taking ``lo, hi`` write rows
+``lo:hi`` (or the sides they name) of their outputs only, so threads given disjoint ranges produce the
+same bits as one.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.geometry.views.hemisphere import side_key, square_to_triangle, uniform
+
+
+@numba.njit(cache=True, nogil=True)
+def core_samples(
+    sides: NDArray[np.int64],
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    level: int,
+    frame: tuple[NDArray[np.float64], float, float],
+    axes: NDArray[np.float64],
+    quantiles: NDArray[np.float64],
+    strata: tuple[int, int],
+    seed: np.uint64,
+    origins: NDArray[np.float32],
+    levers: NDArray[np.float64],
+    directions: NDArray[np.float32],
+    weights: NDArray[np.float64],
+    lo: int,
+    hi: int,
+) -> None:
+    """The core rays of ``sides[lo:hi]``: from each of ``P = level**2`` points of a side, ``J = strata[0]
+    strata[1]`` directions within the core cone.
+
+    Row ``k P + p`` of the outputs belongs to point ``p`` of ``sides[k]``: ``origins`` (rows, 1, 3) in
+    scene coordinates (``frame`` = centre, half-size, origin offset [m]) pushed off the surface, ``levers``
+    (rows, 3) the point minus the side centroid [m], ``directions`` (rows, J, 3) and ``weights`` (rows, J)
+    ``max(n . w, 0)``. Points are jittered in a ``level x level`` grid mapped onto the triangle
+    (area-preserving), a fresh draw on every side, so that no part of a side (a thin shadow along an
+    edge) is missed by every side alike. Directions are ``cos(psi) u + sin(psi) (cos(phi) e1 + sin(phi)
+    e2)`` (``axes`` = ``u, e1, e2``), ``psi`` from the inverse distribution ``quantiles`` at a stratified
+    probability, ``phi`` stratified over the turn from a random start. Random numbers are counter hashes
+    of ``(seed, side)``.
+    """
+    centre, half_size, offset = frame
+    n_points, radial, around = level * level, strata[0], strata[1]
+    per_point = radial * around + 3
+    last = quantiles.shape[0] - 1
+    third = 1.0 / 3.0
+    for k in range(lo, hi):
+        s = sides[k]
+        key = side_key(seed, s)
+        corners = triangles[side_facet[s]]
+        for p in range(n_points):
+            row = k * n_points + p
+            first = p * per_point
+            b1, b2 = square_to_triangle(
+                (p // level + uniform(key, first)) / level, (p % level + uniform(key, first + 1)) / level
+            )
+            b0 = 1.0 - b1 - b2
+            for d in range(3):
+                point = b0 * corners[0, d] + b1 * corners[1, d] + b2 * corners[2, d]
+                levers[row, d] = (
+                    (b0 - third) * corners[0, d] + (b1 - third) * corners[1, d] + (b2 - third) * corners[2, d]
+                )
+                origins[row, 0, d] = np.float32((point + offset * normals[s, d] - centre[d]) / half_size)
+            turn = uniform(key, first + 2)
+            for i in range(radial):
+                for j in range(around):
+                    index = i * around + j
+                    probability = (i + uniform(key, first + 3 + index)) / radial
+                    position = probability * last
+                    below = min(int(position), last - 1)
+                    psi = quantiles[below] + (position - below) * (quantiles[below + 1] - quantiles[below])
+                    phi = 2.0 * math.pi * (turn + j / around)
+                    c, sn = math.cos(psi), math.sin(psi)
+                    cp, sp = math.cos(phi), math.sin(phi)
+                    mu = 0.0
+                    for d in range(3):
+                        w = c * axes[0, d] + sn * (cp * axes[1, d] + sp * axes[2, d])
+                        directions[row, index, d] = np.float32(w)
+                        mu += normals[s, d] * w
+                    weights[row, index] = max(mu, 0.0)
+
+
+@numba.njit(cache=True, nogil=True)
+def core_sums(
+    n_points: int,
+    facing: NDArray[np.bool_],
+    control_blocked: NDArray[np.bool_],
+    blocked: NDArray[np.bool_],
+    samples: tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.float64]],
+    sides: NDArray[np.int64],
+    law_of: tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]],
+    tables: tuple,
+    normaliser: float,
+    force: NDArray[np.float64],
+    moment: NDArray[np.float64],
+    emitted: NDArray[np.float64],
+    lo: int,
+    hi: int,
+) -> None:
+    """What the core adds to sides ``lo:hi`` of ``sides`` beyond ``f_u`` times its unobstructed integral
+    (rows ``k n_points + p`` of the core rays): per unit area, the force [Pa], its moment about the side
+    centroid [Pa m] and the two re-emission channels, into rows ``sides[k]``.
+
+    With ``samples`` = directions ``w`` (rows, J, 3), weights ``mu = max(n . w, 0)`` and levers [m], ``B``
+    whether a core ray met the model, ``B_u`` whether the ray along ``u`` from the same point did
+    (``control_blocked``; 0 where the side does not face ``u``, whose core is then taken unobstructed
+    first), the force per unit area is the unbiased estimate
+
+        Z / (P J) sum (B_u - B) mu g(w) / k_P(psi)
+
+    of the core integral of ``g`` (the law's force per unit solid angle and ``mu``, as in
+    :func:`sky_sums`) over what the ``u``-shadow leaves out or counts wrongly: directions ``w`` drawn
+    with density ``k_P / Z`` in the cone (``normaliser`` = ``Z`` [Pa]). It keeps the direction of what
+    is blocked (a shadow on one side of the cone turns the shear), and vanishes exactly where no ray
+    meets the model and none along ``u`` would. ``law_of`` = the law of each side, ``u``, and the cone's
+    cosine; ``tables`` as :func:`sky_sums`.
+    """
+    directions, mu_weights, levers = samples
+    side_law, u, _ = law_of
+    channels, cll, pressure, shear, normals = tables
+    per_point = mu_weights.shape[1]
+    scale = normaliser / (n_points * per_point)
+    for k in range(lo, hi):
+        s = sides[k]
+        law = side_law[s]
+        scales = (pressure[law], shear[law])
+        n = (normals[s, 0], normals[s, 1], normals[s, 2])
+        f0 = f1 = f2 = m0 = m1 = m2 = e0 = e1 = 0.0
+        for p in range(n_points):
+            row = k * n_points + p
+            control = 1.0 if facing[k] and control_blocked[row] else 0.0
+            for j in range(per_point):
+                gain = control - (1.0 if blocked[row, j] else 0.0)
+                mu = mu_weights[row, j]
+                if gain == 0.0 or mu <= 0.0:
+                    continue
+                w0, w1, w2 = (
+                    np.float64(directions[row, j, 0]),
+                    np.float64(directions[row, j, 1]),
+                    np.float64(directions[row, j, 2]),
+                )
+                cos_psi = w0 * u[0] + w1 * u[1] + w2 * u[2]
+                g0, g1, g2, c0, c1, k_p = _direction_load(
+                    channels, cll, law, scales, n, (w0, w1, w2), cos_psi
+                )
+                if k_p <= 0.0:
+                    continue
+                factor = gain * mu / k_p
+                g0, g1, g2 = factor * g0, factor * g1, factor * g2
+                l0, l1, l2 = levers[row, 0], levers[row, 1], levers[row, 2]
+                f0 += g0
+                f1 += g1
+                f2 += g2
+                m0 += l1 * g2 - l2 * g1
+                m1 += l2 * g0 - l0 * g2
+                m2 += l0 * g1 - l1 * g0
+                e0 += factor * c0
+                e1 += factor * c1
+        force[s, 0], force[s, 1], force[s, 2] = scale * f0, scale * f1, scale * f2
+        moment[s, 0], moment[s, 1], moment[s, 2] = scale * m0, scale * m1, scale * m2
+        emitted[s, 0], emitted[s, 1] = scale * e0, scale * e1
+
+
+@numba.njit(cache=True, nogil=True)
+def _direction_load(
+    channels: NDArray[np.float64],
+    cll: NDArray[np.float64] | None,
+    law: int,
+    scales: tuple[float, float],
+    n: tuple[float, float, float],
+    w: tuple[float, float, float],
+    cos_psi: float,
+) -> tuple[float, float, float, float, float, float]:
+    """Of the stream arriving at a side of unit normal ``n`` from direction ``w`` (``cos(psi) = w . u``),
+    per unit solid angle and ``mu = n . w``: the force of the side's law ``-a mu k_P n - c k_P (w - mu n)
+    - (b + R) n`` [Pa] (``scales`` = ``a, c``), the two re-emission channels and ``k_P`` itself.
+
+    ``channels`` (n_laws, n_x, 4) on ``x = sin(psi / 2)``; ``cll`` (n_laws, n_x, n_mu) on ``mu = t^2``
+    with ``t`` evenly spaced (CLL's ``R``; laws past its first axis have none), or None where no law is
+    CLL: numba then compiles the function without the lookup, which, even never taken, would slow the
+    sky sums by half.
+    """
+    n_x = channels.shape[1]
+    position = math.sqrt(max(0.5 * (1.0 - cos_psi), 0.0)) * (n_x - 1)
+    i = min(int(position), n_x - 2)
+    t = position - i
+    k_p = channels[law, i, 0] + t * (channels[law, i + 1, 0] - channels[law, i, 0])
+    push = channels[law, i, 1] + t * (channels[law, i + 1, 1] - channels[law, i, 1])
+    mu = max(n[0] * w[0] + n[1] * w[1] + n[2] * w[2], 0.0)
+    if cll is not None:
+        if law < cll.shape[0]:
+            n_mu = cll.shape[2]
+            at = math.sqrt(mu) * (n_mu - 1)
+            j = min(int(at), n_mu - 2)
+            v = at - j
+            low = cll[law, i, j] + t * (cll[law, i + 1, j] - cll[law, i, j])
+            high = cll[law, i, j + 1] + t * (cll[law, i + 1, j + 1] - cll[law, i, j + 1])
+            push += low + v * (high - low)
+    a, c = scales
+    along_n = (c - a) * mu * k_p - push
+    along_w = -c * k_p
+    e0 = channels[law, i, 2] + t * (channels[law, i + 1, 2] - channels[law, i, 2])
+    e1 = channels[law, i, 3] + t * (channels[law, i + 1, 3] - channels[law, i, 3])
+    return (
+        along_n * n[0] + along_w * w[0],
+        along_n * n[1] + along_w * w[1],
+        along_n * n[2] + along_w * w[2],
+        e0,
+        e1,
+        k_p,
+    )
+
+
+@numba.njit(cache=True, nogil=True, fastmath=True)
+def sky_sums(
+    sides: NDArray[np.int64],
+    start: NDArray[np.int64],
+    rays: tuple[NDArray[np.float32], NDArray[np.float32]],
+    law_of: tuple[NDArray[np.int64], NDArray[np.float64], float],
+    tables: tuple,
+    weight: float,
+    force: NDArray[np.float64],
+    moment: NDArray[np.float64],
+    emitted: NDArray[np.float64],
+    lo: int,
+    hi: int,
+) -> None:
+    """Sum over the kept sky rays of ``sides[lo:hi]`` of :func:`_direction_load` outside the core.
+
+    ``rays`` = the kept rays' directions ``w`` and levers [m]; ``law_of`` = the law of each side, ``u``
+    and ``cos(psi_c)``; ``tables`` = ``channels``, ``cll``, the laws' ``a`` and ``c``, and the side
+    normals. A ray with ``w . u < cos(psi_c)`` adds, times ``weight`` (``pi / N``), its law's force [Pa],
+    that force's moment about the side centroid ``lever x force`` [Pa m] and the two re-emission
+    channels. Results go to rows ``sides[k]`` of ``force``, ``moment`` (n_sides, 3) and ``emitted``
+    (n_sides, 2).
+    """
+    direction, lever = rays
+    side_law, u, cos_core = law_of
+    channels, cll, pressure, shear, normals = tables
+    u0, u1, u2 = u[0], u[1], u[2]
+    for k in range(lo, hi):
+        s = sides[k]
+        law = side_law[s]
+        scales = (pressure[law], shear[law])
+        n = (normals[s, 0], normals[s, 1], normals[s, 2])
+        f0 = f1 = f2 = m0 = m1 = m2 = e0 = e1 = 0.0
+        for r in range(start[s], start[s + 1]):
+            w0, w1, w2 = np.float64(direction[r, 0]), np.float64(direction[r, 1]), np.float64(direction[r, 2])
+            cos_psi = w0 * u0 + w1 * u1 + w2 * u2
+            if cos_psi >= cos_core:
+                continue
+            g0, g1, g2, c0, c1, _ = _direction_load(channels, cll, law, scales, n, (w0, w1, w2), cos_psi)
+            l0, l1, l2 = np.float64(lever[r, 0]), np.float64(lever[r, 1]), np.float64(lever[r, 2])
+            f0 += g0
+            f1 += g1
+            f2 += g2
+            m0 += l1 * g2 - l2 * g1
+            m1 += l2 * g0 - l0 * g2
+            m2 += l0 * g1 - l1 * g0
+            e0 += c0
+            e1 += c1
+        force[s, 0], force[s, 1], force[s, 2] = weight * f0, weight * f1, weight * f2
+        moment[s, 0], moment[s, 1], moment[s, 2] = weight * m0, weight * m1, weight * m2
+        emitted[s, 0], emitted[s, 1] = weight * e0, weight * e1
+
+
+@numba.njit(cache=True, nogil=True)
+def side_loads(
+    side_group: NDArray[np.int64],
+    groups: tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]],
+    core: NDArray[np.float64],
+    u: NDArray[np.float64],
+    sides: tuple[NDArray[np.float64], NDArray[np.float64]],
+    core_parts: tuple,
+    sky: tuple,
+    reference: NDArray[np.float64],
+    force: NDArray[np.float64],
+    torque: NDArray[np.float64],
+    emitted: NDArray[np.float64],
+    lo: int,
+    hi: int,
+) -> None:
+    """Force [N], torque [N m] (columns of ``force``, ``torque``: (3, n_sides)) and first re-emission
+    (``emitted``: (2, n_sides)) of sides ``lo:hi`` (METHOD.md "The open-sky integral").
+
+    ``groups`` = each group's law, normal and closed-form loads on an unobstructed side (n_groups, 5:
+    force per unit area [Pa] and the two re-emission channels); ``core`` (n_laws, 4, n_gamma) the core
+    cone's share of them, normal and tangential force and re-emission, on ``gamma`` in [-1, 1];
+    ``sides`` = the side areas [m^2] and centroids [m]. ``core_parts`` = the share of the unobstructed
+    core ``K`` acting at the lit centroid of the exact shadow along ``u`` (``f_u``), the share acting at
+    the centroid, those lit centroids [m], and :func:`core_sums`'s corrections (force, moment, re-emission
+    per unit area); ``sky`` = whether the side's kept sky rays are the open ones, and their
+    :func:`sky_sums`. Per unit area::
+
+        visible = f_u K + c K + corrections + (closed - K - sky sums  |  sky sums of the open rays),
+
+    so an unobstructed side gets ``closed`` exactly.
+    """
+    group_law, group_normals, closed = groups
+    areas, centroids = sides
+    at_lit, at_centroid, lit_centroid, core_force, core_moment, core_emitted = core_parts
+    keeps_open, sky_force, sky_moment, sky_emitted = sky
+    n_gamma = core.shape[2]
+    for s in range(lo, hi):
+        group = side_group[s]
+        law = group_law[group]
+        n0, n1, n2 = group_normals[group, 0], group_normals[group, 1], group_normals[group, 2]
+        gamma = n0 * u[0] + n1 * u[1] + n2 * u[2]
+        position = (min(max(gamma, -1.0), 1.0) + 1.0) * 0.5 * (n_gamma - 1)
+        i = min(int(position), n_gamma - 2)
+        t = position - i
+        c_n = core[law, 0, i] + t * (core[law, 0, i + 1] - core[law, 0, i])
+        c_t = core[law, 1, i] + t * (core[law, 1, i + 1] - core[law, 1, i])
+        a0, a1, a2 = u[0] - gamma * n0, u[1] - gamma * n1, u[2] - gamma * n2
+        length = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+        t0 = t1 = t2 = 0.0
+        if length > 1e-12:
+            t0, t1, t2 = -a0 / length, -a1 / length, -a2 / length
+        k0, k1, k2 = c_n * n0 + c_t * t0, c_n * n1 + c_t * t1, c_n * n2 + c_t * t2
+        core_e0 = core[law, 2, i] + t * (core[law, 2, i + 1] - core[law, 2, i])
+        core_e1 = core[law, 3, i] + t * (core[law, 3, i + 1] - core[law, 3, i])
+        sign = 1.0 if keeps_open[s] else -1.0
+        # what acts at the centroid: the core's share there and its corrections, the sky rays' sums
+        middle = at_centroid[s]
+        p0 = middle * k0 + core_force[s, 0] + sign * sky_force[s, 0]
+        p1 = middle * k1 + core_force[s, 1] + sign * sky_force[s, 1]
+        p2 = middle * k2 + core_force[s, 2] + sign * sky_force[s, 2]
+        seen = at_lit[s] + middle
+        e0 = seen * core_e0 + core_emitted[s, 0] + sign * sky_emitted[s, 0]
+        e1 = seen * core_e1 + core_emitted[s, 1] + sign * sky_emitted[s, 1]
+        if not keeps_open[s]:  # the rest of the stream, its blocked rays taken off above
+            p0 += closed[group, 0] - k0
+            p1 += closed[group, 1] - k1
+            p2 += closed[group, 2] - k2
+            e0 += closed[group, 3] - core_e0
+            e1 += closed[group, 4] - core_e1
+        q0, q1, q2 = at_lit[s] * k0, at_lit[s] * k1, at_lit[s] * k2  # at the lit centroid
+        c0, c1, c2 = (
+            centroids[s, 0] - reference[0],
+            centroids[s, 1] - reference[1],
+            centroids[s, 2] - reference[2],
+        )
+        l0 = lit_centroid[s, 0] - reference[0]
+        l1 = lit_centroid[s, 1] - reference[1]
+        l2 = lit_centroid[s, 2] - reference[2]
+        area = areas[s]
+        force[0, s], force[1, s], force[2, s] = area * (p0 + q0), area * (p1 + q1), area * (p2 + q2)
+        m0 = core_moment[s, 0] + sign * sky_moment[s, 0]
+        m1 = core_moment[s, 1] + sign * sky_moment[s, 1]
+        m2 = core_moment[s, 2] + sign * sky_moment[s, 2]
+        torque[0, s] = area * ((c1 * p2 - c2 * p1) + (l1 * q2 - l2 * q1) + m0)
+        torque[1, s] = area * ((c2 * p0 - c0 * p2) + (l2 * q0 - l0 * q2) + m1)
+        torque[2, s] = area * ((c0 * p1 - c1 * p0) + (l0 * q1 - l1 * q0) + m2)
+        emitted[0, s], emitted[1, s] = area * e0, area * e1

@@ -1,0 +1,268 @@
+"""The matrix of issue 19: the drag solver against the TPMC tracer on concave shapes, every case, law,
+speed ratio and flow direction, and the NRLMSIS mixture.
+
+:func:`matrix` lists the points (:data:`SPEED_RATIOS` of atomic oxygen for every case and law of
+:mod:`sunwind.validation.concave_drag`, and the open box in the 900 km NRLMSIS mixture with two laws);
+:func:`run_point` compares solver and tracer at one, with the tracer's molecules chosen by
+:func:`molecules_for`; :func:`markdown_table` sums the rows up for a README.
+``python -m sunwind.validation.drag_matrix [--quick]`` prints that table and the times.
+
+Notes
+-----
+**Molecule counts.** The tracer's standard error of a row must stay within ``SIGMA_SHARE`` of the
+tolerance (0.5 %), and grows at low speed ratio, with specular walls and with many bounces, so each
+row is first traced in a pilot of :data:`PILOT_MOLECULES` per species (its own seed), then once at the
+count that brings the pilot's standard errors to :data:`SIGMA_AIM` of that limit, as
+``sigma ~ 1 / sqrt(N)``. In a mixture the species share the budget: with ``a_k`` a species' pilot
+standard error over the row's scale, ``N_k = N_0 a_k (sum_j a_j) / aim^2`` is the least total count
+whose errors, added in quadrature, reach the aim (:func:`allocate`), taken for force and torque
+alike. A standard error from :data:`~sunwind.validation.concave_drag.BATCHES` batches scatters by
+11 %, the pilot's and the run's together by 16 %, so aiming at 0.6 of the limit leaves 3.2 of those
+scatters before a row's run overshoots it. Measured over the full matrix (381 rows): runs of 0.11 to
+0.96 million molecules (139 million in all, the pilots 17 million more), standard errors 0.30 % in the
+median and 0.41 % at worst (0.82 of the limit), the torque's mostly the larger.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from sunwind.validation.concave import torque_scale
+from sunwind.validation.concave_drag import (
+    BATCHES,
+    DRAG_CASES,
+    LAWS,
+    SIGMA_SHARE,
+    TOLERANCE,
+    DragCase,
+    DragRow,
+    Gas,
+    compare,
+    msis_mixture,
+    oxygen,
+    run_key,
+    seed_of,
+    summed,
+    trace_gas,
+)
+from sunwind.validation.sampling import Sampling
+
+#: Speed ratios of the single-species rows, and those of the quick subset.
+SPEED_RATIOS, QUICK_SPEED_RATIOS = (1.5, 3.0, 5.0, 8.0, 15.0), (1.5, 8.0)
+#: The mixture rows: the case, its laws (quick: the first) and the NRLMSIS altitude [km].
+MIXTURE_CASE, MIXTURE_LAWS, MIXTURE_ALTITUDE_KM = "open box", ("diffuse", "cll-0.8"), 900.0
+#: Molecules of each species' pilot run.
+PILOT_MOLECULES = 40_000
+#: Share of the standard-error limit the runs aim at (module Notes).
+SIGMA_AIM = 0.6
+#: Fewest and most molecules of one species' run.
+MOLECULE_RANGE = (2_000, 8_000_000)
+
+
+@dataclass(frozen=True, eq=False)
+class Point:
+    """One row of the matrix: a case, a law (a key of :data:`LAWS`), a flow direction [deg] and a gas."""
+
+    case: DragCase
+    law: str
+    flow_deg: tuple[float, float]
+    gas: Gas
+
+
+def matrix(quick: bool = False) -> list[Point]:
+    """Every point of the matrix: atomic oxygen at each speed ratio for every case, law and flow, then
+    the mixture. ``quick``: each case once, at its last flow (off every symmetry plane), with a law of
+    its own and the :data:`QUICK_SPEED_RATIOS` in turn, and the mixture with its first law."""
+    if quick:
+        points = [
+            Point(case, law, case.flows_deg[-1], oxygen(QUICK_SPEED_RATIOS[i % 2]))
+            for i, (case, law) in enumerate(zip(DRAG_CASES, LAWS, strict=True))
+        ]
+    else:
+        points = [
+            Point(case, law, flow, oxygen(ratio))
+            for case in DRAG_CASES
+            for law in LAWS
+            for ratio in SPEED_RATIOS
+            for flow in case.flows_deg
+        ]
+    mixture_case = next(case for case in DRAG_CASES if case.name == MIXTURE_CASE)
+    mixture = msis_mixture(MIXTURE_ALTITUDE_KM)
+    laws = MIXTURE_LAWS[:1] if quick else MIXTURE_LAWS
+    return points + [
+        Point(mixture_case, law, flow, mixture) for law in laws for flow in _flows(mixture_case, quick)
+    ]
+
+
+def _flows(case: DragCase, quick: bool) -> tuple[tuple[float, float], ...]:
+    return case.flows_deg[-1:] if quick else case.flows_deg
+
+
+def allocate(sigma_shares: ArrayLike, pilot_molecules: int, aim: float) -> list[int]:
+    """Molecules of each species so that their standard errors, in quadrature, come to ``aim``.
+
+    Parameters
+    ----------
+    sigma_shares : (n_species, n_measures) array_like
+        Each species' pilot standard error of each measure (force, torque) over the row's scale [-].
+    pilot_molecules : int
+        Molecules of each species' pilot.
+    aim : float
+        Standard error aimed at over the row's scale [-].
+
+    Returns
+    -------
+    list of int
+        ``N_k = max over measures of N_0 a_k (sum_j a_j) / aim^2`` (module Notes), rounded up to a
+        multiple of the batches and kept within :data:`MOLECULE_RANGE`.
+    """
+    shares = np.asarray(sigma_shares, dtype=np.float64)
+    needed = (pilot_molecules * shares * shares.sum(axis=0) / aim**2).max(axis=1)
+    low, high = MOLECULE_RANGE
+    return [min(high, max(low, BATCHES * math.ceil(n / BATCHES))) for n in needed]
+
+
+def pilot_shares(point: Point) -> NDArray[np.float64]:
+    """(n_species, 2): each species' pilot standard error of force and torque over the pilot's summed
+    ``|F|`` and torque scale."""
+    samplings = {
+        k: Sampling(PILOT_MOLECULES, seed_of(_pilot_key(point, k)), BATCHES) for k in point.gas.streams()
+    }
+    runs = trace_gas(point.case, point.law, point.flow_deg, point.gas, samplings)
+    total = summed(runs)
+    force = float(np.linalg.norm(total.force_N))
+    scale = torque_scale(total.force_N, total.torque_Nm, point.case.size_m)
+    return np.array([[r.force_error_N / force, r.torque_error_Nm / scale] for r in runs])
+
+
+def _pilot_key(point: Point, species: str) -> str:
+    return run_key(point.case, point.law, point.flow_deg, point.gas, species) + "/pilot"
+
+
+def molecules_for(point: Point) -> dict[str, int]:
+    """Molecules of each species' run at ``point``, from its pilot (module Notes)."""
+    counts = allocate(pilot_shares(point), PILOT_MOLECULES, SIGMA_AIM * SIGMA_SHARE * TOLERANCE)
+    return dict(zip(point.gas.streams(), counts, strict=True))
+
+
+def run_point(point: Point) -> DragRow:
+    """Solver against tracer at ``point``, the tracer's molecules from :func:`molecules_for`; the row's
+    ``tracer_seconds`` include the pilot's."""
+    start = time.perf_counter()
+    molecules = molecules_for(point)
+    pilot_seconds = time.perf_counter() - start
+    row = compare(point.case, point.law, point.flow_deg, point.gas, molecules)
+    return replace(row, tracer_seconds=row.tracer_seconds + pilot_seconds)
+
+
+def run_matrix(quick: bool = False, progress: Callable[[DragRow], None] | None = None) -> list[DragRow]:
+    """:func:`run_point` at every point of :func:`matrix` (``quick``: the subset); ``progress(row)``
+    hears each row."""
+    rows = []
+    for row in map(run_point, matrix(quick)):
+        rows.append(row)
+        if progress:
+            progress(row)
+    return rows
+
+
+def gas_label(row: DragRow) -> str:
+    """The row's gas and speed ratio: ``"O, S 8"``, or a mixture's name with each species' ``S``."""
+    if len(row.speed_ratios) == 1:
+        return row.gas
+    return f"{row.gas}: " + ", ".join(f"{k} {s:.2f}" for k, s in sorted(row.speed_ratios, key=lambda p: p[1]))
+
+
+def _groups(rows: Sequence[DragRow]) -> Iterator[list[DragRow]]:
+    """The rows grouped by case, law and gas, in order of first appearance."""
+    grouped: dict[tuple[str, str, str], list[DragRow]] = {}
+    for row in rows:
+        grouped.setdefault((row.case, row.law, row.gas), []).append(row)
+    yield from grouped.values()
+
+
+#: The row fields whose worst value over a group's flows the table shows.
+_WORST = (
+    "force_difference",
+    "force_difference_none",
+    "torque_difference",
+    "torque_difference_none",
+    "force_mc_sigma",
+    "torque_mc_sigma",
+)
+
+
+def _percent(value: float) -> str:
+    return f"{100 * value:.2f} %"
+
+
+def markdown_table(rows: Sequence[DragRow]) -> str:
+    """One Markdown line per case, law and gas: its flows, the worst force and torque differences
+    over them (with and without exchange), the worst tracer standard error, the molecules and the
+    verdict; then the rows passed and the times."""
+    lines = [
+        "| case | law | gas, speed ratio | flows | force | force, no exchange | torque | torque, no exchange "
+        "| tracer σ | molecules | |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for group in _groups(rows):
+        first = group[0]
+        worst = {name: max(getattr(r, name) for r in group) for name in _WORST}
+        sigma = max(worst["force_mc_sigma"], worst["torque_mc_sigma"])
+        counts = [r.molecules for r in group]
+        lines.append(
+            f"| {first.case} | {first.law} | {gas_label(first)} | {len(group)} "
+            f"| {_percent(worst['force_difference'])} | {_percent(worst['force_difference_none'])} "
+            f"| {_percent(worst['torque_difference'])} | {_percent(worst['torque_difference_none'])} "
+            f"| {_percent(sigma)} | {min(counts) / 1e6:.2f}-{max(counts) / 1e6:.2f} M "
+            f"| {'pass' if all(r.passed for r in group) else 'FAIL'} |"
+        )
+    return "\n".join([*lines, "", summary(rows)])
+
+
+def summary(rows: Sequence[DragRow]) -> str:
+    """Rows passed and failed, the tolerance, and the tracer's and solver's seconds in all."""
+    failed = sum(not r.passed for r in rows)
+    tracer, solver = sum(r.tracer_seconds for r in rows), sum(r.solver_seconds for r in rows)
+    return (
+        f"{len(rows) - failed} of {len(rows)} rows passed (force and torque within {_percent(TOLERANCE)}, "
+        f"tracer σ within {_percent(SIGMA_SHARE * TOLERANCE)}); tracer {tracer:.0f} s, solver {solver:.0f} s"
+    )
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the matrix (``--quick``: the subset), print its table and the wall-clock time; progress on
+    stderr. 0 when every row passed, else 1."""
+    parser = argparse.ArgumentParser(prog="python -m sunwind.validation.drag_matrix", description=__doc__)
+    parser.add_argument(
+        "--quick", action="store_true", help="each case once, at one flow, with a law of its own, S 1.5 or 8"
+    )
+    args = parser.parse_args(argv)
+    start = time.perf_counter()
+    rows = run_matrix(args.quick, progress=_print_progress)
+    print(markdown_table(rows))
+    print(f"total {time.perf_counter() - start:.0f} s")
+    return 0 if all(r.passed for r in rows) else 1
+
+
+def _print_progress(row: DragRow) -> None:
+    print(
+        f"{row.case}/{row.law} {gas_label(row)} az {row.azimuth_deg:g} el {row.elevation_deg:g}: "
+        f"force {_percent(row.force_difference)}, torque {_percent(row.torque_difference)}, "
+        f"σ {_percent(max(row.force_mc_sigma, row.torque_mc_sigma))}, {row.molecules} molecules, "
+        f"{row.tracer_seconds:.1f} + {row.solver_seconds:.1f} s",
+        file=sys.stderr,
+        flush=True,
+    )
+
+
+if __name__ == "__main__":
+    sys.exit(main())
