@@ -17,6 +17,7 @@ import click
 from sunwind.forces.cli.attitude import drag, forces, srp
 from sunwind.forces.cli.mesh import info, mesh
 from sunwind.forces.cli.options import FLAGS
+from sunwind.forces.cli.orbit import orbit
 from sunwind.forces.cli.progress import StepLines
 from sunwind.forces.cli.tables import plot, sweep_command
 from sunwind.forces.cli.tools import bench, validate
@@ -34,7 +35,7 @@ def app() -> None:
     """
 
 
-for command in (srp, drag, forces, sweep_command, plot, info, mesh, bench, validate):
+for command in (srp, drag, forces, sweep_command, orbit, plot, info, mesh, bench, validate):
     app.add_command(command)
 
 

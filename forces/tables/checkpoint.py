@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from sunwind.forces.model import Model
-from sunwind.forces.tables.jobs import FIELDS, Job, Records
+from sunwind.forces.tables.jobs import Job, Records
 from sunwind.geometry.errors import InputError
 
 
@@ -126,40 +126,40 @@ class Checkpoint:
     def _path(self, kind: str, lo: int) -> Path:
         return self.directory / f"{kind}-{lo:08d}.npz"
 
-    def load(self, kind: str, lo: int, hi: int) -> Records | None:
+    def load(self, job: Job, lo: int, hi: int) -> Records | None:
         """The records of a finished chunk of this sweep; None when it is not there, damaged, of other
         settings or edited (counted in :attr:`refused`)."""
-        path = self._path(kind, lo)
+        path = self._path(job.kind, lo)
         if not path.exists():
             return None
-        records = self._read(path, kind, lo, hi)
+        records = self._read(path, job, lo, hi)
         if records is None:
             self.refused += 1
         else:
             self.kept += 1
         return records
 
-    def _read(self, path: Path, kind: str, lo: int, hi: int) -> Records | None:
+    def _read(self, path: Path, job: Job, lo: int, hi: int) -> Records | None:
         try:
             with path.open("rb") as handle, np.load(handle, allow_pickle=False) as kept:
                 stored = {name: kept[name] for name in kept.files}
         except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
             return None
-        records = {name: stored[name] for name in FIELDS[kind] if name in stored}
-        for name, width in FIELDS[kind].items():
+        records = {name: stored[name] for name in job.fields if name in stored}
+        for name, width in job.fields.items():
             shape = (hi - lo, 3) if width == 3 else (hi - lo,)
             if name not in records or records[name].shape != shape or records[name].dtype != np.float64:
                 return None
         signature = (str(stored.get("settings_sha256", "")), str(stored.get("data_sha256", "")))
-        if signature != (self.settings_sha256, data_digest(kind, lo, records)):
+        if signature != (self.settings_sha256, data_digest(job, lo, records)):
             return None
         return records
 
-    def save(self, kind: str, lo: int, records: Records) -> None:
+    def save(self, job: Job, lo: int, records: Records) -> None:
         """Keep a finished chunk with its signature (written to a temporary file, then renamed)."""
-        path = self._path(kind, lo)
+        path = self._path(job.kind, lo)
         temporary = path.with_name(f".{path.stem}.tmp.npz")
-        signature = {"settings_sha256": self.settings_sha256, "data_sha256": data_digest(kind, lo, records)}
+        signature = {"settings_sha256": self.settings_sha256, "data_sha256": data_digest(job, lo, records)}
         np.savez(temporary, **records, **{key: np.array(value) for key, value in signature.items()})
         os.replace(temporary, path)
         self.saved += 1
@@ -176,10 +176,10 @@ class Checkpoint:
         shutil.rmtree(self.directory, ignore_errors=True)
 
 
-def data_digest(kind: str, lo: int, records: Records) -> str:
+def data_digest(job: Job, lo: int, records: Records) -> str:
     """SHA-256 of a chunk: its kind, first index, and every field's name, shape and float64 bytes."""
-    digest = hashlib.sha256(f"{kind}:{lo}".encode())
-    for name in FIELDS[kind]:
+    digest = hashlib.sha256(f"{job.kind}:{lo}".encode())
+    for name in job.fields:
         values = np.ascontiguousarray(records[name], dtype=np.float64)
         digest.update(f"{name}{values.shape}".encode())
         digest.update(values.tobytes())

@@ -17,9 +17,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from sunwind.forces.gas.visible import model_sky
 from sunwind.forces.model import Model, as_model
-from sunwind.forces.reflection import model_view_factors
 from sunwind.forces.tables.attitudes import GRID_BYTES, AttitudeList, DirectionGrid, direction_grid
 from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
 from sunwind.forces.tables.cluster import require_dask, run_on_dask
@@ -144,12 +142,12 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
     store = None
     if run.checkpoint is not None:
         store = Checkpoint.open(Path(run.checkpoint), fingerprint(model, jobs, run.chunk), run.resume)
-    records = {job.kind: empty_records(job.kind, len(job.directions)) for job in jobs}
+    records = {job.kind: empty_records(job.fields, len(job.directions)) for job in jobs}
     pending: list[tuple[Job, int, int]] = []
     done = 0
     for job in jobs:
         for lo, hi in job.chunks(run.chunk):
-            kept = None if store is None else store.load(job.kind, lo, hi)
+            kept = None if store is None else store.load(job, lo, hi)
             if kept is None:
                 pending.append((job, lo, hi))
             else:
@@ -193,7 +191,7 @@ class _Finished:
     def __call__(self, job: Job, lo: int, hi: int, values: Records) -> None:
         _fill(self.records[job.kind], lo, hi, values)
         if self.store is not None:
-            self.store.save(job.kind, lo, values)
+            self.store.save(job, lo, values)
         self.done += hi - lo
         if self.progress:
             self.progress(self.done)
@@ -205,10 +203,7 @@ def _fill(records: Records, lo: int, hi: int, values: Records) -> None:
 
 
 def precompute(model: Model, jobs: list[Job]) -> None:
-    """What every attitude reuses, made once before the first: the view factors when a job reflects,
-    each side's open sky when it computes drag (Dask workers then read them from the disk cache)."""
+    """What every attitude reuses, made once before the first (Dask workers then read it from the disk
+    cache): the view factors when a job reflects, each side's open sky when it computes drag."""
     for job in jobs:
-        if job.setup.settings.mode in ("full", "auto"):
-            model_view_factors(model.craft, job.setup.settings)
-        if job.kind == "drag":
-            model_sky(model.craft, job.setup.sky_rays, job.setup.settings.cache_dir)
+        job.setup.precompute(model)

@@ -21,6 +21,7 @@ from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.exchange import gas_interference_criterion
 from sunwind.forces.gas.flow import flow_speed
 from sunwind.forces.gas.sampling import GasSampling
+from sunwind.forces.gas.visible import model_sky
 from sunwind.forces.model import Model
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure, solar_flux
 from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors, reflection_plan
@@ -56,9 +57,9 @@ FIELDS = {"srp": SRP_FIELDS, "drag": DRAG_FIELDS}
 Records = dict[str, NDArray[np.float64]]
 
 
-def empty_records(kind: str, n: int) -> Records:
-    """Records of ``n`` attitudes of ``kind``, not yet filled."""
-    return {name: np.empty((n, 3) if width == 3 else n) for name, width in FIELDS[kind].items()}
+def empty_records(fields: dict[str, int], n: int) -> Records:
+    """Records of ``n`` attitudes with ``fields`` (name -> width), not yet filled."""
+    return {name: np.empty((n, 3) if width == 3 else n) for name, width in fields.items()}
 
 
 @dataclass(frozen=True)
@@ -66,6 +67,7 @@ class _Setup:
     """What the SRP and drag settings share: sampling, inter-reflection and the reference point."""
 
     kind: ClassVar[str]
+    fields: ClassVar[dict[str, int]]
     reference_point_m: tuple[float, float, float] | None = field(default=None, kw_only=True)
     samples: int | None = field(default=None, kw_only=True)
     tolerance: float = field(default=DEFAULT_TOLERANCE, kw_only=True)
@@ -81,6 +83,11 @@ class _Setup:
     def settings(self) -> ReflectionSettings:
         """:attr:`reflections` as settings."""
         return ReflectionSettings.of(self.reflections)
+
+    def precompute(self, model: Model) -> None:
+        """What every attitude reuses, made once before the first: the view factors when it reflects."""
+        if self.settings.mode in ("full", "auto"):
+            model_view_factors(model.craft, self.settings)
 
     def options(self) -> dict:
         """The keyword arguments every attitude's call takes."""
@@ -104,6 +111,7 @@ class SrpSetup(_Setup):
     """Settings of every SRP attitude (see :func:`~sunwind.forces.srp.srp`)."""
 
     kind: ClassVar[str] = "srp"
+    fields: ClassVar[dict[str, int]] = SRP_FIELDS
     flux_W_m2: float = SOLAR_FLUX_1AU
 
     def __post_init__(self) -> None:
@@ -125,15 +133,38 @@ class SrpSetup(_Setup):
 
 
 @dataclass(frozen=True)
-class DragSetup(_Setup):
-    """Settings of every drag attitude (see :func:`~sunwind.forces.drag.drag`); ``v_rel = speed * u``."""
+class GasOptions(_Setup):
+    """How every drag attitude is computed, whatever its flow: the reference point, shadow sampling,
+    re-emission exchange and the sampling of the open-sky integral and chains (see
+    :func:`~sunwind.forces.drag.drag`)."""
 
-    kind: ClassVar[str] = "drag"
-    speed_m_s: float = field(kw_only=True)
-    atmosphere: Atmosphere = field(kw_only=True)
     sky_rays: int | None = field(default=None, kw_only=True)
     core_rays: int = field(default=GasSampling.core_rays, kw_only=True)
     chain_molecules: int = field(default=GasSampling.chain_molecules, kw_only=True)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
+
+    def precompute(self, model: Model) -> None:
+        """The view factors when it reflects, and each side's open sky."""
+        super().precompute(model)
+        model_sky(model.craft, self.sky_rays, self.settings.cache_dir)
+
+    def options(self) -> dict:
+        """The keyword arguments every attitude's call takes."""
+        gas = GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
+        return super().options() | {"gas_sampling": gas}
+
+
+@dataclass(frozen=True)
+class DragSetup(GasOptions):
+    """Settings of every drag attitude (see :func:`~sunwind.forces.drag.drag`); ``v_rel = speed * u``."""
+
+    kind: ClassVar[str] = "drag"
+    fields: ClassVar[dict[str, int]] = DRAG_FIELDS
+    speed_m_s: float = field(kw_only=True)
+    atmosphere: Atmosphere = field(kw_only=True)
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -142,12 +173,6 @@ class DragSetup(_Setup):
                 f"speed_m_s {self.speed_m_s!r} is not a number of m/s", parameters=("speed_m_s",)
             )
         flow_speed(self.speed_m_s)
-        GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
-
-    def options(self) -> dict:
-        """The keyword arguments every attitude's call takes."""
-        gas = GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
-        return super().options() | {"gas_sampling": gas}
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of flow directions ``u`` (n, 3)."""
@@ -201,6 +226,11 @@ class Job:
     @property
     def kind(self) -> str:
         return self.setup.kind
+
+    @property
+    def fields(self) -> dict[str, int]:
+        """The records' fields: name -> width (1: a number, 3: a vector)."""
+        return self.setup.fields
 
     def chunks(self, size: int) -> list[tuple[int, int]]:
         """Index ranges ``[lo, hi)`` of the chunks."""

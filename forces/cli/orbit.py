@@ -1,0 +1,413 @@
+"""``sunwind orbit``: forces, torques and the momentum they build along an orbit and an attitude law."""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import click
+import numpy as np
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+from sunwind.forces.cli.options import (
+    drag_only,
+    group,
+    loaded,
+    model_options,
+    reference_options,
+    reflection_options,
+    sampling_options,
+)
+from sunwind.forces.cli.report import print_json, vector
+from sunwind.forces.cli.tables import check_writable
+from sunwind.forces.gas import explicit
+from sunwind.forces.model import ModelSource
+from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, SpaceWeather, Trajectory, fly, propagate
+from sunwind.forces.orbit.attitude import INTERPOLATIONS
+from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
+from sunwind.forces.orbit.ephemeris_csv import ephemeris_trajectory, read_ephemeris
+from sunwind.forces.orbit.flight import geodetic
+from sunwind.forces.orbit.tle import read_tle, tle_epoch, tle_trajectory
+from sunwind.forces.orbit.trajectory import PROPAGATORS
+from sunwind.forces.radiation import solar_flux
+from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.tables import DEFAULT_CHUNK, SweepRun
+from sunwind.forces.tables.cluster import require_dask
+from sunwind.forces.tables.jobs import GasOptions, SrpSetup
+from sunwind.geometry import memory
+from sunwind.geometry.errors import InputError
+
+#: Drag is computed by default when the orbit dips below this altitude [km] (NRLMSIS's fitted range).
+DRAG_DEFAULT_BELOW_KM = 1000.0
+#: Estimated bytes per step (inputs, records, series, rotations, output).
+STEP_BYTES = 2000
+#: Default step between outputs [s].
+DEFAULT_STEP_S = 60.0
+
+_PATH_OPTIONS = [
+    click.option(
+        "--elements",
+        nargs=6,
+        type=float,
+        default=None,
+        metavar="A_KM E I RAAN ARGP NU",
+        help="Keplerian elements at the epoch: semi-major axis [km], eccentricity, angles [deg].",
+    ),
+    click.option("--altitude", type=float, help="Circular orbit: altitude [km] above 6378.137 km."),
+    click.option("--inclination", type=float, help="Circular orbit: inclination [deg]."),
+    click.option("--raan", type=float, default=0.0, show_default=True, help="Circular orbit: RAAN [deg]."),
+    click.option(
+        "--arg-latitude",
+        type=float,
+        default=0.0,
+        show_default=True,
+        help="Circular orbit: argument of latitude at the epoch [deg].",
+    ),
+    click.option(
+        "--propagator",
+        type=click.Choice(PROPAGATORS),
+        default="kepler",
+        show_default=True,
+        help="Elements propagated by two-body motion or with J2.",
+    ),
+    click.option("--tle", type=click.Path(path_type=Path), help="TLE file, propagated by SGP4."),
+    click.option(
+        "--ephemeris",
+        type=click.Path(path_type=Path),
+        help="CSV of time, x_m, y_m, z_m, vx_m_s, vy_m_s, vz_m_s (GCRF).",
+    ),
+    click.option("--epoch", help="Start, UTC ISO 8601 [default: the TLE's or the ephemeris' first time]."),
+    click.option("--duration", type=float, help="Run length [s] [default: one orbital period]."),
+    click.option(
+        "--step", type=float, default=DEFAULT_STEP_S, show_default=True, help="Time between steps [s]."
+    ),
+]
+
+
+@dataclass(frozen=True)
+class PathRequest:
+    """Where the spacecraft goes: one source of states, the epoch, duration and step."""
+
+    elements: Elements | None
+    propagator: str
+    tle: Path | None
+    ephemeris: Path | None
+    epoch: Epoch | None
+    duration_s: float | None
+    step_s: float
+
+    def trajectory(self) -> Trajectory:
+        """The states at every step, their count checked against the memory limit first."""
+        epoch = self.epoch
+        if self.tle is not None:
+            epoch = epoch or tle_epoch(*read_tle(self.tle))
+        if self.ephemeris is not None:
+            epoch, times, _, _ = read_ephemeris(self.ephemeris, epoch)
+            default = times[-1]
+        elif self.elements is not None:
+            default = self.elements.period_s
+        else:
+            default = None
+        if epoch is None:
+            raise InputError(
+                "give --epoch: the UTC start of the run", hint="e.g. --epoch 2024-03-20T00:00:00Z"
+            )
+        duration = self.duration_s if self.duration_s is not None else default
+        if duration is None:
+            raise InputError("give --duration [s]: a TLE has no natural length", parameters=())
+        count = math.floor(duration / self.step_s + 1e-9) + 1
+        memory.require(count * STEP_BYTES, f"{count:.3g} steps", "raise --step or shorten --duration")
+        time_s = np.arange(count) * self.step_s
+        if self.tle is not None:
+            return tle_trajectory(self.tle, epoch, time_s)
+        if self.ephemeris is not None:
+            return ephemeris_trajectory(self.ephemeris, epoch, time_s)
+        return propagate(self.elements, epoch, time_s, self.propagator)
+
+
+def _path(values: dict) -> PathRequest:
+    elements = None
+    if values["elements"] is not None:
+        a_km, e, i, raan, argp, nu = values["elements"]
+        elements = Elements(a_km * 1e3, e, i, raan, argp, nu)
+    if values["altitude"] is not None or values["inclination"] is not None:
+        if values["altitude"] is None or values["inclination"] is None:
+            raise InputError("a circular orbit needs --altitude and --inclination")
+        elements = Elements.circular(
+            values["altitude"], values["inclination"], values["raan"], values["arg_latitude"]
+        )
+    given = [
+        flag
+        for flag, on in (
+            ("--elements", values["elements"] is not None),
+            ("--altitude/--inclination", values["altitude"] is not None),
+            ("--tle", values["tle"] is not None),
+            ("--ephemeris", values["ephemeris"] is not None),
+        )
+        if on
+    ]
+    if len(given) != 1:
+        raise InputError(
+            f"give one orbit, not {' and '.join(given)}" if given else "give an orbit",
+            hint="--elements, --altitude with --inclination, --tle FILE or --ephemeris FILE",
+        )
+    for name in ("duration", "step"):
+        value = values[name]
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise InputError(f"--{name} {value:g} s must be a positive number of seconds")
+    epoch = None if values["epoch"] is None else Epoch.of(values["epoch"])
+    return PathRequest(
+        elements,
+        values["propagator"],
+        values["tle"],
+        values["ephemeris"],
+        epoch,
+        values["duration"],
+        values["step"],
+    )
+
+
+_ENVIRONMENT_OPTIONS = [
+    click.option("--srp", "srp_flag", is_flag=True, help="Compute SRP [default: on]."),
+    click.option(
+        "--drag",
+        "drag_flag",
+        is_flag=True,
+        help=f"Compute drag [default: on where the orbit dips below {DRAG_DEFAULT_BELOW_KM:g} km].",
+    ),
+    click.option(
+        "--sun-eci",
+        nargs=3,
+        type=float,
+        default=None,
+        metavar="X Y Z",
+        help="A fixed Sun direction (GCRF, at 1 au) instead of the ephemeris.",
+    ),
+    click.option(
+        "--eclipse",
+        type=click.Choice(ECLIPSE_MODELS),
+        default="conical",
+        show_default=True,
+        help="Earth shadow: conical (with penumbra), cylindrical, or none.",
+    ),
+    click.option("--flux", type=float, help="Solar flux at 1 au [W/m^2] [default 1361]."),
+    click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
+    click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
+    click.option("--ap", type=float, default=4.0, show_default=True, help="Daily Ap index."),
+    click.option("--density", type=float, help="Fixed atmosphere: mass density [kg/m^3]."),
+    click.option("--temperature", type=float, help="Fixed atmosphere: temperature [K]."),
+    click.option("--composition", help='Fixed atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),
+    click.option("--mass", type=float, help="Spacecraft mass [kg]: ballistic and SRP coefficients per kg."),
+]
+
+
+@dataclass(frozen=True)
+class Environment:
+    """The terms asked for, the Sun, the eclipse model and the air."""
+
+    srp: bool
+    drag: bool | None
+    sun_eci: np.ndarray | None
+    eclipse: str
+    flux_W_m2: float
+    air: object
+    mass_kg: float | None
+
+
+def _environment(values: dict) -> Environment:
+    fixed = [values[k] for k in ("density", "temperature", "composition")]
+    if any(v is not None for v in fixed):
+        if any(v is None for v in fixed):
+            raise InputError("a fixed atmosphere needs --density, --temperature and --composition")
+        air = explicit(*fixed)
+    else:
+        air = SpaceWeather(values["f107"], values["f107a"], values["ap"])
+    sun = values["sun_eci"]
+    if sun is not None and not (np.all(np.isfinite(sun)) and np.linalg.norm(sun) > 0):
+        raise InputError(f"--sun-eci {sun} must be a finite, non-zero direction")
+    mass = values["mass"]
+    if mass is not None and not (math.isfinite(mass) and mass > 0):
+        raise InputError(f"--mass {mass:g} kg must be a positive number")
+    asked = values["srp_flag"] or values["drag_flag"]
+    return Environment(
+        values["srp_flag"] or not asked,
+        values["drag_flag"] if asked else None,
+        None if sun is None else np.array(sun, dtype=float),
+        values["eclipse"],
+        solar_flux(values["flux"]),
+        air,
+        mass,
+    )
+
+
+_ATTITUDE_OPTIONS = [
+    click.option(
+        "--attitude",
+        "law",
+        default="nadir",
+        show_default=True,
+        help="nadir, lvlh:P,Y,R, sun[:A,B], inertial:QW,QX,QY,QZ, thrust-sun:X,Y,Z[:A,B] or csv:FILE.",
+    ),
+    click.option(
+        "--interpolation",
+        type=click.Choice(INTERPOLATIONS),
+        default="slerp",
+        show_default=True,
+        help="Between the rows of a csv: attitude file.",
+    ),
+]
+
+_OUTPUT_OPTIONS = [
+    click.option("--output", "-o", type=click.Path(path_type=Path), help="Time series file: .nc or .csv."),
+    click.option("--plot", type=click.Path(path_type=Path), help="PNG of torque and momentum against time."),
+    click.option("--json", "as_json", is_flag=True, help="Print one JSON object: the series and summary."),
+    click.option(
+        "--sky-rays", type=int, help="Rays per side of each side's open sky [default: by model size]."
+    ),
+    click.option("--resume", is_flag=True, help="Continue an interrupted run from its checkpoint (-o)."),
+    click.option(
+        "--scheduler",
+        is_flag=False,
+        flag_value="local",
+        default=None,
+        metavar="[ADDRESS]",
+        help="Run steps on Dask: a scheduler address, or alone for a local cluster.",
+    ),
+    click.option("--workers", type=int, help="Threads per step; with --scheduler alone, local Dask workers."),
+    click.option(
+        "--chunk", type=int, default=DEFAULT_CHUNK, show_default=True, help="Steps per checkpoint chunk."
+    ),
+]
+
+
+def _output(values: dict) -> dict:
+    out = values["output"]
+    if out is not None:
+        if out.suffix not in (".nc", ".csv"):
+            raise InputError("the time series is written as .nc or .csv", path=str(out), hint="name it so")
+        check_writable(out)
+    if values["plot"] is not None:
+        check_writable(values["plot"])
+    if values["resume"] and out is None:
+        raise InputError("--resume takes up the checkpoint of an output: give -o as before")
+    if values["scheduler"] is not None:
+        require_dask()
+    return values
+
+
+@click.command("orbit")
+@model_options(gas=True)
+@group("path", _PATH_OPTIONS, _path)
+@group("environment", _ENVIRONMENT_OPTIONS, _environment)
+@group("attitude", _ATTITUDE_OPTIONS, lambda v: AttitudeLaw.parse(v["law"], v["interpolation"]))
+@reference_options(sizes=True)
+@sampling_options
+@reflection_options("both")
+@group("output", _OUTPUT_OPTIONS, _output)
+def orbit(
+    source: ModelSource,
+    path: PathRequest,
+    environment: Environment,
+    attitude: AttitudeLaw,
+    references: dict,
+    sampling: dict,
+    reflections: ReflectionSettings,
+    output: dict,
+) -> None:
+    """Forces, torques and accumulated momentum along an orbit, with eclipse and an attitude law."""
+    trajectory = path.trajectory()
+    lowest = float(geodetic(trajectory)[:, 0].min())
+    drag_on = environment.drag if environment.drag is not None else lowest < DRAG_DEFAULT_BELOW_KM
+    if environment.drag is None:
+        said = "with" if drag_on else "without"
+        print(
+            f"sunwind: notice: {said} drag: the orbit's lowest altitude is {lowest:.0f} km "
+            f"({'below' if drag_on else 'above'} {DRAG_DEFAULT_BELOW_KM:g} km; --srp/--drag choose)",
+            file=sys.stderr,
+        )
+    shared = {"reflections": reflections, **sampling, "reference_point_m": references["reference_point_m"]}
+    srp = SrpSetup(flux_W_m2=environment.flux_W_m2, **shared) if environment.srp else None
+    drag = GasOptions(sky_rays=output["sky_rays"], **shared) if drag_on else None
+    model = loaded(source if srp is not None else drag_only(source), **references)
+    checkpoint = (
+        None
+        if output["output"] is None
+        else output["output"].with_name(output["output"].name + ".checkpoint")
+    )
+    start = time.perf_counter()
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
+    with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
+        task = bar.add_task("orbit", total=len(trajectory.time_s))
+        run = SweepRun(
+            output["chunk"],
+            checkpoint,
+            output["resume"],
+            output["scheduler"],
+            output["workers"],
+            lambda done: bar.update(task, completed=done),
+            lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
+        )
+        loads = Loads(srp, drag, environment.air)
+        result = fly(
+            model,
+            trajectory,
+            attitude,
+            loads,
+            sun_eci=environment.sun_eci,
+            eclipse=environment.eclipse,
+            run=run,
+        )
+    seconds = time.perf_counter() - start
+    written = []
+    if output["output"] is not None:
+        target = output["output"]
+        if target.suffix == ".nc":
+            result.to_dataset(environment.mass_kg).to_netcdf(target)
+        else:
+            result.write_csv(target)
+        written.append(target)
+    if output["plot"] is not None:
+        from sunwind.forces.orbit.plots import plot_orbit
+
+        plot_orbit(result, output["plot"])
+        written.append(output["plot"])
+    if output["as_json"]:
+        print_json(model.craft, result.to_json(environment.mass_kg))
+        return
+    _print_summary(model.craft.source, result, environment.mass_kg, seconds)
+    for target in written:
+        print(f"  wrote {target}")
+
+
+def _print_summary(name: str, result, mass_kg: float | None, seconds: float) -> None:
+    summary = result.summary(mass_kg)
+    attrs = result.attributes
+    steps = summary["steps"]
+    print(f"sunwind orbit: {name}: {steps} steps over {summary['duration_s']:g} s")
+    per_step = 1e3 * seconds / steps
+    print(f"sunwind: notice: {steps} steps in {seconds:.1f} s ({per_step:.0f} ms per step)", file=sys.stderr)
+    print(f"  orbit      {attrs['trajectory']}")
+    print(f"  attitude   {attrs['attitude']}; terms: {attrs['terms']}")
+    point = vector(np.array(attrs["reference_point_m"]), "{:+.4f}")
+    print(f"  reference  {point} m ({attrs['reference_point']})")
+    sunlit, shadow = summary["sunlit_fraction"], summary["eclipse_s"]
+    print(f"  sunlit     {sunlit:.4f} of the time ({shadow:.0f} s of full shadow, penumbra pro rata)")
+    print(f"  mean force body {vector(np.array(summary['mean_force_body_N']))} N")
+    print(f"  mean torque body {vector(np.array(summary['mean_torque_body_Nm']))} N m")
+    print(f"  largest torque {summary['max_torque_Nm']:.4e} N m at t = {summary['max_torque_time_s']:g} s")
+    print(f"  angular impulse body {vector(np.array(summary['angular_impulse_body_Nms']))} N m s")
+    print(f"  angular impulse ECI  {vector(np.array(summary['angular_impulse_eci_Nms']))} N m s")
+    if "momentum_per_orbit_Nms" in summary:
+        print(f"  momentum per orbit {summary['momentum_per_orbit_Nms']:.4e} N m s (ECI, secular)")
+    for key, label, unit in (
+        ("drag_area_m2", "C_D A", "m^2"),
+        ("srp_area_m2", "C_R A", "m^2"),
+        ("ballistic_coefficient_m2_kg", "C_D A / m", "m^2/kg"),
+        ("srp_coefficient_m2_kg", "C_R A / m", "m^2/kg"),
+    ):
+        if key in summary:
+            print(f"  {label:<10} {summary[key]:.5g} {unit} (orbit mean)")

@@ -1,0 +1,270 @@
+"""Attitude laws: the rotation from the body frame to GCRF at every step, ``v_eci = R v_body``.
+
+===================== =====================================================================================
+``nadir``             the LVLH frame: body +z to the Earth's centre, +y along the negative orbit normal
+                      ``-(r x v)``, +x = y x z (along the velocity on a circular orbit), as the sample's
+                      body frame
+``lvlh:P,Y,R``        LVLH turned by pitch ``P`` about y, then yaw ``Y`` about the new z, then roll ``R``
+                      about the new x [deg] (intrinsic y-z-x): ``R = R_lvlh Ry(P) Rz(Y) Rx(R)``
+``sun[:A,B]``         body axis ``A`` (default +z) to the Sun, body axis ``B`` (default +x) as close to the
+                      orbit normal ``r x v`` as it can be
+``inertial:W,X,Y,Z``  a fixed quaternion, scalar first, body to GCRF (``v_eci = q v_body q*``)
+``thrust-sun:X,Y,Z``  body axis ``A`` (default +x) along the GCRF direction ``X, Y, Z`` (a thrust axis),
+ ``[:A,B]``           body axis ``B`` (default +z, the array normal) as close to the Sun as it can be
+``csv:FILE``          time-tagged quaternions (columns ``time`` ISO 8601 UTC or ``time_s`` from the
+                      epoch, then ``qw, qx, qy, qz``: scalar first, body to GCRF), interpolated by SLERP
+                      or by a cubic Hermite spline on the quaternion (``interpolation``)
+===================== =====================================================================================
+
+Axes are written ``+x``, ``-y``, ... A secondary direction that lines up with the primary (the Sun on
+the thrust axis) leaves the roll about the primary free: it is then held at the previous step's.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation, Slerp
+
+from sunwind.forces.orbit.clock import Epoch
+from sunwind.forces.orbit.trajectory import Trajectory
+from sunwind.geometry.errors import InputError
+
+#: Attitude law names.
+LAWS = ("nadir", "lvlh", "sun", "inertial", "thrust-sun", "csv")
+#: Interpolations of a quaternion file.
+INTERPOLATIONS = ("slerp", "hermite")
+#: Largest |1 - |q|| a quaternion file may hold before it is refused as not unit quaternions.
+UNIT_TOLERANCE = 1e-3
+_AXES = {"x": 0, "y": 1, "z": 2}
+
+
+@dataclass(frozen=True)
+class AttitudeLaw:
+    """An attitude law as given (``text``) and parsed (``kind``, ``values``, ``axes``, ``path``)."""
+
+    text: str
+    kind: str
+    values: tuple[float, ...] = ()
+    axes: tuple[NDArray, NDArray] | None = None
+    path: str | None = None
+    interpolation: str = "slerp"
+
+    @classmethod
+    def parse(cls, text: str, interpolation: str = "slerp") -> AttitudeLaw:
+        """The law of ``text`` (see the module's table)."""
+        if interpolation not in INTERPOLATIONS:
+            raise InputError(
+                f"interpolation {interpolation!r} is not one of {', '.join(INTERPOLATIONS)}",
+                parameters=("interpolation",),
+            )
+        kind, _, rest = text.strip().partition(":")
+        kind = kind.lower()
+        if kind not in LAWS:
+            raise InputError(
+                f"attitude law {kind!r} is not one of {', '.join(LAWS)}",
+                hint="e.g. nadir, lvlh:10,0,0, sun:+x,-y, inertial:1,0,0,0, thrust-sun:1,0,0, csv:FILE",
+                parameters=("attitude",),
+            )
+        if kind == "csv":
+            if not rest:
+                raise InputError("csv needs a file: csv:FILE", parameters=("attitude",))
+            return cls(text, kind, path=rest, interpolation=interpolation)
+        numbers, _, axes = rest.partition(":") if kind == "thrust-sun" else (rest, "", rest)
+        if kind == "nadir":
+            if rest:
+                raise InputError(f"nadir takes no values, not {rest!r}", parameters=("attitude",))
+            return cls(text, kind)
+        if kind == "sun":
+            return cls(text, kind, axes=_axis_pair(axes, ("+z", "+x")))
+        count = {"lvlh": 3, "inertial": 4, "thrust-sun": 3}[kind]
+        values = _numbers(numbers, count, kind)
+        if kind == "inertial" and math.hypot(*values) == 0:
+            raise InputError("the inertial quaternion is zero", parameters=("attitude",))
+        if kind == "thrust-sun":
+            if math.hypot(*values) == 0:
+                raise InputError("the thrust direction is zero", parameters=("attitude",))
+            return cls(text, kind, values, axes=_axis_pair(axes, ("+x", "+z")))
+        return cls(text, kind, values)
+
+    def body_to_eci(self, trajectory: Trajectory, sun_m: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Rotation matrices (n, 3, 3), body to GCRF, at the trajectory's steps (``sun_m``: the Sun's
+        geocentric position there [m])."""
+        r, v = trajectory.position_m, trajectory.velocity_m_s
+        n = len(r)
+        if self.kind == "nadir":
+            return lvlh(r, v)
+        if self.kind == "lvlh":
+            pitch, yaw, roll = self.values
+            offset = Rotation.from_euler("YZX", [pitch, yaw, roll], degrees=True).as_matrix()
+            return lvlh(r, v) @ offset
+        if self.kind == "inertial":
+            return np.tile(quaternion_matrix(np.array(self.values))[0], (n, 1, 1))
+        primary, secondary = self.axes
+        if self.kind == "sun":
+            return two_axis(primary, sun_m - r, secondary, np.cross(r, v))
+        thrust = np.tile(np.array(self.values), (n, 1))
+        return two_axis(primary, thrust, secondary, sun_m - r)
+
+    def describe(self) -> str:
+        """The law in words, for the output."""
+        extra = f" ({self.interpolation})" if self.kind == "csv" else ""
+        return self.text + extra
+
+
+def quaternion_file_attitude(
+    law: AttitudeLaw, epoch: Epoch, time_s: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Rotation matrices (n, 3, 3) of a ``csv:FILE`` law at ``time_s`` [s] after ``epoch``."""
+    times, quaternions = read_quaternions(Path(law.path), epoch)
+    outside = (time_s < times[0] - 1e-9) | (time_s > times[-1] + 1e-9)
+    if np.any(outside):
+        raise InputError(
+            f"the run reaches {time_s[outside][0]:g} s after the epoch, outside the attitude file "
+            f"({times[0]:g} to {times[-1]:g} s)",
+            path=law.path,
+            hint="shorten --duration or cover the run with the file",
+        )
+    t = np.clip(time_s, times[0], times[-1])
+    if law.interpolation == "slerp":
+        scalar_last = np.roll(quaternions, -1, axis=1)
+        return Slerp(times, Rotation.from_quat(scalar_last))(t).as_matrix()
+    return quaternion_matrix(hermite_quaternions(times, quaternions, t))
+
+
+def read_quaternions(path: Path, epoch: Epoch) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Times [s] after ``epoch`` and unit quaternions (scalar first, each on the same hemisphere as the
+    one before) of an attitude file."""
+    try:
+        with path.open(newline="") as handle:
+            rows = list(csv.DictReader(row for row in handle if not row.lstrip().startswith("#")))
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"cannot read the attitude file ({error})", path=str(path)) from None
+    names = ("qw", "qx", "qy", "qz")
+    if len(rows) < 2 or not set(names) <= set(rows[0]):
+        raise InputError(
+            "the attitude file needs two or more rows with columns time (or time_s), qw, qx, qy, qz",
+            path=str(path),
+            hint="quaternions scalar first (qw), body to GCRF",
+        )
+    try:
+        q = np.array([[float(row[name]) for name in names] for row in rows])
+        if "time_s" in rows[0]:
+            times = np.array([float(row["time_s"]) for row in rows])
+        else:
+            times = np.array([(Epoch.of(row["time"]).utc - epoch.utc).total_seconds() for row in rows])
+    except (KeyError, TypeError, ValueError):
+        raise InputError(
+            "the attitude file has a row without a number or time where one is due", path=str(path)
+        ) from None
+    if not np.all(np.isfinite(q)) or not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
+        raise InputError("the attitude file's times must increase and its values be finite", path=str(path))
+    norms = np.linalg.norm(q, axis=1)
+    worst = int(np.argmax(np.abs(norms - 1)))
+    if abs(norms[worst] - 1) > UNIT_TOLERANCE:
+        raise InputError(
+            f"row {worst + 1} of the attitude file is not a unit quaternion (|q| = {norms[worst]:.6g})",
+            path=str(path),
+            hint="give qw, qx, qy, qz of unit length, scalar first",
+        )
+    q /= norms[:, None]
+    signs = np.sign(np.einsum("ij,ij->i", q[1:], q[:-1]))
+    q[1:] *= np.cumprod(np.where(signs == 0, 1.0, signs))[:, None]
+    return times, q
+
+
+def hermite_quaternions(
+    times: NDArray[np.float64], quaternions: NDArray[np.float64], t: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Unit quaternions at ``t`` from a cubic Hermite spline through the samples, componentwise, with
+    Catmull-Rom tangents (centred differences, one-sided at the ends), normalised: continuous angular
+    rate at the samples, where SLERP's rate jumps."""
+    q = quaternions
+    tangents = np.empty_like(q)
+    tangents[1:-1] = (q[2:] - q[:-2]) / (times[2:] - times[:-2])[:, None]
+    tangents[0] = (q[1] - q[0]) / (times[1] - times[0])
+    tangents[-1] = (q[-1] - q[-2]) / (times[-1] - times[-2])
+    k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2)
+    h = times[k + 1] - times[k]
+    s = ((t - times[k]) / h)[:, None]
+    h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
+    h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
+    out = h00 * q[k] + h10 * h[:, None] * tangents[k] + h01 * q[k + 1] + h11 * h[:, None] * tangents[k + 1]
+    return out / np.linalg.norm(out, axis=1, keepdims=True)
+
+
+def quaternion_matrix(q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotation matrices (n, 3, 3) of scalar-first quaternions (n, 4) or (4,), normalised here."""
+    q = np.atleast_2d(q)
+    return Rotation.from_quat(np.roll(q / np.linalg.norm(q, axis=1, keepdims=True), -1, axis=1)).as_matrix()
+
+
+def lvlh(position_m: NDArray[np.float64], velocity_m_s: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The LVLH frame (columns x, y, z in GCRF): z to the Earth's centre, y along ``-(r x v)``."""
+    z = -position_m / np.linalg.norm(position_m, axis=1, keepdims=True)
+    h = np.cross(position_m, velocity_m_s)
+    y = -h / np.linalg.norm(h, axis=1, keepdims=True)
+    return np.stack([np.cross(y, z), y, z], axis=2)
+
+
+def two_axis(
+    primary: NDArray[np.float64],
+    target: NDArray[np.float64],
+    secondary: NDArray[np.float64],
+    toward: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Rotations (n, 3, 3) taking body axis ``primary`` onto ``target`` (n, 3) and body axis
+    ``secondary`` as close to ``toward`` (n, 3) as the first allows."""
+    body = _triad(primary[None, :], secondary[None, :])[0]
+    t = target / np.linalg.norm(target, axis=1, keepdims=True)
+    w = toward - np.einsum("ij,ij->i", toward, t)[:, None] * t
+    size = np.linalg.norm(w, axis=1)
+    free = size < 1e-9 * np.linalg.norm(toward, axis=1)
+    for i in np.flatnonzero(free):  # rare: the secondary direction on the primary; hold the roll
+        previous = w[i - 1] if i else np.cross(t[i], [1.0, 0.0, 0.0] if abs(t[i, 0]) < 0.9 else [0, 1.0, 0])
+        w[i] = previous - (previous @ t[i]) * t[i]
+        size[i] = np.linalg.norm(w[i])
+    inertial = _triad(t, w / size[:, None])
+    return inertial @ body.T
+
+
+def _triad(first: NDArray, second: NDArray) -> NDArray[np.float64]:
+    """Orthonormal frames (n, 3, 3), columns: ``first``, the part of ``second`` normal to it, their cross."""
+    a = first / np.linalg.norm(first, axis=1, keepdims=True)
+    b = second - np.einsum("ij,ij->i", second, a)[:, None] * a
+    b /= np.linalg.norm(b, axis=1, keepdims=True)
+    return np.stack([a, b, np.cross(a, b)], axis=2)
+
+
+def _axis_pair(text: str, default: tuple[str, str]) -> tuple[NDArray, NDArray]:
+    words = [w.strip().lower() for w in text.split(",")] if text.strip() else list(default)
+    if len(words) != 2:
+        raise InputError(f"axes {text!r} must be two body axes such as +z,+x", parameters=("attitude",))
+    axes = []
+    for word in words:
+        sign, letter = (word[0], word[1:]) if word[:1] in "+-" else ("+", word)
+        if letter not in _AXES:
+            raise InputError(f"{word!r} is not a body axis (+x, -y, ...)", parameters=("attitude",))
+        axis = np.zeros(3)
+        axis[_AXES[letter]] = -1.0 if sign == "-" else 1.0
+        axes.append(axis)
+    if abs(axes[0] @ axes[1]) > 0.5:
+        raise InputError(f"axes {text!r} must be two different body axes", parameters=("attitude",))
+    return axes[0], axes[1]
+
+
+def _numbers(text: str, count: int, kind: str) -> tuple[float, ...]:
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        values = ()
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        raise InputError(
+            f"{kind} needs {count} numbers separated by commas, not {text!r}", parameters=("attitude",)
+        )
+    return values

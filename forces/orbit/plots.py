@@ -1,0 +1,39 @@
+"""A picture of an orbit run: torque and accumulated momentum against time, eclipse shaded."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from sunwind.forces.orbit.results import OrbitResult
+
+
+def plot_orbit(result: OrbitResult, path: str | Path) -> None:
+    """Write a PNG: body torque components (top) and ECI angular impulse (bottom) against time [h],
+    the shadow shaded in grey as deep as the Sun is hidden."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    s = result.series
+    hours = s["time_s"] / 3600.0
+    figure, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(9, 6), constrained_layout=True)
+    for axes, name, label in (
+        (top, "torque_body_Nm", "torque, body [N m]"),
+        (bottom, "angular_impulse_eci_Nms", "angular impulse, ECI [N m s]"),
+    ):
+        for i, axis in enumerate("xyz"):
+            axes.plot(hours, s[name][:, i], label=axis)
+        axes.plot(hours, np.linalg.norm(s[name], axis=1), "k--", lw=0.8, label="|.|")
+        axes.set_ylabel(label)
+        axes.grid(alpha=0.3)
+        low, high = axes.get_ylim()
+        axes.fill_between(hours, low, high, where=s["solar_fraction"] < 1, color="0.85", step="mid", zorder=0)
+        axes.set_ylim(low, high)
+    top.legend(loc="upper right", ncols=4, fontsize="small")
+    bottom.set_xlabel("time from the epoch [h]")
+    top.set_title(f"{result.attributes['attitude']} - {result.attributes['terms']}; grey: eclipse")
+    figure.savefig(path, dpi=110)
+    plt.close(figure)

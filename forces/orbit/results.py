@@ -1,0 +1,219 @@
+"""The result of an orbit run: time series of the loads and the momentum they build, their summary,
+and the same names in JSON, netCDF and CSV (README "sunwind orbit").
+
+Body-frame loads are about the model's reference point; ECI is GCRF. The angular impulse is the
+trapezoidal integral of the torque from the first step (zero there): in the body frame, of the
+body-frame torque (what body-fixed wheels absorb when the body does not turn); in ECI, of the torque
+turned into GCRF (the inertial momentum the loads build).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+from scipy.integrate import cumulative_trapezoid
+
+from sunwind.forces.model import Model
+from sunwind.forces.orbit.attitude import AttitudeLaw
+from sunwind.forces.orbit.steps import FLUX, SUN, VELOCITY, OrbitSetup, StepInputs
+from sunwind.forces.orbit.trajectory import Trajectory
+from sunwind.forces.radiation.law import radiation_pressure
+
+#: Time series of the output, in order, with their units.
+SERIES = {
+    "time_s": "s",
+    "position_eci_m": "m",
+    "velocity_eci_m_s": "m/s",
+    "sun_body": "1",
+    "solar_fraction": "1",
+    "srp_force_body_N": "N",
+    "srp_torque_body_Nm": "N m",
+    "drag_force_body_N": "N",
+    "drag_torque_body_Nm": "N m",
+    "force_body_N": "N",
+    "force_eci_N": "N",
+    "torque_body_Nm": "N m",
+    "angular_impulse_body_Nms": "N m s",
+    "angular_impulse_eci_Nms": "N m s",
+    "density_kg_m3": "kg/m^3",
+    "dynamic_pressure_Pa": "Pa",
+}
+
+
+@dataclass(frozen=True)
+class OrbitResult:
+    """Loads along an orbit: ``series`` (name -> (n,) or (n, 3) float64, see :data:`SERIES`),
+    ``body_to_eci`` (n, 3, 3) and what the run was."""
+
+    series: dict[str, NDArray[np.float64]]
+    body_to_eci: NDArray[np.float64]
+    attributes: dict[str, object]
+    period_s: float
+    flux_1au_W_m2: float
+    terms: tuple[str, ...] = field(default=())
+
+    @classmethod
+    def of(
+        cls,
+        model: Model,
+        trajectory: Trajectory,
+        attitude: AttitudeLaw,
+        setup: OrbitSetup,
+        steps: StepInputs,
+        records: dict[str, NDArray[np.float64]],
+    ) -> OrbitResult:
+        """The result of a run from its inputs and the records of its steps."""
+        t, rows, body_to_eci, fraction = (
+            trajectory.time_s,
+            steps.rows,
+            steps.body_to_eci,
+            steps.solar_fraction,
+        )
+        force = records["srp_force_body_N"] + records["drag_force_body_N"]
+        torque = records["srp_torque_body_Nm"] + records["drag_torque_body_Nm"]
+        torque_eci = np.einsum("nij,nj->ni", body_to_eci, torque)
+        series = {
+            "time_s": t,
+            "position_eci_m": trajectory.position_m,
+            "velocity_eci_m_s": trajectory.velocity_m_s,
+            "sun_body": rows[:, SUN],
+            "solar_fraction": fraction,
+            **{name: records[name] for name in ("srp_force_body_N", "srp_torque_body_Nm")},
+            **{name: records[name] for name in ("drag_force_body_N", "drag_torque_body_Nm")},
+            "force_body_N": force,
+            "force_eci_N": np.einsum("nij,nj->ni", body_to_eci, force),
+            "torque_body_Nm": torque,
+            "angular_impulse_body_Nms": _impulse(t, torque),
+            "angular_impulse_eci_Nms": _impulse(t, torque_eci),
+            "density_kg_m3": records["density_kg_m3"],
+            "dynamic_pressure_Pa": records["dynamic_pressure_Pa"],
+            "srp_flux_W_m2": rows[:, FLUX],
+            "v_rel_body_m_s": rows[:, VELOCITY],
+        }
+        point, name = model.reference()
+        terms = tuple(term for term, part in (("srp", setup.srp), ("drag", setup.drag)) if part is not None)
+        attributes = {
+            "frame": "body loads in the body frame, ECI = GCRF",
+            "epoch_utc": trajectory.epoch.iso(),
+            "trajectory": trajectory.source,
+            "attitude": attitude.describe(),
+            "terms": ", ".join(terms),
+            "reference_point_m": [float(x) for x in point],
+            "reference_point": name,
+            "settings": setup.describe(),
+        }
+        flux = setup.srp.flux_W_m2 if setup.srp is not None else float("nan")
+        return cls(series, body_to_eci, attributes, trajectory.period_s, flux, terms)
+
+    def summary(self, mass_kg: float | None = None) -> dict[str, object]:
+        """Orbit averages, the largest torque, the momentum built per orbit and, for drag and SRP, the
+        effective areas ``C_D A`` and ``C_R A`` [m^2] (per kg with ``mass_kg``).
+
+        ``C_D A = sum(-F_drag . v_rel_hat) / sum(q)`` over the steps (q the dynamic pressure: the
+        coefficient that gives the run's mean drag along the flow); ``C_R A = sum(-F_srp . s) / sum(P)``
+        (``s`` the Sun direction, ``P`` the pressure of the visible Sun at the spacecraft). The momentum
+        per orbit is the ECI angular impulse at the end scaled to one two-body period.
+        """
+        s, t = self.series, self.series["time_s"]
+        magnitude = np.linalg.norm(s["torque_body_Nm"], axis=1)
+        peak = int(np.argmax(magnitude))
+        duration = float(t[-1] - t[0])
+        out: dict[str, object] = {
+            "steps": len(t),
+            "duration_s": duration,
+            "period_s": self.period_s,
+            "sunlit_fraction": _mean(t, s["solar_fraction"]),
+            "eclipse_s": _eclipse_time(t, s["solar_fraction"]),
+            "mean_force_body_N": _mean(t, s["force_body_N"]),
+            "mean_force_eci_N": _mean(t, s["force_eci_N"]),
+            "mean_torque_body_Nm": _mean(t, s["torque_body_Nm"]),
+            "max_torque_Nm": float(magnitude[peak]),
+            "max_torque_time_s": float(t[peak]),
+            "angular_impulse_body_Nms": s["angular_impulse_body_Nms"][-1].tolist(),
+            "angular_impulse_eci_Nms": s["angular_impulse_eci_Nms"][-1].tolist(),
+        }
+        if duration > 0 and math.isfinite(self.period_s):
+            per_orbit = s["angular_impulse_eci_Nms"][-1] * self.period_s / duration
+            out["momentum_per_orbit_Nms"] = float(np.linalg.norm(per_orbit))
+        if "drag" in self.terms:
+            v = s["v_rel_body_m_s"]
+            along = -np.einsum(
+                "ij,ij->i", s["drag_force_body_N"], v / np.linalg.norm(v, axis=1, keepdims=True)
+            )
+            out["drag_area_m2"] = float(along.sum() / s["dynamic_pressure_Pa"].sum())
+        if "srp" in self.terms and s["srp_flux_W_m2"].sum() > 0:
+            along = -np.einsum("ij,ij->i", s["srp_force_body_N"], s["sun_body"])
+            out["srp_area_m2"] = float(along.sum() / radiation_pressure(1.0) / s["srp_flux_W_m2"].sum())
+        if mass_kg is not None:
+            out["mass_kg"] = mass_kg
+            for area, name in (
+                ("drag_area_m2", "ballistic_coefficient_m2_kg"),
+                ("srp_area_m2", "srp_coefficient_m2_kg"),
+            ):
+                if area in out:
+                    out[name] = out[area] / mass_kg
+        return out
+
+    def to_json(self, mass_kg: float | None = None) -> dict[str, object]:
+        """One object: every series (one row per step) by its name, the run's attributes and the
+        ``summary``."""
+        out: dict[str, object] = {name: self.series[name].tolist() for name in SERIES}
+        out["attributes"] = self.attributes
+        out["summary"] = self.summary(mass_kg)
+        return out
+
+    def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
+        """The series as an xarray Dataset on dimensions ``time`` and ``xyz``, units in attributes."""
+        variables = {}
+        for name, unit in SERIES.items():
+            values = self.series[name]
+            dims = ("time", "xyz") if values.ndim == 2 else ("time",)
+            variables[name] = xr.Variable(dims, values, {"units": unit})
+        summary = {
+            f"summary_{k}": (np.asarray(v) if isinstance(v, list) else v)
+            for k, v in self.summary(mass_kg).items()
+        }
+        attrs = {k: (str(v) if isinstance(v, dict) else v) for k, v in self.attributes.items()}
+        return xr.Dataset(variables, coords={"xyz": ["x", "y", "z"]}, attrs=attrs | summary)
+
+    def write_csv(self, path: Path) -> None:
+        """One row per step, vectors as ``name_x``, ``name_y``, ``name_z`` columns."""
+        columns, header = [], []
+        for name in SERIES:
+            values = self.series[name]
+            if values.ndim == 2:
+                columns += [values[:, i] for i in range(3)]
+                header += [f"{name}_{axis}" for axis in "xyz"]
+            else:
+                columns.append(values)
+                header.append(name)
+        with Path(path).open("w", newline="") as handle:
+            writer = csv.writer(handle)
+            writer.writerow(header)
+            writer.writerows(np.stack(columns, axis=1).tolist())
+
+
+def _impulse(t: NDArray[np.float64], torque: NDArray[np.float64]) -> NDArray[np.float64]:
+    if len(t) < 2:
+        return np.zeros_like(torque)
+    return cumulative_trapezoid(torque, t, axis=0, initial=0.0)
+
+
+def _mean(t: NDArray[np.float64], values: NDArray[np.float64]) -> float | list[float]:
+    """Time average by the trapezoidal rule (the value itself for one step)."""
+    if len(t) < 2:
+        mean = values[0]
+    else:
+        mean = np.trapezoid(values, t, axis=0) / (t[-1] - t[0])
+    return mean.tolist() if np.ndim(mean) else float(mean)
+
+
+def _eclipse_time(t: NDArray[np.float64], fraction: NDArray[np.float64]) -> float:
+    """Seconds of the run with less than the whole Sun (the trapezoidal integral of 1 - fraction)."""
+    return 0.0 if len(t) < 2 else float(np.trapezoid(1 - fraction, t))

@@ -1,0 +1,141 @@
+"""What one orbit step computes, as a sweep job (:mod:`sunwind.forces.tables.jobs`): each step's row of
+inputs in, SRP and drag loads in the body frame out. Steps run in checkpointed chunks, locally or on
+Dask, exactly as a sweep's attitudes (:func:`sunwind.forces.tables.engine.run_jobs`).
+
+A row holds what the step needs and nothing it has to look up: the time, the body-frame Sun direction,
+the solar flux at the spacecraft (eclipse and distance applied), ``v_rel`` in the body frame and the
+geodetic place of the atmosphere. Every step calls :func:`~sunwind.forces.srp.srp` and
+:func:`~sunwind.forces.drag.drag` as the single-attitude commands do.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.drag import drag
+from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning
+from sunwind.forces.gas.msis import nrlmsis
+from sunwind.forces.model import Model
+from sunwind.forces.orbit.clock import Epoch
+from sunwind.forces.srp import srp
+from sunwind.forces.tables.jobs import GasOptions, Records, SrpSetup, empty_records
+
+#: Columns of a step's row of inputs.
+TIME, SUN, FLUX, VELOCITY, PLACE = 0, slice(1, 4), 4, slice(5, 8), slice(8, 11)
+ROW_WIDTH = 11
+
+
+@dataclass(frozen=True)
+class SpaceWeather:
+    """NRLMSIS's inputs besides place and time: F10.7 of the day before and its 81-day mean [sfu], the
+    daily Ap, the model version (see :func:`~sunwind.forces.gas.msis.nrlmsis`)."""
+
+    f107: float = 150.0
+    f107a: float = 150.0
+    ap: float = 4.0
+    version: float = 2.1
+
+    def atmosphere(self, epoch: Epoch, time_s: float, place: NDArray[np.float64]) -> Atmosphere:
+        """NRLMSIS at geodetic ``place`` (altitude [km], latitude, longitude [deg]) ``time_s`` after the
+        epoch (its warnings above 1000 km and below 150 km are said once per run, not per step)."""
+        altitude, latitude, longitude = (float(v) for v in place)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", AtmosphereWarning)
+            return nrlmsis(
+                altitude, latitude, longitude, epoch.at(time_s), self.f107, self.f107a, self.ap, self.version
+            )
+
+
+@dataclass(frozen=True)
+class Loads:
+    """What an orbit run computes: the SRP settings (None: no SRP; their ``flux_W_m2`` is the flux at
+    1 au), the drag settings (None: no drag; each step has its own flow), the air (NRLMSIS space
+    weather by default, or one fixed atmosphere)."""
+
+    srp: SrpSetup | None = None
+    drag: GasOptions | None = None
+    air: SpaceWeather | Atmosphere = field(default_factory=SpaceWeather)
+
+
+@dataclass(frozen=True)
+class StepInputs:
+    """Each step's row of inputs (n, :data:`ROW_WIDTH`), body-to-GCRF rotation (n, 3, 3) and visible
+    share of the Sun (n,)."""
+
+    rows: NDArray[np.float64]
+    body_to_eci: NDArray[np.float64]
+    solar_fraction: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class OrbitSetup:
+    """Settings of every orbit step: those of :class:`Loads`, and the epoch of the steps' times."""
+
+    kind: ClassVar[str] = "orbit"
+    fields: ClassVar[dict[str, int]] = {
+        "srp_force_body_N": 3,
+        "srp_torque_body_Nm": 3,
+        "drag_force_body_N": 3,
+        "drag_torque_body_Nm": 3,
+        "density_kg_m3": 1,
+        "dynamic_pressure_Pa": 1,
+    }
+    srp: SrpSetup | None
+    drag: GasOptions | None
+    air: SpaceWeather | Atmosphere
+    epoch: Epoch
+
+    @classmethod
+    def of(cls, loads: Loads, epoch: Epoch) -> OrbitSetup:
+        """The settings of ``loads`` with times from ``epoch``."""
+        return cls(loads.srp, loads.drag, loads.air, epoch)
+
+    @property
+    def settings(self):
+        """The reflection settings of the SRP part (else the drag part)."""
+        return (self.srp or self.drag).settings
+
+    def precompute(self, model: Model) -> None:
+        """View factors and open skies, made once before the first step."""
+        for part in (self.srp, self.drag):
+            if part is not None:
+                part.precompute(model)
+
+    def evaluate(self, model: Model, rows: NDArray[np.float64]) -> Records:
+        """The records of the steps ``rows`` (n, :data:`ROW_WIDTH`)."""
+        out = empty_records(self.fields, len(rows))
+        for name in out:
+            out[name][:] = 0.0
+        for i, row in enumerate(rows):
+            flux = float(row[FLUX])
+            if self.srp is not None and flux > 0:
+                light = srp(model, row[SUN], flux_W_m2=flux, **self.srp.options())
+                out["srp_force_body_N"][i], out["srp_torque_body_Nm"][i] = light.force_N, light.torque_Nm
+            if self.drag is not None:
+                air = self.air_at(row)
+                gas = drag(model, row[VELOCITY], air, **self.drag.options())
+                out["drag_force_body_N"][i], out["drag_torque_body_Nm"][i] = gas.force_N, gas.torque_Nm
+                out["density_kg_m3"][i] = air.density_kg_m3
+                out["dynamic_pressure_Pa"][i] = gas.dynamic_pressure_Pa
+        return out
+
+    def air_at(self, row: NDArray[np.float64]) -> Atmosphere:
+        """The atmosphere of a step."""
+        if isinstance(self.air, Atmosphere):
+            return self.air
+        return self.air.atmosphere(self.epoch, float(row[TIME]), row[PLACE])
+
+    def describe(self) -> dict:
+        """JSON-ready settings (for a checkpoint's fingerprint and the output's attributes)."""
+        air = self.air.to_json() if isinstance(self.air, Atmosphere) else vars(self.air)
+        return {
+            "srp": None if self.srp is None else self.srp.describe(),
+            "drag": None if self.drag is None else self.drag.describe(),
+            "air": air,
+            "epoch": self.epoch.iso(),
+        }

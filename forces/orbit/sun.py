@@ -1,0 +1,33 @@
+"""The Sun seen from the Earth's centre, from ERFA's built-in ephemeris (``epv00``, the analytic series
+astropy uses offline: Earth's heliocentric position to a few km, its direction to well under an
+arcsecond), in GCRF [m].
+
+The geometric direction is used (no light time or aberration, 20 arcsec at most); the solar flux at
+the spacecraft scales with its own distance to the Sun, ``(1 au / d)^2``.
+"""
+
+from __future__ import annotations
+
+import erfa
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.orbit.clock import Epoch
+
+#: The astronomical unit [m] (IAU 2012).
+AU_M = float(erfa.DAU)
+#: Radius of the solar disc [m], as Montenbruck & Gill take it for shadows (sec. 3.4): 696 000 km.
+SUN_RADIUS_M = 6.96e8
+
+
+def sun_position(epoch: Epoch, seconds: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Geocentric position of the Sun [m], GCRF, (n, 3), at ``seconds`` [s] after ``epoch``
+    (TDB taken as TT: they differ by under 2 ms)."""
+    heliocentric, _ = erfa.epv00(*epoch.tt(np.atleast_1d(np.asarray(seconds, dtype=float))))
+    return -heliocentric["p"] * AU_M
+
+
+def fixed_sun(direction: NDArray[np.float64], n: int) -> NDArray[np.float64]:
+    """The Sun at 1 au along ``direction`` (GCRF, normalised here) at every one of ``n`` steps [m]."""
+    u = np.asarray(direction, dtype=float)
+    return np.tile(u / np.linalg.norm(u) * AU_M, (n, 1))
