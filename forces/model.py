@@ -11,24 +11,34 @@ is what Dask workers and a table's provenance need.
 from __future__ import annotations
 
 import hashlib
+import json
 import math
 import os
-from collections.abc import Mapping, Sequence
+import threading
+from collections import OrderedDict
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.geometry.articulation import Hinge, checked_angle, fixed, schedule_angle, tracking_angle
 from sunwind.geometry.cache import ModelCache
-from sunwind.geometry.directions import finite_point
+from sunwind.geometry.directions import finite_point, unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GAS_DEFAULTS, GasSurface, Material
 from sunwind.geometry.parallel import checked_threads
-from sunwind.geometry.spacecraft import Spacecraft, load_spacecraft
+from sunwind.geometry.spacecraft import Spacecraft, articulate, load_spacecraft, pose
 
 #: Where a materials-file gas key lands on :class:`~sunwind.geometry.materials.GasSurface`.
 _GAS_FIELDS = {"gsi": "model", "wall_temperature": "wall_temperature_K"}
+#: Posed models a model keeps (:meth:`Model.posed`); the least recently used goes first.
+KEPT_POSES = 8
+#: Angles [deg] closer than this are one pose for :meth:`Model.posed`.
+POSE_RESOLUTION_DEG = 1e-9
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -51,6 +61,9 @@ class ModelSource:
         Gas-surface keys of a materials file (``gsi``, ``energy_accommodation``,
         ``normal_accommodation``, ``tangential_accommodation``, ``wall_temperature``) that override
         every material's gas law.
+    articulate : tuple of (str, float)
+        Hinges (``[articulation]`` globs of the materials file) held at these angles [deg], whatever
+        their law in the file.
     """
 
     mesh: str
@@ -59,16 +72,26 @@ class ModelSource:
     uniform: Material | None = None
     two_sided: tuple[str, ...] = ()
     gas: tuple[tuple[str, object], ...] = ()
+    articulate: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
         if self.gas:
             GasSurface.checked("gas", dict(self.gas))
+        angles = tuple(
+            (str(glob), checked_angle(angle, f'articulate "{glob}"', "articulate"))
+            for glob, angle in self.articulate
+        )
+        object.__setattr__(self, "articulate", angles)
 
     def load(self) -> Spacecraft:
-        """The spacecraft, with the gas overrides applied."""
+        """The spacecraft, with the gas overrides applied and its hinges at their angles."""
         craft = load_spacecraft(
             self.mesh, self.materials, unit=self.unit, uniform=self.uniform, two_sided=self.two_sided
         )
+        if self.articulate:
+            craft = articulate(
+                craft, fixed(craft.hinges, dict(self.articulate), self.materials), self.materials
+            )
         if not self.gas:
             return craft
         surface = GasSurface.checked("gas", dict(self.gas))
@@ -106,6 +129,8 @@ class ModelSource:
             }
         if self.gas:
             attrs["gas_override"] = dict(self.gas)
+        if self.articulate:
+            attrs["articulate"] = dict(self.articulate)
         return attrs
 
     @classmethod
@@ -121,6 +146,7 @@ class ModelSource:
             uniform = Material.checked("uniform", mapping(attrs["uniform_material"]), "table")
         two_sided = tuple(glob for glob in str(attrs.get("two_sided", "")).split(",") if glob)
         gas = tuple(mapping(attrs["gas_override"]).items()) if "gas_override" in attrs else ()
+        angles = tuple(mapping(attrs["articulate"]).items()) if "articulate" in attrs else ()
         materials = attrs.get("materials")
         unit = attrs.get("unit")
         return cls(
@@ -130,6 +156,7 @@ class ModelSource:
             uniform,
             two_sided,
             gas,
+            angles,
         )
 
 
@@ -180,7 +207,9 @@ class Model:
         Threads each attitude uses; None: every core.
 
     ``dataclasses.replace(model, reference_point_m=...)`` gives the same model (and cache) with other
-    references or threads.
+    references or threads. A model with hinges (materials file ``[articulation]``) is loaded with its
+    fixed hinges at their angles and its tracking and scheduled ones at 0; :meth:`angles_at` gives every
+    hinge's angle for a Sun and a time, :meth:`posed` the model at those angles.
     """
 
     craft: Spacecraft
@@ -221,14 +250,81 @@ class Model:
         return finite_point(point, "reference_point_m"), "user"
 
     def digests(self) -> dict[str, str | None]:
-        """SHA-256 of the mesh and materials files, or of the model's arrays when built in memory."""
+        """SHA-256 of the mesh and materials files, or of the model's arrays when built in memory; with
+        hinges, ``articulation_deg``: their angles as JSON text."""
+        craft = self.craft
         if self.source is not None:
-            return self.source.digests()
-        craft, digest = self.craft, hashlib.sha256()
-        gas = [craft.side_gas[name] for name in sorted(craft.side_gas)]
-        for array in (craft.vertices, craft.faces, craft.side_facet, craft.side_optics, *gas):
-            digest.update(np.ascontiguousarray(array).tobytes())
-        return {"mesh_sha256": digest.hexdigest(), "materials_sha256": None}
+            out = self.source.digests()
+        else:
+            digest = hashlib.sha256()
+            gas = [craft.side_gas[name] for name in sorted(craft.side_gas)]
+            for array in (craft.vertices, craft.faces, craft.side_facet, craft.side_optics, *gas):
+                digest.update(np.ascontiguousarray(array).tobytes())
+            out = {"mesh_sha256": digest.hexdigest(), "materials_sha256": None}
+        return out | ({"articulation_deg": json.dumps(craft.articulation)} if craft.hinges else {})
+
+    @property
+    def hinges(self) -> tuple[Hinge, ...]:
+        """The hinges that turn parts of the model (materials file, with ``articulate`` overrides)."""
+        return self.craft.hinges
+
+    def angles_at(self, sun_body: NDArray | None = None, time_s: float | None = None) -> dict[str, float]:
+        """Every hinge's angle [deg] by glob: a fixed one's own, a tracking one's that turns its front
+        closest to ``sun_body`` (body frame, toward the Sun), a scheduled one's at ``time_s`` [s].
+
+        Raises
+        ------
+        InputError
+            A tracking hinge without ``sun_body``, a scheduled one without ``time_s``.
+        """
+        sun = None if sun_body is None else unit_vector(sun_body, "sun_body")
+        angles = {}
+        for hinge in self.hinges:
+            if hinge.law == "fixed":
+                angles[hinge.pattern] = float(hinge.angle_deg)  # type: ignore[arg-type]
+            elif hinge.law == "track":
+                toward = _needed(sun, hinge, "sun_body", "tracks the Sun")
+                angles[hinge.pattern] = tracking_angle(hinge.axis, hinge.front, toward)  # type: ignore[arg-type]
+            else:
+                angles[hinge.pattern] = schedule_angle(
+                    hinge, _needed(time_s, hinge, "time_s", "follows a schedule")
+                )
+        return angles
+
+    def posed(self, angles: Mapping[str, float]) -> Model:
+        """This model with its hinges turned to ``angles`` [deg] by glob (a hinge not named keeps its
+        angle): the same references and threads, a cache of its own, and a source that holds every
+        angle (a process that loads it again gets this pose). The last :data:`KEPT_POSES` poses are
+        kept, so angles within :data:`POSE_RESOLUTION_DEG` of one of them give its model again, with
+        what its cache holds. Without hinges, or at this model's own pose, the model itself.
+
+        Raises
+        ------
+        InputError
+            An angle of no hinge, or one that is not a finite number.
+        """
+        if not self.hinges:
+            return self
+        current = self.craft.articulation
+        unknown = sorted(set(angles) - set(current))
+        if unknown:
+            raise InputError(
+                f'angles name "{unknown[0]}", which is no hinge of the model',
+                hint=f"the hinges are: {', '.join(current)}",
+                parameters=("angles",),
+            )
+        wanted = current | {name: checked_angle(a, f'hinge "{name}"', "angles") for name, a in angles.items()}
+        key = tuple(round(angle / POSE_RESOLUTION_DEG) for angle in wanted.values())
+        if key == tuple(round(angle / POSE_RESOLUTION_DEG) for angle in current.values()):
+            return self
+        poses = self.craft.cache.get("posed models", _Poses)
+        craft = poses.get(key, lambda: pose(self.craft, self.hinges, wanted))
+        source = (
+            None
+            if self.source is None
+            else replace(self.source, articulate=tuple(craft.articulation.items()))
+        )
+        return replace(self, craft=craft, source=source)
 
     @property
     def reference_sizes(self) -> tuple[float, float]:
@@ -238,6 +334,36 @@ class Model:
         area = craft.total_area / 4 if self.reference_area_m2 is None else float(self.reference_area_m2)
         length = self.reference_length_m
         return area, float(np.ptp(craft.bounds, axis=0).max()) if length is None else float(length)
+
+
+def _needed(value: T | None, hinge: Hinge, parameter: str, law: str) -> T:
+    """``value``, the ``parameter`` the angle of ``hinge`` (which ``law``) needs; refused when None."""
+    if value is None:
+        raise InputError(
+            f'hinge "{hinge.pattern}" {law}: its angle needs {parameter}',
+            hint=f'give it, or hold the hinge at an angle (load(..., articulate={{"{hinge.pattern}": DEG}}))',
+            parameters=(parameter,),
+        )
+    return value
+
+
+class _Poses:
+    """The last :data:`KEPT_POSES` posed spacecraft of a model, by their rounded angles."""
+
+    def __init__(self) -> None:
+        self._kept: OrderedDict[tuple, Spacecraft] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, key: tuple, build: Callable[[], Spacecraft]) -> Spacecraft:
+        """The spacecraft kept under ``key``, else ``build()``'s, kept (dropping the oldest beyond the
+        limit)."""
+        with self._lock:
+            if key not in self._kept:
+                self._kept[key] = build()
+            self._kept.move_to_end(key)
+            while len(self._kept) > KEPT_POSES:
+                self._kept.popitem(last=False)
+            return self._kept[key]
 
 
 def as_model(model: Model | Spacecraft) -> Model:
@@ -260,8 +386,8 @@ def load(
     uniform: Material | None = None,
     two_sided: Sequence[str] = (),
     gas: Mapping[str, object] | None = None,
-    reference_point_m: Sequence[float] | NDArray | None = None,
-    threads: int | None = None,
+    articulate: Mapping[str, float] | None = None,
+    **model: object,
 ) -> Model:
     """Load a mesh file and its materials as a :class:`Model`.
 
@@ -281,11 +407,14 @@ def load(
         Gas-surface keys of a materials file that override every material's gas law, e.g.
         ``{"gsi": "cll", "normal_accommodation": 0.3}``; unknown keys are refused (defaults:
         :data:`~sunwind.geometry.materials.GAS_DEFAULTS`).
-    reference_point_m : (3,) array_like, optional
-        Torque reference point [m] (the centre of mass); default the materials file's
-        ``[model] centre_of_mass_m``, else as :class:`Model`.
-    threads : int, optional
-        Threads each attitude uses; default every core.
+    articulate : mapping, optional
+        Hinges (``[articulation]`` globs of the materials file, as written) held at these angles [deg],
+        whatever their law in the file, e.g. ``{"wing_*": 30.0}``.
+    **model
+        Fields of the :class:`Model`: ``reference_point_m``, the torque reference point [m] (the
+        centre of mass; default the materials file's ``[model] centre_of_mass_m``, else as
+        :class:`Model`); ``threads`` each attitude uses (default every core); ``reference_area_m2``
+        and ``reference_length_m``.
 
     Raises
     ------
@@ -306,5 +435,6 @@ def load(
         uniform,
         tuple(two_sided),
         tuple((gas or {}).items()),
+        tuple((articulate or {}).items()),
     )
-    return Model(source.load(), source, reference_point_m, threads)
+    return Model(source.load(), source, **model)  # type: ignore[arg-type]

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.geometry.articulation import Hinge, parse_articulation
 from sunwind.geometry.errors import MaterialError, SunwindError, combine
 
 if sys.version_info >= (3, 11):
@@ -273,13 +274,15 @@ class PartRule:
 
 @dataclass(frozen=True)
 class MaterialSpec:
-    """A parsed materials file: named materials, the ordered part rules and, from its ``[model]`` table,
-    the centre of mass [m] in the body frame (the torque reference point; None when not given)."""
+    """A parsed materials file: named materials, the ordered part rules, from its ``[model]`` table the
+    centre of mass [m] in the body frame (the torque reference point; None when not given), and the
+    hinges of its ``[articulation]`` tables."""
 
     materials: Mapping[str, Material]
     rules: tuple[PartRule, ...]
     source: str | None = None
     centre_of_mass_m: tuple[float, float, float] | None = None
+    hinges: tuple[Hinge, ...] = ()
 
     def rule_for(self, part: str) -> PartRule | None:
         """The first rule matching ``part``, or None."""
@@ -330,12 +333,13 @@ def _nesting(text: str) -> int:
 
 def parse_materials(document: Mapping[str, object], source: str | None = None) -> MaterialSpec:
     """Check and convert a materials document already parsed from TOML."""
-    unknown = sorted(set(document) - {"materials", "parts", "model"})
+    unknown = sorted(set(document) - {"materials", "parts", "model", "articulation"})
     if unknown:
         raise MaterialError(
             f"unknown top-level table '{unknown[0]}'",
             path=source,
-            hint="a materials file has [materials.NAME] tables, a [parts] table and a [model] table",
+            hint="a materials file has [materials.NAME] tables, a [parts] table, a [model] table and "
+            '[articulation."GLOB"] tables',
         )
     tables = document.get("materials", {})
     if not isinstance(tables, Mapping) or not all(isinstance(t, Mapping) for t in tables.values()):
@@ -365,9 +369,13 @@ def parse_materials(document: Mapping[str, object], source: str | None = None) -
         centre = _centre_of_mass(document.get("model", {}), source)
     except MaterialError as error:
         problems.append(error)
+    try:
+        hinges = parse_articulation(document.get("articulation", {}), source)
+    except MaterialError as error:
+        problems.append(error)
     if problems:
         raise combine(problems)
-    return MaterialSpec(materials=materials, rules=tuple(rules), source=source, centre_of_mass_m=centre)
+    return MaterialSpec(materials, tuple(rules), source, centre, hinges)
 
 
 def _centre_of_mass(table: object, source: str | None) -> tuple[float, float, float] | None:

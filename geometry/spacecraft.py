@@ -3,18 +3,34 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.geometry import triangles as tri
+from sunwind.geometry.articulation import (
+    Hinge,
+    check_bodies,
+    checked_angle,
+    detached,
+    part_groups,
+    turned,
+    with_fronts,
+)
 from sunwind.geometry.cache import ModelCache
 from sunwind.geometry.checks import CRACK_TOLERANCE, MeshCheck, check_mesh, size_notice
-from sunwind.geometry.errors import MaterialError, MeshError, SunwindError, combine
-from sunwind.geometry.materials import Material, MaterialSpec, MaterialTable, load_materials, toml_key
+from sunwind.geometry.errors import InputError, MaterialError, MeshError, SunwindError, combine
+from sunwind.geometry.materials import (
+    Material,
+    MaterialSpec,
+    MaterialTable,
+    load_materials,
+    part_matches,
+    toml_key,
+)
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.rays.scene import RayScene
 from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides, declared_kinds
@@ -74,7 +90,14 @@ class Spacecraft:
         remarks (a size that suggests another unit).
     centre_of_mass_m : (3,) float64 or None
         Centre of mass [m] the materials file gives (``[model] centre_of_mass_m``): the default torque
-        reference point.
+        reference point. It stays where it is when hinges turn parts.
+    hinges : tuple of Hinge
+        Articulations of parts (materials file ``[articulation]``), bound by :func:`articulate`.
+    pose_deg : tuple of float
+        Angle [deg] of each hinge in this geometry; empty when the model has no hinges.
+    drawn_vertices : (n_vertices, 3) float64 or None
+        Vertex positions [m] with every hinge at 0 (the mesh as drawn), from which every pose is
+        turned; None when the model has no hinges.
     cache : ModelCache
         What is built once for this model and kept (ray scene, shadow-ray origins, view factors,
         ...): list it with ``cache.entries()``, free it with ``cache.clear()``. A model made from this
@@ -95,6 +118,9 @@ class Spacecraft:
     unit: str = "m"
     notices: tuple[str, ...] = ()
     centre_of_mass_m: NDArray[np.float64] | None = None
+    hinges: tuple[Hinge, ...] = ()
+    pose_deg: tuple[float, ...] = ()
+    drawn_vertices: NDArray[np.float64] | None = None
     cache: ModelCache = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -102,8 +128,9 @@ class Spacecraft:
             object.__setattr__(
                 self, "centre_of_mass_m", _frozen(np.array(self.centre_of_mass_m, dtype=float))
             )
-        for array in (self.vertices, self.faces, self.facet_part, self.facet_kind):
-            _frozen(array)
+        for array in (self.vertices, self.faces, self.facet_part, self.facet_kind, self.drawn_vertices):
+            if array is not None:
+                _frozen(array)
         for array in (self.side_facet, self.side_sign, self.side_material):
             _frozen(array)
         object.__setattr__(self, "cache", ModelCache())
@@ -255,23 +282,21 @@ class Spacecraft:
         return tri.signed_volume(self.triangles) if self.is_closed else None
 
     @cached_property
-    def area_centroid(self) -> NDArray[np.float64]:
-        """Area-weighted centroid of all facets [m], (3,)."""
-        return self.facet_areas @ self.facet_centroids / self.total_area
-
-    @cached_property
     def default_reference(self) -> tuple[NDArray[np.float64], str]:
         """Default torque reference point [m] and its name (METHOD.md "Frames, units and signs").
 
         The centre of mass of the materials file ("centre of mass (materials file)"), else the volume
         centroid of a closed model ("volume centroid (default)"), else the area centroid of its facets
-        ("area centroid (default)").
+        ("area centroid (default)"); the centroids of the mesh as drawn, so that they do not move with
+        the hinges.
         """
         if self.centre_of_mass_m is not None:
             return self.centre_of_mass_m, CENTRE_OF_MASS
+        drawn = self.triangles if self.drawn_vertices is None else self.drawn_vertices[self.faces]
         if self.is_closed:
-            return tri.volume_centroid(self.triangles), "volume centroid (default)"
-        return self.area_centroid, "area centroid (default)"
+            return tri.volume_centroid(drawn), "volume centroid (default)"
+        areas = tri.areas(drawn)
+        return areas @ tri.centroids(drawn) / areas.sum(), "area centroid (default)"
 
     @cached_property
     def bounds(self) -> NDArray[np.float64]:
@@ -282,6 +307,16 @@ class Spacecraft:
     def scene(self) -> RayScene:
         """The Embree scene of the facets, built on first use and kept in :attr:`cache`."""
         return self.cache.get("ray scene", lambda: RayScene(self.triangles))
+
+    @property
+    def articulation(self) -> dict[str, float]:
+        """Angle [deg] of each hinge in this geometry, by its glob."""
+        return {hinge.pattern: angle for hinge, angle in zip(self.hinges, self.pose_deg, strict=True)}
+
+    @cached_property
+    def facet_hinge(self) -> NDArray[np.int64]:
+        """Index into :attr:`hinges` of the hinge that turns each facet, -1 for none, (n_facets,)."""
+        return _frozen(_facet_groups(self, self.hinges, None))
 
     def part_area(self) -> dict[str, float]:
         """Area of each part [m^2]."""
@@ -335,7 +370,7 @@ def build_spacecraft(
     side_facet = np.concatenate([facets, facets[back]])
     side_sign = np.concatenate([np.ones(len(facets)), -np.ones(int(back.sum()))])
     side_material = np.concatenate([sides.front_material[check.kept], sides.back_material[check.kept][back]])
-    return Spacecraft(
+    craft = Spacecraft(
         vertices=check.vertices,
         faces=check.faces,
         facet_part=mesh.face_part[check.kept],
@@ -353,6 +388,7 @@ def build_spacecraft(
         ),
         centre_of_mass_m=None if spec is None else spec.centre_of_mass_m,
     )
+    return craft if spec is None or not spec.hinges else articulate(craft, spec.hinges, spec.source)
 
 
 def _undeclared_sheets(check: MeshCheck, source: str) -> MeshError:
@@ -385,6 +421,59 @@ def _undeclared_sheets(check: MeshCheck, source: str) -> MeshError:
         "solid body into a cavity"
     )
     return combine(problems, hint=hint)
+
+
+def articulate(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None = None) -> Spacecraft:
+    """``craft`` with ``hinges`` bound to its parts, fixed hinges at their angles (tracking and scheduled
+    ones at 0). Vertices shared across hinges are split; a tracking hinge without ``front`` gets its
+    sheets'. Raises :class:`MaterialError` (naming ``path``, the materials file) for a glob that matches
+    no part, a part two globs match, a closed body turning would open, a tracking hinge without a front.
+    """
+    hinges = tuple(hinges)
+    group = _facet_groups(craft, hinges, path)
+    names = np.array(craft.part_names, dtype=object)[craft.facet_part]
+    check_bodies(craft.faces, craft.facet_kind == SOLID, group, names, hinges, path)
+    drawn = craft.vertices if craft.drawn_vertices is None else craft.drawn_vertices
+    vertices, faces = detached(drawn, craft.faces, group)
+    hinges = with_fronts(hinges, vertices[faces], group, craft.facet_kind != SOLID, path)
+    bound = replace(craft, vertices=vertices, faces=faces, hinges=hinges, pose_deg=(), drawn_vertices=None)
+    return pose(bound, hinges, {h.pattern: h.angle_deg for h in hinges if h.angle_deg is not None})
+
+
+def pose(craft: Spacecraft, hinges: Sequence[Hinge], angles: Mapping[str, float]) -> Spacecraft:
+    """A new model with the parts of each hinge turned to its angle in ``angles`` [deg] (by glob; a hinge
+    not named is at 0, as drawn), everything else as in ``craft``: materials, sides, centre of mass.
+    Every pose is turned from the mesh as drawn: the same angles give the same bits whatever pose
+    ``craft`` is in. ``hinges`` other than ``craft.hinges`` are bound first (:func:`articulate`); an
+    angle of no hinge or not finite is an :class:`InputError`.
+    """
+    hinges = tuple(hinges)
+    if hinges != craft.hinges:
+        craft = articulate(craft, hinges)
+    unknown = sorted(set(angles) - {hinge.pattern for hinge in hinges})
+    if unknown:
+        raise InputError(
+            f'angles name "{unknown[0]}", which is no hinge of {craft.source}',
+            hint=f"the hinges are: {', '.join(h.pattern for h in hinges) or 'none'}",
+            parameters=("angles",),
+        )
+    values = tuple(
+        checked_angle(angles.get(h.pattern, 0.0), f'hinge "{h.pattern}"', "angles") for h in hinges
+    )
+    drawn = craft.vertices if craft.drawn_vertices is None else craft.drawn_vertices
+    vertex_hinge = np.full(len(drawn), -1)
+    vertex_hinge[craft.faces] = craft.facet_hinge[:, None]
+    vertices = turned(drawn, vertex_hinge, hinges, values)
+    return replace(craft, vertices=vertices, pose_deg=values, drawn_vertices=drawn)
+
+
+def _facet_groups(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None) -> NDArray[np.int64]:
+    """The hinge that turns each facet (-1: none); see :func:`part_groups`."""
+    hits = np.array(
+        [[part_matches(part, h.pattern) for part in craft.part_names] for h in hinges], dtype=bool
+    )
+    groups = part_groups(hits.reshape(len(hinges), -1), craft.part_names, hinges, craft.source, path)
+    return groups[craft.facet_part]
 
 
 def load_spacecraft(

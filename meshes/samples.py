@@ -306,17 +306,31 @@ def materials_toml(mesh: MeshData) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: The sample's solar-array drive (``sample_spacecraft_tracking.toml``): both wings turn about the
+#: yokes' axis, body y through the origin, with their cells as close to the Sun as it allows.
+ARRAY_DRIVE = """
+# Solar-array drive: both wings turn about the yokes' axis (body y, through the bus centre), their
+# cells (front, +x as drawn) as close to the Sun as the hinge allows.
+[articulation."wing_*"]
+axis = [0, 1, 0]
+origin_m = [0, 0, 0]
+track = "sun"
+"""
+
+
 def write_sample_files(directory: str | Path = DATA_DIR, triangles: int = 20_000) -> dict[str, Path]:
-    """Build the sample and write ``sample_spacecraft.obj``, ``.usda`` and ``.toml`` into ``directory``.
+    """Build the sample and write ``sample_spacecraft.obj``, ``.usda``, ``.toml`` and
+    ``_tracking.toml`` into ``directory``.
 
     The OBJ carries geometry, parts (groups) and material keys (``usemtl``); the TOML beside it
-    gives the optics and the two-sided sheets. The USD carries all of it: optics as ``sunwind:*``
-    material attributes, ``doubleSided`` sheets and their ``sunwind:backMaterial``.
+    gives the optics and the two-sided sheets, and ``_tracking.toml`` the same with the arrays
+    turning to the Sun (:data:`ARRAY_DRIVE`). The USD carries all of the first: optics as
+    ``sunwind:*`` material attributes, ``doubleSided`` sheets and their ``sunwind:backMaterial``.
 
     Returns
     -------
     dict
-        ``{"obj": path, "usda": path, "toml": path}``.
+        ``{"obj": path, "usda": path, "toml": path, "tracking": path}``.
     """
     from sunwind.geometry.io import save_mesh
 
@@ -327,6 +341,8 @@ def write_sample_files(directory: str | Path = DATA_DIR, triangles: int = 20_000
     save_mesh(mesh, paths["obj"])
     save_mesh(mesh, paths["usda"], optics=SAMPLE_OPTICS)
     paths["toml"].write_text(materials_toml(mesh), encoding="utf-8")
+    paths["tracking"] = directory / f"{SAMPLE_NAME}_tracking.toml"
+    paths["tracking"].write_text(materials_toml(mesh) + ARRAY_DRIVE, encoding="utf-8")
     return paths
 
 

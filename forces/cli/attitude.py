@@ -11,6 +11,7 @@ from sunwind.forces.cli.options import (
     json_option,
     loaded,
     model_options,
+    posed,
     reference_options,
     reflection_options,
     sampling_options,
@@ -40,7 +41,7 @@ def srp(
     as_json: bool,
 ) -> None:
     """Solar-radiation force and torque for one Sun direction, with self-shadowing and inter-reflection."""
-    model = loaded(source, **references)
+    model = posed(loaded(source, **references), sun.vector, "srp")
     result = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     if as_json:
         print_json(model.craft, result.to_json())
@@ -64,7 +65,7 @@ def drag(
     as_json: bool,
 ) -> None:
     """Free-molecular force and torque for one flow direction: gas-surface law, shadowing, re-emission."""
-    model = loaded(drag_only(source), **references)
+    model = posed(loaded(drag_only(source), **references), None, "drag")
     result = _drag(model, flow, reflections, sampling)
     craft = model.craft
     if as_json:
@@ -91,7 +92,7 @@ def forces(
     as_json: bool,
 ) -> None:
     """Solar-radiation pressure and free-molecular drag together for one attitude, and their total."""
-    model = loaded(source, **references)
+    model = posed(loaded(source, **references), sun.vector, "forces")
     light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     gas = _drag(model, flow, reflections, sampling)
     if as_json:

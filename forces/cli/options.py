@@ -72,6 +72,14 @@ FLAGS = {
     "facet_size": "--facet-size",
     "no_view": "--no-view",
     "two_sided": "--two-sided",
+    "articulate": "--articulate",
+    "sun_eci": "--sun-eci",
+    "moon": "--moon",
+    "elements": "--elements",
+    "propagator": "--propagator",
+    "attitude": "--attitude",
+    "interpolation": "--interpolation",
+    "eclipse": "--eclipse",
 }
 
 
@@ -124,6 +132,13 @@ _MODEL_OPTIONS = [
         "--two-sided", multiple=True, metavar="GLOB", help="Treat matching parts as two-sided sheets."
     ),
     click.option("--unit", help="Mesh length unit: m, mm, cm, in [default: the file's own, else m]."),
+    click.option(
+        "--articulate",
+        multiple=True,
+        metavar="GLOB=DEG",
+        help="Hold the parts of the materials file's hinge [articulation.GLOB] at DEG [deg], whatever its "
+        "angle, tracking or schedule there.",
+    ),
 ]
 
 
@@ -167,7 +182,25 @@ def _source(values: dict) -> ModelSource:
         uniform=uniform_material(values, gas),
         two_sided=tuple(values["two_sided"]),
         gas=tuple(gas.items()),
+        articulate=_angles(values["articulate"]),
     )
+
+
+def _angles(words: tuple[str, ...]) -> tuple[tuple[str, float], ...]:
+    """``--articulate GLOB=DEG`` flags as (glob, angle) pairs, each glob once."""
+    angles: dict[str, float] = {}
+    for word in words:
+        glob, _, angle = word.rpartition("=")
+        try:
+            value = float(angle)
+        except ValueError:
+            value = None
+        if not glob or value is None:
+            raise InputError(f"--articulate {word!r} is not GLOB=DEG", hint='e.g. --articulate "wing_*=30"')
+        if glob in angles:
+            raise InputError(f'--articulate gives hinge "{glob}" twice', hint="give each hinge one angle")
+        angles[glob] = value
+    return tuple(angles.items())
 
 
 def model_options(gas: bool = False) -> Callable:
@@ -181,6 +214,26 @@ def loaded(source: ModelSource, **model: object) -> Model:
     for notice in craft.notices:
         print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
     return Model(craft, source, **model)
+
+
+def posed(model: Model, sun_vector: NDArray[np.float64] | None, command: str) -> Model:
+    """``model`` with its hinges at the angles of ``sunwind COMMAND``: fixed ones at theirs, tracking ones
+    turned to ``sun_vector``. A schedule (it needs a time: ``sunwind orbit``), or tracking without a Sun
+    (``drag``, and ``sweep``, which turns nothing from one attitude to the next), is refused."""
+    for hinge in model.hinges:
+        if hinge.law == "schedule" or (hinge.law == "track" and sun_vector is None):
+            what = "follows a schedule" if hinge.law == "schedule" else "tracks the Sun"
+            lacks = "time" if hinge.law == "schedule" else "Sun direction"
+            elsewhere = (
+                "sunwind orbit flies schedules"
+                if hinge.law == "schedule"
+                else "srp and forces turn it to --sun"
+            )
+            raise InputError(
+                f'[articulation] "{hinge.pattern}" {what}: sunwind {command} has no {lacks} for it',
+                hint=f'hold it at an angle with --articulate "{hinge.pattern}=DEG" ({elsewhere})',
+            )
+    return model.posed(model.angles_at(sun_vector))
 
 
 # ----------------------------------------------------------------------------------------- reference

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import click
@@ -30,7 +30,7 @@ from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, SpaceWeath
 from sunwind.forces.orbit.attitude import INTERPOLATIONS
 from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
 from sunwind.forces.orbit.ephemeris_csv import ephemeris_trajectory, read_ephemeris
-from sunwind.forces.orbit.flight import geodetic
+from sunwind.forces.orbit.flight import check_sun, geodetic
 from sunwind.forces.orbit.tle import read_tle, tle_epoch, tle_trajectory
 from sunwind.forces.orbit.trajectory import PROPAGATORS
 from sunwind.forces.radiation import solar_flux
@@ -194,6 +194,7 @@ _ENVIRONMENT_OPTIONS = [
         show_default=True,
         help="Earth shadow: conical (with penumbra), cylindrical, or none.",
     ),
+    click.option("--moon", is_flag=True, help="The Moon eclipses the Sun too (with the ephemeris Sun)."),
     click.option("--flux", type=float, help="Solar flux at 1 au [W/m^2] [default 1361]."),
     click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
     click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
@@ -213,6 +214,7 @@ class Environment:
     drag: bool | None
     sun_eci: np.ndarray | None
     eclipse: str
+    moon: bool
     flux_W_m2: float
     air: object
     mass_kg: float | None
@@ -227,8 +229,7 @@ def _environment(values: dict) -> Environment:
     else:
         air = SpaceWeather(values["f107"], values["f107a"], values["ap"])
     sun = values["sun_eci"]
-    if sun is not None and not (np.all(np.isfinite(sun)) and np.linalg.norm(sun) > 0):
-        raise InputError(f"--sun-eci {sun} must be a finite, non-zero direction")
+    check_sun(sun, values["moon"])
     mass = values["mass"]
     if mass is not None and not (math.isfinite(mass) and mass > 0):
         raise InputError(f"--mass {mass:g} kg must be a positive number")
@@ -238,6 +239,7 @@ def _environment(values: dict) -> Environment:
         values["drag_flag"] if asked else None,
         None if sun is None else np.array(sun, dtype=float),
         values["eclipse"],
+        values["moon"],
         solar_flux(values["flux"]),
         air,
         mass,
@@ -266,7 +268,22 @@ _OUTPUT_OPTIONS = [
     click.option("--plot", type=click.Path(path_type=Path), help="PNG of torque and momentum against time."),
     click.option("--json", "as_json", is_flag=True, help="Print one JSON object: the series and summary."),
     click.option(
+        "--gas-reflections",
+        type=click.Choice(["none", "full", "auto"]),
+        default="auto",
+        show_default=True,
+        help="Re-emitted molecules striking other sides (--reflections is for light).",
+    ),
+    click.option(
         "--sky-rays", type=int, help="Rays per side of each side's open sky [default: by model size]."
+    ),
+    click.option(
+        "--hinge-step",
+        type=float,
+        default=1.0,
+        show_default=True,
+        help="Tracked and scheduled hinge angles rounded to this step [deg] (0: exact): each new angle is "
+        "a new pose whose caches (view factors) are made again.",
     ),
     click.option("--resume", is_flag=True, help="Continue an interrupted run from its checkpoint (-o)."),
     click.option(
@@ -296,6 +313,9 @@ def _output(values: dict) -> dict:
         raise InputError("--resume takes up the checkpoint of an output: give -o as before")
     if values["scheduler"] is not None:
         require_dask()
+    step = values["hinge_step"]
+    if not (math.isfinite(step) and 0 <= step <= 30):
+        raise InputError(f"--hinge-step {step:g} must be 0 to 30 deg")
     return values
 
 
@@ -306,7 +326,7 @@ def _output(values: dict) -> dict:
 @group("attitude", _ATTITUDE_OPTIONS, lambda v: AttitudeLaw.parse(v["law"], v["interpolation"]))
 @reference_options(sizes=True)
 @sampling_options
-@reflection_options("both")
+@reflection_options("light")
 @group("output", _OUTPUT_OPTIONS, _output)
 def orbit(
     source: ModelSource,
@@ -329,15 +349,24 @@ def orbit(
             f"({'below' if drag_on else 'above'} {DRAG_DEFAULT_BELOW_KM:g} km; --srp/--drag choose)",
             file=sys.stderr,
         )
-    shared = {"reflections": reflections, **sampling, "reference_point_m": references["reference_point_m"]}
-    srp = SrpSetup(flux_W_m2=environment.flux_W_m2, **shared) if environment.srp else None
-    drag = GasOptions(sky_rays=output["sky_rays"], **shared) if drag_on else None
+    shared = {**sampling, "reference_point_m": references["reference_point_m"]}
+    srp = None
+    if environment.srp:
+        srp = SrpSetup(flux_W_m2=environment.flux_W_m2, reflections=reflections, **shared)
+    drag = None
+    if drag_on:
+        molecules = replace(reflections, mode=output["gas_reflections"])
+        drag = GasOptions(sky_rays=output["sky_rays"], reflections=molecules, **shared)
     model = loaded(source if srp is not None else drag_only(source), **references)
     checkpoint = (
         None
         if output["output"] is None
         else output["output"].with_name(output["output"].name + ".checkpoint")
     )
+    begin = time.perf_counter()
+    for part in (srp, drag):  # view factors, open skies: timed apart from the steps
+        if part is not None:
+            part.precompute(model)
     start = time.perf_counter()
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
     with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
@@ -351,7 +380,7 @@ def orbit(
             lambda done: bar.update(task, completed=done),
             lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
         )
-        loads = Loads(srp, drag, environment.air)
+        loads = Loads(srp, drag, environment.air, output["hinge_step"])
         result = fly(
             model,
             trajectory,
@@ -359,9 +388,16 @@ def orbit(
             loads,
             sun_eci=environment.sun_eci,
             eclipse=environment.eclipse,
+            moon=environment.moon,
             run=run,
         )
     seconds = time.perf_counter() - start
+    steps = len(trajectory.time_s)
+    print(
+        f"sunwind: notice: {steps} steps in {seconds:.1f} s ({1e3 * seconds / steps:.0f} ms per step) "
+        f"after {start - begin:.1f} s of precomputes",
+        file=sys.stderr,
+    )
     written = []
     if output["output"] is not None:
         target = output["output"]
@@ -378,24 +414,30 @@ def orbit(
     if output["as_json"]:
         print_json(model.craft, result.to_json(environment.mass_kg))
         return
-    _print_summary(model.craft.source, result, environment.mass_kg, seconds)
+    _print_summary(model.craft.source, result, environment.mass_kg)
     for target in written:
         print(f"  wrote {target}")
 
 
-def _print_summary(name: str, result, mass_kg: float | None, seconds: float) -> None:
+def _print_summary(name: str, result, mass_kg: float | None) -> None:
     summary = result.summary(mass_kg)
     attrs = result.attributes
     steps = summary["steps"]
     print(f"sunwind orbit: {name}: {steps} steps over {summary['duration_s']:g} s")
-    per_step = 1e3 * seconds / steps
-    print(f"sunwind: notice: {steps} steps in {seconds:.1f} s ({per_step:.0f} ms per step)", file=sys.stderr)
     print(f"  orbit      {attrs['trajectory']}")
     print(f"  attitude   {attrs['attitude']}; terms: {attrs['terms']}")
+    for pattern, angles in result.hinge_angles_deg.items():
+        print(f"  hinge      {pattern} {angles.min():+.1f} to {angles.max():+.1f} deg")
     point = vector(np.array(attrs["reference_point_m"]), "{:+.4f}")
     print(f"  reference  {point} m ({attrs['reference_point']})")
-    sunlit, shadow = summary["sunlit_fraction"], summary["eclipse_s"]
-    print(f"  sunlit     {sunlit:.4f} of the time ({shadow:.0f} s of full shadow, penumbra pro rata)")
+    sunlit, shadow, count = (
+        summary["sunlit_fraction"],
+        summary["shadow_equivalent_s"],
+        len(summary["eclipses_s"]),
+    )
+    print(
+        f"  sunlit     {sunlit:.4f} of the time; eclipses: {count}, {shadow:.0f} s of full-shadow equivalent"
+    )
     print(f"  mean force body {vector(np.array(summary['mean_force_body_N']))} N")
     print(f"  mean torque body {vector(np.array(summary['mean_torque_body_Nm']))} N m")
     print(f"  largest torque {summary['max_torque_Nm']:.4e} N m at t = {summary['max_torque_time_s']:g} s")

@@ -27,8 +27,20 @@ def about(point_m: np.ndarray, name: str) -> str:
 
 
 def header(craft: Spacecraft) -> dict:
-    """What every JSON document says of the model."""
-    return {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
+    """What every JSON document says of the model (and, with hinges, their angles [deg] by glob)."""
+    out = {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
+    return out | ({"articulation": craft.articulation} if craft.hinges else {})
+
+
+def print_articulation(craft: Spacecraft) -> None:
+    """The line of the hinges' angles, when the model has hinges."""
+    laws = {"fixed": "fixed", "track": "tracking the Sun", "schedule": "scheduled"}
+    angles = [
+        f"{hinge.pattern} {angle:+.3f} deg ({laws[hinge.law]})"
+        for hinge, angle in zip(craft.hinges, craft.pose_deg, strict=True)
+    ]
+    if angles:
+        print(f"  articulation     {'; '.join(angles)}")
 
 
 def print_json(craft: Spacecraft, document: dict) -> None:
@@ -43,6 +55,7 @@ def print_srp(result: SrpResult) -> None:
     parts = f"{craft.n_facets} triangles, {len(craft.part_names)} parts, unit {craft.unit}"
     print(f"sunwind srp: {craft.source} ({parts})")
     print("  frame            body frame of the mesh; SI units")
+    print_articulation(craft)
     print(f"  sun vector       {vector(result.sun_vector, '{:+.6f}')}  az {az:.3f} deg  el {el:.3f} deg")
     print(f"  flux             {result.flux_W_m2:.6g} W/m^2   pressure P = {result.pressure_Pa:.6e} Pa")
     print(f"  force   [N]      {vector(result.force_N)}  |F| = {np.linalg.norm(result.force_N):.6e}")
@@ -71,13 +84,15 @@ def print_srp(result: SrpResult) -> None:
         print(f"  view factors     {view.rays_per_side} rays per side, {view.origin}")
 
 
-def print_drag(result: DragResult, heading: str) -> None:
-    """The human-readable drag report under ``heading``."""
+def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
+    """The human-readable drag report under ``heading`` (with the hinges' angles when ``hinges``)."""
     air = result.atmosphere
     cd, cs, cl = result.force_coefficients
     az, el = result.flow_azel_deg
     print(heading)
     print("  frame            body frame of the mesh; SI units")
+    if hinges:
+        print_articulation(result.craft)
     print(f"  v_rel   [m/s]    {vector(result.velocity_m_s, '{:+.3f}')}  az {az:.3f} deg  el {el:.3f} deg")
     print(f"  atmosphere       {air.source}")
     print(
@@ -132,9 +147,10 @@ def print_forces(light: SrpResult, gas: DragResult) -> None:
     craft = light.craft
     force, torque = light.force_N + gas.force_N, light.torque_Nm + gas.torque_Nm
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+    print_articulation(craft)
     print(f"  total force  [N]    {vector(force)}  |F| = {np.linalg.norm(force):.6e}")
     print(f"  total torque [N m]  {vector(torque)}")
     print(f"  about        [m]    {about(light.reference_point_m, light.reference_point)}")
     print(f"  srp force    [N]    {vector(light.force_N)}  (sun {vector(light.sun_vector, '{:+.4f}')})")
     print(f"  srp torque   [N m]  {vector(light.torque_Nm)}")
-    print_drag(gas, "  drag:")
+    print_drag(gas, "  drag:", hinges=False)

@@ -27,6 +27,7 @@ from sunwind.forces.cli.options import (
     group,
     loaded,
     model_options,
+    posed,
     reference_options,
     reflection_options,
     sampling_options,
@@ -206,6 +207,7 @@ def sweep_command(
     for kind in table.kinds if attitudes is not None else ():
         attitudes.directions(kind)
     model = loaded((source if "srp" in table.kinds else drag_only(source)).resolved(), **references)
+    model = posed(model, None, "sweep")
     checkpoint = table.output.with_name(table.output.name + ".checkpoint")
     total = _count(table, attitudes)
     columns = (

@@ -40,18 +40,25 @@ from sunwind.meshes.samples import sample_spacecraft
 )
 @click.option(
     "--sweep",
-    is_flag=True,
+    "what",
+    flag_value="sweep",
     help="Time a whole grid sweep (SRP and drag, full reflections) and Dask 2 workers over 1 instead.",
 )
 @click.option("--step", type=float, default=5.0, show_default=True, help="Grid step of --sweep [deg].")
+@click.option(
+    "--orbit",
+    "what",
+    flag_value="orbit",
+    help="Time orbit steps instead: LEO with SRP and drag, each alone, and GEO.",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_json) -> None:
+def bench(mesh_path, materials, triangles, attitudes, samples, what, step, as_json) -> None:
     """Time SRP per attitude (direct against raw Embree on the same rays, then with full reflections)
     and free-molecular drag per attitude against SRP with the same reflection setting; or, with
     --sweep, a whole attitude sweep of the generated sample."""
     if attitudes < 1:
         raise InputError(f"--attitudes {attitudes} must be at least 1")
-    if sweep:
+    if what == "sweep":
         _bench_sweep(triangles, step, samples, as_json)
         return
     start = time.perf_counter()
@@ -60,6 +67,9 @@ def bench(mesh_path, materials, triangles, attitudes, samples, sweep, step, as_j
     else:
         craft = build_spacecraft(sample_spacecraft(triangles))
     load_s = time.perf_counter() - start
+    if what == "orbit":
+        _bench_orbit(craft, as_json)
+        return
     with _progress_bar(as_json) as bar:
         task = bar.add_task("timing attitudes", total=attitudes)
         report = benchmark(
@@ -141,6 +151,22 @@ def _progress_bar(as_json: bool) -> Progress:
         TimeRemainingColumn(),
     )
     return Progress(*columns, transient=True, disable=as_json)
+
+
+def _bench_orbit(craft, as_json: bool) -> None:
+    """``sunwind bench --orbit``: run and print :func:`sunwind.forces.orbit.bench.orbit_benchmark`."""
+    from sunwind.forces.model import Model
+    from sunwind.forces.orbit.bench import EPOCH, orbit_benchmark
+
+    report = orbit_benchmark(Model(craft))
+    if as_json:
+        print(json.dumps({"mesh": craft.source, **report.to_json()}, indent=2))
+        return
+    print(f"sunwind bench --orbit: {craft.source} ({report.triangles} triangles); {report.machine}")
+    print(f"  nadir pointing from {EPOCH}, defaults of sunwind orbit, {report.steps} steps timed after two")
+    for name, ms in report.ms_per_step.items():
+        print(f"  {name:<22}  {ms:.1f} ms per step")
+    print("  error of a step         that of srp and drag at one attitude (sunwind bench)")
 
 
 def _bench_sweep(triangles: int, step: float, samples: int | None, as_json: bool) -> None:

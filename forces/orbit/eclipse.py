@@ -6,7 +6,9 @@ as seen from the spacecraft; the visible share is one minus the overlap of the t
 (flat discs: the exact area of the lens between two circles). ``cylindrical``: the Earth's shadow is a
 cylinder of radius ``R_earth`` behind it along the Sun line, no penumbra. ``none``: always 1.
 The Earth is a sphere of radius 6378.137 km (its equatorial radius); refraction and the atmosphere's
-own shadow are left out.
+own shadow are left out. The Moon (radius 1737.4 km), when asked for, occults by the same rules; the
+two shares multiply (exact unless both bodies cover the Sun at once, which a near-Earth orbit sees
+only in a lunar eclipse).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.gas.flow import EARTH_RADIUS
-from sunwind.forces.orbit.sun import SUN_RADIUS_M
+from sunwind.forces.orbit.sun import MOON_RADIUS_M, SUN_RADIUS_M
 from sunwind.geometry.errors import InputError
 
 #: Eclipse models.
@@ -23,10 +25,14 @@ ECLIPSE_MODELS = ("conical", "cylindrical", "none")
 
 
 def solar_fraction(
-    position_m: NDArray[np.float64], sun_m: NDArray[np.float64], model: str = "conical"
+    position_m: NDArray[np.float64],
+    sun_m: NDArray[np.float64],
+    model: str = "conical",
+    moon_m: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
     """Visible share of the solar disc (n,) at spacecraft positions ``position_m`` (n, 3) with the Sun
-    at ``sun_m`` (n, 3), both geocentric [m] in one inertial frame."""
+    at ``sun_m`` (n, 3) and, if given, the Moon at ``moon_m`` (n, 3), all geocentric [m] in one
+    inertial frame."""
     if model not in ECLIPSE_MODELS:
         raise InputError(
             f"eclipse model {model!r} is not one of {', '.join(ECLIPSE_MODELS)}", parameters=("eclipse",)
@@ -35,16 +41,27 @@ def solar_fraction(
     s = np.atleast_2d(np.asarray(sun_m, dtype=float))
     if model == "none":
         return np.ones(len(r))
+    visible = _unblocked(r, s, np.zeros_like(r), EARTH_RADIUS, model)
+    if moon_m is not None:
+        visible *= _unblocked(r, s, np.atleast_2d(moon_m), MOON_RADIUS_M, model)
+    return visible
+
+
+def _unblocked(
+    r: NDArray[np.float64], s: NDArray[np.float64], centre: NDArray[np.float64], radius: float, model: str
+) -> NDArray[np.float64]:
+    """Share of the Sun a sphere of ``radius`` at ``centre`` leaves visible from ``r``."""
     if model == "cylindrical":
-        u = s / np.linalg.norm(s, axis=1, keepdims=True)
-        along = np.einsum("ij,ij->i", r, u)
-        off_axis = np.linalg.norm(r - along[:, None] * u, axis=1)
-        return np.where((along < 0) & (off_axis < EARTH_RADIUS), 0.0, 1.0)
-    to_sun = s - r
-    d_sun, d_earth = np.linalg.norm(to_sun, axis=1), np.linalg.norm(r, axis=1)
+        u = (s - centre) / np.linalg.norm(s - centre, axis=1, keepdims=True)
+        relative = r - centre
+        along = np.einsum("ij,ij->i", relative, u)
+        off_axis = np.linalg.norm(relative - along[:, None] * u, axis=1)
+        return np.where((along < 0) & (off_axis < radius), 0.0, 1.0)
+    to_sun, to_body = s - r, centre - r
+    d_sun, d_body = np.linalg.norm(to_sun, axis=1), np.linalg.norm(to_body, axis=1)
     a = np.arcsin(np.minimum(1.0, SUN_RADIUS_M / d_sun))
-    b = np.arcsin(np.minimum(1.0, EARTH_RADIUS / d_earth))
-    cos_c = -np.einsum("ij,ij->i", r, to_sun) / (d_earth * d_sun)
+    b = np.arcsin(np.minimum(1.0, radius / d_body))
+    cos_c = np.einsum("ij,ij->i", to_body, to_sun) / (d_body * d_sun)
     c = np.arccos(np.clip(cos_c, -1.0, 1.0))
     return _disc_visible(a, b, c)
 

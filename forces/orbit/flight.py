@@ -26,9 +26,10 @@ from sunwind.forces.orbit.steps import (
     VELOCITY,
     Loads,
     OrbitSetup,
+    SpaceWeather,
     StepInputs,
 )
-from sunwind.forces.orbit.sun import AU_M, fixed_sun, sun_position
+from sunwind.forces.orbit.sun import AU_M, fixed_sun, moon_position, sun_position
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.forces.tables.engine import SweepRun, run_jobs
@@ -44,6 +45,7 @@ def fly(
     *,
     sun_eci: NDArray[np.float64] | None = None,
     eclipse: str = "conical",
+    moon: bool = False,
     run: SweepRun | None = None,
 ) -> OrbitResult:
     """Forces and torques at every step of ``trajectory`` with the spacecraft held by ``attitude``.
@@ -63,6 +65,8 @@ def fly(
         A fixed Sun direction (GCRF, at 1 au) instead of the ephemeris.
     eclipse : str
         ``conical`` (penumbra), ``cylindrical`` or ``none``.
+    moon : bool
+        The Moon eclipses the Sun too (ERFA's ``moon98``); needs the ephemeris Sun.
     run : SweepRun, optional
         Chunks, checkpoint, resume, Dask, threads and progress, as for sweeps.
     """
@@ -78,7 +82,9 @@ def fly(
         body_to_eci = attitude.body_to_eci(trajectory, sun_m)
     to_sun = sun_m - r
     distance = np.linalg.norm(to_sun, axis=1)
-    fraction = solar_fraction(r, sun_m, eclipse)
+    check_sun(sun_eci, moon)
+    moon_m = moon_position(trajectory.epoch, time_s) if moon else None
+    fraction = solar_fraction(r, sun_m, eclipse, moon_m)
     rows = np.zeros((len(time_s), ROW_WIDTH))
     rows[:, TIME] = time_s
     rows[:, SUN] = np.einsum("nji,nj->ni", body_to_eci, to_sun / distance[:, None])
@@ -88,10 +94,27 @@ def fly(
     rows[:, VELOCITY] = np.einsum("nji,nj->ni", body_to_eci, v - air_velocity)
     if loads.drag is not None:
         rows[:, PLACE] = geodetic(trajectory)
+        if isinstance(loads.air, SpaceWeather):
+            loads.air.check(rows[:, PLACE][:, 0])
     setup = OrbitSetup.of(loads, trajectory.epoch)
     records = run_jobs(model, [Job(setup, rows)], run)["orbit"]
     steps = StepInputs(rows, body_to_eci, fraction)
     return OrbitResult.of(model, trajectory, attitude, setup, steps, records)
+
+
+def check_sun(sun_eci: NDArray[np.float64] | None, moon: bool) -> None:
+    """Refuse a fixed Sun direction that is not one, or one asked for together with the Moon."""
+    if sun_eci is not None:
+        direction = np.asarray(sun_eci, dtype=float)
+        if direction.shape != (3,) or not np.all(np.isfinite(direction)) or not direction.any():
+            raise InputError(
+                f"sun_eci {sun_eci} must be a finite, non-zero direction", parameters=("sun_eci",)
+            )
+        if moon:
+            raise InputError(
+                "the Moon's eclipses need the Sun where it is: drop sun_eci or moon",
+                parameters=("sun_eci", "moon"),
+            )
 
 
 def geodetic(trajectory: Trajectory) -> NDArray[np.float64]:

@@ -49,10 +49,12 @@ SERIES = {
 @dataclass(frozen=True)
 class OrbitResult:
     """Loads along an orbit: ``series`` (name -> (n,) or (n, 3) float64, see :data:`SERIES`),
-    ``body_to_eci`` (n, 3, 3) and what the run was."""
+    ``body_to_eci`` (n, 3, 3), ``hinge_angles_deg`` (hinge glob -> (n,) angles used) and what the run
+    was."""
 
     series: dict[str, NDArray[np.float64]]
     body_to_eci: NDArray[np.float64]
+    hinge_angles_deg: dict[str, NDArray[np.float64]]
     attributes: dict[str, object]
     period_s: float
     flux_1au_W_m2: float
@@ -69,12 +71,10 @@ class OrbitResult:
         records: dict[str, NDArray[np.float64]],
     ) -> OrbitResult:
         """The result of a run from its inputs and the records of its steps."""
-        t, rows, body_to_eci, fraction = (
-            trajectory.time_s,
-            steps.rows,
-            steps.body_to_eci,
-            steps.solar_fraction,
-        )
+        t, rows, body_to_eci = trajectory.time_s, steps.rows, steps.body_to_eci
+        fraction = steps.solar_fraction
+        per_step = [setup.angles(model, row) for row in rows]
+        angles = {hinge.pattern: np.array([a[hinge.pattern] for a in per_step]) for hinge in model.hinges}
         force = records["srp_force_body_N"] + records["drag_force_body_N"]
         torque = records["srp_torque_body_Nm"] + records["drag_torque_body_Nm"]
         torque_eci = np.einsum("nij,nj->ni", body_to_eci, torque)
@@ -109,11 +109,12 @@ class OrbitResult:
             "settings": setup.describe(),
         }
         flux = setup.srp.flux_W_m2 if setup.srp is not None else float("nan")
-        return cls(series, body_to_eci, attributes, trajectory.period_s, flux, terms)
+        return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms)
 
     def summary(self, mass_kg: float | None = None) -> dict[str, object]:
-        """Orbit averages, the largest torque, the momentum built per orbit and, for drag and SRP, the
-        effective areas ``C_D A`` and ``C_R A`` [m^2] (per kg with ``mass_kg``).
+        """Orbit averages, the eclipses (their start and end [s], and the seconds of full shadow the
+        loss of sunlight amounts to), the largest torque, the momentum built per orbit and, for drag
+        and SRP, the effective areas ``C_D A`` and ``C_R A`` [m^2] (per kg with ``mass_kg``).
 
         ``C_D A = sum(-F_drag . v_rel_hat) / sum(q)`` over the steps (q the dynamic pressure: the
         coefficient that gives the run's mean drag along the flow); ``C_R A = sum(-F_srp . s) / sum(P)``
@@ -129,7 +130,8 @@ class OrbitResult:
             "duration_s": duration,
             "period_s": self.period_s,
             "sunlit_fraction": _mean(t, s["solar_fraction"]),
-            "eclipse_s": _eclipse_time(t, s["solar_fraction"]),
+            "shadow_equivalent_s": _shadow_time(t, s["solar_fraction"]),
+            "eclipses_s": _eclipses(t, s["solar_fraction"]),
             "mean_force_body_N": _mean(t, s["force_body_N"]),
             "mean_force_eci_N": _mean(t, s["force_eci_N"]),
             "mean_torque_body_Nm": _mean(t, s["torque_body_Nm"]),
@@ -161,9 +163,11 @@ class OrbitResult:
         return out
 
     def to_json(self, mass_kg: float | None = None) -> dict[str, object]:
-        """One object: every series (one row per step) by its name, the run's attributes and the
-        ``summary``."""
+        """One object: every series (one row per step) by its name, ``hinge_angles_deg`` (by glob), the
+        run's attributes and the ``summary``."""
         out: dict[str, object] = {name: self.series[name].tolist() for name in SERIES}
+        if self.hinge_angles_deg:
+            out["hinge_angles_deg"] = {k: v.tolist() for k, v in self.hinge_angles_deg.items()}
         out["attributes"] = self.attributes
         out["summary"] = self.summary(mass_kg)
         return out
@@ -175,6 +179,8 @@ class OrbitResult:
             values = self.series[name]
             dims = ("time", "xyz") if values.ndim == 2 else ("time",)
             variables[name] = xr.Variable(dims, values, {"units": unit})
+        for pattern, angles in self.hinge_angles_deg.items():
+            variables[f"hinge_angle_deg[{pattern}]"] = xr.Variable(("time",), angles, {"units": "deg"})
         summary = {
             f"summary_{k}": (np.asarray(v) if isinstance(v, list) else v)
             for k, v in self.summary(mass_kg).items()
@@ -193,6 +199,9 @@ class OrbitResult:
             else:
                 columns.append(values)
                 header.append(name)
+        for pattern, angles in self.hinge_angles_deg.items():
+            columns.append(angles)
+            header.append(f"hinge_angle_deg[{pattern}]")
         with Path(path).open("w", newline="") as handle:
             writer = csv.writer(handle)
             writer.writerow(header)
@@ -214,6 +223,16 @@ def _mean(t: NDArray[np.float64], values: NDArray[np.float64]) -> float | list[f
     return mean.tolist() if np.ndim(mean) else float(mean)
 
 
-def _eclipse_time(t: NDArray[np.float64], fraction: NDArray[np.float64]) -> float:
-    """Seconds of the run with less than the whole Sun (the trapezoidal integral of 1 - fraction)."""
+def _shadow_time(t: NDArray[np.float64], fraction: NDArray[np.float64]) -> float:
+    """Seconds of full shadow the run's sunlight loss amounts to (trapezoidal integral of 1 - fraction)."""
     return 0.0 if len(t) < 2 else float(np.trapezoid(1 - fraction, t))
+
+
+def _eclipses(t: NDArray[np.float64], fraction: NDArray[np.float64]) -> list[list[float]]:
+    """``[start, end]`` [s] of each stretch with less than the whole Sun (penumbra included), to the
+    step: from its first step short of the whole Sun to the first step with it again (or the run's
+    end)."""
+    dark = np.concatenate([[False], fraction < 1.0, [False]])
+    starts = np.flatnonzero(~dark[:-1] & dark[1:])
+    ends = np.flatnonzero(dark[:-1] & ~dark[1:])
+    return [[float(t[a]), float(t[min(b, len(t) - 1)])] for a, b in zip(starts, ends, strict=True)]

@@ -19,11 +19,17 @@ from numpy.typing import NDArray
 
 from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning
-from sunwind.forces.gas.msis import nrlmsis
+from sunwind.forces.gas.msis import (
+    FREE_MOLECULAR_MIN_ALTITUDE_KM,
+    MSIS_FITTED_ALTITUDE_KM,
+    MSIS_MAX_ALTITUDE_KM,
+    nrlmsis,
+)
 from sunwind.forces.model import Model
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.srp import srp
 from sunwind.forces.tables.jobs import GasOptions, Records, SrpSetup, empty_records
+from sunwind.geometry.errors import InputError
 
 #: Columns of a step's row of inputs.
 TIME, SUN, FLUX, VELOCITY, PLACE = 0, slice(1, 4), 4, slice(5, 8), slice(8, 11)
@@ -40,9 +46,38 @@ class SpaceWeather:
     ap: float = 4.0
     version: float = 2.1
 
+    def check(self, altitude_km: NDArray[np.float64]) -> None:
+        """Refuse a run that leaves NRLMSIS's range, and say once (not at every step) where its steps
+        are above the altitudes NRLMSIS is fitted to or below the free-molecular limit."""
+        top = float(altitude_km.max())
+        if top > MSIS_MAX_ALTITUDE_KM:
+            raise InputError(
+                f"the orbit reaches {top:.0f} km, above {MSIS_MAX_ALTITUDE_KM:g} km where NRLMSIS cannot be "
+                "trusted",
+                hint="compute SRP alone (--srp), or give a fixed atmosphere (--density ...)",
+                parameters=("drag",),
+            )
+        for outside, what in (
+            (
+                altitude_km > MSIS_FITTED_ALTITUDE_KM,
+                f"above {MSIS_FITTED_ALTITUDE_KM:g} km, where NRLMSIS's exosphere is extrapolated",
+            ),
+            (
+                altitude_km < FREE_MOLECULAR_MIN_ALTITUDE_KM,
+                f"below {FREE_MOLECULAR_MIN_ALTITUDE_KM:g} km, where free-molecular flow no longer holds "
+                "for a metre-sized body",
+            ),
+        ):
+            if outside.any():
+                warnings.warn(
+                    f"{int(outside.sum())} of {outside.size} steps are {what}",
+                    AtmosphereWarning,
+                    stacklevel=3,
+                )
+
     def atmosphere(self, epoch: Epoch, time_s: float, place: NDArray[np.float64]) -> Atmosphere:
         """NRLMSIS at geodetic ``place`` (altitude [km], latitude, longitude [deg]) ``time_s`` after the
-        epoch (its warnings above 1000 km and below 150 km are said once per run, not per step)."""
+        epoch (its range warnings are said once per run by :meth:`check`)."""
         altitude, latitude, longitude = (float(v) for v in place)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", AtmosphereWarning)
@@ -55,11 +90,14 @@ class SpaceWeather:
 class Loads:
     """What an orbit run computes: the SRP settings (None: no SRP; their ``flux_W_m2`` is the flux at
     1 au), the drag settings (None: no drag; each step has its own flow), the air (NRLMSIS space
-    weather by default, or one fixed atmosphere)."""
+    weather by default, or one fixed atmosphere), and the step [deg] to which tracked and scheduled
+    hinge angles are rounded (0: exact), so that steps share posed models and what their caches hold
+    (view factors are made again at every new pose)."""
 
     srp: SrpSetup | None = None
     drag: GasOptions | None = None
     air: SpaceWeather | Atmosphere = field(default_factory=SpaceWeather)
+    hinge_step_deg: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -89,16 +127,12 @@ class OrbitSetup:
     drag: GasOptions | None
     air: SpaceWeather | Atmosphere
     epoch: Epoch
+    hinge_step_deg: float = 0.0
 
     @classmethod
     def of(cls, loads: Loads, epoch: Epoch) -> OrbitSetup:
         """The settings of ``loads`` with times from ``epoch``."""
-        return cls(loads.srp, loads.drag, loads.air, epoch)
-
-    @property
-    def settings(self):
-        """The reflection settings of the SRP part (else the drag part)."""
-        return (self.srp or self.drag).settings
+        return cls(loads.srp, loads.drag, loads.air, epoch, loads.hinge_step_deg)
 
     def precompute(self, model: Model) -> None:
         """View factors and open skies, made once before the first step."""
@@ -112,13 +146,14 @@ class OrbitSetup:
         for name in out:
             out[name][:] = 0.0
         for i, row in enumerate(rows):
+            posed = model.posed(self.angles(model, row))
             flux = float(row[FLUX])
             if self.srp is not None and flux > 0:
-                light = srp(model, row[SUN], flux_W_m2=flux, **self.srp.options())
+                light = srp(posed, row[SUN], flux_W_m2=flux, **self.srp.options())
                 out["srp_force_body_N"][i], out["srp_torque_body_Nm"][i] = light.force_N, light.torque_Nm
             if self.drag is not None:
                 air = self.air_at(row)
-                gas = drag(model, row[VELOCITY], air, **self.drag.options())
+                gas = drag(posed, row[VELOCITY], air, **self.drag.options())
                 out["drag_force_body_N"][i], out["drag_torque_body_Nm"][i] = gas.force_N, gas.torque_Nm
                 out["density_kg_m3"][i] = air.density_kg_m3
                 out["dynamic_pressure_Pa"][i] = gas.dynamic_pressure_Pa
@@ -130,6 +165,15 @@ class OrbitSetup:
             return self.air
         return self.air.atmosphere(self.epoch, float(row[TIME]), row[PLACE])
 
+    def angles(self, model: Model, row: NDArray[np.float64]) -> dict[str, float]:
+        """Every hinge's angle [deg] at a step, tracked and scheduled ones rounded to the hinge step."""
+        angles = model.angles_at(row[SUN], float(row[TIME])) if model.hinges else {}
+        step = self.hinge_step_deg
+        if step > 0:
+            moving = {hinge.pattern for hinge in model.hinges if hinge.law != "fixed"}
+            angles = {k: round(a / step) * step if k in moving else a for k, a in angles.items()}
+        return angles
+
     def describe(self) -> dict:
         """JSON-ready settings (for a checkpoint's fingerprint and the output's attributes)."""
         air = self.air.to_json() if isinstance(self.air, Atmosphere) else vars(self.air)
@@ -138,4 +182,5 @@ class OrbitSetup:
             "drag": None if self.drag is None else self.drag.describe(),
             "air": air,
             "epoch": self.epoch.iso(),
+            "hinge_step_deg": self.hinge_step_deg,
         }

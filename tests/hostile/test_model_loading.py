@@ -6,6 +6,7 @@ code and the key words of the error, warning or notice line.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -94,6 +95,25 @@ def t_junction_box() -> tuple[list, dict]:
 WHITE = "[materials.w]\nreflectivity = 0.5\nspecular_fraction = 0\n"
 #: A uniform material on the command line.
 UNIFORM = ["--reflectivity", "0", "--specular-fraction", "0"]
+#: A closed box and a one-sided wing (front -z) beside it, with material ``w``.
+WINGED = obj_text({"box": CUBE_QUADS, "wing": CUBE_QUADS[:1]})
+WINGED_PARTS = f'{WHITE}[parts]\n"wing" = {{ front = "w" }}\n"box" = "w"\n'
+#: A hinge on the wing about ``axis`` through (2, 0, 0), with ``law``.
+HINGE = "[articulation.wing]\naxis = {axis}\norigin_m = [2, 0, 0]\n{law}\n"
+SUN_X = ["--sun", "1", "0", "0"]
+
+
+def winged(extra: str, law: str = "angle_deg = 30", axis: str = "[0, 1, 0]") -> Callable[[Path], None]:
+    """A builder of the winged box with its materials, the hinge of ``law`` and ``axis``, and ``extra``
+    tables."""
+
+    def build(folder: Path) -> None:
+        (folder / "m.obj").write_text(WINGED)
+        (folder / "m.toml").write_text(WINGED_PARTS + HINGE.format(law=law, axis=axis) + extra)
+
+    return build
+
+
 #: An explicit atmosphere for drag.
 FREE_STREAM = ["--density", "1e-12", "--temperature", "1000", "--composition", "O:1", "--reflections", "none"]
 
@@ -294,6 +314,124 @@ CASES = {
         ["srp", "m.obj", "-m", "m.toml", "--sun", "1", "0", "0"],
         1,
         ["error", "m.toml", "centre_of_mass_m", "3 numbers"],
+    ),
+    # issue 20 item 4: articulated parts
+    "articulation-unknown-key": (
+        winged("", "angle_deg = 30\nspeed = 2"),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        ["error", "m.toml", "[articulation] \"wing\" has unknown key 'speed'", "origin_m"],
+    ),
+    "articulation-axis-zero": (
+        winged("", axis="[0, 0, 0]"),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        ["error", "m.toml", "axis = [0, 0, 0] is not a direction", "axis = [0, 1, 0]"],
+    ),
+    "articulation-schedule-backwards": (
+        winged("", "schedule = [[0, 0], [600, 10], [300, 20]]"),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        ["error", "m.toml", "schedule times do not increase (t = 300 s after t = 600 s)", "time order"],
+    ),
+    "articulation-two-laws": (
+        winged("", 'angle_deg = 3\ntrack = "sun"'),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        ["error", "m.toml", "has angle_deg and track", "exactly one of"],
+    ),
+    "articulation-glob-unmatched": (
+        winged(
+            HINGE.format(law="angle_deg = 1", axis="[0, 1, 0]").replace(
+                "articulation.wing", "articulation.wnig"
+            )
+        ),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        ["error", "m.toml", '"wnig" matches no part of m.obj', "the parts are: box, wing"],
+    ),
+    "articulation-part-twice": (
+        winged(
+            HINGE.format(law="angle_deg = 1", axis="[0, 1, 0]").replace(
+                "articulation.wing", 'articulation."w*"'
+            )
+        ),
+        ["drag", "m.obj", "-m", "m.toml", "--velocity", "7500", "0", "0", *FREE_STREAM],
+        1,
+        ["error", "m.toml", "part 'wing' is turned by two hinges", '"wing" and "w*"', "different parts"],
+    ),
+    "articulation-track-closed-body": (
+        lambda d: (
+            (d / "m.obj").write_text(WINGED),
+            (d / "m.toml").write_text(
+                WINGED_PARTS
+                + HINGE.format(law='track = "sun"', axis="[0, 1, 0]").replace(
+                    "articulation.wing", "articulation.box"
+                )
+            ),
+        ),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        [
+            "error",
+            "m.toml",
+            '"box" tracks the Sun, but the parts it turns have no front',
+            "front = [x, y, z]",
+        ],
+    ),
+    "articulation-track-drag": (
+        winged("", 'track = "sun"'),
+        ["drag", "m.obj", "-m", "m.toml", "--velocity", "7500", "0", "0", *FREE_STREAM],
+        1,
+        ["error", '"wing" tracks the Sun: sunwind drag has no Sun direction', '--articulate "wing=DEG"'],
+    ),
+    "articulation-track-sweep": (
+        winged("", 'track = "sun"'),
+        ["sweep", "m.obj", "-m", "m.toml", "--srp", "--step", "90", "-o", "t.nc"],
+        1,
+        ["error", '"wing" tracks the Sun: sunwind sweep has no Sun direction', "--articulate"],
+    ),
+    "articulation-schedule-srp": (
+        winged("", "schedule = [[0, 0], [60, 9]]"),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X],
+        1,
+        ["error", '"wing" follows a schedule: sunwind srp has no time', "sunwind orbit"],
+    ),
+    "articulate-flag-malformed": (
+        winged(""),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X, "--articulate", "wing:30"],
+        1,
+        ["error", "--articulate 'wing:30' is not GLOB=DEG", 'e.g. --articulate "wing_*=30"'],
+    ),
+    "articulate-flag-not-finite": (
+        winged(""),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X, "--articulate", "wing=nan"],
+        1,
+        ["error", '--articulate "wing" angle nan must be a finite number'],
+    ),
+    "articulate-flag-undeclared": (
+        winged(""),
+        ["srp", "m.obj", "-m", "m.toml", *SUN_X, "--articulate", "box=30"],
+        1,
+        ["error", 'm.toml: --articulate "box" names no hinge', '[articulation."box"] with axis, origin_m'],
+    ),
+    "articulate-flag-held": (
+        winged("", 'track = "sun"'),
+        [
+            "drag",
+            "m.obj",
+            "-m",
+            "m.toml",
+            "--velocity",
+            "7500",
+            "0",
+            "0",
+            *FREE_STREAM,
+            "--articulate",
+            "wing=-15",
+        ],
+        0,
+        ["articulation     wing -15.000 deg (fixed)"],
     ),
 }
 

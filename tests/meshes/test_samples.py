@@ -126,7 +126,8 @@ def test_bad_arguments():
         sample_path("missing.stl")
     assert str(missing.value) == (
         "no sample file 'missing.stl'; shipped: "
-        "sample_spacecraft.obj, sample_spacecraft.toml, sample_spacecraft.usda"
+        "sample_spacecraft.obj, sample_spacecraft.toml, sample_spacecraft.usda, "
+        "sample_spacecraft_tracking.toml"
     )
 
 

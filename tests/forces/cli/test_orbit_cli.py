@@ -72,7 +72,13 @@ def test_a_geo_orbit_leaves_drag_out_and_says_so(run_cli, craft):
         ([*ORBIT, "--step", "1e-9", "--duration", "1e9"], ["steps", "--step"]),
         ([*ORBIT, "--resume"], ["--resume", "-o"]),
         ([*ORBIT, "-o", "run.txt"], [".nc or .csv"]),
+        ([*ORBIT, "--moon", "--sun-eci", "1", "0", "0"], ["Moon", "drop --sun-eci or --moon"]),
+        ([*ORBIT, "--sun-eci", "0", "0", "0"], ["--sun-eci", "non-zero"]),
         (["--tle", "missing.tle", *EPOCH, "--duration", "60"], ["missing.tle", "cannot read"]),
+        (
+            ["--elements", "9000", "0", "60", "0", "0", "0", *EPOCH, "--drag"],
+            ["above 2000 km", "NRLMSIS", "--srp"],
+        ),
     ],
 )
 def test_bad_orbits_get_one_line(run_cli, craft, extra, words):
@@ -82,3 +88,13 @@ def test_bad_orbits_get_one_line(run_cli, craft, extra, words):
     assert len(lines) == 1 and lines[0].startswith("sunwind: error: "), err
     for word in words:
         assert word in lines[0]
+
+
+def test_steps_above_the_fitted_range_of_nrlmsis_are_said_once(run_cli, craft):
+    args = ["orbit", *craft, "--altitude", "1200", "--inclination", "60", *EPOCH, "--step", "900"]
+    code, _, err = run_cli(*args, "--drag", "--reflections", "none", "--sky-rays", "36", "--json")
+    assert code == 0, err
+    warnings = [line for line in err.splitlines() if line.startswith("sunwind: warning:")]
+    assert warnings == [
+        "sunwind: warning: 8 of 8 steps are above 1000 km, where NRLMSIS's exosphere is extrapolated"
+    ]

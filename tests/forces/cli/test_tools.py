@@ -114,3 +114,14 @@ def test_bench_sweep_reports_the_error_of_its_entries(run_cli):
     assert 0 < drag_error["torque_of_force_worst"] < 1e-3
     assert report["projected_1_deg_s"] > 0
     assert report["dask_identical"] is True
+
+
+@pytest.mark.slow
+def test_bench_orbit_times_every_case(run_cli):
+    """Every case of the orbit benchmark reports a time per step (not asserted: the machine may be
+    shared), on a small sample."""
+    code, out, err = run_cli("bench", "--orbit", "--triangles", "2000", "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    assert set(report["ms_per_step"]) == {"LEO SRP + drag", "LEO SRP", "LEO drag", "GEO SRP"}
+    assert all(ms > 0 for ms in report["ms_per_step"].values()) and report["steps"] == 40

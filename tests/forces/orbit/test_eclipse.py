@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from sunwind.forces.orbit import AU_M, Elements, Epoch, propagate, solar_fraction
-from sunwind.forces.orbit.sun import SUN_RADIUS_M
+from sunwind.forces.orbit.sun import MOON_RADIUS_M, SUN_RADIUS_M, moon_position, sun_position
 
 R_EARTH = 6378.137e3
 EPOCH = Epoch.of("2024-06-01T00:00:00Z")
@@ -27,8 +27,11 @@ def _disc_points(n_rings: int = 400) -> tuple[np.ndarray, np.ndarray]:
     return np.stack([np.concatenate(u), np.concatenate(v)], 1), np.concatenate(w)
 
 
-def brute_fraction(r: np.ndarray, sun: np.ndarray) -> float:
-    """Share of the solar disc (uniform brightness) whose ray from ``r`` misses the Earth sphere."""
+def brute_fraction(r: np.ndarray, sun: np.ndarray, centre=(0.0, 0.0, 0.0), radius: float = R_EARTH) -> float:
+    """Share of the solar disc (uniform brightness) whose ray from ``r`` misses the sphere of ``radius``
+    at ``centre`` (the Earth by default)."""
+    r = r - np.asarray(centre)
+    sun = sun - np.asarray(centre)
     points, weights = _disc_points()
     axis = (sun - r) / np.linalg.norm(sun - r)
     e1 = np.cross(axis, [0.0, 0.0, 1.0])
@@ -38,7 +41,7 @@ def brute_fraction(r: np.ndarray, sun: np.ndarray) -> float:
     d = targets - r
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     b = d @ r
-    disc = b**2 - (r @ r - R_EARTH**2)
+    disc = b**2 - (r @ r - radius**2)
     blocked = (disc > 0) & (-b - np.sqrt(np.maximum(disc, 0)) > 0)
     return float(weights[~blocked].sum() / weights.sum())
 
@@ -126,3 +129,22 @@ def test_conical_penumbra_edges_where_the_discs_touch():
 def test_no_eclipse_model_is_always_lit():
     path, sun = _orbit(0.0, step=60.0)
     assert np.all(solar_fraction(path.position_m, sun, "none") == 1.0)
+
+
+def test_the_moon_occults_by_the_same_rules():
+    """Spacecraft across the Moon's shadow during the eclipse of 2024 April 8: the visible share
+    against rays to the solar disc tested against the Moon's sphere, umbra to full Sun."""
+    epoch = Epoch.of("2024-04-08T18:17:00Z")
+    sun, moon = sun_position(epoch, np.array([0.0]))[0], moon_position(epoch, np.array([0.0]))[0]
+    axis = (moon - sun) / np.linalg.norm(moon - sun)
+    side = np.cross(axis, [0.0, 0.0, 1.0])
+    side /= np.linalg.norm(side)
+    shares = []
+    for offset_km in (0.0, 1500.0, 2500.0, 3500.0, 4500.0, 9000.0):
+        r = moon + 2.0e8 * axis + offset_km * 1e3 * side  # 200 000 km behind the Moon
+        share = solar_fraction(r[None], sun[None], "conical", moon[None])[0]
+        earth = solar_fraction(r[None], sun[None], "conical")[0]
+        expected = brute_fraction(r, sun, moon, MOON_RADIUS_M) * earth
+        assert share == pytest.approx(expected, abs=1e-3)
+        shares.append(share)
+    assert shares[0] < 0.5 and 0 < shares[2] < 1 and shares[-1] == 1.0

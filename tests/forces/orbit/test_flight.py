@@ -13,6 +13,7 @@ from sunwind.forces.orbit import SERIES, AttitudeLaw, Elements, Epoch, Loads, fl
 from sunwind.forces.orbit.flight import geodetic
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.tables import SweepRun
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry.materials import Material
 from sunwind.geometry.spacecraft import build_spacecraft
@@ -124,3 +125,43 @@ def test_the_json_has_every_series_by_name_one_row_per_step_and_a_summary(run):
     along = -np.einsum("ij,ij->i", s["drag_force_body_N"], v_hat)
     assert along.sum() == pytest.approx(summary["drag_area_m2"] * s["dynamic_pressure_Pa"].sum())
     assert 0.2 < summary["sunlit_fraction"] < 1.0
+
+
+def test_the_summary_lists_each_eclipse_from_its_first_shadowed_step_to_the_first_lit_one(run):
+    _, result = run
+    t, fraction = result.series["time_s"], result.series["solar_fraction"]
+    eclipses = result.summary()["eclipses_s"]
+    assert len(eclipses) == 1
+    start, end = eclipses[0]
+    inside = (t >= start) & (t < end)
+    assert np.all(fraction[inside] < 1) and np.all(fraction[~inside] == 1)
+
+
+def test_an_interrupted_run_resumes_from_its_checkpoint_and_gives_the_same_series(model, tmp_path):
+    """The steps run as sweep chunks: a run stopped after its first chunk keeps it, and the resumed
+    run takes it up (said on the notice) and ends with the series of an uninterrupted run."""
+    times = np.arange(0.0, 1800.0, 300.0)
+    path = propagate(Elements.circular(450.0, 51.6, 20.0), EPOCH, times, "kepler")
+    loads = Loads(SrpSetup(reflections="none"))
+    law = AttitudeLaw.parse("nadir")
+    whole = fly(model, path, law, loads)
+    checkpoint = tmp_path / "run.checkpoint"
+
+    def stop(done: int) -> None:
+        if done >= 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        fly(model, path, law, loads, run=SweepRun(chunk=2, checkpoint=checkpoint, progress=stop))
+    notices = []
+    resumed = fly(
+        model,
+        path,
+        law,
+        loads,
+        run=SweepRun(chunk=2, checkpoint=checkpoint, resume=True, notice=notices.append),
+    )
+    assert notices == ["checkpoint: kept 1 chunks, recomputing 2"]
+    for name in ("srp_force_body_N", "torque_body_Nm", "angular_impulse_eci_Nms"):
+        assert np.array_equal(resumed.series[name], whole.series[name])
+    assert not checkpoint.exists()
