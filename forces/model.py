@@ -326,6 +326,31 @@ class Model:
         )
         return replace(self, craft=craft, source=source)
 
+    def held(self, angles: Mapping[str, float]) -> Model:
+        """This model with the hinges ``angles`` names (by glob) held at those angles [deg]: their laws,
+        tracking or scheduled, become fixed, as ``--articulate`` makes them; the source records them.
+        Kept per model (a sweep over hinge angles asks for each pose once per chunk).
+
+        Raises
+        ------
+        InputError
+            A name that is no hinge's glob, or an angle not finite.
+        """
+        if not angles:
+            return self
+        key = ("held model", tuple(sorted((str(k), float(v)) for k, v in angles.items())))
+
+        def build() -> Model:
+            hinges = fixed(self.hinges, angles)
+            craft = articulate(self.craft, hinges)
+            overrides = dict(self.source.articulate) | dict(angles) if self.source is not None else {}
+            source = (
+                None if self.source is None else replace(self.source, articulate=tuple(overrides.items()))
+            )
+            return replace(self, craft=craft, source=source)
+
+        return self.craft.cache.get(key, build)
+
     @property
     def reference_sizes(self) -> tuple[float, float]:
         """Coefficient reference area [m^2] and length [m] (:attr:`reference_area_m2`,

@@ -182,30 +182,61 @@ def _source(values: dict) -> ModelSource:
         uniform=uniform_material(values, gas),
         two_sided=tuple(values["two_sided"]),
         gas=tuple(gas.items()),
-        articulate=_angles(values["articulate"]),
+        articulate=values["articulate"],
     )
 
 
-def _angles(words: tuple[str, ...]) -> tuple[tuple[str, float], ...]:
-    """``--articulate GLOB=DEG`` flags as (glob, angle) pairs, each glob once."""
-    angles: dict[str, float] = {}
+def _angles(words: tuple[str, ...]) -> dict[str, list[float]]:
+    """``--articulate GLOB=DEG[,DEG...]`` flags as each glob's angles [deg], each glob once."""
+    angles: dict[str, list[float]] = {}
     for word in words:
-        glob, _, angle = word.rpartition("=")
+        glob, _, text = word.rpartition("=")
         try:
-            value = float(angle)
+            values = [float(v) for v in text.split(",")]
         except ValueError:
-            value = None
-        if not glob or value is None:
+            values = []
+        if not glob or not values:
             raise InputError(f"--articulate {word!r} is not GLOB=DEG", hint='e.g. --articulate "wing_*=30"')
         if glob in angles:
-            raise InputError(f'--articulate gives hinge "{glob}" twice', hint="give each hinge one angle")
-        angles[glob] = value
-    return tuple(angles.items())
+            raise InputError(f'--articulate gives hinge "{glob}" twice', hint="give each hinge one entry")
+        angles[glob] = values
+    return angles
 
 
-def model_options(gas: bool = False) -> Callable:
-    """The mesh and its materials (with the gas-surface flags when ``gas``): keyword ``source``."""
-    return group("source", _MODEL_OPTIONS + (_GAS_OPTIONS if gas else []), _source)
+def _held(values: dict) -> tuple[tuple[str, float], ...]:
+    """The angle of each ``--articulate`` hinge, one each (a list is a sweep's table dimension)."""
+    angles = _angles(values.pop("articulate"))
+    for glob, listed in angles.items():
+        if len(listed) > 1:
+            raise InputError(
+                f'--articulate "{glob}" lists {len(listed)} angles: a list is a table dimension of '
+                "sunwind sweep",
+                hint=f'hold the hinge at one angle here, e.g. --articulate "{glob}={listed[0]:g}"',
+            )
+    return tuple((glob, listed[0]) for glob, listed in angles.items())
+
+
+@dataclass(frozen=True)
+class SweptSource:
+    """A sweep's model source and its hinges' angles, each hinge a table dimension."""
+
+    source: ModelSource
+    hinge_angles: dict[str, list[float]] | None
+
+
+def model_options(gas: bool = False, swept: bool = False) -> Callable:
+    """The mesh and its materials (with the gas-surface flags when ``gas``): keyword ``source``, a
+    :class:`~sunwind.forces.model.ModelSource`; with ``swept``, a :class:`SweptSource` whose
+    ``--articulate`` angles (one or a list per hinge) are table dimensions instead."""
+
+    def build(values: dict) -> ModelSource | SweptSource:
+        if swept:
+            angles = _angles(values.pop("articulate")) or None
+            return SweptSource(_source({**values, "articulate": ()}), angles)
+        held = _held(values)
+        return _source({**values, "articulate": held})
+
+    return group("source", _MODEL_OPTIONS + (_GAS_OPTIONS if gas else []), build)
 
 
 def loaded(source: ModelSource, **model: object) -> Model:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 import tempfile
 import time
@@ -23,18 +24,17 @@ from rich.text import Text
 from sunwind.forces.cli.free_stream import flow_options
 from sunwind.forces.cli.options import (
     Sun,
+    SweptSource,
     drag_only,
     group,
     loaded,
     model_options,
-    posed,
     reference_options,
     reflection_options,
     sampling_options,
     sun_options,
 )
 from sunwind.forces.export import FORMATS, check_request, output_target, write
-from sunwind.forces.model import ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import (
     DEFAULT_CHUNK,
@@ -47,7 +47,7 @@ from sunwind.forces.tables import (
     sweep,
 )
 from sunwind.forces.tables.cluster import require_dask
-from sunwind.forces.tables.dataset import open_table
+from sunwind.forces.tables.dataset import one_pose, open_table
 from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
@@ -177,7 +177,7 @@ def _run(values: dict) -> dict:
 
 
 @click.command("sweep")
-@model_options(gas=True)
+@model_options(gas=True, swept=True)
 @sun_options(direction=False)
 @flow_options(directed=False)
 @reference_options(sizes=True)
@@ -186,7 +186,7 @@ def _run(values: dict) -> dict:
 @group("table", _OUTPUT_OPTIONS, _table)
 @group("run", _RUN_OPTIONS, _run)
 def sweep_command(
-    source: ModelSource,
+    source: SweptSource,
     sun: Sun,
     flow,
     references: dict,
@@ -206,10 +206,24 @@ def sweep_command(
     attitudes = None if table.attitudes is None else read_attitude_csv(table.attitudes)
     for kind in table.kinds if attitudes is not None else ():
         attitudes.directions(kind)
+    hinge_angles = source.hinge_angles
+    source = source.source
+    several = [glob for glob, angles in (hinge_angles or {}).items() if len(angles) > 1]
+    if several and table.format != "nc":
+        raise InputError(
+            f'--format {table.format} takes one pose; --articulate lists several angles of "{several[0]}"',
+            hint="write the table as netCDF (.nc), or sweep one angle per table",
+        )
     model = loaded((source if "srp" in table.kinds else drag_only(source)).resolved(), **references)
-    model = posed(model, None, "sweep")
+    tracking = [hinge.pattern for hinge in model.hinges if hinge.law == "track"]
+    if tracking and "drag" not in table.kinds:
+        print(
+            f"sunwind: notice: {', '.join(tracking)} track the Sun: every Sun direction is its own pose "
+            "(scene and, with diffuse reflections, view factors made again for each)",
+            file=sys.stderr,
+        )
     checkpoint = table.output.with_name(table.output.name + ".checkpoint")
-    total = _count(table, attitudes)
+    total = _count(table, attitudes) * math.prod(len(a) for a in (hinge_angles or {}).values())
     columns = (
         TextColumn("{task.description}"),
         BarColumn(),
@@ -227,6 +241,7 @@ def sweep_command(
             drag=drag,
             step_deg=table.step_deg,
             attitudes=attitudes,
+            hinge_angles=hinge_angles,
             run=SweepRun(
                 run["chunk"],
                 checkpoint,
@@ -273,7 +288,11 @@ def plot(table_path: Path, output: Path | None, view_azel, no_view: bool) -> Non
     from sunwind.forces.tables.plots import plot_pressure_views, plot_table, view_model
 
     direction = None if view_azel is None else azel_to_vector(*view_azel, "--view-azel")
-    table = open_table(table_path)
+    table = one_pose(
+        open_table(table_path),
+        "sunwind plot",
+        "plot one angle: table.sel({DIMENSION: ANGLE}) with xarray, written by sunwind.forces.export.write",
+    )
     model = None if no_view else view_model(table)  # its checks before any file is drawn
     directory = output if output is not None else (table_path.parent if str(table_path.parent) else Path("."))
     directory.mkdir(parents=True, exist_ok=True)

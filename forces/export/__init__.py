@@ -17,7 +17,7 @@ from pathlib import Path
 import xarray as xr
 
 from sunwind.forces.export import basilisk, csv, netcdf, spad, tudat
-from sunwind.forces.tables.dataset import kinds_of
+from sunwind.forces.tables.dataset import kinds_of, one_pose
 from sunwind.geometry.errors import InputError
 
 
@@ -139,6 +139,8 @@ def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None)
         warnings.warn(
             f"format {name} holds {' and '.join(spec.kinds)} only: {refused[0]} is not written", stacklevel=2
         )
+    if name != "nc":
+        table = one_pose(table, f"format {name}")
     return spec.write(table, target)
 
 

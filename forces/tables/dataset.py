@@ -198,6 +198,21 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
     return attrs
 
 
+def one_pose(table: xr.Dataset, what: str, hint: str = "write the table as netCDF (.nc)") -> xr.Dataset:
+    """``table`` at its one pose: hinge dimensions (``hinge_deg[GLOB]``, a sweep over hinge angles) of
+    length 1 dropped, their angle kept as a coordinate; refused, naming ``what`` needs one pose, when a
+    hinge has several angles."""
+    hinges = [str(d) for d in table.dims if str(d).startswith("hinge_deg[")]
+    several = [d for d in hinges if table.sizes[d] > 1]
+    if several:
+        raise InputError(
+            f"{what} takes one pose; the table has {table.sizes[several[0]]} angles along {several[0]}",
+            hint=hint,
+            parameters=("format",),
+        )
+    return table.squeeze(hinges) if hinges else table
+
+
 def open_table(path: str | os.PathLike) -> xr.Dataset:
     """A table written by :func:`write_netcdf`, loaded into memory.
 

@@ -11,10 +11,14 @@ chunk at once (:mod:`.checkpoint`); ``resume`` takes the chunks already there an
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import itertools
+import json
+import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from sunwind.forces.model import Model, as_model
@@ -22,7 +26,7 @@ from sunwind.forces.tables.attitudes import GRID_BYTES, AttitudeList, DirectionG
 from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
 from sunwind.forces.tables.cluster import require_dask, run_on_dask
 from sunwind.forces.tables.dataset import grid_table, list_table, table_attributes
-from sunwind.forces.tables.jobs import FIELDS, DragSetup, Job, Records, SrpSetup, empty_records
+from sunwind.forces.tables.jobs import FIELDS, DragSetup, Job, PosedSetup, Records, SrpSetup, empty_records
 from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import checked_threads
@@ -93,6 +97,7 @@ def sweep(
     drag: DragSetup | None = None,
     step_deg: float | None = None,
     attitudes: AttitudeList | None = None,
+    hinge_angles: Mapping[str, Sequence[float]] | None = None,
     run: SweepRun | None = None,
 ) -> xr.Dataset:
     """SRP and/or drag over a grid or a list of attitudes, as a table with its provenance.
@@ -108,6 +113,9 @@ def sweep(
         :data:`DEFAULT_STEP` unless ``attitudes`` is given.
     attitudes : AttitudeList, optional
         A list of attitudes instead of a grid (:func:`~sunwind.forces.tables.attitudes.read_attitude_csv`).
+    hinge_angles : mapping of str to sequence of float, optional
+        Hinges (materials-file globs) held at each of these angles [deg]: every combination is a pose,
+        and each hinge a table dimension ``hinge_deg[GLOB]`` (length 1 for one angle).
     run : SweepRun, optional
         Chunks, checkpoint, Dask, threads, progress.
 
@@ -121,20 +129,100 @@ def sweep(
     setups = [setup for setup in (srp, drag) if setup is not None]
     if not setups:
         raise InputError("give srp, drag or both: what the sweep tabulates", parameters=("srp", "drag"))
+    poses = hinge_poses(hinge_angles)
+    check_hinges(model.held(dict(poses[0])), drag is not None)
     if attitudes is not None and step_deg is not None:
         raise InputError("give step_deg or attitudes, not both", parameters=("step_deg", "attitudes"))
+    grid = None
     if attitudes is None:
         grid = direction_grid(DEFAULT_STEP if step_deg is None else step_deg, "step_deg")
-        check_table_memory(grid, tuple(setup.kind for setup in setups))
-        jobs = [Job(setup, grid.distinct[0]) for setup in setups]
+        check_table_memory(grid, tuple(setup.kind for setup in setups) * len(poses))
+    directions = {
+        setup.kind: grid.distinct[0] if grid is not None else attitudes.directions(setup.kind)
+        for setup in setups
+    }
+    if hinge_angles is None:
+        jobs = [Job(setup, directions[setup.kind]) for setup in setups]
     else:
-        grid = None
-        jobs = [Job(setup, attitudes.directions(setup.kind)) for setup in setups]
+        jobs = [
+            Job(PosedSetup(setup, pose, k), directions[setup.kind])
+            for k, pose in enumerate(poses)
+            for setup in setups
+        ]
     records = run_jobs(model, jobs, run)
-    attrs = table_attributes(model, [job.setup for job in jobs], None if grid is None else grid.step_deg)
-    if grid is not None:
-        return grid_table(records, dict.fromkeys(records, grid), attrs)
-    return list_table(records, attitudes, attrs)
+    tables = []
+    for k, pose in enumerate(poses):
+        held = model.held(dict(pose))
+        own = {
+            setup.kind: records[setup.kind if hinge_angles is None else f"{setup.kind}@{k}"]
+            for setup in setups
+        }
+        attrs = table_attributes(held, setups, None if grid is None else grid.step_deg)
+        if grid is not None:
+            tables.append(grid_table(own, dict.fromkeys(own, grid), attrs))
+        else:
+            tables.append(list_table(own, attitudes, attrs))
+    return tables[0] if hinge_angles is None else by_hinge_angle(tables, poses)
+
+
+def hinge_poses(hinge_angles: Mapping[str, Sequence[float]] | None) -> list[tuple[tuple[str, float], ...]]:
+    """Every combination of the listed hinge angles, as (glob, deg) pairs; ``[()]`` without any."""
+    if hinge_angles is None:
+        return [()]
+    names, lists = list(hinge_angles), []
+    for name in names:
+        values = [float(v) for v in np.atleast_1d(np.asarray(hinge_angles[name], dtype=float))]
+        if not values or not all(math.isfinite(v) for v in values) or len(set(values)) != len(values):
+            raise InputError(
+                f'hinge_angles "{name}" {values} must be distinct finite angles [deg], at least one',
+                parameters=("hinge_angles",),
+            )
+        lists.append(values)
+    return [tuple(zip(names, combo, strict=True)) for combo in itertools.product(*lists)]
+
+
+def by_hinge_angle(tables: list[xr.Dataset], poses: list[tuple[tuple[str, float], ...]]) -> xr.Dataset:
+    """One table of the poses' tables, a dimension ``hinge_deg[GLOB]`` per hinge; the attributes the
+    poses share, and ``hinge_angles_deg`` (JSON: each hinge's angles)."""
+    dimensioned = [
+        table.expand_dims({hinge_dimension(name): [angle] for name, angle in pose})
+        for table, pose in zip(tables, poses, strict=True)
+    ]
+    table = xr.combine_by_coords(dimensioned, combine_attrs="drop_conflicts")
+    dimensions = [hinge_dimension(name) for name, _ in poses[0]]
+    for name in [str(v) for v in table.data_vars if str(v).endswith("_vector")]:  # the same at every pose
+        table[name] = table[name].isel(dict.fromkeys(dimensions, 0), drop=True)
+    angles = {
+        name: sorted({angle for pose in poses for n, angle in pose if n == name}) for name, _ in poses[0]
+    }
+    for name in angles:
+        table[hinge_dimension(name)].attrs = {"units": "deg", "long_name": f'angle of hinge "{name}"'}
+    table.attrs["hinge_angles_deg"] = json.dumps(angles)
+    return table
+
+
+def hinge_dimension(glob: str) -> str:
+    """The table dimension of the angles of the hinge ``glob``."""
+    return f"hinge_deg[{glob}]"
+
+
+def check_hinges(model: Model, with_drag: bool) -> None:
+    """Refuse hinges a sweep cannot turn: a schedule (a sweep has no time), and a Sun-tracking hinge in
+    a drag table (it has no Sun); an SRP table turns a tracking hinge to each entry's Sun."""
+    for hinge in model.hinges:
+        if hinge.law == "schedule" or (hinge.law == "track" and with_drag):
+            what, lacks = (
+                ("follows a schedule", "time") if hinge.law == "schedule" else ("tracks the Sun", "Sun")
+            )
+            elsewhere = (
+                "sunwind orbit flies schedules" if hinge.law == "schedule" else "or tabulate SRP alone"
+            )
+            raise InputError(
+                f'[articulation] "{hinge.pattern}" {what}: a {"drag " if lacks == "Sun" else ""}table has no '
+                f"{lacks} for it",
+                hint=f'hold it at an angle with articulate "{hinge.pattern}=DEG" ({elsewhere})',
+                parameters=("articulate",),
+            )
 
 
 def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]:

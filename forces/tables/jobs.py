@@ -16,6 +16,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.batches import SrpBatch
 from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.exchange import gas_interference_criterion
@@ -119,17 +120,26 @@ class SrpSetup(_Setup):
         solar_flux(self.flux_W_m2)
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
-        """The records of Sun directions ``directions`` (n, 3)."""
-        batch = srp(model, directions, flux_W_m2=self.flux_W_m2, **self.options())
+        """The records of Sun directions ``directions`` (n, 3); a model whose hinges track the Sun is
+        posed at each direction's angles first."""
+        options = {"flux_W_m2": self.flux_W_m2, **self.options()}
+        if any(hinge.law == "track" for hinge in model.hinges):
+            poses = [model.posed(model.angles_at(u)) for u in directions]
+            batch = SrpBatch(
+                tuple(srp(posed, u, **options) for posed, u in zip(poses, directions, strict=True))
+            )
+        else:
+            batch = srp(model, directions, **options)
         return {name: batch.stacked(name) for name in SRP_FIELDS}
 
     def attributes(self, model: Model) -> dict:
         """What a table of this setup states about its environment and the reflection mode it used."""
+        tracking = [hinge.pattern for hinge in model.hinges if hinge.law == "track"]
         return {
             "flux_W_m2": self.flux_W_m2,
             "pressure_Pa": radiation_pressure(self.flux_W_m2),
             "srp_reflections": reflection_plan(model.craft, self.settings).mode,
-        }
+        } | ({"srp_tracking_hinges": ", ".join(tracking)} if tracking else {})
 
 
 @dataclass(frozen=True)
@@ -213,6 +223,37 @@ class DragSetup(GasOptions):
 
 
 Setup = SrpSetup | DragSetup
+
+
+@dataclass(frozen=True)
+class PosedSetup:
+    """A setup evaluated with hinges held at ``angles`` ((glob, deg) pairs): one pose of a sweep over
+    hinge angles, its records kept apart under kind ``"srp@K"`` / ``"drag@K"`` (``index`` K)."""
+
+    setup: Setup
+    angles: tuple[tuple[str, float], ...]
+    index: int
+
+    @property
+    def kind(self) -> str:
+        return f"{self.setup.kind}@{self.index}"
+
+    @property
+    def fields(self) -> dict[str, int]:
+        return self.setup.fields
+
+    def pose(self, model: Model) -> Model:
+        """``model`` with the hinges held at this pose's angles."""
+        return model.held(dict(self.angles))
+
+    def precompute(self, model: Model) -> None:
+        self.setup.precompute(self.pose(model))
+
+    def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
+        return self.setup.evaluate(self.pose(model), directions)
+
+    def describe(self) -> dict:
+        return self.setup.describe() | {"hinge_angles_deg": dict(self.angles)}
 
 
 @dataclass(frozen=True, eq=False)

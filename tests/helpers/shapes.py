@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from helpers import quad_sheet
@@ -41,3 +43,29 @@ def parallel_squares(x: float) -> float:
     root = np.sqrt(1 + x * x)
     bracket = np.log(root**2 / np.sqrt(1 + 2 * x * x)) + 2 * x * (root * np.arctan(x / root) - np.arctan(x))
     return float(2 / (np.pi * x * x) * bracket)
+
+
+#: Materials of :func:`hinged_box_wing`: both wings on one drive about body y, tracking the Sun.
+HINGED_MATERIALS = """
+[materials.paint]
+reflectivity = 0.5
+specular_fraction = 0.4
+[parts]
+"wing_*" = { front = "paint", back = "paint" }
+bus = "paint"
+[articulation."wing_*"]
+axis = [0, 1, 0]
+origin_m = [0, 0, 0]
+track = "sun"
+"""
+
+
+def hinged_box_wing(folder: Path) -> tuple[Path, Path]:
+    """A coarse box-wing (:func:`~sunwind.meshes.primitives.box_wing`) whose wings track the Sun about
+    body y, written to ``folder``: the OBJ and materials paths."""
+    from sunwind.geometry.io.obj import write_obj
+    from sunwind.meshes.primitives import box_wing
+
+    write_obj(box_wing(facet_size=0.25), folder / "craft.obj")
+    (folder / "craft.toml").write_text(HINGED_MATERIALS)
+    return folder / "craft.obj", folder / "craft.toml"

@@ -385,11 +385,30 @@ CASES = {
         1,
         ["error", '"wing" tracks the Sun: sunwind drag has no Sun direction', '--articulate "wing=DEG"'],
     ),
-    "articulation-track-sweep": (
+    "articulation-track-drag-sweep": (
         winged("", 'track = "sun"'),
+        [
+            "sweep",
+            "m.obj",
+            "-m",
+            "m.toml",
+            "--drag",
+            "--speed",
+            "7500",
+            *FREE_STREAM,
+            "--step",
+            "90",
+            "-o",
+            "t.nc",
+        ],
+        1,
+        ["error", '"wing" tracks the Sun: a drag table has no Sun', '--articulate "wing=DEG"', "SRP alone"],
+    ),
+    "articulation-schedule-sweep": (
+        winged("", "schedule = [[0, 0], [60, 9]]"),
         ["sweep", "m.obj", "-m", "m.toml", "--srp", "--step", "90", "-o", "t.nc"],
         1,
-        ["error", '"wing" tracks the Sun: sunwind sweep has no Sun direction', "--articulate"],
+        ["error", '"wing" follows a schedule: a table has no time', "sunwind orbit"],
     ),
     "articulation-schedule-srp": (
         winged("", "schedule = [[0, 0], [60, 9]]"),

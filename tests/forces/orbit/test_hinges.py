@@ -6,33 +6,20 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sunwind.forces import load, srp
+from helpers.shapes import hinged_box_wing
+from sunwind.forces import explicit, load, srp, sweep
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, fly, propagate
-from sunwind.forces.tables.jobs import SrpSetup
-from sunwind.geometry.io.obj import write_obj
-from sunwind.meshes.primitives import box_wing
+from sunwind.forces.tables.jobs import DragSetup, SrpSetup
+from sunwind.geometry.directions import azel_to_vector
+from sunwind.geometry.errors import InputError
 
 EPOCH = Epoch.of("2024-06-21T00:00:00Z")
-MATERIALS = """
-[materials.paint]
-reflectivity = 0.5
-specular_fraction = 0.4
-[parts]
-"wing_*" = { front = "paint", back = "paint" }
-bus = "paint"
-[articulation."wing_*"]
-axis = [0, 1, 0]
-origin_m = [0, 0, 0]
-track = "sun"
-"""
 
 
 @pytest.fixture(scope="module")
 def model(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("hinged")
-    write_obj(box_wing(facet_size=0.25), folder / "craft.obj")
-    (folder / "craft.toml").write_text(MATERIALS)
-    return load(folder / "craft.obj", folder / "craft.toml", reference_point_m=[0.0, 0.0, 0.0])
+    mesh, materials = hinged_box_wing(tmp_path_factory.mktemp("hinged"))
+    return load(mesh, materials, reference_point_m=[0.0, 0.0, 0.0])
 
 
 @pytest.mark.parametrize("step_deg", [0.0, 5.0])
@@ -59,3 +46,20 @@ def test_a_tracking_wing_follows_the_sun_and_each_step_is_srp_of_its_pose(model,
         posed = model.posed({"wing_*": angles[i]})
         alone = srp(posed, sun[i], flux_W_m2=float(result.series["srp_flux_W_m2"][i]), reflections="none")
         assert np.allclose(result.series["srp_force_body_N"][i], alone.force_N, rtol=1e-12, atol=0)
+
+
+@pytest.mark.filterwarnings("ignore:the Sun is along a tracking hinge's axis")
+def test_an_srp_table_turns_a_tracking_wing_to_each_entrys_sun_and_a_drag_table_refuses_it(model):
+    """Each entry is ``srp`` of the model posed at that Sun's tracking angle; drag has no Sun."""
+    table = sweep(model, srp=SrpSetup(reflections="none"), step_deg=45.0)
+    assert table.attrs["srp_tracking_hinges"] == "wing_*"
+    for az, el in ((45.0, 0.0), (-135.0, 45.0), (90.0, -45.0)):
+        u = azel_to_vector(az, el)
+        alone = srp(model.posed(model.angles_at(u)), u, reflections="none")
+        entry = table["srp_force_N"].sel(sun_azimuth=az, sun_elevation=el).values
+        assert np.allclose(entry, alone.force_N, rtol=1e-12, atol=0)
+    fixed = srp(model, azel_to_vector(-135.0, 45.0), reflections="none")  # the wings as drawn
+    assert not np.allclose(fixed.force_N, table["srp_force_N"].sel(sun_azimuth=-135.0, sun_elevation=45.0))
+    air = explicit(3e-12, 900.0, "O:1")
+    with pytest.raises(InputError, match="tracks the Sun: a drag table has no Sun"):
+        sweep(model, drag=DragSetup(speed_m_s=7600.0, atmosphere=air), step_deg=45.0)
