@@ -11,7 +11,8 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from sunwind.geometry import triangles as tri
-from sunwind.geometry.errors import MeshError
+from sunwind.geometry.errors import MeshError, combine
+from sunwind.geometry.materials import toml_key
 from sunwind.geometry.sides import SOLID
 
 #: Vertices closer than this share of the model size are merged before connectivity is judged.
@@ -148,6 +149,38 @@ def size_notice(vertices: NDArray[np.float64], unit: str) -> str | None:
         f"outside {low:g}-{high:g} m: if the file is in another unit, give it with --unit "
         "(Python: unit=), e.g. --unit mm"
     )
+
+
+def undeclared_sheets(check: MeshCheck, source: str) -> MeshError:
+    """One error for every part with open or non-manifold edges that is not declared a sheet, with the
+    choices and what each means for the physics."""
+    problems = [
+        MeshError(f"is an open surface ({count} boundary edges)", path=source, part=part)
+        for part, count in check.open_edges.items()
+    ]
+    problems += [
+        MeshError(
+            f"has {count} edges shared by more than two triangles (non-manifold)", path=source, part=part
+        )
+        for part, count in check.nonmanifold_edges.items()
+    ]
+    leaves = list(
+        dict.fromkeys(
+            part.rstrip("/").rsplit("/", 1)[-1] for part in [*check.open_edges, *check.nonmanifold_edges]
+        )
+    )
+    leaf = leaves[0]
+    flags = " ".join(f'--two-sided "{name}"' for name in leaves)
+    hint = (
+        "a solid body: close it in the mesh file (gaps narrower than "
+        f"{CRACK_TOLERANCE:g} of the model size are closed on loading); a thin sheet lit from one side: "
+        f'declare it one-sided ([parts] {toml_key(leaf)} = {{ front = "MATERIAL" }}; its back absorbs '
+        "what reaches it); a sheet lit on both sides: declare it two-sided "
+        f'([parts] {toml_key(leaf)} = {{ front = "...", back = "..." }}, two_sided={leaves!r} or '
+        f"{flags}), a zero-thickness sheet lit and re-emitting on both faces, which turns the inside of a "
+        "solid body into a cavity"
+    )
+    return combine(problems, hint=hint)
 
 
 def _close_cracks(

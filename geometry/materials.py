@@ -1,4 +1,5 @@
-"""Optical materials and the TOML file that assigns them to mesh parts (METHOD.md "Surfaces and sides")."""
+"""Optical materials and the TOML file that assigns them to mesh parts (METHOD.md "Surfaces and sides");
+gas-surface parameters and named finishes are in :mod:`sunwind.geometry.finishes`."""
 
 from __future__ import annotations
 
@@ -8,8 +9,8 @@ import math
 import os
 import re
 import sys
-from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -17,34 +18,25 @@ from numpy.typing import NDArray
 
 from sunwind.geometry.articulation import Hinge, parse_articulation
 from sunwind.geometry.errors import MaterialError, SunwindError, combine
+from sunwind.geometry.finishes import GAS_DEFAULTS, GasSurface, checked_number, finish
+from sunwind.geometry.finishes import GSI_MODELS as GSI_MODELS  # re-exported: gas models by code
+from sunwind.geometry.finishes import MAX_WALL_TEMPERATURE_K as MAX_WALL_TEMPERATURE_K  # re-exported
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
 
-#: Optical keys of a ``[materials.NAME]`` table, with the symbol METHOD.md uses.
+#: Optical keys of a ``[materials.NAME]`` table, with the symbol METHOD.md uses; ``emissivity`` is the
+#: infrared one (optional). A table may also give ``finish = "NAME"`` (:mod:`sunwind.geometry.finishes`).
 MATERIAL_KEYS = {
     "reflectivity": "rho",
     "specular_fraction": "beta",
     "transmissivity": "sigma",
+    "emissivity": "eps",
 }
-#: Gas-surface interaction models (``gsi``), in the order of their codes in :class:`MaterialTable`.
-GSI_MODELS = ("sentman", "dria", "schaaf-chambre", "cll", "specular")
-#: Gas-surface keys of a ``[materials.NAME]`` table and their defaults (README "Materials").
-GAS_DEFAULTS = {
-    "gsi": "sentman",
-    "energy_accommodation": 1.0,  # alpha_E (sentman, dria)
-    "normal_accommodation": 1.0,  # sigma_n (schaaf-chambre), alpha_n (cll)
-    "tangential_accommodation": 1.0,  # sigma_t (schaaf-chambre, cll)
-    "wall_temperature": 300.0,  # T_w [K]
-}
-
-#: Hottest wall temperature a material may give [K]: above any surface a spacecraft keeps (tungsten melts
-#: at 3695 K); a larger value is a unit slip, not a wall.
-MAX_WALL_TEMPERATURE_K = 1e4
-
-
+#: Keys of a ``[thermal."GLOB"]`` table.
+THERMAL_KEYS = ("isothermal", "conductance_W_m2K", "heat_capacity_J_K")
 #: Most tables and arrays one inside another that a materials file may nest (a real one nests 2).
 MAX_TOML_DEPTH = 64
 
@@ -52,80 +44,6 @@ MAX_TOML_DEPTH = 64
 def toml_key(name: str) -> str:
     """``name`` as a TOML key: bare when it may be (``white_paint``), else quoted (``"foil_silver.014"``)."""
     return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else json.dumps(name, ensure_ascii=False)
-
-
-@dataclass(frozen=True)
-class GasSurface:
-    """How a surface finish meets the rarefied gas (METHOD.md "Free-molecular flow").
-
-    Attributes
-    ----------
-    model : str
-        One of :data:`GSI_MODELS`.
-    energy_accommodation : float
-        ``alpha_E`` [-] in [0, 1], of the diffuse models ``sentman`` and ``dria``.
-    normal_accommodation : float
-        ``sigma_n`` of ``schaaf-chambre``, normal energy accommodation ``alpha_n`` of ``cll`` [-].
-    tangential_accommodation : float
-        ``sigma_t`` [-] of ``schaaf-chambre`` and ``cll``.
-    wall_temperature_K : float
-        ``T_w`` [K], > 0.
-    """
-
-    model: str = GAS_DEFAULTS["gsi"]
-    energy_accommodation: float = GAS_DEFAULTS["energy_accommodation"]
-    normal_accommodation: float = GAS_DEFAULTS["normal_accommodation"]
-    tangential_accommodation: float = GAS_DEFAULTS["tangential_accommodation"]
-    wall_temperature_K: float = GAS_DEFAULTS["wall_temperature"]
-
-    @classmethod
-    def checked(cls, where: str, values: Mapping[str, object], source: str | None = None) -> GasSurface:
-        """Gas-surface parameters from ``GAS_DEFAULTS`` keys (missing keys take their defaults).
-
-        ``where`` names the owner in messages, e.g. "material 'white_paint'" or "command line".
-        """
-        unknown = sorted(set(values) - set(GAS_DEFAULTS))
-        if unknown:
-            raise MaterialError(f"{where} has unknown gas key '{unknown[0]}'", path=source)
-        model = values.get("gsi", GAS_DEFAULTS["gsi"])
-        if model not in GSI_MODELS:
-            raise MaterialError(
-                f"{where}: gsi = {model!r} is not a gas-surface model",
-                path=source,
-                hint=f"use one of {', '.join(GSI_MODELS)}",
-            )
-        numbers = {}
-        for key in ("energy_accommodation", "normal_accommodation", "tangential_accommodation"):
-            numbers[key] = _number(where, key, values.get(key, GAS_DEFAULTS[key]), source, 0.0, 1.0)
-        wall = _number(where, "wall_temperature", values.get("wall_temperature", 300.0), source, 0.0, None)
-        if wall > MAX_WALL_TEMPERATURE_K:
-            raise MaterialError(
-                f"{where}: wall_temperature = {wall:g} K is above {MAX_WALL_TEMPERATURE_K:g} K, hotter than "
-                "any spacecraft wall",
-                path=source,
-                hint="give the surface temperature in kelvin",
-            )
-        return cls(model=str(model), wall_temperature_K=wall, **numbers)
-
-    @property
-    def code(self) -> int:
-        """Index of :attr:`model` in :data:`GSI_MODELS`."""
-        return GSI_MODELS.index(self.model)
-
-
-def _number(where: str, key: str, value: object, source: str | None, low: float, high: float | None) -> float:
-    """``value`` as a float in ``[low, high]`` (``(low, inf)`` when ``high`` is None), else an error."""
-    interval = f"[{low:g}, {high:g}]" if high is not None else f"> {low:g}"
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise MaterialError(
-            f"{where}: {key} = {value!r} is not a number", path=source, hint=f"use {interval}"
-        )
-    inside = low <= value <= high if high is not None else value > low
-    if not math.isfinite(value) or not inside:
-        if high is None:  # the wall temperature, in kelvin
-            raise MaterialError(f"{where}: {key} = {value:g} K is not above {low:g} K", path=source)
-        raise MaterialError(f"{where}: {key} = {value} is outside {interval}", path=source)
-    return float(value)
 
 
 @dataclass(frozen=True)
@@ -143,25 +61,34 @@ class Material:
         ``sigma`` [-], share transmitted, in [0, 1]; absorptivity is ``1 - rho - sigma``.
     gas : GasSurface
         Gas-surface interaction; defaults as :data:`GAS_DEFAULTS`.
+    emissivity : float or None
+        ``eps`` [-], hemispherical infrared emissivity in [0, 1], grey; by Kirchhoff also the infrared
+        absorptance, the rest of the infrared reflected diffusely (none transmitted). None: not given.
     """
 
     name: str
     reflectivity: float
     specular_fraction: float
     transmissivity: float = 0.0
-    gas: GasSurface = GasSurface()
+    gas: GasSurface = field(default_factory=GasSurface)
+    emissivity: float | None = None
 
     @classmethod
     def checked(cls, name: str, values: Mapping[str, object], source: str | None = None) -> Material:
-        """Build a material from a key -> value mapping, rejecting unknown keys and bad values."""
+        """Build a material from a key -> value mapping, rejecting unknown keys and bad values. A
+        ``finish`` key gives the optical keys of that finish (:func:`~sunwind.geometry.finishes.finish`);
+        keys given beside it override its."""
         where = f"material '{name}'"
-        unknown = sorted(set(values) - set(MATERIAL_KEYS) - set(GAS_DEFAULTS))
+        unknown = sorted(set(values) - {*MATERIAL_KEYS, "finish", *GAS_DEFAULTS})
         if unknown:
             raise MaterialError(
                 f"{where} has unknown key '{unknown[0]}'",
                 path=source,
-                hint=f"the keys are {', '.join([*MATERIAL_KEYS, *GAS_DEFAULTS])}",
+                hint=f"the keys are {', '.join([*MATERIAL_KEYS, 'finish', *GAS_DEFAULTS])}",
             )
+        if "finish" in values:
+            given = {key: value for key, value in values.items() if key != "finish"}
+            values = {**finish(values["finish"], where, source).keys, **given}
         gas = GasSurface.checked(where, {k: v for k, v in values.items() if k in GAS_DEFAULTS}, source)
         values = {k: v for k, v in values.items() if k in MATERIAL_KEYS}
         missing = [k for k in ("reflectivity", "specular_fraction") if k not in values]
@@ -169,19 +96,9 @@ class Material:
             raise MaterialError(
                 f"{where} lacks '{missing[0]}'",
                 path=source,
-                hint="give reflectivity, specular_fraction and (optionally) transmissivity",
+                hint="give reflectivity, specular_fraction and (optionally) transmissivity, or a finish",
             )
-        numbers = {}
-        for key, value in values.items():
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise MaterialError(
-                    f"{where}: {key} = {value!r} is not a number", path=source, hint="use a number in [0, 1]"
-                )
-            if not math.isfinite(value) or not 0.0 <= value <= 1.0:
-                raise MaterialError(
-                    f"{where}: {key} = {value} is outside [0, 1]", path=source, hint="use a number in [0, 1]"
-                )
-            numbers[key] = float(value)
+        numbers = {key: checked_number(where, key, value, source, 0.0, 1.0) for key, value in values.items()}
         material = cls(name=name, gas=gas, **numbers)
         if material.reflectivity + material.transmissivity > 1.0 + 1e-12:
             raise MaterialError(
@@ -200,12 +117,14 @@ class Material:
 
 @dataclass(frozen=True, eq=False)
 class MaterialTable:
-    """Materials as columns, so a kernel gathers ``rho[side_material]`` in one step."""
+    """Materials as columns, so a kernel gathers ``rho[side_material]`` in one step; ``eps`` is NaN for a
+    material without an emissivity."""
 
     names: tuple[str, ...]
     rho: NDArray[np.float64]
     beta: NDArray[np.float64]
     sigma: NDArray[np.float64]
+    eps: NDArray[np.float64]
     gas: tuple[GasSurface, ...] = ()
 
     @classmethod
@@ -222,6 +141,7 @@ class MaterialTable:
             rho=column("reflectivity"),
             beta=column("specular_fraction"),
             sigma=column("transmissivity"),
+            eps=column("emissivity"),  # None -> NaN
             gas=tuple(m.gas for m in materials),
         )
 
@@ -241,7 +161,34 @@ class MaterialTable:
             float(self.beta[index]),
             float(self.sigma[index]),
             self.gas[index],
+            None if math.isnan(self.eps[index]) else float(self.eps[index]),
         )
+
+    def infrared(self, material: NDArray, path: str | None = None) -> NDArray[np.float64]:
+        """Infrared ``(rho, beta, sigma) = (1 - eps, 0, 0)`` of the materials ``material`` (indices),
+        (len(material), 3): grey, opaque, reflecting diffusely what it does not absorb (Kirchhoff).
+
+        Raises
+        ------
+        MaterialError
+            Naming every material of ``material`` without an emissivity, and ``path``, the file to fix.
+        """
+        material = np.asarray(material, dtype=np.int64)
+        missing = [self.names[i] for i in np.unique(material) if np.isnan(self.eps[i])]
+        if missing:
+            names = ", ".join(f"'{name}'" for name in missing)
+            tables = ", ".join(f"[materials.{toml_key(name)}]" for name in missing)
+            raise MaterialError(
+                f"material {names} has no emissivity"
+                if len(missing) == 1
+                else f"materials {names} have no emissivity",
+                path=path,
+                hint=f'add emissivity = ... (infrared, 0 to 1) to {tables}, or finish = "NAME" from the '
+                "finishes library",
+            )
+        optics = np.zeros((len(material), 3))
+        optics[:, 0] = 1.0 - self.eps[material]
+        return optics
 
     def __len__(self) -> int:
         return len(self.names)
@@ -273,16 +220,114 @@ class PartRule:
 
 
 @dataclass(frozen=True)
+class ThermalRule:
+    """One ``[thermal."GLOB"]`` table: how the parts its glob matches (as :class:`PartRule` globs do; the
+    first matching rule applies to a part) hold heat.
+
+    Attributes
+    ----------
+    pattern : str
+    isothermal : bool
+        All sides of each matched part are one node, at one temperature; False: each facet side is its
+        own node.
+    conductance_W_m2K : float
+        Front-back conductance per unit area of a two-sided sheet [W/(m^2 K)], > 0; ``math.inf``: the
+        front and back of a sheet facet are at one temperature.
+    heat_capacity_J_K : float or None
+        Heat capacity of the matched parts together [J/K], > 0, for the transient (of isothermal parts);
+        None: not given.
+    """
+
+    pattern: str
+    isothermal: bool = False
+    conductance_W_m2K: float = math.inf
+    heat_capacity_J_K: float | None = None
+
+    def matches(self, part: str) -> bool:
+        """Whether this rule's glob matches ``part`` (see :func:`part_matches`)."""
+        return part_matches(part, self.pattern)
+
+    @classmethod
+    def checked(cls, pattern: str, values: object, source: str | None = None) -> ThermalRule:
+        """A rule from its ``[thermal."GLOB"]`` table; :class:`MaterialError` for a table that is not one,
+        an unknown key, ``isothermal`` not a boolean, a conductance or heat capacity not above 0."""
+        where = f'[thermal] "{pattern}"'
+        unknown = sorted(set(values) - set(THERMAL_KEYS)) if isinstance(values, Mapping) else []
+        if not isinstance(values, Mapping) or unknown:
+            raise MaterialError(
+                f"{where} has unknown key '{unknown[0]}'" if unknown else f"{where} must be a table",
+                path=source,
+                hint=f"write [thermal.{json.dumps(pattern)}] with isothermal = true or false, "
+                'conductance_W_m2K = W/(m^2 K) or "inf", heat_capacity_J_K = J/K (each optional)',
+            )
+        isothermal = values.get("isothermal", False)
+        if not isinstance(isothermal, bool):
+            raise MaterialError(
+                f"{where}: isothermal = {isothermal!r} is not true or false",
+                path=source,
+                hint="write true or false",
+            )
+        conductance = values.get("conductance_W_m2K", math.inf)
+        try:
+            if conductance not in ("inf", math.inf):
+                conductance = checked_number(
+                    where, "conductance_W_m2K", conductance, source, 0.0, None, " W/(m^2 K)"
+                )
+        except MaterialError as error:
+            hint = 'give a number above 0 W/(m^2 K), or "inf" (front and back of a sheet at one temperature)'
+            raise MaterialError(error.message, path=source, hint=hint) from None
+        capacity = values.get("heat_capacity_J_K")
+        if capacity is not None:
+            capacity = checked_number(where, "heat_capacity_J_K", capacity, source, 0.0, None, " J/K")
+        return cls(pattern, isothermal, float(conductance), capacity)
+
+
+def parse_thermal(table: object, source: str | None = None) -> tuple[ThermalRule, ...]:
+    """The rules of a materials file's ``[thermal]`` table, in order, every problem reported at once."""
+    if not isinstance(table, Mapping):
+        raise MaterialError(
+            "[thermal] must hold one table per glob", path=source, hint='write [thermal."bus"] and its keys'
+        )
+    rules, problems = [], []
+    for pattern, values in table.items():
+        try:
+            rules.append(ThermalRule.checked(pattern, values, source))
+        except MaterialError as error:
+            problems.append(error)
+    if problems:
+        raise combine(problems)
+    return tuple(rules)
+
+
+def unmatched_thermal(
+    rules: Sequence[ThermalRule], parts: Sequence[str], mesh: str, path: str | None
+) -> list[MaterialError]:
+    """A :class:`MaterialError` (naming ``path``, the materials file) for each rule whose glob matches no
+    part of ``mesh``, as for a hinge's glob."""
+    listed = ", ".join(parts[:20]) + (f", ... ({len(parts)} parts)" if len(parts) > 20 else "")
+    return [
+        MaterialError(
+            f'[thermal] "{rule.pattern}" matches no part of {mesh}',
+            path=path,
+            hint=f"the parts are: {listed}",
+        )
+        for rule in rules
+        if not any(rule.matches(part) for part in parts)
+    ]
+
+
+@dataclass(frozen=True)
 class MaterialSpec:
     """A parsed materials file: named materials, the ordered part rules, from its ``[model]`` table the
-    centre of mass [m] in the body frame (the torque reference point; None when not given), and the
-    hinges of its ``[articulation]`` tables."""
+    centre of mass [m] in the body frame (the torque reference point; None when not given), the
+    hinges of its ``[articulation]`` tables and the rules of its ``[thermal]`` tables, in order."""
 
     materials: Mapping[str, Material]
     rules: tuple[PartRule, ...]
     source: str | None = None
     centre_of_mass_m: tuple[float, float, float] | None = None
     hinges: tuple[Hinge, ...] = ()
+    thermal: tuple[ThermalRule, ...] = ()
 
     def rule_for(self, part: str) -> PartRule | None:
         """The first rule matching ``part``, or None."""
@@ -333,13 +378,13 @@ def _nesting(text: str) -> int:
 
 def parse_materials(document: Mapping[str, object], source: str | None = None) -> MaterialSpec:
     """Check and convert a materials document already parsed from TOML."""
-    unknown = sorted(set(document) - {"materials", "parts", "model", "articulation"})
+    unknown = sorted(set(document) - {"materials", "parts", "model", "articulation", "thermal"})
     if unknown:
         raise MaterialError(
             f"unknown top-level table '{unknown[0]}'",
             path=source,
-            hint="a materials file has [materials.NAME] tables, a [parts] table, a [model] table and "
-            '[articulation."GLOB"] tables',
+            hint="a materials file has [materials.NAME] tables, a [parts] table, a [model] table, "
+            '[articulation."GLOB"] tables and [thermal."GLOB"] tables',
         )
     tables = document.get("materials", {})
     if not isinstance(tables, Mapping) or not all(isinstance(t, Mapping) for t in tables.values()):
@@ -373,9 +418,13 @@ def parse_materials(document: Mapping[str, object], source: str | None = None) -
         hinges = parse_articulation(document.get("articulation", {}), source)
     except MaterialError as error:
         problems.append(error)
+    try:
+        thermal = parse_thermal(document.get("thermal", {}), source)
+    except MaterialError as error:
+        problems.append(error)
     if problems:
         raise combine(problems)
-    return MaterialSpec(materials, tuple(rules), source, centre, hinges)
+    return MaterialSpec(materials, tuple(rules), source, centre, hinges, thermal)
 
 
 def _centre_of_mass(table: object, source: str | None) -> tuple[float, float, float] | None:

@@ -21,15 +21,16 @@ from sunwind.geometry.articulation import (
     with_fronts,
 )
 from sunwind.geometry.cache import ModelCache
-from sunwind.geometry.checks import CRACK_TOLERANCE, MeshCheck, check_mesh, size_notice
-from sunwind.geometry.errors import InputError, MaterialError, MeshError, SunwindError, combine
+from sunwind.geometry.checks import check_mesh, size_notice, undeclared_sheets
+from sunwind.geometry.errors import InputError, MaterialError, SunwindError, combine
 from sunwind.geometry.materials import (
     Material,
     MaterialSpec,
     MaterialTable,
+    ThermalRule,
     load_materials,
     part_matches,
-    toml_key,
+    unmatched_thermal,
 )
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.rays.scene import RayScene
@@ -98,6 +99,10 @@ class Spacecraft:
     drawn_vertices : (n_vertices, 3) float64 or None
         Vertex positions [m] with every hinge at 0 (the mesh as drawn), from which every pose is
         turned; None when the model has no hinges.
+    materials_source : str or None
+        The materials file the model was built with; None without one.
+    thermal : tuple of ThermalRule
+        The materials file's ``[thermal."GLOB"]`` rules, in order (the first matching a part applies).
     cache : ModelCache
         What is built once for this model and kept (ray scene, shadow-ray origins, view factors,
         ...): list it with ``cache.entries()``, free it with ``cache.clear()``. A model made from this
@@ -121,6 +126,8 @@ class Spacecraft:
     hinges: tuple[Hinge, ...] = ()
     pose_deg: tuple[float, ...] = ()
     drawn_vertices: NDArray[np.float64] | None = None
+    materials_source: str | None = None
+    thermal: tuple[ThermalRule, ...] = ()
     cache: ModelCache = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -197,6 +204,11 @@ class Spacecraft:
         return _frozen(
             np.ascontiguousarray(np.stack([m.rho[material], m.beta[material], m.sigma[material]], 1))
         )
+
+    @cached_property
+    def side_emissivity(self) -> NDArray[np.float64]:
+        """Infrared emissivity of each side's material [-], NaN where it has none, (n_sides,)."""
+        return _frozen(self.materials.eps[self.side_material])
 
     @cached_property
     def side_gas(self) -> dict[str, NDArray]:
@@ -346,7 +358,7 @@ def build_spacecraft(
     Raises
     ------
     MaterialError
-        Parts without a material, or an invalid materials file.
+        Parts without a material, an invalid materials file, or a ``[thermal]`` glob matching no part.
     MeshError
         Non-finite coordinates; open or non-manifold surfaces that are not declared sheets. Parts
         without material and such surfaces are reported together, in one error.
@@ -361,7 +373,9 @@ def build_spacecraft(
         face_kind = declared_kinds(mesh, spec, two_sided)
     check = check_mesh(mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, face_kind, mesh.source)
     if not check.closed:
-        problems.append(_undeclared_sheets(check, mesh.source))
+        problems.append(undeclared_sheets(check, mesh.source))
+    if spec is not None:
+        problems += unmatched_thermal(spec.thermal, mesh.part_names, mesh.source, spec.source)
     if problems:
         raise combine(problems)
     kind = sides.face_kind[check.kept]
@@ -387,40 +401,10 @@ def build_spacecraft(
             n for n in (*check.notices, size_notice(check.vertices, mesh.metadata.get("unit", "m"))) if n
         ),
         centre_of_mass_m=None if spec is None else spec.centre_of_mass_m,
+        materials_source=None if spec is None else spec.source,
+        thermal=() if spec is None else spec.thermal,
     )
     return craft if spec is None or not spec.hinges else articulate(craft, spec.hinges, spec.source)
-
-
-def _undeclared_sheets(check: MeshCheck, source: str) -> MeshError:
-    """One error for every part with open or non-manifold edges that is not declared a sheet, with the
-    choices and what each means for the physics."""
-    problems = [
-        MeshError(f"is an open surface ({count} boundary edges)", path=source, part=part)
-        for part, count in check.open_edges.items()
-    ]
-    problems += [
-        MeshError(
-            f"has {count} edges shared by more than two triangles (non-manifold)", path=source, part=part
-        )
-        for part, count in check.nonmanifold_edges.items()
-    ]
-    leaves = list(
-        dict.fromkeys(
-            part.rstrip("/").rsplit("/", 1)[-1] for part in [*check.open_edges, *check.nonmanifold_edges]
-        )
-    )
-    leaf = leaves[0]
-    flags = " ".join(f'--two-sided "{name}"' for name in leaves)
-    hint = (
-        "a solid body: close it in the mesh file (gaps narrower than "
-        f"{CRACK_TOLERANCE:g} of the model size are closed on loading); a thin sheet lit from one side: "
-        f'declare it one-sided ([parts] {toml_key(leaf)} = {{ front = "MATERIAL" }}; its back absorbs '
-        "what reaches it); a sheet lit on both sides: declare it two-sided "
-        f'([parts] {toml_key(leaf)} = {{ front = "...", back = "..." }}, two_sided={leaves!r} or '
-        f"{flags}), a zero-thickness sheet lit and re-emitting on both faces, which turns the inside of a "
-        "solid body into a cavity"
-    )
-    return combine(problems, hint=hint)
 
 
 def articulate(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None = None) -> Spacecraft:
@@ -474,6 +458,12 @@ def _facet_groups(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None) 
     )
     groups = part_groups(hits.reshape(len(hinges), -1), craft.part_names, hinges, craft.source, path)
     return groups[craft.facet_part]
+
+
+def infrared_optics(craft: Spacecraft) -> NDArray[np.float64]:
+    """Infrared ``(rho, beta, sigma) = (1 - eps, 0, 0)`` of each side, (n_sides, 3) (Kirchhoff; grey,
+    opaque, diffuse); :class:`MaterialError` naming the materials without an emissivity."""
+    return _frozen(craft.materials.infrared(craft.side_material, craft.materials_source or craft.source))
 
 
 def load_spacecraft(

@@ -15,6 +15,7 @@ import warnings
 import click
 
 from sunwind.forces.cli.attitude import drag, forces, srp
+from sunwind.forces.cli.earth import earth
 from sunwind.forces.cli.mesh import info, mesh
 from sunwind.forces.cli.options import FLAGS
 from sunwind.forces.cli.orbit import orbit
@@ -35,7 +36,7 @@ def app() -> None:
     """
 
 
-for command in (srp, drag, forces, sweep_command, orbit, plot, info, mesh, bench, validate):
+for command in (srp, drag, forces, earth, sweep_command, orbit, plot, info, mesh, bench, validate):
     app.add_command(command)
 
 

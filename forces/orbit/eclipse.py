@@ -47,6 +47,17 @@ def solar_fraction(
     return visible
 
 
+def sphere_visible(
+    position_m: NDArray[np.float64], sun_m: NDArray[np.float64], radius_m: float, model: str = "conical"
+) -> NDArray[np.float64]:
+    """Visible share of the solar disc (n,) at ``position_m`` (n, 3) with the Sun at ``sun_m`` (n, 3),
+    behind a sphere of ``radius_m`` at the origin (any planet), by ``model``."""
+    r = np.atleast_2d(np.asarray(position_m, dtype=float))
+    if model == "none":
+        return np.ones(len(r))
+    return _unblocked(r, np.atleast_2d(np.asarray(sun_m, dtype=float)), np.zeros_like(r), radius_m, model)
+
+
 def _unblocked(
     r: NDArray[np.float64], s: NDArray[np.float64], centre: NDArray[np.float64], radius: float, model: str
 ) -> NDArray[np.float64]:

@@ -369,7 +369,7 @@ def land(
     lambert_factor: float,
     reference_m: NDArray[np.float64],
     totals: NDArray[np.float64],
-    diffuse_W: NDArray[np.float64],
+    arrived_W: NDArray[np.float64],
 ) -> tuple[
     NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]
 ]:
@@ -378,10 +378,10 @@ def land(
 
     A ``first`` generation's beams the direct law let leave give their momentum back where they
     land; a later one's escaping beams take theirs away. A beam that meets a side splits into
-    absorbed, diffuse (added to ``diffuse_W`` of the side, and to the open-sky sums as if it left
-    along ``lambert_factor n``), mirror and transmitted parts; a closed body's transmitted share
-    leaves unchanged. A new beam below ``cutoff`` of its chain's starting power, or any new beam of the
-    ``last`` generation, is truncated. ``totals`` (the ``N_TOTALS`` slots above) and ``diffuse_W`` are
+    absorbed, diffuse (to the open-sky sums as if it left along ``lambert_factor n``), mirror and
+    transmitted parts; a closed body's transmitted share leaves unchanged. A new beam below ``cutoff``
+    of its chain's starting power, or any new beam of the ``last`` generation, is truncated.
+    ``totals`` (the ``N_TOTALS`` slots above) and ``arrived_W``, the beam power each side meets, are
     added to in place.
 
     Returns the new beams' origin (n, 3), lift (n, 3), direction (n, 3), power and starting power.
@@ -412,7 +412,7 @@ def land(
         n0, n1, n2 = side_normals[s, 0], side_normals[s, 1], side_normals[s, 2]
         absorbed += (1.0 - rho - sigma) * p
         diffuse = rho * (1.0 - beta) * p
-        diffuse_W[s] += diffuse
+        arrived_W[s] += p
         w = -lambert_factor * diffuse
         _push(totals, OPEN_SKY, points_m, i, reference_m, w * n0, w * n1, w * n2)
         if not side_sheet[s] and sigma > 0.0:

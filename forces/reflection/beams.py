@@ -67,6 +67,8 @@ class ChainTotals:
         land somewhere instead of escaping, and from beams that escape after landing.
     diffuse_source_W : (n_sides,) float64
         Power landed beams hand to diffuse reflection on each side (a source of the radiosity balance).
+    arrived_W : (n_sides,) float64
+        Beam power arriving at each side [W] (it absorbs ``1 - rho - sigma`` of it).
     open_sky_force_N, open_sky_torque_Nm : (3,) float64
         Force and torque if that diffuse light left each landing point to open sky, ``(2/3) n``.
     escaped_W, absorbed_W, truncated_W : float
@@ -83,6 +85,7 @@ class ChainTotals:
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
     diffuse_source_W: NDArray[np.float64]
+    arrived_W: NDArray[np.float64]
     open_sky_force_N: NDArray[np.float64]
     open_sky_torque_Nm: NDArray[np.float64]
     escaped_W: float
@@ -387,12 +390,14 @@ def follow_chains(
         )
         rays += cast + more_rays
         generations = max(generations, chain_generations)
-    totals, diffuse_W = sums.totals, sums.diffuse_W
+    totals, arrived = sums.totals, sums.arrived_W
+    rho, beta, _ = craft.side_optics.T
     momentum, open_sky = kernels.MOMENTUM, kernels.OPEN_SKY
     return ChainTotals(
         force_N=totals[momentum : momentum + 3] / SPEED_OF_LIGHT,
         torque_Nm=totals[momentum + 3 : momentum + 6] / SPEED_OF_LIGHT,
-        diffuse_source_W=diffuse_W,
+        diffuse_source_W=rho * (1.0 - beta) * arrived,
+        arrived_W=arrived,
         open_sky_force_N=totals[open_sky : open_sky + 3] / SPEED_OF_LIGHT,
         open_sky_torque_Nm=totals[open_sky + 3 : open_sky + 6] / SPEED_OF_LIGHT,
         escaped_W=float(totals[kernels.ESCAPED_W]),
@@ -407,10 +412,10 @@ def follow_chains(
 @dataclass(frozen=True, eq=False)
 class _Sums:
     """What every chain of an attitude adds to: the kernel's running sums (slots of
-    :mod:`~sunwind.forces.reflection.beam_kernels`) and the diffuse source of each side [W]."""
+    :mod:`~sunwind.forces.reflection.beam_kernels`) and the beam power arriving at each side [W]."""
 
     totals: NDArray[np.float64]  # (N_TOTALS,)
-    diffuse_W: NDArray[np.float64]  # (n_sides,)
+    arrived_W: NDArray[np.float64]  # (n_sides,)
 
 
 def _trace(
@@ -446,7 +451,7 @@ def _trace(
                 LAMBERT_FACTOR,
                 reference_m,
                 sums.totals,
-                sums.diffuse_W,
+                sums.arrived_W,
             )
         )
         if len(beams):

@@ -100,7 +100,10 @@ class DiffuseExchange:
         Rarefied gas: the share of arriving molecules each side sends on mirrored; the rest it
         re-emits diffusely (``rho = 1``, ``beta`` = that share, nothing passes a sheet), so ``E = F``
         where no side mirrors. Only molecules reaching a side the model does not have (``BLIND``)
-        count as absorbed. None (default): light, with the model's optics.
+        count as absorbed. None (default): light.
+    optics : (n_sides, 3) float64, optional
+        Light: ``(rho, beta, sigma)`` of each side to use instead of ``craft.side_optics`` (the
+        infrared band: ``(1 - eps, 0, 0)``, :mod:`sunwind.forces.thermal`). Not with ``mirrored``.
     cache_dir : path, bool or None
         Where exchange factors are kept on disk
         (:func:`sunwind.geometry.views.exchange_factors.exchange_factors`);
@@ -114,9 +117,12 @@ class DiffuseExchange:
         *,
         mirrored: NDArray[np.float64] | None = None,
         cache_dir: str | os.PathLike | bool | None = False,
+        optics: NDArray[np.float64] | None = None,
     ) -> None:
         self.craft = craft
         self.view = view
+        if mirrored is not None and optics is not None:
+            raise ValueError("DiffuseExchange takes mirrored (molecules) or optics (light), not both")
         if mirrored is not None:
             n = craft.n_sides
             optics = np.column_stack([np.ones(n), mirrored, np.zeros(n)])
@@ -128,8 +134,9 @@ class DiffuseExchange:
             re_emitted = 1.0 - mirrored
             self.absorptance = np.zeros(n)
         else:
-            rho, beta, sigma = craft.side_optics.T
-            self.factors = exchange_factors(craft, view, cache_dir)
+            optics = craft.side_optics if optics is None else np.ascontiguousarray(optics, dtype=np.float64)
+            rho, beta, sigma = optics.T
+            self.factors = exchange_factors(craft, view, cache_dir, optics)
             re_emitted = rho * (1 - beta)
             self.absorptance = 1.0 - rho - sigma
         #: ``diag(rho_d) E^T``: the diffuse power each side re-emits per watt each side emits;

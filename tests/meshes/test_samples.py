@@ -20,7 +20,7 @@ from sunwind.meshes import (
     sample_path,
     sample_spacecraft,
 )
-from sunwind.meshes.samples import DIMENSIONS, SHEETS, main, write_sample_files
+from sunwind.meshes.samples import DIMENSIONS, SAMPLE_EMISSIVITY, SHEETS, main, write_sample_files
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -112,7 +112,9 @@ def test_every_face_has_a_material_with_valid_optics(sample):
 
 def test_materials_toml_covers_every_material_and_sheet(sample):
     document = tomllib.loads(materials_toml(sample))
-    assert document["materials"] == SAMPLE_OPTICS
+    assert document["materials"] == {
+        name: {**optics, "emissivity": SAMPLE_EMISSIVITY[name]} for name, optics in SAMPLE_OPTICS.items()
+    }
     for part, (front, back) in SHEETS.items():
         assert document["parts"][part] == {"front": front, "back": back}
 

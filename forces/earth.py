@@ -1,0 +1,274 @@
+"""Radiation from the planet below: its albedo and infrared, on the spacecraft with self-shadowing and
+inter-reflection, and the power every side absorbs from the Sun, the albedo and the infrared (METHOD.md
+"Planet radiation").
+
+The spacecraft sits ``altitude`` above a spherical planet whose centre lies along ``nadir`` (body
+frame). Each band's force is its radiance integrated over each side's share of the visible cap
+(:class:`~sunwind.forces.planet.cap.Cap`), shadowing and reflections added by cells of the cap about
+``step_deg`` across (:mod:`~sunwind.forces.planet.loads`); sunlight (for the heat budget) is one cell.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.model import Model, as_model
+from sunwind.forces.planet.bodies import PlanetLight, planet
+from sunwind.forces.planet.cap import Cap
+from sunwind.forces.planet.loads import BandLoad, Source, band_loads
+from sunwind.forces.radiation.law import solar_flux
+from sunwind.forces.reflection import ReflectionSettings, reflection_plan
+from sunwind.forces.reflection.diffuse import DiffuseExchange
+from sunwind.forces.results import FRAME
+from sunwind.forces.thermal import infrared_exchange
+from sunwind.geometry.directions import unit_vector
+from sunwind.geometry.errors import InputError
+from sunwind.geometry.parallel import using_threads
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.spacecraft import Spacecraft, infrared_optics
+
+#: Default size of the cap's cells for shadowing and reflections [deg].
+DEFAULT_STEP_DEG = 10.0
+#: Altitudes accepted [km]: above the surface, and below 100 times the Moon's distance.
+MAX_ALTITUDE_KM = 4.0e7
+
+
+@dataclass(frozen=True, eq=False)
+class EarthResult:
+    """The planet's radiation on the spacecraft at one place and attitude; body frame, SI.
+
+    Attributes
+    ----------
+    albedo, infrared : BandLoad
+        Force, torque, power balance and per-side power of each band.
+    solar : BandLoad
+        Sunlight (times the place's ``solar_fraction``), for the heat budget; its force is what
+        :func:`~sunwind.forces.srp.srp` gives.
+    place : Place
+    half_angle_deg : float
+        Angular radius of the planet seen from the spacecraft.
+    light : PlanetLight
+        The planet and its albedo and infrared laws.
+    cells : int
+        Cells of the cap (shadow directions).
+    rays : int
+        Shadow and beam rays cast.
+    reflections : str
+        The inter-reflection mode used ("auto" resolved).
+    reference_point_m : (3,) float64
+    reference_point : str
+    craft : Spacecraft
+    """
+
+    albedo: BandLoad
+    infrared: BandLoad
+    solar: BandLoad
+    place: Place
+    half_angle_deg: float
+    light: PlanetLight
+    cells: int
+    rays: int
+    reflections: str
+    reference_point_m: NDArray[np.float64]
+    reference_point: str
+    craft: Spacecraft = field(repr=False)
+
+    @property
+    def force_N(self) -> NDArray[np.float64]:
+        """Albedo plus infrared force [N], (3,)."""
+        return self.albedo.force_N + self.infrared.force_N
+
+    @property
+    def torque_Nm(self) -> NDArray[np.float64]:
+        """Albedo plus infrared torque about the reference point [N m], (3,)."""
+        return self.albedo.torque_Nm + self.infrared.torque_Nm
+
+    def absorbed_side_W(self) -> dict[str, NDArray[np.float64]]:
+        """Power each side absorbs [W], (n_sides,) per source: ``solar``, ``albedo``, ``infrared`` as
+        they arrive, and ``reflected``: what arrives after reflections, of every band."""
+        bands = (self.solar, self.albedo, self.infrared)
+        return {
+            "solar": self.solar.absorbed_side_W,
+            "albedo": self.albedo.absorbed_side_W,
+            "infrared": self.infrared.absorbed_side_W,
+            "reflected": sum(band.reflected_side_W for band in bands),
+        }
+
+    def parts(self) -> dict[str, dict[str, float]]:
+        """Per part: area [m^2] and the absorbed power of :meth:`absorbed_side_W` summed [W]."""
+        craft = self.craft
+        part = craft.facet_part[craft.side_facet]
+        n = len(craft.part_names)
+        table = {"area_m2": np.bincount(part, craft.side_areas, n)}
+        for name, values in self.absorbed_side_W().items():
+            table[f"{name}_W"] = np.bincount(part, values, n)
+        return {
+            name: {key: float(column[k]) for key, column in table.items()}
+            for k, name in enumerate(craft.part_names)
+        }
+
+    def to_json(self) -> dict:
+        """Plain-JSON summary; keys carry their units."""
+        out = {
+            "frame": FRAME,
+            "planet": self.light.planet.name,
+            "model": self.light.description,
+            "nadir": self.place.nadir.tolist(),
+            "sun_vector": self.place.sun_vector.tolist(),
+            "altitude_km": self.place.altitude_km,
+            "half_angle_deg": self.half_angle_deg,
+            "flux_W_m2": self.light.solar_flux_W_m2,
+            "solar_fraction": self.place.solar_fraction,
+            "reference_point_m": self.reference_point_m.tolist(),
+            "reference_point": self.reference_point,
+            "reflections": self.reflections,
+            "cells": self.cells,
+            "rays": self.rays,
+            "albedo": self.albedo.to_json(),
+            "infrared": self.infrared.to_json(),
+            "solar": self.solar.to_json(),
+            "parts": self.parts(),
+        }
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class Place:
+    """Where the spacecraft is, in its body frame: the planet's centre along ``nadir``, ``altitude_km``
+    above the surface, the Sun along ``sun_vector`` (both normalised here), the planet's north pole
+    along ``pole`` (for latitudes; default +z), and ``solar_fraction`` of the solar disc in view."""
+
+    nadir: NDArray[np.float64]
+    altitude_km: float
+    sun_vector: NDArray[np.float64]
+    pole: NDArray[np.float64] | None = None
+    solar_fraction: float = 1.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "nadir", unit_vector(self.nadir, "nadir"))
+        object.__setattr__(self, "sun_vector", unit_vector(self.sun_vector, "sun_vector"))
+        pole = np.array([0.0, 0.0, 1.0]) if self.pole is None else unit_vector(self.pole, "pole")
+        object.__setattr__(self, "pole", pole)
+        if not (math.isfinite(self.altitude_km) and 0.0 < self.altitude_km <= MAX_ALTITUDE_KM):
+            raise InputError(
+                f"altitude_km {self.altitude_km} is not in (0, {MAX_ALTITUDE_KM:g}] km",
+                hint="give the height above the surface in km, e.g. 500",
+                parameters=("altitude_km",),
+            )
+        if not (math.isfinite(self.solar_fraction) and 0.0 <= self.solar_fraction <= 1.0):
+            raise InputError(
+                f"solar_fraction {self.solar_fraction} is not in [0, 1]", parameters=("solar_fraction",)
+            )
+
+
+def earth_radiation(
+    model: Model | Spacecraft,
+    place: Place,
+    light: PlanetLight | None = None,
+    *,
+    reference_point_m: Sequence[float] | NDArray | None = None,
+    samples: int | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+    reflections: str | ReflectionSettings = "auto",
+    step_deg: float = DEFAULT_STEP_DEG,
+) -> EarthResult:
+    """Albedo and infrared force and torque from the planet below, and the power each side absorbs
+    from them and from the Sun.
+
+    Parameters
+    ----------
+    model : Model or Spacecraft
+    place : Place
+        The planet's and the Sun's directions and the altitude.
+    light : PlanetLight, optional
+        The planet and its albedo and infrared laws (:meth:`PlanetLight.of`: another planet, albedo,
+        infrared exitance, Knocke's model, the solar flux); default the Earth at 1 au.
+    reference_point_m : (3,) array_like, optional
+        Torque reference point [m]; default the model's.
+    samples, tolerance
+        Shadow sampling, as for :func:`~sunwind.forces.srp.srp`.
+    reflections : str or ReflectionSettings
+        As for :func:`~sunwind.forces.srp.srp`; ``auto`` decides by the model's ``K_IS``.
+    step_deg : float
+        Size of the cap's cells [deg] in (0, 90]: one shadow pass each. Sides no other side can shadow
+        are exact at any step.
+    """
+    model = as_model(model)
+    craft = model.craft
+    band_optics = (craft.side_optics, infrared_optics(craft))  # no emissivity: an error before any work
+    light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
+    if not (math.isfinite(step_deg) and 0.0 < step_deg <= 90.0):
+        raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
+    check_sampling(samples, tolerance)
+    reference, reference_name = model.reference(reference_point_m)
+    settings = ReflectionSettings.of(reflections)
+    body = light.planet
+    distance = body.radius_m + place.altitude_km * 1e3
+    caps = [
+        Cap(place.nadir, place.sun_vector, place.pole, distance, body.radius_m, law)
+        for law in (light.albedo, light.infrared)
+    ]
+    sampling = {
+        "samples": samples,
+        "tolerance": tolerance,
+        "cutoff": settings.cutoff,
+        "depth": settings.depth,
+    }
+    with using_threads(model.threads):
+        plan = reflection_plan(craft, settings)
+        directions, _ = caps[0].patches(step_deg)
+        sources = [
+            Source(
+                name, cap.side_integrals(craft.side_normals), cap.patches(step_deg)[1], optics,
+                beams=name == "albedo" and plan.mode != "none",
+                exchange=_exchange(craft, plan.mode, settings, name),
+            )
+            for name, cap, optics in zip(
+                ("albedo", "infrared"), caps, band_optics, strict=True
+            )
+        ]  # fmt: skip
+        loads, rays = band_loads(craft, sources, directions, reference, **sampling)
+        flux = light.solar_flux_W_m2 * place.solar_fraction
+        sun = _sunlight(craft, place.sun_vector, flux, plan.mode, settings)
+        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, **sampling)
+    return EarthResult(
+        albedo=loads[0],
+        infrared=loads[1],
+        solar=solar[0],
+        place=place,
+        half_angle_deg=math.degrees(caps[0].half_angle),
+        light=light,
+        cells=len(directions),
+        rays=rays + solar_rays,
+        reflections=plan.mode,
+        reference_point_m=reference,
+        reference_point=reference_name,
+        craft=craft,
+    )
+
+
+def _exchange(
+    craft: Spacecraft, mode: str, settings: ReflectionSettings, band: str
+) -> DiffuseExchange | None:
+    """The diffuse balance of ``band`` ("solar"/"albedo" or "infrared") with ``full`` reflections, else
+    None; kept in the model's cache."""
+    if mode != "full":
+        return None
+    if band == "infrared":
+        return infrared_exchange(craft, settings)
+    return reflection_plan(craft, settings).exchange
+
+
+def _sunlight(craft: Spacecraft, u_sun: NDArray[np.float64], flux: float, mode: str, settings) -> Source:
+    """Sunlight of ``flux`` [W/m^2] along ``u_sun`` as a source of one cell."""
+    cos = np.maximum(craft.side_normals @ u_sun, 0.0)
+    i0 = flux * cos
+    return Source(
+        "solar", (i0, i0[:, None] * u_sun, i0 * cos), np.array([flux]), craft.side_optics,
+        beams=mode != "none" and flux > 0, exchange=_exchange(craft, mode, settings, "solar"),
+    )  # fmt: skip

@@ -1,0 +1,292 @@
+"""The planet's visible cap seen from the spacecraft, its radiance, and the integrals of that radiance
+over each side's share of the cap (METHOD.md "Planet radiation").
+
+Directions ``w`` from the spacecraft toward the planet lie in a cone about the nadir ``e`` of
+half-angle ``theta_0``, ``sin(theta_0) = R / r`` (``r`` the distance from the planet's centre). The
+ray along ``w`` at angle ``theta`` from ``e`` meets the surface at distance
+``d = r cos(theta) - sqrt(R^2 - r^2 sin^2(theta))``, where the outward normal is
+``N = (d w - r e) / R``. A surface element there has the radiance
+
+    L = (c_u + c_s max(N . s, 0)) (q_0 + q_1 x + q_2 (3 x^2 - 1) / 2) / pi,   x = N . p
+
+(``s`` the unit vector to the Sun, ``p`` the planet's north pole): ``c_u`` a uniform exitance, ``c_s``
+one that follows the insolation (albedo ``A S``, or the Moon's re-emission), and a latitude factor
+(Knocke's model; ``q = (1, 0, 0)`` for a uniform planet). The side with outward normal ``n`` receives
+
+    I_0 = int L (n . w)+ dw,   I_1 = int L (n . w)+ w dw,   I_2 = int L (n . w)+^2 dw
+
+over the cap ([W/m^2]), which is all the force law needs. The cap is integrated exactly in its
+pieces: on each ring ``theta`` the side's horizon ``n . w = 0`` and the terminator ``N . s = 0`` cut
+the azimuth circle at points found in closed form (each is ``cos(phi - phi_0) = t``); the azimuth is
+integrated by Gauss-Legendre between cuts, and ``theta`` between the values where a cut appears or
+vanishes, under the map ``theta = a + (b - a) sin^2(pi v / 2)``, which makes the square-root onset of
+an arc smooth. The integrand is smooth inside every piece, so the rule converges spectrally.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from sunwind.geometry.parallel import map_ranges
+
+#: Gauss-Legendre points per ``theta`` piece and per azimuth arc of :meth:`Cap.side_integrals`.
+THETA_POINTS = 12
+AZIMUTH_POINTS = 12
+#: Rings on which the terminator's cut points are looked for before they are refined.
+_SCAN_RINGS = 2048
+#: Sides per parallel block of the side integrals.
+_BLOCK_SIDES = 2048
+
+
+@dataclass(frozen=True)
+class Radiance:
+    """``L = (uniform + insolation max(N . s, 0)) (q_0 + q_1 x + q_2 P_2(x)) / pi`` [W/(m^2 sr)],
+    ``x = N . pole``: exitances [W/m^2] and the latitude factor of one source."""
+
+    uniform_W_m2: float = 0.0
+    insolation_W_m2: float = 0.0
+    latitude: tuple[float, float, float] = (1.0, 0.0, 0.0)
+
+    @property
+    def dark(self) -> bool:
+        """Whether the source sends nothing at all."""
+        return self.uniform_W_m2 == 0.0 and self.insolation_W_m2 == 0.0
+
+
+@dataclass(frozen=True, eq=False)
+class Cap:
+    """The visible cap of a planet of radius ``radius_m`` from a spacecraft ``distance_m`` from its
+    centre, the nadir ``nadir`` (unit, spacecraft to planet centre), Sun ``sun`` and pole ``pole``
+    (units, body frame), with radiance ``radiance``."""
+
+    nadir: NDArray[np.float64]
+    sun: NDArray[np.float64]
+    pole: NDArray[np.float64]
+    distance_m: float
+    radius_m: float
+    radiance: Radiance
+
+    @cached_property
+    def half_angle(self) -> float:
+        """``theta_0`` [rad], ``asin(R / r)``."""
+        return math.asin(self.radius_m / self.distance_m)
+
+    @cached_property
+    def frame(self) -> NDArray[np.float64]:
+        """Rows ``e, e_1, e_2``: the nadir and two unit vectors across it (``e_1`` toward the Sun where
+        the Sun is off the nadir line)."""
+        e = self.nadir
+        across = self.sun - (self.sun @ e) * e
+        if np.linalg.norm(across) < 1e-9:
+            across = np.eye(3)[np.argmin(np.abs(e))]
+            across = across - (across @ e) * e
+        e1 = across / np.linalg.norm(across)
+        return np.array([e, e1, np.cross(e, e1)])
+
+    def directions(self, theta: NDArray, phi: NDArray) -> NDArray[np.float64]:
+        """Unit vectors at ``theta`` from the nadir and azimuth ``phi`` about it [rad], (..., 3)."""
+        e, e1, e2 = self.frame
+        st = np.sin(theta)[..., None]
+        return np.cos(theta)[..., None] * e + st * (np.cos(phi)[..., None] * e1 + np.sin(phi)[..., None] * e2)
+
+    def radiance_along(self, w: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Radiance [W/(m^2 sr)] of the surface seen along unit vectors ``w`` (..., 3) inside the cap."""
+        r, big_r, e = self.distance_m, self.radius_m, self.nadir
+        cos_t = np.clip(w @ e, -1.0, 1.0)
+        d = r * cos_t - np.sqrt(np.maximum(big_r**2 - r**2 * (1.0 - cos_t**2), 0.0))
+        normal = (d[..., None] * w - r * e) / big_r
+        return _radiance(normal, self.sun, self.pole, self.radiance)
+
+    @cached_property
+    def theta_breaks(self) -> NDArray[np.float64]:
+        """``0``, the ``theta`` where the terminator starts or stops cutting a ring, and ``theta_0``."""
+        breaks = [0.0, self.half_angle]
+        if self.radiance.insolation_W_m2 != 0.0:
+            rings = np.linspace(0.0, self.half_angle, _SCAN_RINGS + 1)[1:]
+            for level in (-1.0, 1.0):
+                values = self._terminator_cut(rings) - level
+                finite = np.isfinite(values)
+                change = finite[:-1] & finite[1:] & (np.sign(values[:-1]) != np.sign(values[1:]))
+                for k in np.nonzero(change)[0]:
+                    breaks.append(brentq(self._cut_offset, rings[k], rings[k + 1], args=(level,)))
+        return np.unique(np.clip(breaks, 0.0, self.half_angle))
+
+    def _cut_offset(self, theta: float, level: float) -> float:
+        return float(self._terminator_cut(np.array([theta]))[0]) - level
+
+    def _terminator_cut(self, theta: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``t`` with the ring's lit azimuths ``cos(phi - phi_s) > t`` (inf where the Sun is on the
+        nadir line and nothing is cut)."""
+        r, big_r = self.distance_m, self.radius_m
+        e_s = float(self.sun @ self.nadir)
+        s_perp = float(np.linalg.norm(self.sun - e_s * self.nadir))
+        d = r * np.cos(theta) - np.sqrt(np.maximum(big_r**2 - r**2 * np.sin(theta) ** 2, 0.0))
+        across = np.sin(theta) * s_perp
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(across > 1e-12, (r * e_s / d - np.cos(theta) * e_s) / across, np.inf)
+
+    def side_integrals(
+        self, normals: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """``I_0`` (n,), ``I_1`` (n, 3), ``I_2`` (n,) [W/m^2] of sides with unit outward ``normals``
+        (n, 3), unshadowed. Sides with the same normal are integrated once."""
+        unique, inverse = np.unique(normals, axis=0, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        out = np.zeros((len(unique), 5))
+        if len(unique) and not self.radiance.dark:
+            v, wv = _mapped_rule(THETA_POINTS)
+            u, wu = np.polynomial.legendre.leggauss(AZIMUTH_POINTS)
+            rad = self.radiance
+            coefficients = np.array([rad.uniform_W_m2, rad.insolation_W_m2, *rad.latitude])
+            geometry = np.array([self.distance_m, self.radius_m])
+            unique = np.ascontiguousarray(unique)
+            n_blocks = -(-len(unique) // _BLOCK_SIDES)
+
+            def run(lo: int, hi: int) -> None:
+                _integrate(
+                    unique, lo * _BLOCK_SIDES, min(hi * _BLOCK_SIDES, len(unique)), self.frame, self.sun,
+                    self.pole, geometry, coefficients, self.theta_breaks, v, wv, u, wu, out,
+                )  # fmt: skip
+
+            map_ranges(run, n_blocks, 1)
+        values = out[inverse]
+        return values[:, 0], values[:, 1:4], values[:, 4]
+
+    def patches(self, step_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The cap cut into cells about ``step_deg`` across: each cell's mean direction (k, 3) (by solid
+        angle, so caps of one geometry share them) and the irradiance it sends on a surface normal to
+        that direction, ``int L dw`` [W/m^2] (k,)."""
+        theta0 = self.half_angle
+        rings = max(1, math.ceil(math.degrees(theta0) / step_deg))
+        edges = np.linspace(0.0, theta0, rings + 1)
+        v, wv = np.polynomial.legendre.leggauss(8)
+        directions, weights = [], []
+        for lo, hi in itertools.pairwise(edges):
+            middle = 0.5 * (lo + hi)
+            sectors = max(1, round(2 * math.pi * math.sin(middle) / math.radians(step_deg))) if lo > 0 else 1
+            theta = lo + (hi - lo) * (v + 1) / 2
+            for k in range(sectors):
+                phi = 2 * math.pi * (k + (v + 1) / 2) / sectors
+                w = self.directions(*np.meshgrid(theta, phi, indexing="ij"))
+                solid = np.outer(wv * (hi - lo) / 2 * np.sin(theta), wv * math.pi / sectors)
+                mean = np.einsum("ij,ijk->k", solid, w)
+                directions.append(mean / np.linalg.norm(mean))
+                weights.append(float((self.radiance_along(w) * solid).sum()))
+        return np.array(directions), np.array(weights)
+
+
+def _radiance(
+    normal: NDArray[np.float64], sun: NDArray[np.float64], pole: NDArray[np.float64], radiance: Radiance
+) -> NDArray[np.float64]:
+    """:class:`Radiance` at surface points of outward unit ``normal`` (..., 3)."""
+    x = normal @ pole
+    q0, q1, q2 = radiance.latitude
+    factor = q0 + q1 * x + q2 * (1.5 * x * x - 0.5)
+    lit = np.maximum(normal @ sun, 0.0)
+    return (radiance.uniform_W_m2 + radiance.insolation_W_m2 * lit) * factor / math.pi
+
+
+def _mapped_rule(points: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Gauss-Legendre on [0, 1] under ``x = sin^2(pi v / 2)``: nodes ``x`` and weights ``dx``."""
+    v, w = np.polynomial.legendre.leggauss(points)
+    v = (v + 1) / 2
+    return np.sin(np.pi * v / 2) ** 2, w / 2 * (np.pi / 2) * np.sin(np.pi * v)
+
+
+@numba.njit(cache=True, nogil=True)
+def _integrate(normals, first, last, frame, sun, pole, geometry, coefficients, breaks, v, wv, u, wu, out):
+    """Rows ``first`` to ``last - 1`` of ``out``: ``I_0, I_1 (3), I_2`` of each normal (see :class:`Cap`)."""
+    r, big_r = geometry[0], geometry[1]
+    c_u, c_s, q0, q1, q2 = coefficients[0], coefficients[1], coefficients[2], coefficients[3], coefficients[4]
+    e = frame[0]
+    e1 = frame[1]
+    e2 = frame[2]
+    e_s = sun[0] * e[0] + sun[1] * e[1] + sun[2] * e[2]
+    s1 = sun[0] * e1[0] + sun[1] * e1[1] + sun[2] * e1[2]
+    s2 = sun[0] * e2[0] + sun[1] * e2[1] + sun[2] * e2[2]
+    s_perp = math.sqrt(s1 * s1 + s2 * s2)
+    phi_s = math.atan2(s2, s1)
+    theta0 = breaks[-1]
+    pieces = np.empty(len(breaks) + 1)
+    cuts = np.empty(4)
+    for i in range(first, last):
+        n = normals[i]
+        a = n[0] * e[0] + n[1] * e[1] + n[2] * e[2]
+        b1 = n[0] * e1[0] + n[1] * e1[1] + n[2] * e1[2]
+        b2 = n[0] * e2[0] + n[1] * e2[1] + n[2] * e2[2]
+        b = math.sqrt(b1 * b1 + b2 * b2)
+        phi_n = math.atan2(b2, b1)
+        # the horizon cuts rings beyond theta_h; inside it the side sees all (a > 0) or none of each ring
+        theta_h = math.atan2(abs(a), b)
+        count = 0
+        for k in range(len(breaks)):
+            pieces[count] = breaks[k]
+            count += 1
+        if 0.0 < theta_h < theta0:
+            pieces[count] = theta_h
+            count += 1
+        pieces[:count] = np.sort(pieces[:count])
+        total = np.zeros(5)
+        for p in range(count - 1):
+            lo, hi = pieces[p], pieces[p + 1]
+            if hi <= lo or (a <= 0.0 and hi <= theta_h):
+                continue
+            for j in range(len(v)):
+                theta = lo + (hi - lo) * v[j]
+                weight_t = (hi - lo) * wv[j] * math.sin(theta)
+                ct, st = math.cos(theta), math.sin(theta)
+                if theta <= theta_h:
+                    centre, half = 0.0, math.pi
+                else:
+                    t = -a * ct / (b * st)
+                    centre, half = phi_n, math.acos(min(1.0, max(-1.0, t)))
+                if half <= 0.0:
+                    continue
+                d = r * ct - math.sqrt(max(big_r * big_r - r * r * st * st, 0.0))
+                start, stop = centre - half, centre + half
+                n_cuts = 0
+                if c_s != 0.0 and st * s_perp > 1e-12:
+                    t_s = (r * e_s / d - ct * e_s) / (st * s_perp)
+                    if -1.0 < t_s < 1.0:
+                        w_s = math.acos(t_s)
+                        for edge in (phi_s - w_s, phi_s + w_s):
+                            x = start + (edge - start) % (2.0 * math.pi)
+                            if start < x < stop:
+                                cuts[n_cuts] = x
+                                n_cuts += 1
+                cuts[:n_cuts] = np.sort(cuts[:n_cuts])
+                left = start
+                for c in range(n_cuts + 1):
+                    right = cuts[c] if c < n_cuts else stop
+                    scale = 0.5 * (right - left) * weight_t
+                    for m in range(len(u)):
+                        phi = left + 0.5 * (right - left) * (u[m] + 1.0)
+                        cp, sp = math.cos(phi), math.sin(phi)
+                        w0 = ct * e[0] + st * (cp * e1[0] + sp * e2[0])
+                        w1 = ct * e[1] + st * (cp * e1[1] + sp * e2[1])
+                        w2 = ct * e[2] + st * (cp * e1[2] + sp * e2[2])
+                        cos_n = n[0] * w0 + n[1] * w1 + n[2] * w2
+                        if cos_n <= 0.0:
+                            continue
+                        big_n0 = (d * w0 - r * e[0]) / big_r
+                        big_n1 = (d * w1 - r * e[1]) / big_r
+                        big_n2 = (d * w2 - r * e[2]) / big_r
+                        x_lat = big_n0 * pole[0] + big_n1 * pole[1] + big_n2 * pole[2]
+                        lit = max(big_n0 * sun[0] + big_n1 * sun[1] + big_n2 * sun[2], 0.0)
+                        level = (c_u + c_s * lit) * (q0 + q1 * x_lat + q2 * (1.5 * x_lat * x_lat - 0.5))
+                        f = scale * wu[m] * level / math.pi * cos_n
+                        total[0] += f
+                        total[1] += f * w0
+                        total[2] += f * w1
+                        total[3] += f * w2
+                        total[4] += f * cos_n
+                    left = right
+        out[i] = total

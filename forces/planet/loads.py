@@ -1,0 +1,301 @@
+"""What an extended source (a planet's albedo or infrared) or the Sun does to the spacecraft: the force
+law summed over each side's share of the source, self-shadowing, inter-reflection, and the power each
+side absorbs (METHOD.md "Planet radiation").
+
+A source is given per side by its unshadowed integrals ``I_0, I_1, I_2``
+(:meth:`~sunwind.forces.planet.cap.Cap.side_integrals`) and by cells, each a direction ``w_k`` and an
+irradiance ``W_k`` it sends. Eq. (4) integrated over the source gives the open force on a side of area
+``A`` and outward normal ``n``
+
+    F = -(A / c) [ (1 - sigma - rho_s) I_1 + (2 rho_s I_2 + (2/3) rho_d I_0) n ]
+
+(a parallel beam of flux ``Phi`` has ``I_0 = Phi cos``, ``I_1 = Phi cos u``, ``I_2 = Phi cos^2``).
+Shadowing is a correction: a shadow pass along each cell direction gives each side's lit share
+``f_k``, and the side loses ``(1 - f_k)`` of what cell ``k`` alone would give it (``W_k`` times the
+parallel-beam law at ``w_k``), its torque moved to the lit centroid. A side no other side can shadow
+keeps its exact integrals; a convex model casts no rays. For the Sun the one cell is the Sun itself,
+so the correction is the shadow pass itself. Reflections follow as for sunlight: each cell's mirror and
+transmitted beams are followed (:func:`~sunwind.forces.reflection.follow_chains`), diffuse light through
+the adjoint of the diffuse balance, and the absorbed power of each side comes from the balance solved
+forward.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
+from sunwind.forces.reflection import ChainTotals, PowerBalance, follow_chains
+from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals
+from sunwind.geometry.rays.hull import clearance
+from sunwind.geometry.rays.shadows import side_sampler
+from sunwind.geometry.sides import TWO_SIDED
+from sunwind.geometry.spacecraft import Spacecraft
+
+
+@dataclass(frozen=True)
+class Source:
+    """One band of light on the spacecraft before shadowing.
+
+    Attributes
+    ----------
+    name : str
+        "solar", "albedo", "infrared".
+    integrals : tuple of (n_sides,), (n_sides, 3), (n_sides,) float64
+        ``I_0, I_1, I_2`` of every side, unshadowed [W/m^2].
+    weights : (k,) float64
+        Irradiance of each cell [W/m^2] (cells shared by all sources of one call).
+    optics : (n_sides, 3) float64
+        ``(rho, beta, sigma)`` of every side in this band.
+    beams : bool
+        Whether mirror and transmitted beams are followed (the solar band with reflections).
+    exchange : DiffuseExchange or None
+        The diffuse balance in this band (``full`` reflections), else None.
+    """
+
+    name: str
+    integrals: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+    weights: NDArray[np.float64]
+    optics: NDArray[np.float64]
+    beams: bool
+    exchange: DiffuseExchange | None
+
+
+@dataclass(frozen=True, eq=False)
+class BandLoad:
+    """What one band does at one attitude; body frame, SI.
+
+    Attributes
+    ----------
+    name : str
+    force_N, torque_Nm : (3,) float64
+        Totals (torque about the reference point).
+    direct_force_N, direct_torque_Nm : (3,) float64
+        The law over each side's share of the source, with shadowing, reflected light escaping.
+    reflected_force_N, reflected_torque_Nm : (3,) float64
+        What inter-reflection changes.
+    power : PowerBalance
+        Incident (the power the spacecraft intercepts), absorbed, escaped, truncated [W].
+    incident_side_W : (n_sides,) float64
+        Power arriving at each side from the source, shadowing included [W].
+    absorbed_side_W : (n_sides,) float64
+        Of it, what each side absorbs [W].
+    reflected_side_W : (n_sides,) float64
+        Power each side absorbs of the band's light after one or more reflections [W].
+    lost_W : float
+        Reflected power absorbed where the model has no side (inside a closed body) or dropped by a
+        chain's cutoff [W]: in ``power.absorbed_W`` but on no side.
+    rays : int
+        Shadow and beam rays cast.
+    """
+
+    name: str
+    force_N: NDArray[np.float64]
+    torque_Nm: NDArray[np.float64]
+    direct_force_N: NDArray[np.float64]
+    direct_torque_Nm: NDArray[np.float64]
+    reflected_force_N: NDArray[np.float64]
+    reflected_torque_Nm: NDArray[np.float64]
+    power: PowerBalance
+    incident_side_W: NDArray[np.float64]
+    absorbed_side_W: NDArray[np.float64]
+    reflected_side_W: NDArray[np.float64]
+    lost_W: float
+    rays: int
+
+    def to_json(self) -> dict:
+        """Plain-JSON summary; keys carry their units."""
+        return {
+            "force_N": self.force_N.tolist(),
+            "torque_Nm": self.torque_Nm.tolist(),
+            "direct": {"force_N": self.direct_force_N.tolist(), "torque_Nm": self.direct_torque_Nm.tolist()},
+            "reflected": {
+                "force_N": self.reflected_force_N.tolist(),
+                "torque_Nm": self.reflected_torque_Nm.tolist(),
+            },
+            "power": self.power.to_json(),
+        }
+
+
+class _Running:
+    """What the cells of one source add up: shadow corrections and beam chains."""
+
+    def __init__(self, n_sides: int) -> None:
+        self.lost_i0 = np.zeros(n_sides)
+        self.lost_i1 = np.zeros((n_sides, 3))
+        self.lost_i2 = np.zeros(n_sides)
+        self.shift_torque = np.zeros(3)  # [N m]: forces moved to the lit centroids
+        self.chains: list[ChainTotals] = []
+
+
+def band_loads(
+    craft: Spacecraft,
+    sources: Sequence[Source],
+    directions: NDArray[np.float64],
+    reference_m: NDArray[np.float64],
+    *,
+    samples: int | None,
+    tolerance: float,
+    cutoff: float,
+    depth: int,
+) -> tuple[list[BandLoad], int]:
+    """The :class:`BandLoad` of each source, whose cells lie along ``directions`` (k, 3), and the
+    shadow rays cast. One shadow pass per cell serves every source."""
+    running = [_Running(craft.n_sides) for _ in sources]
+    sampler = side_sampler(craft)
+    shadowing = not bool(np.all(clearance(craft).open_sky))
+    rays = 0
+    for k, direction in enumerate(directions):
+        live = [(s, r) for s, r in zip(sources, running, strict=True) if s.weights[k] > 0]
+        if not live or not shadowing:  # on a convex model every side sees the whole source, and every
+            continue  # reflected beam escapes
+        light = sampler.illuminate(direction, samples, tolerance)
+        rays += light.rays
+        facing, share = light.facing, light.facing_share.astype(np.float64)
+        dark = facing[share < 1.0]
+        dark_share = share[share < 1.0]
+        for source, sums in live:
+            weight = float(source.weights[k])
+            if len(dark):
+                _shadow(craft, source.optics, direction, weight, dark, dark_share, light.lit_centroid, sums)
+            if source.beams and shadowing:
+                chains = follow_chains(craft, light, weight, reference_m, cutoff, depth, light.level)
+                rays += chains.rays
+                sums.chains.append(chains)
+    return [_finish(craft, s, r, reference_m) for s, r in zip(sources, running, strict=True)], rays
+
+
+def _shadow(
+    craft: Spacecraft,
+    optics: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    weight: float,
+    sides: NDArray[np.int64],
+    share: NDArray[np.float64],
+    lit_centroid: NDArray[np.float64],
+    sums: _Running,
+) -> None:
+    """Take off what the shadowed part of ``sides`` (lit ``share``) misses of a cell of irradiance
+    ``weight`` along ``direction``, and move the lit part's force to its lit centroid."""
+    normals = craft.side_normals[sides]
+    cos = normals @ direction
+    lost = weight * cos * (1.0 - share)
+    np.add.at(sums.lost_i0, sides, lost)
+    np.add.at(sums.lost_i1, sides, lost[:, None] * direction)
+    np.add.at(sums.lost_i2, sides, lost * cos)
+    lit_force = _law(normals, craft.side_areas[sides], optics[sides], weight * cos * share, direction, cos)
+    offset = lit_centroid[sides] - craft.side_centroids[sides]
+    sums.shift_torque += np.cross(offset, lit_force).sum(axis=0)
+
+
+def _law(
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    optics: NDArray[np.float64],
+    i0: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    cos: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Eq. (4) for a parallel beam of irradiance ``i0 / cos`` on each side (``i0`` on its plane) [N]."""
+    return _open_force(normals, areas, optics, i0, i0[:, None] * direction, i0 * cos)
+
+
+def _open_force(
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    optics: NDArray[np.float64],
+    i0: NDArray[np.float64],
+    i1: NDArray[np.float64],
+    i2: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """``F = -(A / c) [(1 - sigma - rho_s) I_1 + (2 rho_s I_2 + (2/3) rho_d I_0) n]`` per side [N]."""
+    rho, beta, sigma = optics.T
+    rho_s, rho_d = rho * beta, rho * (1 - beta)
+    along = (1.0 - sigma - rho_s)[:, None] * i1
+    normal = 2.0 * rho_s * i2 + LAMBERT_FACTOR * rho_d * i0
+    return -(areas / SPEED_OF_LIGHT)[:, None] * (along + normal[:, None] * normals)
+
+
+def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDArray[np.float64]) -> BandLoad:
+    """The totals of one source from its integrals and what its cells added."""
+    i0, i1, i2 = source.integrals
+    i0, i1, i2 = i0 - sums.lost_i0, i1 - sums.lost_i1, i2 - sums.lost_i2
+    # a side that sees a sliver of a cell may lose more than its exact share: it is dark
+    dark = i0 <= 0.0
+    i0, i1, i2 = np.where(dark, 0.0, i0), np.where(dark[:, None], 0.0, i1), np.where(dark, 0.0, i2)
+    areas, optics = craft.side_areas, source.optics
+    side_force = _open_force(craft.side_normals, areas, optics, i0, i1, i2)
+    force = side_force.sum(axis=0)
+    torque = np.cross(craft.side_centroids - reference_m, side_force).sum(axis=0) + sums.shift_torque
+    rho, beta, sigma = optics.T
+    incident = areas * i0
+    absorbed = (1.0 - rho - sigma) * incident
+    closed = craft.facet_kind[craft.side_facet] != TWO_SIDED
+    passed = float((sigma * incident)[closed].sum())
+    diffuse = rho * (1 - beta) * incident
+    total_in, total_absorbed = float(incident.sum()), float(absorbed.sum())
+    zero = np.zeros(3)
+    reflected_side = np.zeros(craft.n_sides)
+    if not source.beams and source.exchange is None:
+        power = PowerBalance(total_in, total_absorbed, total_in - total_absorbed)
+        return BandLoad(
+            source.name, force, torque, force, torque, zero, zero, power, incident, absorbed,
+            reflected_side, 0.0, 0,
+        )  # fmt: skip
+    chains = _sum_chains(sums.chains, craft.n_sides)
+    r_force, r_torque = chains.force_N.copy(), chains.torque_Nm.copy()
+    # first beams as the integrals give them; the cells' beams stand for them, and the difference
+    # (the cells' quadrature error, or all of them on a convex model) escapes as the direct law says
+    first = float(((rho * beta + np.where(closed, 0.0, sigma)) * incident).sum())
+    escaped = passed + chains.escaped_W + first - chains.first_W
+    total_absorbed += chains.absorbed_W
+    arrived = chains.arrived_W.copy()
+    lost = chains.truncated_W
+    if source.exchange is None:
+        r_force += chains.open_sky_force_N
+        r_torque += chains.open_sky_torque_Nm
+        escaped += float(diffuse.sum() + chains.diffuse_source_W.sum())
+    else:
+        exchange = source.exchange
+        net = exchange.responses.copy()
+        net[:, MOMENTA] -= exchange.open_sky_functionals[:, MOMENTA]
+        from_direct = DiffuseTotals.from_sums(net.T @ diffuse, reference_m)
+        from_beams = exchange.totals(chains.diffuse_source_W, reference_m)
+        r_force += from_direct.force_N + from_beams.force_N
+        r_torque += from_direct.torque_Nm + from_beams.torque_Nm
+        escaped += from_direct.escaped_W + from_beams.escaped_W
+        total_absorbed += from_direct.absorbed_W + from_beams.absorbed_W
+        emitted = exchange.solve(diffuse + chains.diffuse_source_W)
+        arrived += exchange.factors.matrix.T @ emitted
+        factors = exchange.factors
+        lost += float(emitted @ (factors.blind_fraction + factors.truncated_fraction))
+    reflected_side = (1.0 - rho - sigma) * arrived
+    lost += chains.absorbed_W - float(((1.0 - rho - sigma) * chains.arrived_W).sum())
+    power = PowerBalance(total_in, total_absorbed, float(escaped), chains.truncated_W)
+    return BandLoad(
+        source.name, force + r_force, torque + r_torque, force, torque, r_force, r_torque, power,
+        incident, absorbed, reflected_side, lost, chains.rays,
+    )  # fmt: skip
+
+
+def _sum_chains(chains: list[ChainTotals], n_sides: int) -> ChainTotals:
+    """The chains of all cells as one."""
+    zero3, zero = np.zeros(3), np.zeros(n_sides)
+    return ChainTotals(
+        force_N=sum((c.force_N for c in chains), zero3),
+        torque_Nm=sum((c.torque_Nm for c in chains), zero3),
+        diffuse_source_W=sum((c.diffuse_source_W for c in chains), zero),
+        arrived_W=sum((c.arrived_W for c in chains), zero),
+        open_sky_force_N=sum((c.open_sky_force_N for c in chains), zero3),
+        open_sky_torque_Nm=sum((c.open_sky_torque_Nm for c in chains), zero3),
+        escaped_W=sum(c.escaped_W for c in chains),
+        absorbed_W=sum(c.absorbed_W for c in chains),
+        truncated_W=sum(c.truncated_W for c in chains),
+        first_W=sum(c.first_W for c in chains),
+        rays=sum(c.rays for c in chains),
+        depth=max((c.depth for c in chains), default=0),
+    )
