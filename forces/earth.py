@@ -22,7 +22,7 @@ from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap
 from sunwind.forces.planet.loads import BandLoad, Source, band_loads
 from sunwind.forces.radiation.law import solar_flux
-from sunwind.forces.reflection import ReflectionSettings, reflection_plan
+from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
 from sunwind.forces.results import FRAME
 from sunwind.forces.thermal import infrared_exchange
@@ -99,22 +99,25 @@ class EarthResult:
             "reflected": sum(band.reflected_side_W for band in bands),
         }
 
+    def per_part(self, side_values: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``side_values`` (n_sides,) summed over the sides of each part, (n_parts,) in
+        ``craft.part_names`` order."""
+        craft = self.craft
+        return np.bincount(craft.facet_part[craft.side_facet], side_values, len(craft.part_names))
+
     def parts(self) -> dict[str, dict[str, float]]:
         """Per part: area [m^2] and the absorbed power of :meth:`absorbed_side_W` summed [W]."""
-        craft = self.craft
-        part = craft.facet_part[craft.side_facet]
-        n = len(craft.part_names)
-        table = {"area_m2": np.bincount(part, craft.side_areas, n)}
+        table = {"area_m2": self.per_part(self.craft.side_areas)}
         for name, values in self.absorbed_side_W().items():
-            table[f"{name}_W"] = np.bincount(part, values, n)
+            table[f"{name}_W"] = self.per_part(values)
         return {
             name: {key: float(column[k]) for key, column in table.items()}
-            for k, name in enumerate(craft.part_names)
+            for k, name in enumerate(self.craft.part_names)
         }
 
     def to_json(self) -> dict:
         """Plain-JSON summary; keys carry their units."""
-        out = {
+        return {
             "frame": FRAME,
             "planet": self.light.planet.name,
             "model": self.light.description,
@@ -134,7 +137,6 @@ class EarthResult:
             "solar": self.solar.to_json(),
             "parts": self.parts(),
         }
-        return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -221,20 +223,21 @@ def earth_radiation(
     }
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
-        directions, _ = caps[0].patches(step_deg)
+        cells = [cap.patches(step_deg) for cap in caps]  # one geometry: the same directions
+        directions = cells[0][0]
         sources = [
             Source(
-                name, cap.side_integrals(craft.side_normals), cap.patches(step_deg)[1], optics,
+                name, cap.side_integrals(craft.side_normals), weights, optics,
                 beams=name == "albedo" and plan.mode != "none",
-                exchange=_exchange(craft, plan.mode, settings, name),
+                exchange=_exchange(craft, plan, settings, name),
             )
-            for name, cap, optics in zip(
-                ("albedo", "infrared"), caps, band_optics, strict=True
+            for name, cap, (_, weights), optics in zip(
+                ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
         ]  # fmt: skip
         loads, rays = band_loads(craft, sources, directions, reference, **sampling)
         flux = light.solar_flux_W_m2 * place.solar_fraction
-        sun = _sunlight(craft, place.sun_vector, flux, plan.mode, settings)
+        sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
         solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, **sampling)
     return EarthResult(
         albedo=loads[0],
@@ -253,22 +256,26 @@ def earth_radiation(
 
 
 def _exchange(
-    craft: Spacecraft, mode: str, settings: ReflectionSettings, band: str
+    craft: Spacecraft, plan: ReflectionPlan, settings: ReflectionSettings, band: str
 ) -> DiffuseExchange | None:
-    """The diffuse balance of ``band`` ("solar"/"albedo" or "infrared") with ``full`` reflections, else
-    None; kept in the model's cache."""
-    if mode != "full":
+    """The diffuse balance of ``band`` ("solar"/"albedo" or "infrared") under ``plan`` (made with
+    ``settings``) when it is ``full``, else None; kept in the model's cache."""
+    if plan.mode != "full":
         return None
-    if band == "infrared":
-        return infrared_exchange(craft, settings)
-    return reflection_plan(craft, settings).exchange
+    return infrared_exchange(craft, settings) if band == "infrared" else plan.exchange
 
 
-def _sunlight(craft: Spacecraft, u_sun: NDArray[np.float64], flux: float, mode: str, settings) -> Source:
+def _sunlight(
+    craft: Spacecraft,
+    u_sun: NDArray[np.float64],
+    flux: float,
+    plan: ReflectionPlan,
+    settings: ReflectionSettings,
+) -> Source:
     """Sunlight of ``flux`` [W/m^2] along ``u_sun`` as a source of one cell."""
     cos = np.maximum(craft.side_normals @ u_sun, 0.0)
     i0 = flux * cos
     return Source(
         "solar", (i0, i0[:, None] * u_sun, i0 * cos), np.array([flux]), craft.side_optics,
-        beams=mode != "none" and flux > 0, exchange=_exchange(craft, mode, settings, "solar"),
+        beams=plan.mode != "none" and flux > 0, exchange=_exchange(craft, plan, settings, "solar"),
     )  # fmt: skip

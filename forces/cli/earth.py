@@ -147,13 +147,9 @@ def earth(
 
 def _part_temperatures(result: EarthResult, state: ThermalState) -> dict[str, float]:
     """Area-weighted mean temperature of each part [K]."""
-    craft = result.craft
-    part = craft.facet_part[craft.side_facet]
-    n = len(craft.part_names)
-    weighted = np.bincount(part, craft.side_areas * state.temperature_K, n) / np.bincount(
-        part, craft.side_areas, n
-    )
-    return dict(zip(craft.part_names, weighted.tolist(), strict=True))
+    areas = result.craft.side_areas
+    mean = result.per_part(areas * state.temperature_K) / result.per_part(areas)
+    return dict(zip(result.craft.part_names, mean.tolist(), strict=True))
 
 
 def _add_temperatures(parts: dict, result: EarthResult, state: ThermalState) -> None:

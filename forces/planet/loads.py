@@ -87,8 +87,8 @@ class BandLoad:
     reflected_side_W : (n_sides,) float64
         Power each side absorbs of the band's light after one or more reflections [W].
     lost_W : float
-        Reflected power absorbed where the model has no side (inside a closed body) or dropped by a
-        chain's cutoff [W]: in ``power.absorbed_W`` but on no side.
+        Reflected power absorbed where the model has no side (inside a closed body), in
+        ``power.absorbed_W``, or dropped by a chain's cutoff, ``power.truncated_W`` [W]: on no side.
     rays : int
         Shadow and beam rays cast.
     """

@@ -1,0 +1,103 @@
+"""``sunwind earth``: output contract, the closed form it reproduces, and one-line errors for bad input."""
+
+import csv
+import json
+import math
+
+import pytest
+
+from sunwind.forces.radiation.law import SPEED_OF_LIGHT
+
+R_EARTH = 6_378_137.0
+BLACK = """[materials.black]
+reflectivity = 0.0
+specular_fraction = 0.0
+emissivity = 1.0
+[parts]
+"*" = "black"
+"""
+
+
+@pytest.fixture(scope="module")
+def sphere(tmp_path_factory):
+    """A 1 m black sphere and its materials file."""
+    from sunwind.geometry.io import save_mesh
+    from sunwind.meshes.primitives import sphere
+
+    folder = tmp_path_factory.mktemp("earth")
+    save_mesh(sphere(1.0, 24), folder / "sphere.obj")
+    (folder / "black.toml").write_text(BLACK)
+    (folder / "bare.toml").write_text(BLACK.replace("emissivity = 1.0\n", ""))
+    return folder
+
+
+def _args(folder, *extra):
+    return ["earth", folder / "sphere.obj", "-m", folder / "black.toml", "--earth", "0", "0", "-1", *extra]
+
+
+def test_json_has_the_documented_keys_and_the_closed_form(run_cli, sphere):
+    code, out, err = run_cli(
+        *_args(sphere, "--altitude", "500", "--sun", "0", "0", "1", "--thermal", "--json")
+    )
+    assert code == 0, err
+    doc = json.loads(out)
+    for key in ("albedo", "infrared", "thermal", "solar"):
+        assert {"force_N", "torque_Nm"} <= set(doc[key])
+    part = doc["parts"]["sphere"] if "sphere" in doc["parts"] else next(iter(doc["parts"].values()))
+    assert {"area_m2", "solar_W", "albedo_W", "infrared_W", "reflected_W", "temperature_K"} <= set(part)
+    # an absorbing sphere under a uniform emitter: pi a^2 M sin^2(theta_0) / c away from the planet,
+    # to the faceting of a 24-segment sphere
+    sin2 = (R_EARTH / (R_EARTH + 5e5)) ** 2
+    expected = math.pi * (1 - 0.3) * 1361 / 4 * sin2 / SPEED_OF_LIGHT * part["area_m2"] / (4 * math.pi)
+    assert doc["infrared"]["force_N"][2] == pytest.approx(expected, rel=1e-4)
+    assert abs(doc["thermal"]["imbalance"]) < 1e-9
+    assert doc["solar_fraction"] == 1.0
+
+
+def test_behind_the_planet_the_sun_is_gone_and_the_sides_file_is_written(run_cli, sphere, tmp_path):
+    sides = tmp_path / "sides.csv"
+    code, out, err = run_cli(
+        *_args(sphere, "--altitude", "500", "--sun", "0", "0", "-1", "--sides", sides, "--json")
+    )
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["solar_fraction"] == 0.0
+    assert all(part["solar_W"] == 0.0 for part in doc["parts"].values())
+    with sides.open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert sum(float(r["infrared[W]"]) for r in rows) == pytest.approx(
+        sum(p["infrared_W"] for p in doc["parts"].values()), rel=1e-12
+    )
+
+
+def test_text_report(run_cli, sphere):
+    code, out, err = run_cli(*_args(sphere, "--altitude", "35786", "--sun", "1", "0", "0", "--thermal"))
+    assert code == 0, err
+    assert "infrared force" in out and "temperature [K]" in out
+
+
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--altitude", "-5", "--sun", "1", "0", "0"], "--altitude -5.0 is not in"),
+        (["--altitude", "500", "--sun", "1", "0", "0", "--albedo-model", "knocke"], "needs --epoch"),
+        (["--altitude", "500", "--sun", "1", "0", "0", "--step", "0"], "--step 0.0 is not in"),
+        (["--altitude", "500", "--sun", "1", "0", "0", "--albedo", "1.5"], "--albedo 1.5 is outside"),
+        (["--altitude", "500", "--sun", "0", "0", "0"], "--sun"),
+    ],
+)
+def test_bad_input_is_one_line(run_cli, sphere, extra, message):
+    code, out, err = run_cli(*_args(sphere, *extra))
+    assert code == 1 and out == ""
+    assert err.startswith("sunwind: error:") and message in err and err.count("\n") == 1, err
+
+
+def test_missing_emissivity_and_unwritable_sides_are_one_line(run_cli, sphere, tmp_path):
+    args = _args(sphere, "--altitude", "500", "--sun", "1", "0", "0")
+    args[3] = sphere / "bare.toml"
+    code, _, err = run_cli(*args)
+    assert code == 1 and "material 'black' has no emissivity" in err and err.count("\n") == 1, err
+    code, _, err = run_cli(
+        *_args(sphere, "--altitude", "500", "--sun", "1", "0", "0", "--sides", tmp_path / "no" / "x.csv")
+    )
+    assert code == 1 and "cannot write the sides file" in err and err.count("\n") == 1, err
