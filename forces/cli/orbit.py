@@ -23,6 +23,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
 )
 from sunwind.forces.cli.report import print_json, vector
+from sunwind.forces.cli.runs import check_run, run_options, sweep_run
 from sunwind.forces.cli.tables import check_writable
 from sunwind.forces.gas import explicit
 from sunwind.forces.model import ModelSource
@@ -35,8 +36,6 @@ from sunwind.forces.orbit.tle import read_tle, tle_epoch, tle_trajectory
 from sunwind.forces.orbit.trajectory import PROPAGATORS
 from sunwind.forces.radiation import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
-from sunwind.forces.tables import DEFAULT_CHUNK, SweepRun
-from sunwind.forces.tables.cluster import require_dask
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
@@ -285,19 +284,7 @@ _OUTPUT_OPTIONS = [
         help="Tracked and scheduled hinge angles rounded to this step [deg] (0: exact): each new angle is "
         "a new pose whose caches (view factors) are made again.",
     ),
-    click.option("--resume", is_flag=True, help="Continue an interrupted run from its checkpoint (-o)."),
-    click.option(
-        "--scheduler",
-        is_flag=False,
-        flag_value="local",
-        default=None,
-        metavar="[ADDRESS]",
-        help="Run steps on Dask: a scheduler address, or alone for a local cluster.",
-    ),
-    click.option("--workers", type=int, help="Threads per step; with --scheduler alone, local Dask workers."),
-    click.option(
-        "--chunk", type=int, default=DEFAULT_CHUNK, show_default=True, help="Steps per checkpoint chunk."
-    ),
+    *run_options("step", "run (-o)"),
 ]
 
 
@@ -311,8 +298,7 @@ def _output(values: dict) -> dict:
         check_writable(values["plot"])
     if values["resume"] and out is None:
         raise InputError("--resume takes up the checkpoint of an output: give -o as before")
-    if values["scheduler"] is not None:
-        require_dask()
+    check_run(values)
     step = values["hinge_step"]
     if not (math.isfinite(step) and 0 <= step <= 30):
         raise InputError(f"--hinge-step {step:g} must be 0 to 30 deg")
@@ -371,15 +357,7 @@ def orbit(
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
     with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
         task = bar.add_task("orbit", total=len(trajectory.time_s))
-        run = SweepRun(
-            output["chunk"],
-            checkpoint,
-            output["resume"],
-            output["scheduler"],
-            output["workers"],
-            lambda done: bar.update(task, completed=done),
-            lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
-        )
+        run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
         loads = Loads(srp, drag, environment.air, output["hinge_step"])
         result = fly(
             model,

@@ -34,19 +34,17 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
+from sunwind.forces.cli.runs import check_run, run_options, sweep_run
 from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import (
-    DEFAULT_CHUNK,
     DEFAULT_STEP,
     DragSetup,
     SrpSetup,
-    SweepRun,
     direction_grid,
     read_attitude_csv,
     sweep,
 )
-from sunwind.forces.tables.cluster import require_dask
 from sunwind.forces.tables.dataset import one_pose, open_table
 from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector
@@ -121,23 +119,6 @@ _OUTPUT_OPTIONS = [
         "one gets the format's, an extension of another format is refused].",
     ),
 ]
-_RUN_OPTIONS = [
-    click.option("--resume", is_flag=True, help="Continue an interrupted sweep from its checkpoint."),
-    click.option(
-        "--scheduler",
-        is_flag=False,
-        flag_value="local",
-        default=None,
-        metavar="[ADDRESS]",
-        help="Run on Dask: a scheduler address, or alone for a local cluster.",
-    ),
-    click.option(
-        "--workers", type=int, help="Threads per attitude; with --scheduler alone, local Dask workers."
-    ),
-    click.option(
-        "--chunk", type=int, default=DEFAULT_CHUNK, show_default=True, help="Attitudes per checkpoint chunk."
-    ),
-]
 
 
 @dataclass(frozen=True)
@@ -169,13 +150,6 @@ def _table(values: dict) -> TableRequest:
     return TableRequest(kinds, step, values["attitude_csv"], output, fmt)
 
 
-def _run(values: dict) -> dict:
-    """The run flags, Dask checked importable (before the mesh is loaded or a checkpoint made)."""
-    if values["scheduler"] is not None:
-        require_dask()
-    return values
-
-
 @click.command("sweep")
 @model_options(gas=True, swept=True)
 @sun_options(direction=False)
@@ -184,7 +158,7 @@ def _run(values: dict) -> dict:
 @sampling_options
 @reflection_options("both")
 @group("table", _OUTPUT_OPTIONS, _table)
-@group("run", _RUN_OPTIONS, _run)
+@group("run", run_options("attitude", "sweep"), check_run)
 def sweep_command(
     source: SweptSource,
     sun: Sun,
@@ -242,15 +216,7 @@ def sweep_command(
             step_deg=table.step_deg,
             attitudes=attitudes,
             hinge_angles=hinge_angles,
-            run=SweepRun(
-                run["chunk"],
-                checkpoint,
-                run["resume"],
-                run["scheduler"],
-                run["workers"],
-                progress,
-                notice=lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
-            ),
+            run=sweep_run(run, checkpoint, progress),
         )
     seconds = time.perf_counter() - start
     written = write(result, table.output, table.format)
