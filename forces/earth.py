@@ -105,6 +105,12 @@ class EarthResult:
         craft = self.craft
         return np.bincount(craft.facet_part[craft.side_facet], side_values, len(craft.part_names))
 
+    def part_temperatures(self, temperature_K: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Area-weighted mean of the side temperatures ``temperature_K`` [K] (n_sides,) over each part,
+        (n_parts,) in ``craft.part_names`` order."""
+        areas = self.craft.side_areas
+        return self.per_part(areas * temperature_K) / self.per_part(areas)
+
     def parts(self) -> dict[str, dict[str, float]]:
         """Per part: area [m^2] and the absorbed power of :meth:`absorbed_side_W` summed [W]."""
         table = {"area_m2": self.per_part(self.craft.side_areas)}

@@ -127,6 +127,8 @@ class ModelSource:
                 "specular_fraction": self.uniform.specular_fraction,
                 "transmissivity": self.uniform.transmissivity,
             }
+            if self.uniform.emissivity is not None:
+                attrs["uniform_material"]["emissivity"] = self.uniform.emissivity
         if self.gas:
             attrs["gas_override"] = dict(self.gas)
         if self.articulate:

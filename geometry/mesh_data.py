@@ -9,9 +9,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-#: Optical keys a mesh file may carry per material (USD ``sunwind:*`` attributes);
-#: METHOD.md "Surfaces and sides".
+#: Solar-band optical keys a mesh file may carry per material (USD ``sunwind:*`` attributes), all three
+#: or none; METHOD.md "Surfaces and sides".
 OPTICS_KEYS = ("reflectivity", "specular_fraction", "transmissivity")
+#: Keys a mesh file may carry beside ``OPTICS_KEYS``: the infrared emissivity (USD ``sunwind:emissivity``).
+OPTIONAL_OPTICS_KEYS = ("emissivity",)
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,7 +39,8 @@ class MeshData:
         Material keys named by the file (OBJ ``usemtl``, glTF material, USD bound Material).
     file_optics : mapping str -> mapping str -> float
         Optics a file carries for some of its material keys (USD ``sunwind:reflectivity``,
-        ``sunwind:specularFraction``, ``sunwind:transmissivity``), keyed by ``OPTICS_KEYS``.
+        ``sunwind:specularFraction``, ``sunwind:transmissivity`` and optionally ``sunwind:emissivity``),
+        keyed by ``OPTICS_KEYS`` and ``OPTIONAL_OPTICS_KEYS``.
     two_sided_parts : frozenset of str
         Parts the file itself declares as zero-thickness sheets lit on both sides (USD ``doubleSided``).
     part_back_material : mapping str -> str

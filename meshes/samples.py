@@ -67,7 +67,7 @@ SAMPLE_OPTICS_NOTES: dict[str, str] = {
 
 #: Hemispherical infrared emissivity ``eps`` of the sample's materials (grey; by Kirchhoff the infrared
 #: absorptance), beginning of life; sources in :data:`SAMPLE_EMISSIVITY_NOTES`, written to the materials
-#: files (the mesh files carry the solar optics only).
+#: files and carried by the USD file with the solar optics.
 SAMPLE_EMISSIVITY: dict[str, float] = {
     "mli": 0.67,
     "osr": 0.80,
@@ -289,10 +289,15 @@ def _assemble(facet: float, array_angle_deg: float) -> MeshData:
     mesh = MeshData.concatenate(parts, source=f"<{SAMPLE_NAME}>")
     return replace(
         mesh,
-        file_optics={name: dict(values) for name, values in SAMPLE_OPTICS.items()},
+        file_optics=_file_optics(),
         two_sided_parts=frozenset(SHEETS),
         part_back_material={part: back for part, (_, back) in SHEETS.items()},
     )
+
+
+def _file_optics() -> dict[str, dict[str, float]]:
+    """What the sample's USD file carries per material: the solar optics and the emissivity."""
+    return {name: {**values, "emissivity": SAMPLE_EMISSIVITY[name]} for name, values in SAMPLE_OPTICS.items()}
 
 
 def materials_toml(mesh: MeshData) -> str:
@@ -376,7 +381,7 @@ def write_sample_files(directory: str | Path = DATA_DIR, triangles: int = 20_000
     mesh = sample_spacecraft(triangles)
     paths = {suffix: directory / f"{SAMPLE_NAME}.{suffix}" for suffix in ("obj", "usda", "toml")}
     save_mesh(mesh, paths["obj"])
-    save_mesh(mesh, paths["usda"], optics=SAMPLE_OPTICS)
+    save_mesh(mesh, paths["usda"], optics=_file_optics())
     paths["toml"].write_text(materials_toml(mesh), encoding="utf-8")
     paths["tracking"] = directory / f"{SAMPLE_NAME}_tracking.toml"
     paths["tracking"].write_text(materials_toml(mesh) + ARRAY_DRIVE, encoding="utf-8")

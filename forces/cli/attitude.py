@@ -4,10 +4,19 @@ from __future__ import annotations
 
 import click
 
+from sunwind.forces.cli.earth import (
+    EarthRequest,
+    earth_at,
+    earth_document,
+    earth_request,
+    earth_term_options,
+    print_earth,
+)
 from sunwind.forces.cli.free_stream import FreeStream, flow_options
 from sunwind.forces.cli.options import (
     Sun,
     drag_only,
+    group,
     json_option,
     loaded,
     model_options,
@@ -81,6 +90,7 @@ def drag(
 @reference_options(sizes=True)
 @sampling_options
 @reflection_options("both")
+@group("earth", earth_term_options(place=True), earth_request)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object: srp, drag, total.")
 def forces(
     source: ModelSource,
@@ -89,16 +99,35 @@ def forces(
     references: dict,
     sampling: dict,
     reflections: ReflectionSettings,
+    earth: EarthRequest | None,
     as_json: bool,
 ) -> None:
-    """Solar-radiation pressure and free-molecular drag together for one attitude, and their total."""
+    """Solar-radiation pressure and free-molecular drag together for one attitude, and their total
+    (with --earth-radiation, the Earth's albedo and infrared too, and --thermal the thermal recoil)."""
     model = posed(loaded(source, **references), sun.vector, "forces")
     light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     gas = _drag(model, flow, reflections, sampling)
+    if earth is None:
+        if as_json:
+            print_json(model.craft, forces_document(light, gas))
+        else:
+            print_forces(light, gas)
+        return
+    result, state = earth_at(model, earth, sun, flow, reflections, sampling)
+    terms = [(band.name, band.force_N, band.torque_Nm) for band in (result.albedo, result.infrared)]
+    if state is not None:
+        terms.append(("thermal", state.force_N, state.torque_Nm))
     if as_json:
-        print_json(model.craft, forces_document(light, gas))
+        document = forces_document(light, gas, terms)
+        planet = earth_document(result, state)
+        for key in ("albedo", "infrared", "thermal", "parts"):
+            if key in planet:
+                document[key] = planet.pop(key)
+        document["planet"] = planet
+        print_json(model.craft, document)
     else:
-        print_forces(light, gas)
+        print_forces(light, gas, terms)
+        print_earth(result, state, title="  planet:")
 
 
 def _drag(model: Model, flow: FreeStream, reflections: ReflectionSettings, sampling: dict) -> DragResult:

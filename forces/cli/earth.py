@@ -11,6 +11,7 @@ from pathlib import Path
 import click
 import numpy as np
 
+from sunwind.forces.cli.free_stream import FreeStream
 from sunwind.forces.cli.options import (
     Sun,
     group,
@@ -25,12 +26,14 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.report import about, print_json, vector
 from sunwind.forces.earth import DEFAULT_STEP_DEG, EarthResult, Place, earth_radiation
-from sunwind.forces.model import ModelSource
+from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
+from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS, sphere_visible
 from sunwind.forces.planet.bodies import PLANETS, PlanetLight, planet
 from sunwind.forces.reflection import ReflectionSettings
-from sunwind.forces.thermal import ThermalModel, ThermalState, infrared_exchange
+from sunwind.forces.tables.jobs import SrpSetup
+from sunwind.forces.thermal import ThermalState, thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
 
@@ -42,7 +45,7 @@ AU_M = 149_597_870_700.0
 class Below:
     """The planet options of a command."""
 
-    nadir: tuple[float, float, float]
+    nadir: tuple[float, float, float] | None
     altitude_km: float
     planet: str
     albedo: float | None
@@ -54,24 +57,39 @@ class Below:
     step_deg: float
 
 
+def _light_options() -> list:
+    """The planet's albedo and infrared law."""
+    return [
+        click.option("--albedo", type=float, help="Bond albedo [default the planet's: Earth 0.30]."),
+        click.option("--albedo-model", type=click.Choice(["lambert", "knocke"]), default="lambert",
+                     show_default=True,
+                     help="knocke: Knocke's zonal, seasonal albedo and emissivity of the Earth."),
+        click.option("--earth-ir", type=float, metavar="W_M2",
+                     help="Uniform infrared exitance at the surface [W/m^2] [default (1 - A) S / 4]."),
+    ]  # fmt: skip
+
+
+def _earth(name: str) -> click.decorators.FC:
+    """``--earth X Y Z`` as keyword ``name``."""
+    return click.option("--earth", name, nargs=3, type=float, metavar="X Y Z",
+                        help="Direction from the spacecraft to the planet's centre, body frame.")  # fmt: skip
+
+
+_POLE = click.option("--pole", nargs=3, type=float, metavar="X Y Z",
+                     help="The planet's north pole, body frame (latitudes for knocke).")  # fmt: skip
+
+
 def planet_options() -> click.decorators.FC:
     """The planet's place and its albedo and infrared: keyword ``below``, a :class:`Below`."""
     options = [
-        click.option("--earth", "nadir", nargs=3, type=float, required=True, metavar="X Y Z",
-                     help="Direction from the spacecraft to the planet's centre, body frame."),
+        _earth("nadir"),
         click.option("--altitude", "altitude_km", type=float, required=True, metavar="H_KM",
                      help="Height above the planet's surface [km]."),
         click.option("--planet", type=click.Choice(list(PLANETS)), default="earth", show_default=True,
                      help="The planet below: its radius, albedo and infrared law."),
-        click.option("--albedo", type=float, help="Bond albedo [default the planet's: Earth 0.30]."),
-        click.option("--albedo-model", type=click.Choice(["lambert", "knocke"]), default="lambert",
-                     show_default=True,
-                     help="knocke: Knocke's zonal, seasonal albedo and emissivity (needs --epoch, --pole)."),
+        *_light_options(),
         click.option("--epoch", help="UTC date and time, ISO 8601 (the season of --albedo-model knocke)."),
-        click.option("--pole", nargs=3, type=float, metavar="X Y Z",
-                     help="The planet's north pole, body frame (latitudes for knocke)."),
-        click.option("--earth-ir", type=float, metavar="W_M2",
-                     help="Uniform infrared exitance at the surface [W/m^2] [default (1 - A) S / 4]."),
+        _POLE,
         click.option("--eclipse", type=click.Choice(ECLIPSE_MODELS), default="conical", show_default=True,
                      help="The planet's shadow on the Sun (sunlight in the heat budget)."),
         click.option("--step", "step_deg", type=float, default=DEFAULT_STEP_DEG, show_default=True,
@@ -80,10 +98,77 @@ def planet_options() -> click.decorators.FC:
     return group("below", options, lambda values: Below(**values))
 
 
+@dataclass(frozen=True)
+class EarthRequest:
+    """The Earth's radiation asked of ``forces`` or ``orbit`` (``--earth-radiation``)."""
+
+    albedo: float | None
+    albedo_model: str
+    earth_ir: float | None
+    step_deg: float
+    thermal: bool
+    nadir: tuple[float, float, float] | None = None
+    pole: tuple[float, float, float] | None = None
+
+    def terms(self, surface: SrpSetup) -> EarthTerms:
+        """The orbit's settings, with the sampling and reflections of ``surface``."""
+        return EarthTerms(
+            surface, self.albedo, self.earth_ir, self.albedo_model == "knocke", self.step_deg, self.thermal
+        )
+
+
+def earth_term_options(*, place: bool) -> list:
+    """``--earth-radiation`` and its settings (``--earth`` and ``--pole`` too where the command has no
+    orbit); :func:`earth_request` makes them an :class:`EarthRequest`."""
+    return [
+        click.option("--earth-radiation", "earth_on", is_flag=True,
+                     help="Add the Earth's albedo and infrared pressure (materials need an emissivity)."),
+        *_light_options(),
+        click.option("--earth-step", "step_deg", type=float, default=DEFAULT_STEP_DEG, show_default=True,
+                     help="Cell size of the Earth's disc for shadowing and reflections [deg]."),
+        click.option("--thermal", is_flag=True,
+                     help="With --earth-radiation: each side's equilibrium temperature and the recoil of "
+                     "its infrared."),
+        *([_earth("earth_nadir"), _POLE] if place else []),
+    ]  # fmt: skip
+
+
+def earth_request(values: dict) -> EarthRequest | None:
+    """The :class:`EarthRequest` of the options of :func:`earth_term_options`, taken out of ``values``
+    (None without ``--earth-radiation``, whose settings are then refused)."""
+    mine = {key: values.pop(key) for key in EARTH_KEYS if key in values}
+    if "earth_nadir" in mine:
+        mine["nadir"] = mine.pop("earth_nadir")
+    if not mine.pop("earth_on"):
+        given = [
+            flag
+            for flag, value in (
+                ("--albedo", mine["albedo"]),
+                ("--earth-ir", mine["earth_ir"]),
+                ("--thermal", mine["thermal"] or None),
+                ("--earth", mine.get("nadir")),
+                ("--pole", mine.get("pole")),
+                ("--albedo-model knocke", mine["albedo_model"] == "knocke" or None),
+            )
+            if value is not None
+        ]
+        if given:
+            verb = "needs" if len(given) == 1 else "need"
+            raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
+        return None
+    return EarthRequest(**mine)
+
+
+#: The keyword names of :func:`earth_term_options`.
+EARTH_KEYS = ("earth_on", "albedo", "albedo_model", "earth_ir", "step_deg", "thermal", "earth_nadir", "pole")
+
+
 def place_and_light(below: Below, sun: Sun) -> tuple[Place, PlanetLight]:
     """The :class:`Place` and :class:`PlanetLight` of the options, the Sun's share behind the planet
     from ``--eclipse``."""
     body = planet(below.planet)
+    if below.nadir is None:
+        raise InputError("give --earth X Y Z: the body-frame direction to the planet's centre")
     nadir = unit_vector(below.nadir, "--earth")
     julian = None
     if below.albedo_model == "knocke":
@@ -124,31 +209,62 @@ def earth(
 ) -> None:
     """Albedo and infrared pressure from the planet below, per-part absorbed power and temperatures."""
     model = posed(loaded(source, **references), sun.vector, "earth")
+    result, state = radiation(model, below, sun, reflections, sampling, thermal=heat["thermal"])
+    if heat["sides_csv"] is not None:
+        _write_sides(heat["sides_csv"], result, state)
+    if as_json:
+        print_json(model.craft, earth_document(result, state))
+    else:
+        print_earth(result, state)
+
+
+def radiation(
+    model: Model, below: Below, sun: Sun, reflections: ReflectionSettings, sampling: dict, *, thermal: bool
+) -> tuple[EarthResult, ThermalState | None]:
+    """The planet's radiation on ``model`` at the place of ``below`` with the command's reflections and
+    shadow ``sampling``, and (``thermal``) the equilibrium temperatures and recoil."""
     place, light = place_and_light(below, sun)
     result = earth_radiation(
         model, place, light, reflections=reflections, step_deg=below.step_deg, **sampling
     )
-    state = None
-    if heat["thermal"]:
-        craft = model.craft
-        nodes = ThermalModel(craft, infrared_exchange(craft, reflections))
-        state = nodes.equilibrium(sum(result.absorbed_side_W().values()), result.reference_point_m)
-    if heat["sides_csv"] is not None:
-        _write_sides(heat["sides_csv"], result, state)
-    if as_json:
-        document = result.to_json()
-        if state is not None:
-            document["thermal"] = state.to_json()
-            _add_temperatures(document["parts"], result, state)
-        print_json(model.craft, document)
-    else:
-        _print(result, state)
+    if not thermal:
+        return result, None
+    nodes = thermal_model(model.craft, reflections)
+    return result, nodes.equilibrium(sum(result.absorbed_side_W().values()), result.reference_point_m)
+
+
+def earth_at(
+    model: Model, request: EarthRequest, sun: Sun, where: FreeStream, reflections: ReflectionSettings,
+    sampling: dict,
+) -> tuple[EarthResult, ThermalState]:  # fmt: skip
+    """:func:`radiation` for ``sunwind forces``: the Earth along ``--earth``, ``--altitude`` and
+    ``--time`` from the flow options, the Sun's share behind the Earth by the conical model."""
+    if request.nadir is None or where.altitude_km is None:
+        raise InputError(
+            "--earth-radiation needs --earth X Y Z (body-frame direction to the Earth's centre) and "
+            "--altitude H_KM",
+            hint="e.g. --earth 0 0 1 --altitude 500",
+        )
+    below = Below(
+        request.nadir, where.altitude_km, "earth", request.albedo, request.albedo_model, where.time,
+        request.pole, request.earth_ir, "conical", request.step_deg,
+    )  # fmt: skip
+    return radiation(model, below, sun, reflections, sampling, thermal=request.thermal)
+
+
+def earth_document(result: EarthResult, state: ThermalState | None) -> dict:
+    """The JSON document of ``sunwind earth``: the result's, with ``thermal`` and each part's
+    ``temperature_K`` when there is a thermal state."""
+    document = result.to_json()
+    if state is not None:
+        document["thermal"] = state.to_json()
+        _add_temperatures(document["parts"], result, state)
+    return document
 
 
 def _part_temperatures(result: EarthResult, state: ThermalState) -> dict[str, float]:
     """Area-weighted mean temperature of each part [K]."""
-    areas = result.craft.side_areas
-    mean = result.per_part(areas * state.temperature_K) / result.per_part(areas)
+    mean = result.part_temperatures(state.temperature_K)
     return dict(zip(result.craft.part_names, mean.tolist(), strict=True))
 
 
@@ -181,10 +297,11 @@ def _write_sides(path: Path, result: EarthResult, state: ThermalState | None) ->
         raise InputError(f"cannot write the sides file ({error.strerror})", path=str(path)) from None
 
 
-def _print(result: EarthResult, state: ThermalState | None) -> None:
-    """The human-readable report."""
+def print_earth(result: EarthResult, state: ThermalState | None, title: str | None = None) -> None:
+    """The human-readable report, under ``title`` (default the command's header)."""
     craft, place = result.craft, result.place
-    print(f"sunwind earth: {craft.source} ({craft.n_facets} triangles, {len(craft.part_names)} parts)")
+    parts = f"({craft.n_facets} triangles, {len(craft.part_names)} parts)"
+    print(title or f"sunwind earth: {craft.source} {parts}")
     print("  frame            body frame of the mesh; SI units")
     print(f"  planet           {result.light.description}")
     print(f"  nadir            {vector(place.nadir, '{:+.6f}')}  altitude {place.altitude_km:g} km  "

@@ -44,6 +44,9 @@ class FreeStream:
     speed_m_s: float | None
     atmosphere: Atmosphere | None
     sampling: GasSampling = field(default_factory=GasSampling)
+    #: where the spacecraft is, as given (for the Earth's radiation): ``--altitude`` [km], ``--time``
+    altitude_km: float | None = None
+    time: str | None = None
 
 
 _FLOW = [
@@ -132,7 +135,8 @@ def flow_options(directed: bool) -> Callable:
 
 def _free_stream(values: dict, directed: bool) -> FreeStream:
     stream = _flow(values, directed)
-    return replace(stream, sampling=GasSampling(sky_rays=values["sky_rays"]))
+    where = {"altitude_km": values["altitude"], "time": values["time"]}
+    return replace(stream, sampling=GasSampling(sky_rays=values["sky_rays"]), **where)
 
 
 def _flow(values: dict, directed: bool) -> FreeStream:

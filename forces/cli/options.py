@@ -133,6 +133,12 @@ _MODEL_OPTIONS = [
     click.option("--specular-fraction", type=float, help="Uniform material: specular share beta."),
     click.option("--transmissivity", type=float, help="Uniform material: transmissivity sigma [default 0]."),
     click.option(
+        "--emissivity",
+        type=float,
+        help="Uniform material: hemispherical infrared emissivity eps, 0 to 1 [default none; "
+        "sunwind earth needs one].",
+    ),
+    click.option(
         "--two-sided", multiple=True, metavar="GLOB", help="Treat matching parts as two-sided sheets."
     ),
     click.option("--unit", help="Mesh length unit: m, mm, cm, in [default: the file's own, else m]."),
@@ -150,14 +156,17 @@ def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
     """The command-line uniform material, or None when no optics flag gives one; ``gas`` holds the
     gas-surface flags given (keys of a materials file)."""
     rho, beta, sigma = values["reflectivity"], values["specular_fraction"], values["transmissivity"]
-    if rho is None and beta is None and sigma is None:
+    eps = values["emissivity"]
+    if rho is None and beta is None and sigma is None and eps is None:
         return None
     if rho is None or beta is None:
         raise InputError(
             "a uniform material needs --reflectivity and --specular-fraction",
-            hint="e.g. --reflectivity 0.3 --specular-fraction 0.5 [--transmissivity 0]",
+            hint="e.g. --reflectivity 0.3 --specular-fraction 0.5 [--transmissivity 0] [--emissivity 0.8]",
         )
     optics = {"reflectivity": rho, "specular_fraction": beta, "transmissivity": sigma or 0.0}
+    if eps is not None:
+        optics["emissivity"] = eps
     return Material.checked("uniform", {**optics, **(gas or {})}, source="command line")
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
+from sunwind.forces.cli.earth import EarthRequest, earth_request, earth_term_options
 from sunwind.forces.cli.options import (
     drag_only,
     group,
@@ -202,12 +203,13 @@ _ENVIRONMENT_OPTIONS = [
     click.option("--temperature", type=float, help="Fixed atmosphere: temperature [K]."),
     click.option("--composition", help='Fixed atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),
     click.option("--mass", type=float, help="Spacecraft mass [kg]: ballistic and SRP coefficients per kg."),
+    *earth_term_options(place=False),
 ]
 
 
 @dataclass(frozen=True)
 class Environment:
-    """The terms asked for, the Sun, the eclipse model and the air."""
+    """The terms asked for, the Sun, the eclipse model, the air and the Earth's radiation."""
 
     srp: bool
     drag: bool | None
@@ -217,9 +219,11 @@ class Environment:
     flux_W_m2: float
     air: object
     mass_kg: float | None
+    earth: EarthRequest | None
 
 
 def _environment(values: dict) -> Environment:
+    earth = earth_request(values)
     fixed = [values[k] for k in ("density", "temperature", "composition")]
     if any(v is not None for v in fixed):
         if any(v is None for v in fixed):
@@ -242,6 +246,7 @@ def _environment(values: dict) -> Environment:
         solar_flux(values["flux"]),
         air,
         mass,
+        earth,
     )
 
 
@@ -343,14 +348,19 @@ def orbit(
     if drag_on:
         molecules = replace(reflections, mode=output["gas_reflections"])
         drag = GasOptions(sky_rays=output["sky_rays"], reflections=molecules, **shared)
-    model = loaded(source if srp is not None else drag_only(source), **references)
+    planet = None
+    if environment.earth is not None:
+        surface = SrpSetup(flux_W_m2=environment.flux_W_m2, reflections=reflections, **shared)
+        planet = environment.earth.terms(surface)
+    light_needed = srp is not None or planet is not None
+    model = loaded(source if light_needed else drag_only(source), **references)
     checkpoint = (
         None
         if output["output"] is None
         else output["output"].with_name(output["output"].name + ".checkpoint")
     )
     begin = time.perf_counter()
-    for part in (srp, drag):  # view factors, open skies: timed apart from the steps
+    for part in (srp, drag, planet):  # view factors, open skies: timed apart from the steps
         if part is not None:
             part.precompute(model)
     start = time.perf_counter()
@@ -358,7 +368,7 @@ def orbit(
     with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
         task = bar.add_task("orbit", total=len(trajectory.time_s))
         run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
-        loads = Loads(srp, drag, environment.air, output["hinge_step"])
+        loads = Loads(srp, drag, environment.air, output["hinge_step"], planet)
         result = fly(
             model,
             trajectory,
@@ -418,6 +428,17 @@ def _print_summary(name: str, result, mass_kg: float | None) -> None:
     )
     print(f"  mean force body {vector(np.array(summary['mean_force_body_N']))} N")
     print(f"  mean torque body {vector(np.array(summary['mean_torque_body_Nm']))} N m")
+    for term in ("albedo", "infrared", "thermal"):
+        if f"mean_{term}_force_body_N" in summary:
+            print(f"    of it {term:<9}{vector(np.array(summary[f'mean_{term}_force_body_N']))} N")
+    for name, part in summary.get("parts", {}).items():
+        heat = ", ".join(f"{part[f'mean_{k}_W']:.4g}" for k in ("solar", "albedo", "infrared", "reflected"))
+        span = (
+            f"; {part['min_temperature_K']:.1f} to {part['max_temperature_K']:.1f} K"
+            if "min_temperature_K" in part
+            else ""
+        )
+        print(f"  part {name}: mean absorbed solar, albedo, infrared, reflected {heat} W{span}")
     print(f"  largest torque {summary['max_torque_Nm']:.4e} N m at t = {summary['max_torque_time_s']:g} s")
     print(f"  angular impulse body {vector(np.array(summary['angular_impulse_body_Nms']))} N m s")
     print(f"  angular impulse ECI  {vector(np.array(summary['angular_impulse_eci_Nms']))} N m s")

@@ -4,11 +4,15 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
 from sunwind.forces.results import FRAME, VALIDITY, DragResult, SrpResult
 from sunwind.geometry.spacecraft import Spacecraft
+
+#: Loads added to a total: (name, force [N] (3,), torque [N m] (3,)) each.
+Terms = Sequence[tuple[str, np.ndarray, np.ndarray]]
 
 
 def vector(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
@@ -130,11 +134,14 @@ def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
     print(f"  validity         {VALIDITY}")
 
 
-def forces_document(light: SrpResult, gas: DragResult) -> dict:
-    """The JSON document of ``sunwind forces``: both results and their total."""
+def forces_document(light: SrpResult, gas: DragResult, extra: Terms = ()) -> dict:
+    """The JSON document of ``sunwind forces``: both results, the ``extra`` terms' loads (name, force
+    [N], torque [N m]) and the total of all."""
+    force = light.force_N + gas.force_N + sum((f for _, f, _ in extra), np.zeros(3))
+    torque = light.torque_Nm + gas.torque_Nm + sum((t for _, _, t in extra), np.zeros(3))
     total = {
-        "force_N": (light.force_N + gas.force_N).tolist(),
-        "torque_Nm": (light.torque_Nm + gas.torque_Nm).tolist(),
+        "force_N": force.tolist(),
+        "torque_Nm": torque.tolist(),
         "reference_point_m": light.reference_point_m.tolist(),
         "reference_point": light.reference_point,
         "frame": FRAME,
@@ -142,10 +149,11 @@ def forces_document(light: SrpResult, gas: DragResult) -> dict:
     return {"srp": light.to_json(), "drag": gas.to_json(), "total": total}
 
 
-def print_forces(light: SrpResult, gas: DragResult) -> None:
-    """The human-readable report of ``sunwind forces``."""
+def print_forces(light: SrpResult, gas: DragResult, extra: Terms = ()) -> None:
+    """The human-readable report of ``sunwind forces`` (the total with the ``extra`` terms)."""
     craft = light.craft
-    force, torque = light.force_N + gas.force_N, light.torque_Nm + gas.torque_Nm
+    force = light.force_N + gas.force_N + sum((f for _, f, _ in extra), np.zeros(3))
+    torque = light.torque_Nm + gas.torque_Nm + sum((t for _, _, t in extra), np.zeros(3))
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
     print_articulation(craft)
     print(f"  total force  [N]    {vector(force)}  |F| = {np.linalg.norm(force):.6e}")

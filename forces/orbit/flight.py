@@ -12,16 +12,21 @@ import erfa
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.gas.flow import EARTH_ROTATION
+from sunwind.forces.gas.flow import EARTH_RADIUS, EARTH_ROTATION
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.orbit.attitude import AttitudeLaw, quaternion_file_attitude
 from sunwind.forces.orbit.eclipse import solar_fraction
 from sunwind.forces.orbit.results import OrbitResult
 from sunwind.forces.orbit.steps import (
     FLUX,
+    FRACTION,
+    HEIGHT,
+    NADIR,
     PLACE,
+    POLE,
     ROW_WIDTH,
     SUN,
+    SUNLIGHT,
     TIME,
     VELOCITY,
     Loads,
@@ -72,8 +77,10 @@ def fly(
     """
     model, run = as_model(model), run or SweepRun()
     srp = loads.srp
-    if srp is None and loads.drag is None:
-        raise InputError("give srp, drag or both: what the orbit computes", parameters=("srp", "drag"))
+    if srp is None and loads.drag is None and loads.earth is None:
+        raise InputError(
+            "give srp, drag or earth (or more): what the orbit computes", parameters=("srp", "drag", "earth")
+        )
     time_s, r, v = trajectory.time_s, trajectory.position_m, trajectory.velocity_m_s
     sun_m = sun_position(trajectory.epoch, time_s) if sun_eci is None else fixed_sun(sun_eci, len(time_s))
     if attitude.kind == "csv":
@@ -89,17 +96,36 @@ def fly(
     rows[:, TIME] = time_s
     rows[:, SUN] = np.einsum("nji,nj->ni", body_to_eci, to_sun / distance[:, None])
     flux_1au = SOLAR_FLUX_1AU if srp is None else srp.flux_W_m2
-    rows[:, FLUX] = flux_1au * fraction * (AU_M / distance) ** 2
+    rows[:, SUNLIGHT] = flux_1au * (AU_M / distance) ** 2
+    rows[:, FRACTION] = fraction
+    rows[:, FLUX] = rows[:, SUNLIGHT] * fraction
+    radius = np.linalg.norm(r, axis=1)
+    rows[:, NADIR] = np.einsum("nji,nj->ni", body_to_eci, -r / radius[:, None])
+    rows[:, HEIGHT] = (radius - EARTH_RADIUS) / 1e3
+    rows[:, POLE] = body_to_eci[:, 2, :]  # GCRF z in the body frame
     air_velocity = EARTH_ROTATION * np.stack([-r[:, 1], r[:, 0], np.zeros(len(r))], axis=1)
     rows[:, VELOCITY] = np.einsum("nji,nj->ni", body_to_eci, v - air_velocity)
     if loads.drag is not None:
         rows[:, PLACE] = geodetic(trajectory)
         if isinstance(loads.air, SpaceWeather):
             loads.air.check(rows[:, PLACE][:, 0])
-    setup = OrbitSetup.of(loads, trajectory.epoch)
+    if loads.earth is not None:
+        check_height(rows[:, HEIGHT])
+    setup = OrbitSetup.of(loads, trajectory.epoch, len(model.craft.part_names))
     records = run_jobs(model, [Job(setup, rows)], run)["orbit"]
     steps = StepInputs(rows, body_to_eci, fraction)
     return OrbitResult.of(model, trajectory, attitude, setup, steps, records)
+
+
+def check_height(height_km: NDArray[np.float64]) -> None:
+    """Refuse the Earth's radiation on an orbit that goes below the surface of the sphere."""
+    low = float(height_km.min())
+    if not low > 0:
+        raise InputError(
+            f"the orbit reaches {low:.1f} km above the Earth's sphere: no place for its radiation",
+            hint="check the orbit (a trajectory in metres, GCRF)",
+            parameters=("earth",),
+        )
 
 
 def check_sun(sun_eci: NDArray[np.float64] | None, moon: bool) -> None:

@@ -44,6 +44,23 @@ SERIES = {
     "density_kg_m3": "kg/m^3",
     "dynamic_pressure_Pa": "Pa",
 }
+#: Series of a run with the Earth's radiation (``thermal_*`` and ``part_temperature_K`` with thermal
+#: recoil); ``part_*`` are (n, n_parts), columns in ``part_names`` order.
+EARTH_SERIES = {
+    "albedo_force_body_N": "N",
+    "albedo_torque_body_Nm": "N m",
+    "infrared_force_body_N": "N",
+    "infrared_torque_body_Nm": "N m",
+    "thermal_force_body_N": "N",
+    "thermal_torque_body_Nm": "N m",
+    "part_solar_W": "W",
+    "part_albedo_W": "W",
+    "part_infrared_W": "W",
+    "part_reflected_W": "W",
+    "part_temperature_K": "K",
+}
+#: Terms a run can add up, each with its force and torque series.
+TERMS = ("srp", "drag", "albedo", "infrared", "thermal")
 
 
 @dataclass(frozen=True)
@@ -59,6 +76,13 @@ class OrbitResult:
     period_s: float
     flux_1au_W_m2: float
     terms: tuple[str, ...] = field(default=())
+    part_names: tuple[str, ...] = field(default=())
+
+    @property
+    def names(self) -> list[str]:
+        """The output series of this run, in order (:data:`SERIES`, then those of :data:`EARTH_SERIES`
+        it has)."""
+        return [*SERIES, *(name for name in EARTH_SERIES if name in self.series)]
 
     @classmethod
     def of(
@@ -75,8 +99,9 @@ class OrbitResult:
         fraction = steps.solar_fraction
         per_step = [setup.angles(model, row) for row in rows]
         angles = {hinge.pattern: np.array([a[hinge.pattern] for a in per_step]) for hinge in model.hinges}
-        force = records["srp_force_body_N"] + records["drag_force_body_N"]
-        torque = records["srp_torque_body_Nm"] + records["drag_torque_body_Nm"]
+        terms = tuple(term for term in TERMS if f"{term}_force_body_N" in records)
+        force = sum(records[f"{term}_force_body_N"] for term in terms)
+        torque = sum(records[f"{term}_torque_body_Nm"] for term in terms)
         torque_eci = np.einsum("nij,nj->ni", body_to_eci, torque)
         series = {
             "time_s": t,
@@ -96,8 +121,14 @@ class OrbitResult:
             "srp_flux_W_m2": rows[:, FLUX],
             "v_rel_body_m_s": rows[:, VELOCITY],
         }
+        for name in EARTH_SERIES:
+            if name in records:
+                values = records[name]
+                series[name] = values.reshape(len(t), -1) if name.startswith("part_") else values
         point, name = model.reference()
-        terms = tuple(term for term, part in (("srp", setup.srp), ("drag", setup.drag)) if part is not None)
+        asked = {"srp": setup.srp, "drag": setup.drag, "albedo": setup.earth, "infrared": setup.earth}
+        asked["thermal"] = setup.earth if setup.earth is not None and setup.earth.thermal else None
+        terms = tuple(term for term in TERMS if asked[term] is not None)
         attributes = {
             "frame": "body loads in the body frame, ECI = GCRF",
             "epoch_utc": trajectory.epoch.iso(),
@@ -109,7 +140,8 @@ class OrbitResult:
             "settings": setup.describe(),
         }
         flux = setup.srp.flux_W_m2 if setup.srp is not None else float("nan")
-        return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms)
+        parts = tuple(model.craft.part_names) if setup.earth is not None else ()
+        return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms, parts)
 
     def summary(self, mass_kg: float | None = None) -> dict[str, object]:
         """Orbit averages, the eclipses (their start and end [s], and the seconds of full shadow the
@@ -152,6 +184,12 @@ class OrbitResult:
         if "srp" in self.terms and s["srp_flux_W_m2"].sum() > 0:
             along = -np.einsum("ij,ij->i", s["srp_force_body_N"], s["sun_body"])
             out["srp_area_m2"] = float(along.sum() / radiation_pressure(1.0) / s["srp_flux_W_m2"].sum())
+        for term in ("albedo", "infrared", "thermal"):
+            if term in self.terms:
+                out[f"mean_{term}_force_body_N"] = _mean(t, s[f"{term}_force_body_N"])
+                out[f"mean_{term}_torque_body_Nm"] = _mean(t, s[f"{term}_torque_body_Nm"])
+        if self.part_names:
+            out["parts"] = self._part_summary()
         if mass_kg is not None:
             out["mass_kg"] = mass_kg
             for area, name in (
@@ -162,10 +200,34 @@ class OrbitResult:
                     out[name] = out[area] / mass_kg
         return out
 
+    def _part_summary(self) -> dict[str, dict[str, float]]:
+        """Per part: the orbit-mean absorbed power by source [W] and the range and mean of the
+        temperature [K] (with thermal recoil)."""
+        s, t = self.series, self.series["time_s"]
+        out: dict[str, dict[str, float]] = {name: {} for name in self.part_names}
+        for source in ("solar", "albedo", "infrared", "reflected"):
+            for name, mean in zip(
+                self.part_names, np.atleast_1d(_mean(t, s[f"part_{source}_W"])), strict=True
+            ):
+                out[name][f"mean_{source}_W"] = float(mean)
+        if "part_temperature_K" in s:
+            temperature = s["part_temperature_K"]
+            means = np.atleast_1d(_mean(t, temperature))
+            for k, name in enumerate(self.part_names):
+                out[name] |= {
+                    "mean_temperature_K": float(means[k]),
+                    "min_temperature_K": float(temperature[:, k].min()),
+                    "max_temperature_K": float(temperature[:, k].max()),
+                }
+        return out
+
     def to_json(self, mass_kg: float | None = None) -> dict[str, object]:
-        """One object: every series (one row per step) by its name, ``hinge_angles_deg`` (by glob), the
-        run's attributes and the ``summary``."""
-        out: dict[str, object] = {name: self.series[name].tolist() for name in SERIES}
+        """One object: every series (one row per step) by its name, ``part_names`` (the columns of the
+        ``part_*`` series) with the Earth's radiation, ``hinge_angles_deg`` (by glob), the run's
+        attributes and the ``summary``."""
+        out: dict[str, object] = {name: self.series[name].tolist() for name in self.names}
+        if self.part_names:
+            out["part_names"] = list(self.part_names)
         if self.hinge_angles_deg:
             out["hinge_angles_deg"] = {k: v.tolist() for k, v in self.hinge_angles_deg.items()}
         out["attributes"] = self.attributes
@@ -173,27 +235,30 @@ class OrbitResult:
         return out
 
     def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
-        """The series as an xarray Dataset on dimensions ``time`` and ``xyz``, units in attributes."""
-        variables = {}
-        for name, unit in SERIES.items():
+        """The series as an xarray Dataset on dimensions ``time``, ``xyz`` and ``part``, units in
+        attributes."""
+        variables, units = {}, SERIES | EARTH_SERIES
+        for name in self.names:
             values = self.series[name]
-            dims = ("time", "xyz") if values.ndim == 2 else ("time",)
-            variables[name] = xr.Variable(dims, values, {"units": unit})
+            dims = ("time",) if values.ndim == 1 else ("time", "part" if name.startswith("part_") else "xyz")
+            variables[name] = xr.Variable(dims, values, {"units": units[name]})
         for pattern, angles in self.hinge_angles_deg.items():
             variables[f"hinge_angle_deg[{pattern}]"] = xr.Variable(("time",), angles, {"units": "deg"})
-        summary = {
-            f"summary_{k}": (np.asarray(v) if isinstance(v, list) else v)
-            for k, v in self.summary(mass_kg).items()
-        }
+        summary = {f"summary_{k}": _attribute(v) for k, v in self.summary(mass_kg).items()}
         attrs = {k: (str(v) if isinstance(v, dict) else v) for k, v in self.attributes.items()}
-        return xr.Dataset(variables, coords={"xyz": ["x", "y", "z"]}, attrs=attrs | summary)
+        coords = {"xyz": ["x", "y", "z"]} | ({"part": list(self.part_names)} if self.part_names else {})
+        return xr.Dataset(variables, coords=coords, attrs=attrs | summary)
 
     def write_csv(self, path: Path) -> None:
-        """One row per step, vectors as ``name_x``, ``name_y``, ``name_z`` columns."""
+        """One row per step, vectors as ``name_x``, ``name_y``, ``name_z`` columns, per-part series as
+        ``name[PART]``."""
         columns, header = [], []
-        for name in SERIES:
+        for name in self.names:
             values = self.series[name]
-            if values.ndim == 2:
+            if name.startswith("part_"):
+                columns += list(values.T)
+                header += [f"{name}[{part}]" for part in self.part_names]
+            elif values.ndim == 2:
                 columns += [values[:, i] for i in range(3)]
                 header += [f"{name}_{axis}" for axis in "xyz"]
             else:
@@ -206,6 +271,14 @@ class OrbitResult:
             writer = csv.writer(handle)
             writer.writerow(header)
             writer.writerows(np.stack(columns, axis=1).tolist())
+
+
+def _attribute(value: object) -> object:
+    """A summary value as a netCDF attribute: lists flat (the eclipses as start, end pairs), a table as
+    its text."""
+    if isinstance(value, list):
+        return np.asarray(value, dtype=np.float64).ravel()
+    return str(value) if isinstance(value, dict) else value
 
 
 def _impulse(t: NDArray[np.float64], torque: NDArray[np.float64]) -> NDArray[np.float64]:

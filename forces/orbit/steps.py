@@ -3,9 +3,11 @@ inputs in, SRP and drag loads in the body frame out. Steps run in checkpointed c
 Dask, exactly as a sweep's attitudes (:func:`sunwind.forces.tables.engine.run_jobs`).
 
 A row holds what the step needs and nothing it has to look up: the time, the body-frame Sun direction,
-the solar flux at the spacecraft (eclipse and distance applied), ``v_rel`` in the body frame and the
-geodetic place of the atmosphere. Every step calls :func:`~sunwind.forces.srp.srp` and
-:func:`~sunwind.forces.drag.drag` as the single-attitude commands do.
+the solar flux at the spacecraft (eclipse and distance applied), ``v_rel`` in the body frame, the
+geodetic place of the atmosphere, and for the Earth's radiation the body-frame directions to the Earth's
+centre and its pole, the height above the sphere, the flux without eclipse and the visible share of the
+Sun. Every step calls :func:`~sunwind.forces.srp.srp`, :func:`~sunwind.forces.drag.drag` and
+:func:`~sunwind.forces.earth.earth_radiation` as the single-attitude commands do.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.drag import drag
+from sunwind.forces.earth import Place
 from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning
 from sunwind.forces.gas.msis import (
     FREE_MOLECULAR_MIN_ALTITUDE_KM,
@@ -27,13 +30,15 @@ from sunwind.forces.gas.msis import (
 )
 from sunwind.forces.model import Model
 from sunwind.forces.orbit.clock import Epoch
+from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.srp import srp
 from sunwind.forces.tables.jobs import GasOptions, Records, SrpSetup, empty_records
 from sunwind.geometry.errors import InputError
 
 #: Columns of a step's row of inputs.
 TIME, SUN, FLUX, VELOCITY, PLACE = 0, slice(1, 4), 4, slice(5, 8), slice(8, 11)
-ROW_WIDTH = 11
+NADIR, HEIGHT, POLE, SUNLIGHT, FRACTION = slice(11, 14), 14, slice(15, 18), 18, 19
+ROW_WIDTH = 20
 
 
 @dataclass(frozen=True)
@@ -90,14 +95,16 @@ class SpaceWeather:
 class Loads:
     """What an orbit run computes: the SRP settings (None: no SRP; their ``flux_W_m2`` is the flux at
     1 au), the drag settings (None: no drag; each step has its own flow), the air (NRLMSIS space
-    weather by default, or one fixed atmosphere), and the step [deg] to which tracked and scheduled
+    weather by default, or one fixed atmosphere), the step [deg] to which tracked and scheduled
     hinge angles are rounded (0: exact), so that steps share posed models and what their caches hold
-    (view factors are made again at every new pose)."""
+    (view factors are made again at every new pose), and the Earth's albedo, infrared and thermal
+    recoil (None: none)."""
 
     srp: SrpSetup | None = None
     drag: GasOptions | None = None
     air: SpaceWeather | Atmosphere = field(default_factory=SpaceWeather)
     hinge_step_deg: float = 0.0
+    earth: EarthTerms | None = None
 
 
 @dataclass(frozen=True)
@@ -112,10 +119,12 @@ class StepInputs:
 
 @dataclass(frozen=True)
 class OrbitSetup:
-    """Settings of every orbit step: those of :class:`Loads`, and the epoch of the steps' times."""
+    """Settings of every orbit step: those of :class:`Loads`, the epoch of the steps' times and the
+    number of the model's parts (the width of the per-part records)."""
 
     kind: ClassVar[str] = "orbit"
-    fields: ClassVar[dict[str, int]] = {
+    #: Records of every run: name -> width.
+    base_fields: ClassVar[dict[str, int]] = {
         "srp_force_body_N": 3,
         "srp_torque_body_Nm": 3,
         "drag_force_body_N": 3,
@@ -128,15 +137,23 @@ class OrbitSetup:
     air: SpaceWeather | Atmosphere
     epoch: Epoch
     hinge_step_deg: float = 0.0
+    earth: EarthTerms | None = None
+    n_parts: int = 0
 
     @classmethod
-    def of(cls, loads: Loads, epoch: Epoch) -> OrbitSetup:
-        """The settings of ``loads`` with times from ``epoch``."""
-        return cls(loads.srp, loads.drag, loads.air, epoch, loads.hinge_step_deg)
+    def of(cls, loads: Loads, epoch: Epoch, n_parts: int = 0) -> OrbitSetup:
+        """The settings of ``loads`` with times from ``epoch``, for a model of ``n_parts`` parts."""
+        return cls(loads.srp, loads.drag, loads.air, epoch, loads.hinge_step_deg, loads.earth, n_parts)
+
+    @property
+    def fields(self) -> dict[str, int]:
+        """The records of a step: name -> width."""
+        extra = {} if self.earth is None else self.earth.fields(self.n_parts)
+        return self.base_fields | extra
 
     def precompute(self, model: Model) -> None:
         """View factors and open skies, made once before the first step."""
-        for part in (self.srp, self.drag):
+        for part in (self.srp, self.drag, self.earth):
             if part is not None:
                 part.precompute(model)
 
@@ -157,6 +174,11 @@ class OrbitSetup:
                 out["drag_force_body_N"][i], out["drag_torque_body_Nm"][i] = gas.force_N, gas.torque_Nm
                 out["density_kg_m3"][i] = air.density_kg_m3
                 out["dynamic_pressure_Pa"][i] = gas.dynamic_pressure_Pa
+            if self.earth is not None:
+                place = Place(row[NADIR], float(row[HEIGHT]), row[SUN], row[POLE], float(row[FRACTION]))
+                julian = float(sum(self.epoch.tt(float(row[TIME]))))
+                for name, value in self.earth.evaluate(posed, place, float(row[SUNLIGHT]), julian).items():
+                    out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
         return out
 
     def air_at(self, row: NDArray[np.float64]) -> Atmosphere:
@@ -183,4 +205,5 @@ class OrbitSetup:
             "air": air,
             "epoch": self.epoch.iso(),
             "hinge_step_deg": self.hinge_step_deg,
+            "earth": None if self.earth is None else self.earth.describe(),
         }

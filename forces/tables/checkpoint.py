@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from sunwind.forces.model import Model
-from sunwind.forces.tables.jobs import Job, Records
+from sunwind.forces.tables.jobs import Job, Records, record_shape
 from sunwind.geometry.errors import InputError
 
 
@@ -147,7 +147,7 @@ class Checkpoint:
             return None
         records = {name: stored[name] for name in job.fields if name in stored}
         for name, width in job.fields.items():
-            shape = (hi - lo, 3) if width == 3 else (hi - lo,)
+            shape = record_shape(width, hi - lo)
             if name not in records or records[name].shape != shape or records[name].dtype != np.float64:
                 return None
         signature = (str(stored.get("settings_sha256", "")), str(stored.get("data_sha256", "")))

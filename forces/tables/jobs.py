@@ -59,8 +59,14 @@ Records = dict[str, NDArray[np.float64]]
 
 
 def empty_records(fields: dict[str, int], n: int) -> Records:
-    """Records of ``n`` attitudes with ``fields`` (name -> width), not yet filled."""
-    return {name: np.empty((n, 3) if width == 3 else n) for name, width in fields.items()}
+    """Records of ``n`` attitudes with ``fields`` (name -> width: 1 a number, else a row of that
+    many), not yet filled."""
+    return {name: np.empty(record_shape(width, n)) for name, width in fields.items()}
+
+
+def record_shape(width: int, n: int) -> tuple[int, ...]:
+    """Shape of the records of ``n`` attitudes of a field of ``width``."""
+    return (n,) if width == 1 else (n, width)
 
 
 @dataclass(frozen=True)

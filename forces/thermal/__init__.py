@@ -3,7 +3,7 @@ infrared the spacecraft sends itself (the diffuse balance with the infrared opti
 in equilibrium and in time, and the force and torque of the emitted infrared."""
 
 from sunwind.forces.thermal.balance import STEFAN_BOLTZMANN, InfraredBalance, solve_joined
-from sunwind.forces.thermal.model import ThermalModel, infrared_exchange
+from sunwind.forces.thermal.model import ThermalModel, infrared_exchange, thermal_model
 from sunwind.forces.thermal.nodes import ThermalNodes, thermal_nodes
 from sunwind.forces.thermal.state import ThermalState
 
@@ -15,5 +15,6 @@ __all__ = [
     "ThermalState",
     "infrared_exchange",
     "solve_joined",
+    "thermal_model",
     "thermal_nodes",
 ]

@@ -338,3 +338,19 @@ class ThermalModel:
                 parameters=("node_temperature_K",),
             )
         return t
+
+
+def thermal_model(craft: Spacecraft, reflections: str | ReflectionSettings = "full") -> ThermalModel:
+    """The :class:`ThermalModel` of ``craft`` with the node rules of its materials file and the infrared
+    balance of ``reflections`` (:func:`infrared_exchange`); kept in the model's cache.
+
+    Raises
+    ------
+    MaterialError
+        A side's material has no emissivity.
+    """
+    settings = ReflectionSettings.of(reflections)
+    return craft.cache.get(
+        ("thermal model", settings.mode, *settings.view_key),
+        lambda: ThermalModel(craft, infrared_exchange(craft, settings)),
+    )

@@ -19,7 +19,7 @@ from sunwind.geometry.io.obj import read_obj, write_obj
 from sunwind.geometry.io.trimesh_ import read_gltf, read_single, read_stl, write_ply, write_stl
 from sunwind.geometry.io.units import parse_unit, resolve_unit
 from sunwind.geometry.io.usd_ import PXR_NAMESPACE, composed_files, read_usd, write_usd
-from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
+from sunwind.geometry.mesh_data import OPTICS_KEYS, OPTIONAL_OPTICS_KEYS, MeshData
 
 #: Reader of each file suffix (lower case); it returns the file's data in file units.
 LOADERS: dict[str, Callable[[Path], MeshData]] = {
@@ -162,7 +162,8 @@ def save_mesh(
         The file to create or overwrite; its folder must exist.
     optics : mapping str -> mapping str -> float, optional
         Optics per material key, each with ``reflectivity``, ``specular_fraction`` and
-        ``transmissivity``; written to USD only. Default ``mesh.file_optics``.
+        ``transmissivity``, and optionally ``emissivity``; written to USD only. Default
+        ``mesh.file_optics``.
 
     Raises
     ------
@@ -182,13 +183,16 @@ def save_mesh(
         raise InputError("the mesh has no triangles to write", path=name, hint="give a mesh with faces")
     optics = mesh.file_optics if optics is None else optics
     for material, values in optics.items():
-        if set(values) != set(OPTICS_KEYS):
-            wrong = sorted(set(values) ^ set(OPTICS_KEYS))[0]
-            problem = "lack" if wrong in OPTICS_KEYS else "have an unknown key"
+        missing = set(OPTICS_KEYS) - set(values)
+        unknown = set(values) - {*OPTICS_KEYS, *OPTIONAL_OPTICS_KEYS}
+        if missing or unknown:
+            wrong = sorted(missing | unknown)[0]
+            problem = "lack" if wrong in missing else "have an unknown key"
             raise InputError(
                 f"optics of material '{material}' {problem} '{wrong}'",
                 path=name,
-                hint=f"give exactly {', '.join(OPTICS_KEYS)} for each material",
+                hint=f"give exactly {', '.join(OPTICS_KEYS)} (and optionally "
+                f"{', '.join(OPTIONAL_OPTICS_KEYS)}) for each material",
             )
     if not file.parent.is_dir():
         raise InputError(f"folder '{file.parent}' does not exist", path=name, hint="create it first")

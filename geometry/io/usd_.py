@@ -3,7 +3,9 @@
 sunwind's USD vocabulary, on top of plain ``UsdGeom``/``UsdShade``:
 
 - ``float sunwind:reflectivity``, ``sunwind:specularFraction``, ``sunwind:transmissivity`` on a
-  Material prim: its optics (all three or none);
+  Material prim: its solar-band optics (all three or none);
+- ``float sunwind:emissivity`` on a Material prim beside them (optional): its hemispherical infrared
+  emissivity;
 - ``doubleSided = true`` on a Mesh: a zero-thickness sheet lit on both sides;
 - ``rel sunwind:backMaterial`` on a Mesh, targeting a Material: the material of its back side.
 """
@@ -20,13 +22,13 @@ from pxr import Gf, Sdf, Tf, Usd, UsdGeom, UsdShade, UsdUtils, Vt
 
 from sunwind.geometry.errors import MeshError, combine
 from sunwind.geometry.io.topology import bounds, check_transform, compact, fan_triangles, groups
-from sunwind.geometry.mesh_data import OPTICS_KEYS, MeshData
+from sunwind.geometry.mesh_data import OPTICS_KEYS, OPTIONAL_OPTICS_KEYS, MeshData
 
-#: USD attribute on a Material prim holding each key of ``OPTICS_KEYS``.
+#: USD attribute on a Material prim holding each key of ``OPTICS_KEYS`` and ``OPTIONAL_OPTICS_KEYS``.
 OPTICS_ATTRIBUTES = dict(
     zip(
-        OPTICS_KEYS,
-        ("sunwind:reflectivity", "sunwind:specularFraction", "sunwind:transmissivity"),
+        (*OPTICS_KEYS, *OPTIONAL_OPTICS_KEYS),
+        ("sunwind:reflectivity", "sunwind:specularFraction", "sunwind:transmissivity", "sunwind:emissivity"),
         strict=True,
     )
 )
@@ -259,7 +261,8 @@ class _Materials:
         return name
 
     def _read_optics(self, material: Usd.Prim) -> dict[str, float]:
-        """The sunwind optics authored on a Material prim: all three keys, or none."""
+        """The sunwind optics authored on a Material prim: the three solar keys (and the emissivity when
+        authored), or none."""
         optics = {}
         for key, attribute_name in OPTICS_ATTRIBUTES.items():
             attribute = material.GetAttribute(attribute_name)
@@ -278,7 +281,9 @@ class _Materials:
             raise MeshError(
                 f"Material {material.GetPath()} has some sunwind optics but lacks {missing[0]}",
                 path=str(self.path),
-                hint="author all of " + ", ".join(OPTICS_ATTRIBUTES.values()) + ", or none",
+                hint="author all of "
+                + ", ".join(OPTICS_ATTRIBUTES[key] for key in OPTICS_KEYS)
+                + ", or none",
             )
         return optics
 
@@ -303,7 +308,8 @@ def write_usd(mesh: MeshData, path: Path) -> None:
     Parameters
     ----------
     mesh : MeshData
-        The mesh to write, in metres; every ``file_optics`` entry has all of ``OPTICS_KEYS``.
+        The mesh to write, in metres; every ``file_optics`` entry has all of ``OPTICS_KEYS`` and may
+        have ``OPTIONAL_OPTICS_KEYS``.
     path : Path
         The ``.usd`` (binary), ``.usdc`` or ``.usda`` file to create or overwrite.
 

@@ -103,7 +103,9 @@ def test_every_face_has_a_material_with_valid_optics(sample):
     for name, optics in SAMPLE_OPTICS.items():
         material = Material.checked(name, optics)
         assert material.reflectivity + material.transmissivity <= 1
-    assert sample.file_optics == SAMPLE_OPTICS
+    assert sample.file_optics == {
+        name: {**optics, "emissivity": SAMPLE_EMISSIVITY[name]} for name, optics in SAMPLE_OPTICS.items()
+    }
     bus = sample.face_part == sample.part_names.index("bus")
     normals = cross(sample.vertices[sample.faces[bus]])
     osr = np.array(sample.material_names)[sample.face_material[bus]] == "osr"
@@ -181,7 +183,7 @@ class TestShippedFiles:
         assert {leaf[p] for p in mesh.two_sided_parts} == set(SHEETS)
         assert {leaf[p]: m for p, m in mesh.part_back_material.items()} == dict(reference.part_back_material)
         for name, optics in SAMPLE_OPTICS.items():
-            assert mesh.file_optics[name] == pytest.approx(optics)
+            assert mesh.file_optics[name] == pytest.approx({**optics, "emissivity": SAMPLE_EMISSIVITY[name]})
 
     def test_obj_with_toml_builds_a_spacecraft(self):
         spacecraft = pytest.importorskip("sunwind.geometry.spacecraft")

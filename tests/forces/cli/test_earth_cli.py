@@ -4,6 +4,7 @@ import csv
 import json
 import math
 
+import numpy as np
 import pytest
 
 from sunwind.forces.radiation.law import SPEED_OF_LIGHT
@@ -101,3 +102,63 @@ def test_missing_emissivity_and_unwritable_sides_are_one_line(run_cli, sphere, t
         *_args(sphere, "--altitude", "500", "--sun", "1", "0", "0", "--sides", tmp_path / "no" / "x.csv")
     )
     assert code == 1 and "cannot write the sides file" in err and err.count("\n") == 1, err
+
+
+def _forces(folder, *extra):
+    return [
+        "forces", folder / "sphere.obj", "-m", folder / "black.toml", "--sun", "0.6", "0", "-0.8",
+        "--flow-azel", "0", "0", "--altitude", "500", *extra,
+    ]  # fmt: skip
+
+
+def test_forces_adds_the_earth_terms_of_sunwind_earth_to_its_total(run_cli, sphere):
+    code, out, err = run_cli(
+        *_forces(sphere, "--earth-radiation", "--earth", "0", "0", "1", "--thermal", "--json")
+    )
+    assert code == 0, err
+    doc = json.loads(out)
+    args = _args(sphere, "--altitude", "500", "--sun", "0.6", "0", "-0.8", "--thermal", "--json")
+    args[7] = "1"  # the same place: the Earth along +z
+    code, out, err = run_cli(*args)
+    assert code == 0, err
+    alone = json.loads(out)
+    for key in ("albedo", "infrared", "thermal"):
+        assert (
+            doc[key]["force_N"] == alone[key]["force_N"] and doc[key]["torque_Nm"] == alone[key]["torque_Nm"]
+        )
+    terms = ("srp", "drag", "albedo", "infrared", "thermal")
+    total = sum(np.array(doc[key]["force_N"]) for key in terms)
+    assert np.allclose(doc["total"]["force_N"], total, rtol=1e-14, atol=0)
+    assert doc["planet"]["nadir"] == [0.0, 0.0, 1.0] and "temperature_K" in next(iter(doc["parts"].values()))
+    code, out, err = run_cli(*_forces(sphere, "--earth-radiation", "--earth", "0", "0", "1"))
+    assert code == 0 and "planet:" in out and "albedo   force" in out, err
+
+
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--earth-radiation"], "--earth-radiation needs --earth X Y Z"),
+        (["--thermal"], "--thermal needs --earth-radiation"),
+        (["--earth", "0", "0", "1", "--albedo", "0.2"], "--albedo, --earth need --earth-radiation"),
+    ],
+)
+def test_forces_earth_options_are_checked_in_one_line(run_cli, sphere, extra, message):
+    code, out, err = run_cli(*_forces(sphere, *extra))
+    assert code == 1 and out == ""
+    assert err.startswith("sunwind: error:") and message in err and err.count("\n") == 1, err
+
+
+def test_earth_without_the_earth_direction_is_one_line(run_cli, sphere):
+    code, _, err = run_cli(
+        "earth",
+        sphere / "sphere.obj",
+        "-m",
+        sphere / "black.toml",
+        "--altitude",
+        "500",
+        "--sun",
+        "1",
+        "0",
+        "0",
+    )
+    assert code == 1 and "give --earth X Y Z" in err and err.count("\n") == 1, err

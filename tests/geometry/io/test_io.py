@@ -727,7 +727,10 @@ def test_save_empty_mesh(tmp_path):
 def test_save_bad_optics(tmp_path, optics, problem):
     error = save_error(sample_mesh(), tmp_path / "a.usda", optics=optics)
     assert error.message == f"optics of material 'gold' {problem}"
-    assert error.hint == "give exactly reflectivity, specular_fraction, transmissivity for each material"
+    assert error.hint == (
+        "give exactly reflectivity, specular_fraction, transmissivity (and optionally emissivity) for each "
+        "material"
+    )
 
 
 def test_save_onto_a_directory(tmp_path):
