@@ -25,7 +25,7 @@ from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
 from sunwind.forces.results import FRAME
-from sunwind.forces.thermal import infrared_exchange
+from sunwind.forces.thermal import ThermalState, infrared_exchange, thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import using_threads
@@ -104,6 +104,19 @@ class EarthResult:
         ``craft.part_names`` order."""
         craft = self.craft
         return np.bincount(craft.facet_part[craft.side_facet], side_values, len(craft.part_names))
+
+    def equilibrium(self, reflections: str | ReflectionSettings = "full") -> ThermalState:
+        """Every side's radiative-equilibrium temperature with the power it absorbs here, and the recoil
+        of its infrared (:func:`~sunwind.forces.thermal.thermal_model` with ``reflections``: the
+        spacecraft's own infrared exchanged through its view factors, or not with ``"none"``).
+
+        Raises
+        ------
+        MaterialError
+            A side's material has no emissivity.
+        """
+        nodes = thermal_model(self.craft, reflections)
+        return nodes.equilibrium(sum(self.absorbed_side_W().values()), self.reference_point_m)
 
     def part_temperatures(self, temperature_K: NDArray[np.float64]) -> NDArray[np.float64]:
         """Area-weighted mean of the side temperatures ``temperature_K`` [K] (n_sides,) over each part,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import csv
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import click
@@ -29,16 +29,13 @@ from sunwind.forces.earth import DEFAULT_STEP_DEG, EarthResult, Place, earth_rad
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
-from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS, sphere_visible
 from sunwind.forces.planet.bodies import PLANETS, PlanetLight, planet
+from sunwind.forces.planet.shadow import ECLIPSE_MODELS, sun_behind
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables.jobs import SrpSetup
-from sunwind.forces.thermal import ThermalState, thermal_model
+from sunwind.forces.thermal import ThermalState
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
-
-#: One astronomical unit [m].
-AU_M = 149_597_870_700.0
 
 
 @dataclass(frozen=True)
@@ -156,6 +153,9 @@ def earth_request(values: dict) -> EarthRequest | None:
             verb = "needs" if len(given) == 1 else "need"
             raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
         return None
+    step = mine["step_deg"]
+    if not (math.isfinite(step) and 0.0 < step <= 90.0):
+        raise InputError(f"--earth-step {step:g} is not in (0, 90] deg", hint="e.g. --earth-step 10")
     return EarthRequest(**mine)
 
 
@@ -175,13 +175,12 @@ def place_and_light(below: Below, sun: Sun) -> tuple[Place, PlanetLight]:
         if below.epoch is None or below.pole is None:
             raise InputError("--albedo-model knocke needs --epoch (the season) and --pole (the latitudes)")
         julian = float(sum(Epoch.of(below.epoch).jd_tt))
-    distance = body.radius_m + below.altitude_km * 1e3
-    position = -distance * nadir
-    fraction = float(sphere_visible(position, position + AU_M * sun.vector, body.radius_m, below.eclipse)[0])
+    place = Place(nadir, below.altitude_km, sun.vector, below.pole)
+    fraction = sun_behind(place.nadir, place.altitude_km, place.sun_vector, body.radius_m, below.eclipse)
     light = PlanetLight.of(
         body, sun.flux_W_m2, albedo=below.albedo, infrared_W_m2=below.earth_ir, knocke_julian_date=julian
     )
-    return Place(nadir, below.altitude_km, sun.vector, below.pole, fraction), light
+    return replace(place, solar_fraction=fraction), light
 
 
 @click.command()
@@ -227,10 +226,7 @@ def radiation(
     result = earth_radiation(
         model, place, light, reflections=reflections, step_deg=below.step_deg, **sampling
     )
-    if not thermal:
-        return result, None
-    nodes = thermal_model(model.craft, reflections)
-    return result, nodes.equilibrium(sum(result.absorbed_side_W().values()), result.reference_point_m)
+    return result, result.equilibrium(reflections) if thermal else None
 
 
 def earth_at(

@@ -135,8 +135,8 @@ _MODEL_OPTIONS = [
     click.option(
         "--emissivity",
         type=float,
-        help="Uniform material: hemispherical infrared emissivity eps, 0 to 1 [default none; "
-        "sunwind earth needs one].",
+        help="Uniform material: hemispherical infrared emissivity eps, 0 to 1 [default none; the "
+        "planet's radiation and temperatures need one].",
     ),
     click.option(
         "--two-sided", multiple=True, metavar="GLOB", help="Treat matching parts as two-sided sheets."

@@ -7,7 +7,7 @@ import sys
 import tempfile
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import click
@@ -21,6 +21,7 @@ from rich.progress import (
 )
 from rich.text import Text
 
+from sunwind.forces.cli.earth import earth_request, earth_term_options
 from sunwind.forces.cli.free_stream import flow_options
 from sunwind.forces.cli.options import (
     Sun,
@@ -40,6 +41,7 @@ from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import (
     DEFAULT_STEP,
     DragSetup,
+    EarthSetup,
     SrpSetup,
     direction_grid,
     read_attitude_csv,
@@ -72,11 +74,11 @@ def check_writable(path: Path) -> None:
         raise InputError(f"cannot write here: {error.strerror}", path=str(path)) from None
 
 
-def _kinds(srp_flag: bool, drag_flag: bool, fmt: str) -> tuple[str, ...]:
-    """The quantities to tabulate: those asked for, else every one the format holds (said when that
-    leaves one out)."""
-    asked = tuple(k for k, on in (("srp", srp_flag), ("drag", drag_flag)) if on)
-    allowed = FORMATS[fmt].kinds
+def _kinds(srp_flag: bool, drag_flag: bool, earth_flag: bool, fmt: str) -> tuple[str, ...]:
+    """The quantities to tabulate: those asked for, else SRP and drag as far as the format holds them
+    (said when that leaves one out); the Earth's radiation only when asked for."""
+    asked = tuple(k for k, on in (("srp", srp_flag), ("drag", drag_flag), ("earth", earth_flag)) if on)
+    allowed = tuple(k for k in FORMATS[fmt].kinds if k != "earth" or earth_flag)
     if not asked:
         if len(allowed) == 1:
             other = "drag" if allowed == ("srp",) else "srp"
@@ -88,7 +90,10 @@ def _kinds(srp_flag: bool, drag_flag: bool, fmt: str) -> tuple[str, ...]:
         return allowed
     refused = [k for k in asked if k not in allowed]
     if refused:
-        raise InputError(f"--format {fmt} holds {' and '.join(allowed)} only, not {refused[0]}")
+        raise InputError(
+            f"--format {fmt} holds {' and '.join(allowed)} only, not {refused[0]}",
+            hint="write the Earth's radiation as netCDF (-o NAME.nc) or CSV" if "earth" in refused else None,
+        )
     return asked
 
 
@@ -115,39 +120,110 @@ _OUTPUT_OPTIONS = [
         "--format",
         "fmt",
         type=click.Choice(list(FORMATS)),
-        help="nc, csv, spad, basilisk (SRP) or tudat (drag) [default: from the extension; a name without "
+        help="nc, csv (these two hold the earth table too), spad, basilisk (SRP) or tudat (drag) "
+        "[default: from the extension; a name without "
         "one gets the format's, an extension of another format is refused].",
     ),
+    *earth_term_options(place=False),
+    click.option(
+        "--earth-altitude",
+        type=float,
+        metavar="H_KM",
+        help="With --earth-radiation: height above the Earth [km] of the earth table.",
+    ),
+    click.option(
+        "--earth-sun",
+        nargs=3,
+        type=float,
+        default=None,
+        metavar="X Y Z",
+        help="With --earth-radiation: the Sun, fixed in the body frame, while the Earth's direction goes "
+        "over the grid (a Sun-pointing spacecraft's view).",
+    ),
 ]
+#: The flags of the earth table's settings, by the names :class:`EarthSetup` gives them in its errors.
+_EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun"}
 
 
 @dataclass(frozen=True)
 class TableRequest:
-    """What table a sweep writes: the quantities, the attitudes (grid step or list), file and format."""
+    """What table a sweep writes: the quantities, the attitudes (grid step or list), file and format,
+    and the Earth's radiation (its settings checked, the flux and sampling yet to come; None: none)."""
 
     kinds: tuple[str, ...]
     step_deg: float | None
     attitudes: Path | None
     output: Path
     format: str
+    earth: EarthSetup | None = None
 
 
 def _table(values: dict) -> TableRequest:
     """The table flags, checked before the mesh is loaded: the output path (its extension added when it
     has none), the format against the extension, the attitudes and the quantities it can hold."""
+    earth = _earth_table(values)
     fmt, output = output_target(values["output"], values["fmt"])
     if values["step"] is not None and values["attitude_csv"] is not None:
         raise InputError("give --step or --attitudes, not both")
+    if earth is not None and values["attitude_csv"] is not None:
+        raise InputError(
+            "--attitudes has no Earth direction: --earth-radiation tabulates a grid of Earth directions",
+            hint="sweep --earth-radiation over --step, and the attitude list in another sweep",
+        )
     step = values["step"]
     if step is None and values["attitude_csv"] is None:
         step = DEFAULT_STEP
     grid = None if step is None else direction_grid(step, "--step")
     check_request(fmt, step)
-    kinds = _kinds(values["srp_flag"], values["drag_flag"], fmt)
+    kinds = _kinds(values["srp_flag"], values["drag_flag"], earth is not None, fmt)
     if grid is not None:
         check_table_memory(grid, kinds, "--step")
     check_writable(output)
-    return TableRequest(kinds, step, values["attitude_csv"], output, fmt)
+    return TableRequest(kinds, step, values["attitude_csv"], output, fmt, earth)
+
+
+def _earth_table(values: dict) -> EarthSetup | None:
+    """The earth table's settings of ``--earth-radiation`` and its flags, taken out of ``values`` and
+    checked (None without it, whose flags are then refused); its flux and sampling come later."""
+    altitude, sun = values.pop("earth_altitude"), values.pop("earth_sun")
+    request = earth_request(values)
+    if request is None:
+        given = [
+            flag
+            for flag, value in (("--earth-altitude", altitude), ("--earth-sun", sun))
+            if value is not None
+        ]
+        if given:
+            verb = "needs" if len(given) == 1 else "need"
+            raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
+        return None
+    if request.albedo_model == "knocke":
+        raise InputError(
+            "--albedo-model knocke needs a date and the Earth's pole, which a sweep has not (its Earth goes "
+            "round a spacecraft that holds the Sun fixed)",
+            hint="sweep the Lambertian Earth (--albedo, --earth-ir); sunwind orbit flies Knocke's model",
+        )
+    missing = [
+        flag
+        for flag, value in (("--earth-altitude H_KM", altitude), ("--earth-sun X Y Z", sun))
+        if value is None
+    ]
+    if missing:
+        raise InputError(
+            f"--earth-radiation in a sweep needs {' and '.join(missing)}",
+            hint="e.g. --earth-altitude 500 --earth-sun 1 0 0 (the Sun, fixed in the body frame)",
+        )
+    try:
+        return EarthSetup(
+            altitude_km=altitude,
+            sun_vector=sun,
+            albedo=request.albedo,
+            infrared_W_m2=request.earth_ir,
+            step_deg=request.step_deg,
+            thermal=request.thermal,
+        )
+    except InputError as error:
+        raise error.renamed(_EARTH_FLAGS) from None
 
 
 @click.command("sweep")
@@ -169,7 +245,8 @@ def sweep_command(
     table: TableRequest,
     run: dict,
 ) -> None:
-    """Force and torque over a grid or list of attitudes, written as a table simulators read."""
+    """Force and torque over a grid or list of attitudes, written as a table simulators read; with
+    --earth-radiation, the Earth's albedo and infrared over Earth directions, the Sun fixed (--earth-sun)."""
     stream = flow("drag" in table.kinds)
     setups = {"reflections": reflections, **sampling, "reference_point_m": references["reference_point_m"]}
     srp = SrpSetup(flux_W_m2=sun.flux_W_m2, **setups) if "srp" in table.kinds else None
@@ -177,6 +254,7 @@ def sweep_command(
     if "drag" in table.kinds:
         gas = {"sky_rays": stream.sampling.sky_rays}
         drag = DragSetup(speed_m_s=stream.speed_m_s, atmosphere=stream.atmosphere, **setups, **gas)
+    earth = None if table.earth is None else replace(table.earth, flux_W_m2=sun.flux_W_m2, **setups)
     attitudes = None if table.attitudes is None else read_attitude_csv(table.attitudes)
     for kind in table.kinds if attitudes is not None else ():
         attitudes.directions(kind)
@@ -188,9 +266,12 @@ def sweep_command(
             f'--format {table.format} takes one pose; --articulate lists several angles of "{several[0]}"',
             hint="write the table as netCDF (.nc), or sweep one angle per table",
         )
-    model = loaded((source if "srp" in table.kinds else drag_only(source)).resolved(), **references)
+    optics = "srp" in table.kinds or "earth" in table.kinds
+    model = loaded((source if optics else drag_only(source)).resolved(), **references)
+    if earth is not None:
+        earth.check(model)  # the emissivities, before any work
     tracking = [hinge.pattern for hinge in model.hinges if hinge.law == "track"]
-    if tracking and "drag" not in table.kinds:
+    if tracking and "srp" in table.kinds and "drag" not in table.kinds:
         print(
             f"sunwind: notice: {', '.join(tracking)} track the Sun: every Sun direction is its own pose "
             "(scene and, with diffuse reflections, view factors made again for each)",
@@ -213,6 +294,7 @@ def sweep_command(
             model,
             srp=srp,
             drag=drag,
+            earth=earth,
             step_deg=table.step_deg,
             attitudes=attitudes,
             hinge_angles=hinge_angles,

@@ -136,8 +136,10 @@ def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None)
             f"format {name} holds {' and '.join(spec.kinds)} only, not {refused[0]}", parameters=("format",)
         )
     if refused:
+        left = f"{' and '.join(refused)} {'is' if len(refused) == 1 else 'are'} not written"
         warnings.warn(
-            f"format {name} holds {' and '.join(spec.kinds)} only: {refused[0]} is not written", stacklevel=2
+            f"format {name} holds {' and '.join(spec.kinds)} only: {left}",
+            stacklevel=2,
         )
     if name != "nc":
         table = one_pose(table, f"format {name}")

@@ -1,6 +1,7 @@
 """The sweep table as CSV: ``#`` comment lines with the table's attributes, a header row whose column
 names carry their units (``srp_force_N_x[N]``), one row per grid node or attitude. SRP and drag on a
-grid are on different grids: they go to ``NAME.srp.csv`` and ``NAME.drag.csv``."""
+grid are on different grids: they go to ``NAME.srp.csv`` and ``NAME.drag.csv`` (and the Earth's radiation
+to ``NAME.earth.csv``)."""
 
 from __future__ import annotations
 
@@ -17,12 +18,12 @@ from sunwind.forces.tables.dataset import DIRECTION, kinds_of
 #: File extension that chooses this format.
 EXTENSION = ".csv"
 #: Quantities a CSV table holds.
-KINDS = ("srp", "drag")
+KINDS = ("srp", "drag", "earth")
 
 
 def csv_paths(path: Path, table: xr.Dataset) -> dict[str, Path]:
     """CSV file of each quantity: ``path`` itself for a list table or one quantity, else
-    ``NAME.srp.csv`` and ``NAME.drag.csv`` (SRP and drag are on different grids)."""
+    ``NAME.srp.csv``, ``NAME.drag.csv``, ``NAME.earth.csv`` (each on its own grid)."""
     kinds = kinds_of(table)
     if "attitude" in table.dims or len(kinds) == 1:
         return {"all": path}

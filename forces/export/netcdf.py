@@ -14,7 +14,7 @@ from sunwind.forces.export.atomic import temporary_name
 #: File extension that chooses this format.
 EXTENSION = ".nc"
 #: Quantities a netCDF table holds.
-KINDS = ("srp", "drag")
+KINDS = ("srp", "drag", "earth")
 
 
 def write(table: xr.Dataset, path: str | os.PathLike) -> list[Path]:

@@ -138,7 +138,7 @@ def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
 
 def write(table: xr.Dataset, path: str | Path) -> list[Path]:
     """Write one SPAD file per quantity of a grid sweep table (:func:`spad_paths`); the files written."""
-    kinds = kinds_of(table)
+    kinds = [kind for kind in kinds_of(table) if kind in KINDS]  # the Earth's radiation has no SPAD file
     paths = spad_paths(path, kinds)
     return [write_spad(table, paths[kind], kind) for kind in kinds]
 

@@ -18,7 +18,6 @@ from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, earth_radiation
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.tables.jobs import SrpSetup
-from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import infrared_optics
 
@@ -107,8 +106,7 @@ class EarthTerms:
         for source in PART_SOURCES:
             out[f"part_{source}_W"] = result.per_part(absorbed[source])
         if self.thermal:
-            nodes = thermal_model(model.craft, options["reflections"])
-            state = nodes.equilibrium(sum(absorbed.values()), result.reference_point_m)
+            state = result.equilibrium(options["reflections"])
             out["thermal_force_body_N"], out["thermal_torque_body_Nm"] = state.force_N, state.torque_Nm
             out["part_temperature_K"] = result.part_temperatures(state.temperature_K)
         return out

@@ -14,11 +14,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.orbit.clock import Epoch
+from sunwind.forces.planet.shadow import AU_M, SUN_RADIUS_M
 
-#: The astronomical unit [m] (IAU 2012).
-AU_M = float(erfa.DAU)
-#: Radius of the solar disc [m], as Montenbruck & Gill take it for shadows (sec. 3.4): 696 000 km.
-SUN_RADIUS_M = 6.96e8
+__all__ = ["AU_M", "MOON_RADIUS_M", "SUN_RADIUS_M", "fixed_sun", "moon_position", "sun_position"]
 
 
 def sun_position(epoch: Epoch, seconds: NDArray[np.float64]) -> NDArray[np.float64]:

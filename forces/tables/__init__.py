@@ -4,20 +4,32 @@ tables"). Plots of a table are :mod:`sunwind.forces.tables.plots` (matplotlib is
 
 from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid, direction_grid, read_attitude_csv
 from sunwind.forces.tables.dataset import grid_table, kinds_of, list_table, open_table, table_attributes
+from sunwind.forces.tables.earth_setup import EarthSetup
 from sunwind.forces.tables.engine import DEFAULT_CHUNK, DEFAULT_STEP, SweepRun, run_jobs, sweep
 from sunwind.forces.tables.interpolation import Loads, TableInterpolator
-from sunwind.forces.tables.jobs import DRAG_FIELDS, FIELDS, KINDS, SRP_FIELDS, DragSetup, Job, SrpSetup
+from sunwind.forces.tables.jobs import (
+    DRAG_FIELDS,
+    EARTH_FIELDS,
+    FIELDS,
+    KINDS,
+    SRP_FIELDS,
+    DragSetup,
+    Job,
+    SrpSetup,
+)
 
 __all__ = [
     "DEFAULT_CHUNK",
     "DEFAULT_STEP",
     "DRAG_FIELDS",
+    "EARTH_FIELDS",
     "FIELDS",
     "KINDS",
     "SRP_FIELDS",
     "AttitudeList",
     "DirectionGrid",
     "DragSetup",
+    "EarthSetup",
     "Job",
     "Loads",
     "SrpSetup",

@@ -1,16 +1,20 @@
 """Sweep results as a table: an ``xarray.Dataset`` with units, frame and provenance (METHOD.md "Outputs
 and tables"); the writers of its file formats are :mod:`sunwind.forces.export`.
 
-**Grid tables** have the dimensions ``sun_azimuth, sun_elevation`` for SRP and ``flow_azimuth,
-flow_elevation`` for drag (degrees, -180..180 and -90..90 with both ends), and ``component`` (x, y, z)
-for vectors. **List tables** have one dimension ``attitude`` (rows of the attitude CSV) shared by
-SRP and drag. Variables are ``srp_*`` (force, torque, their direct and reflected parts, lit and
-projected area, ``sun_vector``) and ``drag_*`` (the same parts and areas, the coefficients ``CD, CS,
-CL`` and ``CM``, ``flow_vector``); every variable and coordinate has ``units`` and
-``long_name`` (CF-1.8, ``Conventions``); the global attributes hold the frame, the sign conventions
-(``comment``), reference point, solar flux, atmosphere (its source and altitude), coefficient
-references, the reflection mode each quantity used (``srp_reflections``, ``drag_reflections``: ``auto``
-resolved), mesh and materials digests and the sunwind version.
+**Grid tables** have the dimensions ``sun_azimuth, sun_elevation`` for SRP, ``flow_azimuth,
+flow_elevation`` for drag and ``earth_azimuth, earth_elevation`` for the Earth's radiation (degrees,
+-180..180 and -90..90 with both ends), and ``component`` (x, y, z) for vectors. **List tables** have
+one dimension ``attitude`` (rows of the attitude CSV) shared by SRP and drag. Variables are ``srp_*``
+(force, torque, their direct and reflected parts, lit and projected area, ``sun_vector``), ``drag_*``
+(the same parts and areas, the coefficients ``CD, CS, CL`` and ``CM``, ``flow_vector``) and ``earth_*``
+(grid tables only: the albedo plus infrared (plus thermal recoil) force and torque, each band apart,
+the visible share of the Sun, ``earth_vector``; the Sun fixed in the body frame, see
+:mod:`.earth_setup`); every variable and coordinate has ``units`` and ``long_name`` (CF-1.8,
+``Conventions``); the global attributes hold the frame, the sign conventions (``comment``), reference
+point, solar flux, atmosphere (its source and altitude), the Earth's slice, albedo and infrared
+(``earth_*``), coefficient references, the reflection mode each quantity used (``srp_reflections``,
+``drag_reflections``, ``earth_reflections``: ``auto`` resolved), mesh and materials digests and the
+sunwind version.
 
 """
 
@@ -46,6 +50,13 @@ UNITS = {
     "CS": "1",
     "CL": "1",
     "CM": "1",
+    "albedo_force_N": "N",
+    "albedo_torque_Nm": "N m",
+    "infrared_force_N": "N",
+    "infrared_torque_Nm": "N m",
+    "thermal_force_N": "N",
+    "thermal_torque_Nm": "N m",
+    "solar_fraction": "1",
 }
 #: Long names by field name.
 LONG_NAMES = {
@@ -61,7 +72,24 @@ LONG_NAMES = {
     "CS": "side-force coefficient",
     "CL": "lift coefficient",
     "CM": "moment coefficients M/(q A_ref L_ref), body axes",
+    "albedo_force_N": "force of the sunlight the Earth reflects, body frame",
+    "albedo_torque_Nm": "torque of the Earth's albedo",
+    "infrared_force_N": "force of the Earth's infrared, body frame",
+    "infrared_torque_Nm": "torque of the Earth's infrared",
+    "thermal_force_N": "recoil of each side's infrared at radiative equilibrium, body frame",
+    "thermal_torque_Nm": "torque of the thermal recoil",
+    "solar_fraction": "share of the solar disc in view (0: the Earth hides the Sun)",
 }
+#: Long names of an earth table's totals, without and with the thermal recoil.
+_EARTH_TOTALS = {
+    False: {"force_N": "force, albedo + infrared, body frame", "torque_Nm": "torque, albedo + infrared"},
+    True: {
+        "force_N": "force, albedo + infrared + thermal recoil, body frame",
+        "torque_Nm": "torque, albedo + infrared + thermal recoil",
+    },
+}
+#: What each quantity is called at the head of its variables' long names.
+_TITLES = {"srp": "SRP", "drag": "DRAG", "earth": "Earth radiation"}
 #: The metadata convention netCDF tables follow (global attribute ``Conventions``).
 CF_CONVENTIONS = "CF-1.8"
 #: What the table's directions and signs mean, stated in every table (global attribute ``comment``).
@@ -70,30 +98,45 @@ CONVENTIONS = (
     "sun_vector points from the spacecraft to the Sun; flow_vector u = v_rel/|v_rel|, v_rel the spacecraft "
     "velocity relative to the atmosphere (molecules travel along -u); SRP scales with flux_W_m2"
 )
+#: Added to :data:`CONVENTIONS` in a table of the Earth's radiation.
+EARTH_CONVENTIONS = (
+    "earth_vector points from the spacecraft to the Earth's centre, the Sun fixed in the body frame "
+    "along earth_sun_vector (earth_slice)"
+)
 #: Dimension names of each quantity's direction in grid tables.
-GRID_DIMS = {"srp": ("sun_azimuth", "sun_elevation"), "drag": ("flow_azimuth", "flow_elevation")}
+GRID_DIMS = {
+    "srp": ("sun_azimuth", "sun_elevation"),
+    "drag": ("flow_azimuth", "flow_elevation"),
+    "earth": ("earth_azimuth", "earth_elevation"),
+}
 #: The direction variable of each quantity.
-DIRECTION = {"srp": "sun_vector", "drag": "flow_vector"}
-#: What each quantity's direction is, in the long names of its coordinates.
-_WHO = {"srp": "Sun", "drag": "flow (v_rel)"}
-_VECTOR = {"srp": "the Sun vector", "drag": "u = v_rel/|v_rel|"}
+DIRECTION = {"srp": "sun_vector", "drag": "flow_vector", "earth": "earth_vector"}
+#: What each quantity's direction is, in the long names of its coordinates and direction variable.
+_WHO = {"srp": "Sun", "drag": "flow (v_rel)", "earth": "Earth centre (the Sun fixed in the body frame)"}
+_VECTOR = {"srp": "the Sun vector", "drag": "u = v_rel/|v_rel|", "earth": "the Earth vector"}
+_TEXT = {
+    "srp": "unit vector toward the Sun",
+    "drag": "unit flow vector u = v_rel/|v_rel|",
+    "earth": "unit vector toward the Earth's centre (the Sun fixed in the body frame)",
+}
 #: Attributes of the coordinates every table has.
 _COMPONENT = {"long_name": "vector component along the body-frame axis"}
 
 
 def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[int, ...]) -> dict:
     out = {}
+    names = LONG_NAMES | (_EARTH_TOTALS["thermal_force_N" in records] if kind == "earth" else {})
     for name, values in records.items():
         vector = values.ndim == 2
         data = values.reshape((*shape, 3) if vector else shape)
-        attrs = {"units": UNITS[name], "long_name": f"{kind.upper()} {LONG_NAMES[name]}"}
+        attrs = {"units": UNITS[name], "long_name": f"{_TITLES[kind]} {names[name]}"}
         out[f"{kind}_{name}"] = xr.Variable((*dims, "component") if vector else dims, data, attrs)
     return out
 
 
 def _direction_variable(kind: str, vectors: NDArray[np.float64], dims: tuple[str, ...]) -> xr.Variable:
-    text = "unit vector toward the Sun" if kind == "srp" else "unit flow vector u = v_rel/|v_rel|"
-    return xr.Variable((*dims, "component"), vectors, {"units": "1", "long_name": f"{text}, body frame"})
+    attrs = {"units": "1", "long_name": f"{_TEXT[kind]}, body frame"}
+    return xr.Variable((*dims, "component"), vectors, attrs)
 
 
 def grid_table(
@@ -120,13 +163,23 @@ def grid_table(
         nodes = {name: column[grid.distinct[1]] for name, column in values.items()}
         variables.update(_variables(kind, nodes, (az_dim, el_dim), shape))
         variables[DIRECTION[kind]] = _direction_variable(kind, grid.vectors, (az_dim, el_dim))
-    return xr.Dataset(variables, coords=coords, attrs=_attributes(attrs))
+    out = xr.Dataset(variables, coords=coords, attrs=_attributes(attrs))
+    if "earth" in records:
+        out.attrs["comment"] = f"{out.attrs['comment']}; {EARTH_CONVENTIONS}"
+    return out
 
 
 def list_table(
     records: Mapping[str, Records], attitudes: AttitudeList, attrs: Mapping[str, object]
 ) -> xr.Dataset:
-    """The list table of sweep records, one row per attitude of ``attitudes``."""
+    """The list table of sweep records, one row per attitude of ``attitudes`` (which have no Earth
+    direction: no earth records)."""
+    if "earth" in records:
+        raise InputError(
+            "an attitude list has no Earth direction: the Earth's radiation is tabulated on a grid",
+            hint="sweep the earth kind over a grid step",
+            parameters=("attitudes",),
+        )
     variables = {}
     directions = {"srp": attitudes.sun_vectors, "drag": attitudes.flow_vectors}
     for kind, values in records.items():
@@ -235,5 +288,7 @@ def open_table(path: str | os.PathLike) -> xr.Dataset:
             f"cannot read the table: {reason}", path=str(path), hint="give a .nc file sunwind wrote"
         ) from None
     if not kinds_of(table):
-        raise InputError("not a sunwind table (no srp_force_N or drag_force_N)", path=str(path))
+        raise InputError(
+            "not a sunwind table (no srp_force_N, drag_force_N or earth_force_N)", path=str(path)
+        )
     return table

@@ -1,12 +1,13 @@
-"""Attitude sweeps: one model, many Sun or flow directions, in checkpointed chunks, locally or on Dask,
-into a table (an ``xarray.Dataset`` with its provenance).
+"""Attitude sweeps: one model, many Sun, flow or Earth directions, in checkpointed chunks, locally or on
+Dask, into a table (an ``xarray.Dataset`` with its provenance).
 
 :func:`sweep` is the one call: the model, what to tabulate (:class:`~sunwind.forces.tables.jobs.SrpSetup`,
-:class:`~sunwind.forces.tables.jobs.DragSetup`), over which attitudes (a grid step or an attitude list),
-and how to run (:class:`SweepRun`). **Local runs** use the model as loaded, its precomputes made once
-(view factors, the diffuse balance) and every core per attitude. **Checkpoints** keep every finished
-chunk at once (:mod:`.checkpoint`); ``resume`` takes the chunks already there and computes the rest.
-**Dask** (:mod:`.cluster`) runs chunks as tasks on workers that load the model from its files.
+:class:`~sunwind.forces.tables.jobs.DragSetup`, :class:`~sunwind.forces.tables.earth_setup.EarthSetup`),
+over which attitudes (a grid step or an attitude list), and how to run (:class:`SweepRun`). **Local
+runs** use the model as loaded, its precomputes made once (view factors, the diffuse balance) and every
+core per attitude. **Checkpoints** keep every finished chunk at once (:mod:`.checkpoint`); ``resume``
+takes the chunks already there and computes the rest. **Dask** (:mod:`.cluster`) runs chunks as tasks
+on workers that load the model from its files.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from sunwind.forces.tables.attitudes import GRID_BYTES, AttitudeList, DirectionG
 from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
 from sunwind.forces.tables.cluster import require_dask, run_on_dask
 from sunwind.forces.tables.dataset import grid_table, list_table, table_attributes
+from sunwind.forces.tables.earth_setup import EarthSetup
 from sunwind.forces.tables.jobs import FIELDS, DragSetup, Job, PosedSetup, Records, SrpSetup, empty_records
 from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
@@ -95,19 +97,25 @@ def sweep(
     *,
     srp: SrpSetup | None = None,
     drag: DragSetup | None = None,
+    earth: EarthSetup | None = None,
     step_deg: float | None = None,
     attitudes: AttitudeList | None = None,
     hinge_angles: Mapping[str, Sequence[float]] | None = None,
     run: SweepRun | None = None,
 ) -> xr.Dataset:
-    """SRP and/or drag over a grid or a list of attitudes, as a table with its provenance.
+    """SRP, drag and/or the Earth's radiation over a grid or a list of attitudes, as a table with its
+    provenance.
 
     Parameters
     ----------
     model : Model or Spacecraft
         The loaded model (:func:`sunwind.forces.load`; Dask needs one loaded from files).
     srp, drag : SrpSetup, DragSetup, optional
-        What to tabulate (at least one): the settings of every SRP attitude, of every drag attitude.
+        What to tabulate (at least one of these and ``earth``): the settings of every SRP attitude, of
+        every drag attitude.
+    earth : EarthSetup, optional
+        The Earth's albedo and infrared (and thermal recoil) over Earth directions, at the setup's
+        altitude with its Sun fixed in the body frame: grid tables only.
     step_deg : float, optional
         Grid step [deg] in azimuth (-180..180) and elevation (-90..90); must divide 180. Default
         :data:`DEFAULT_STEP` unless ``attitudes`` is given.
@@ -126,13 +134,24 @@ def sweep(
         point, environment and provenance in its attributes.
     """
     model, run = as_model(model), run or SweepRun()
-    setups = [setup for setup in (srp, drag) if setup is not None]
+    setups = [setup for setup in (srp, drag, earth) if setup is not None]
     if not setups:
-        raise InputError("give srp, drag or both: what the sweep tabulates", parameters=("srp", "drag"))
+        raise InputError(
+            "give srp, drag or earth (one or more): what the sweep tabulates",
+            parameters=("srp", "drag", "earth"),
+        )
     poses = hinge_poses(hinge_angles)
     check_hinges(model.held(dict(poses[0])), drag is not None)
     if attitudes is not None and step_deg is not None:
         raise InputError("give step_deg or attitudes, not both", parameters=("step_deg", "attitudes"))
+    if attitudes is not None and earth is not None:
+        raise InputError(
+            "an attitude list has no Earth direction: the Earth's radiation is tabulated on a grid",
+            hint="sweep earth over a grid (step_deg) and the attitudes without it",
+            parameters=("attitudes", "step_deg"),
+        )
+    if earth is not None:
+        earth.check(model)
     grid = None
     if attitudes is None:
         grid = direction_grid(DEFAULT_STEP if step_deg is None else step_deg, "step_deg")
@@ -208,7 +227,8 @@ def hinge_dimension(glob: str) -> str:
 
 def check_hinges(model: Model, with_drag: bool) -> None:
     """Refuse hinges a sweep cannot turn: a schedule (a sweep has no time), and a Sun-tracking hinge in
-    a drag table (it has no Sun); an SRP table turns a tracking hinge to each entry's Sun."""
+    a drag table (it has no Sun); an SRP table turns a tracking hinge to each entry's Sun, an earth
+    table to its one fixed Sun."""
     for hinge in model.hinges:
         if hinge.law == "schedule" or (hinge.law == "track" and with_drag):
             what, lacks = (
@@ -292,6 +312,7 @@ def _fill(records: Records, lo: int, hi: int, values: Records) -> None:
 
 def precompute(model: Model, jobs: list[Job]) -> None:
     """What every attitude reuses, made once before the first (Dask workers then read it from the disk
-    cache): the view factors when a job reflects, each side's open sky when it computes drag."""
+    cache): the view factors when a job reflects, each side's open sky when it computes drag, the
+    thermal balance of the Earth's radiation with its thermal recoil."""
     for job in jobs:
         job.setup.precompute(model)

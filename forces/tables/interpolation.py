@@ -31,7 +31,9 @@ from sunwind.forces.tables.attitudes import step_advice
 from sunwind.geometry.errors import InputError
 
 #: Direction prefix of the grid coordinates of each kind of table variable.
-PREFIX = {"srp": "sun", "drag": "flow"}
+PREFIX = {"srp": "sun", "drag": "flow", "earth": "earth"}
+#: How each kind is asked of a sweep, in hints.
+_ASKED = {"srp": "SRP", "drag": "drag", "earth": "the Earth's radiation"}
 METHODS = ("bilinear", "bicubic")
 #: Queries evaluated per block, to bound the (n, 4, 4, k) gather in memory.
 _BLOCK = 32_768
@@ -142,7 +144,8 @@ class TableInterpolator:
         return Loads(values[..., :3], values[..., 3:])
 
     def values(self, names: Sequence[str], directions: ArrayLike) -> NDArray[np.float64]:
-        """Variables ``names`` (all SRP or all drag) at ``directions`` (..., 3), channels concatenated.
+        """Variables ``names`` (all SRP, all drag or all Earth) at ``directions`` (..., 3) (Sun, flow or
+        Earth vectors, body frame), channels concatenated.
 
         A variable with a ``component`` dimension gives three channels, any other one.
 
@@ -186,14 +189,14 @@ class _SphereGrid:
         kinds = {name.split("_", 1)[0] for name in names}
         if len(kinds) != 1 or not kinds <= PREFIX.keys():
             raise InputError(
-                f"cannot interpolate {', '.join(names)} together", hint="all srp_* or all drag_*"
+                f"cannot interpolate {', '.join(names)} together", hint="all srp_*, all drag_* or all earth_*"
             )
         kind = kinds.pop()
         missing = [name for name in names if name not in table.data_vars]
         if missing:
             raise InputError(
                 f"the table has no {', '.join(missing)}",
-                hint=f"run the sweep with {'SRP' if kind == 'srp' else 'drag'} included",
+                hint=f"run the sweep with {_ASKED[kind]} included",
             )
         prefix = PREFIX[kind]
         axes = grid_axes(table, prefix)

@@ -1,5 +1,6 @@
 """What a sweep computes: the settings of every SRP or drag attitude, the quantities recorded at each,
-and a job (one quantity over its list of directions).
+and a job (one quantity over its list of directions). The Earth's radiation (kind ``"earth"``) has its
+settings in :mod:`.earth_setup`; its fields are here with the others.
 
 Every attitude is :func:`~sunwind.forces.srp.srp` or :func:`~sunwind.forces.drag.drag` called exactly as
 the single-attitude commands call them, so a table entry is the same bits as ``sunwind srp`` or
@@ -31,8 +32,8 @@ from sunwind.geometry.directions import finite_point
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 
-#: Quantities a sweep can tabulate, each over its own direction.
-KINDS = ("srp", "drag")
+#: Quantities a sweep can tabulate, each over its own direction (the Sun, the flow, the Earth's centre).
+KINDS = ("srp", "drag", "earth")
 #: The loads and areas every kind records: the result attribute and its width (1: a number, 3: a vector).
 _SHARED_FIELDS: dict[str, int] = {
     "force_N": 3,
@@ -53,7 +54,21 @@ DRAG_FIELDS: dict[str, int] = {
     "CL": 1,
     "CM": 3,
 }
-FIELDS = {"srp": SRP_FIELDS, "drag": DRAG_FIELDS}
+#: The Earth's radiation at every direction of the Earth: albedo plus infrared (plus the thermal recoil
+#: with thermal) in ``force_N``/``torque_Nm``, each band apart, the share of the Sun in view.
+EARTH_FIELDS: dict[str, int] = {
+    "force_N": 3,
+    "torque_Nm": 3,
+    "albedo_force_N": 3,
+    "albedo_torque_Nm": 3,
+    "infrared_force_N": 3,
+    "infrared_torque_Nm": 3,
+    "solar_fraction": 1,
+}
+#: What the Earth's radiation records besides, with the thermal recoil.
+EARTH_THERMAL_FIELDS: dict[str, int] = {"thermal_force_N": 3, "thermal_torque_Nm": 3}
+#: Every field each kind may record (the Earth's with its thermal recoil: the most it records).
+FIELDS = {"srp": SRP_FIELDS, "drag": DRAG_FIELDS, "earth": EARTH_FIELDS | EARTH_THERMAL_FIELDS}
 #: Records of some attitudes: field name -> (n,) or (n, 3) float64.
 Records = dict[str, NDArray[np.float64]]
 

@@ -27,20 +27,23 @@ from sunwind.geometry.directions import unit_vector, vector_to_azel
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import Spacecraft
 
-_DIRECTION_NAME = {"sun": "Sun", "flow": "flow"}
+_DIRECTION_NAME = {"sun": "Sun", "flow": "flow", "earth": "Earth"}
+#: The kinds whose facet pressure a 3-D view shows (at one Sun or flow direction).
+_VIEWED = ("srp", "drag")
 
 
 def plot_table(table: xr.Dataset, directory: str | Path) -> list[Path]:
     """Write one PNG per force and torque variable of a sweep table: x, y, z maps over the directions.
 
     Grid tables are drawn with ``pcolormesh`` over azimuth/elevation [deg]; list tables as points at the
-    azimuth/elevation of their Sun or flow vectors. Files are ``{variable}.png`` (e.g. ``srp_force_N.png``,
-    ``drag_torque_Nm.png``) in ``directory``, which is created if needed.
+    azimuth/elevation of their Sun or flow vectors; the Earth's radiation over the Earth's directions.
+    Files are ``{variable}.png`` (e.g. ``srp_force_N.png``, ``drag_torque_Nm.png``, ``earth_force_N.png``)
+    in ``directory``, which is created if needed.
 
     Raises
     ------
     InputError
-        The table has no SRP or drag force or torque.
+        The table has no SRP, drag or Earth force or torque.
     """
     names = [
         (f"{kind}_{quantity}", prefix)
@@ -49,7 +52,9 @@ def plot_table(table: xr.Dataset, directory: str | Path) -> list[Path]:
         if f"{kind}_{quantity}" in table.data_vars
     ]
     if not names:
-        raise InputError("the table has no srp_* or drag_* force or torque to plot", hint="run a sweep first")
+        raise InputError(
+            "the table has no srp_* or drag_* force or torque to plot (nor earth_*)", hint="run a sweep first"
+        )
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
     return [_plot_map(table, name, prefix, out / f"{name}.png") for name, prefix in names]
@@ -183,6 +188,10 @@ def _conditions(table: xr.Dataset, prefix: str) -> str:
         return f"; flux {float(attrs['flux_W_m2']):g} W/m^2"
     if prefix == "flow" and "dynamic_pressure_Pa" in attrs:
         return f"; q = {float(attrs['dynamic_pressure_Pa']):.4g} Pa"
+    if prefix == "earth" and "earth_altitude_km" in attrs:
+        x, y, z = np.asarray(attrs["earth_sun_vector"], dtype=float)
+        height = float(attrs["earth_altitude_km"])
+        return f"; altitude {height:g} km, Sun fixed at ({x:.3f}, {y:.3f}, {z:.3f})"
     return ""
 
 
@@ -230,8 +239,9 @@ def plot_pressure_views(
     model: Model | None = None,
 ) -> list[Path]:
     """3-D views of the table's model coloured by facet pressure ``|F_facet| / A``, one per quantity
-    (SRP, drag), each at ``direction`` (a unit Sun or flow vector), default where that quantity's force
-    is largest. ``model`` defaults to :func:`view_model`. PNGs ``NAME.KIND.pressure_azAZ_elEL.png``.
+    (SRP, drag; none of the Earth's radiation), each at ``direction`` (a unit Sun or flow vector),
+    default where that quantity's force is largest. ``model`` defaults to :func:`view_model`. PNGs
+    ``NAME.KIND.pressure_azAZ_elEL.png``.
 
     Raises
     ------
@@ -239,7 +249,11 @@ def plot_pressure_views(
         What :func:`view_model` refuses.
     """
     model = view_model(table) if model is None else model
-    return [_pressure_view(table, model, kind, directory, name, direction) for kind in kinds_of(table)]
+    return [
+        _pressure_view(table, model, kind, directory, name, direction)
+        for kind in kinds_of(table)
+        if kind in _VIEWED
+    ]
 
 
 def _pressure_view(

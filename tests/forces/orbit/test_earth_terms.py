@@ -161,6 +161,7 @@ def test_an_absorbing_sphere_has_the_closed_form_infrared_and_an_isothermal_one_
         (("--albedo", "0.3"), "--albedo needs --earth-radiation"),
         (("--earth-radiation", "-m", "bare.toml"), "emissivity"),
         (("--earth-radiation", "--albedo", "1.5", "-m", "black.toml"), "albedo"),
+        (("--earth-radiation", "--earth-step", "0", "-m", "black.toml"), "--earth-step 0 is not in"),
     ],
 )
 def test_bad_earth_options_get_one_line(run_cli, sphere, extra, words):
