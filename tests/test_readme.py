@@ -12,6 +12,7 @@ ROOT = REPO
 README = (ROOT / "README.md").read_text()
 
 
+@pytest.mark.slow
 def test_python_example_runs(monkeypatch, tmp_path):
     monkeypatch.chdir(ROOT)
     blocks = re.findall(r"```python\n(.*?)```", README, flags=re.S)
@@ -52,6 +53,7 @@ def test_quick_start_sweep_and_plot_commands_run(run_cli, monkeypatch, tmp_path)
     assert len(list((tmp_path / "plots").glob("*.png"))) == 6  # 2 x 2 maps, a view each
 
 
+@pytest.mark.slow
 def test_single_attitude_command_runs(run_cli, monkeypatch):
     monkeypatch.chdir(ROOT)
     command = re.search(r"`sunwind (srp [^`]+)`", README).group(1).split()

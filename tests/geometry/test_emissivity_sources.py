@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from pxr import Sdf, Usd, UsdGeom, UsdShade
 
+from helpers.planet import materials_toml
 from sunwind.forces.cli.options import uniform_material
 from sunwind.geometry.errors import InputError, MaterialError, MeshError
 from sunwind.geometry.io import load_mesh, save_mesh
@@ -21,13 +22,7 @@ from sunwind.meshes.primitives import box
 
 #: The optics every source below gives the whole box.
 SOLAR = {"reflectivity": 0.3, "specular_fraction": 0.0, "transmissivity": 0.0}
-MATERIALS = """[materials.paint]
-reflectivity = 0.3
-specular_fraction = 0.0
-emissivity = 0.8
-[parts]
-"*" = "paint"
-"""
+MATERIALS = materials_toml("paint", 0.3, 0.0, 0.8)
 FLAGS = ["--reflectivity", "0.3", "--specular-fraction", "0", "--emissivity", "0.8"]
 EARTH = ["--earth", "0", "0", "-1", "--altitude", "500", "--sun", "0", "0", "1"]
 

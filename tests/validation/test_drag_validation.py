@@ -57,6 +57,7 @@ def _groups() -> dict[str, list[Point]]:
 
 
 @pytest.mark.slow
+@pytest.mark.matrix
 @pytest.mark.parametrize("group", [*(case.name for case in DRAG_CASES), "mixture"])
 def test_the_solver_matches_the_tracer_over_the_matrix(group):
     rows = [run_point(point) for point in _groups()[group]]

@@ -47,6 +47,7 @@ def test_v_groove_solver_matches_the_closed_form():
     assert all(check.passed for check in checks), checks
 
 
+@pytest.mark.slow
 def test_direct_part_matches_single_interaction_tracing():
     """``reflections="none"`` is the direct law: every photon leaves after its first interaction, which
     is the tracer capped at one interaction; the full result splits into direct + reflected. Every case

@@ -188,6 +188,7 @@ def test_closed_forms_agree_with_analytic_drag(speed_ratio):
 
 
 # ------------------------------------------------------------------------------------ closed forms
+@pytest.mark.slow
 def test_flat_plate_matches_schaaf_chambre():
     """Two-sided plate, diffuse and specular, S = 2 and 8, angles of attack 0 (edge-on), 20, 50 and
     90 deg; within Z standard errors and 1 % at 400 000 molecules, none dropped or absorbed
@@ -221,6 +222,7 @@ def test_plate_sides_take_their_own_kernel_and_wall_temperature(plate):
     assert_close(result, force, torque, float(np.linalg.norm(force)), 1.0, PLATE_TOL)
 
 
+@pytest.mark.slow
 def test_sphere_matches_the_closed_form():
     """Unit sphere (41 716 facets, projected area 1.5e-4 short), flow off every axis, diffuse and
     specular at S = 2 and 8; 1 % at 1e6 molecules."""

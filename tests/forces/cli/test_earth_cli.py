@@ -2,33 +2,20 @@
 
 import csv
 import json
-import math
 
 import numpy as np
 import pytest
 
-from sunwind.forces.radiation.law import SPEED_OF_LIGHT
-
-R_EARTH = 6_378_137.0
-BLACK = """[materials.black]
-reflectivity = 0.0
-specular_fraction = 0.0
-emissivity = 1.0
-[parts]
-"*" = "black"
-"""
+from helpers.planet import BLACK, EARTH_EXITANCE, infrared_on_black_sphere, materials_toml, write_sphere
 
 
 @pytest.fixture(scope="module")
 def sphere(tmp_path_factory):
     """A 1 m black sphere and its materials file."""
-    from sunwind.geometry.io import save_mesh
-    from sunwind.meshes.primitives import sphere
-
     folder = tmp_path_factory.mktemp("earth")
-    save_mesh(sphere(1.0, 24), folder / "sphere.obj")
+    write_sphere(folder / "sphere.obj", 24)
     (folder / "black.toml").write_text(BLACK)
-    (folder / "bare.toml").write_text(BLACK.replace("emissivity = 1.0\n", ""))
+    (folder / "bare.toml").write_text(materials_toml("black", 0.0, 0.0, None))
     return folder
 
 
@@ -46,10 +33,8 @@ def test_json_has_the_documented_keys_and_the_closed_form(run_cli, sphere):
         assert {"force_N", "torque_Nm"} <= set(doc[key])
     part = doc["parts"]["sphere"] if "sphere" in doc["parts"] else next(iter(doc["parts"].values()))
     assert {"area_m2", "solar_W", "albedo_W", "infrared_W", "reflected_W", "temperature_K"} <= set(part)
-    # an absorbing sphere under a uniform emitter: pi a^2 M sin^2(theta_0) / c away from the planet,
-    # to the faceting of a 24-segment sphere
-    sin2 = (R_EARTH / (R_EARTH + 5e5)) ** 2
-    expected = math.pi * (1 - 0.3) * 1361 / 4 * sin2 / SPEED_OF_LIGHT * part["area_m2"] / (4 * math.pi)
+    # an absorbing sphere under a uniform emitter, away from the planet, to the faceting
+    expected = infrared_on_black_sphere(part["area_m2"], EARTH_EXITANCE, 500.0)
     assert doc["infrared"]["force_N"][2] == pytest.approx(expected, rel=1e-4)
     assert abs(doc["thermal"]["imbalance"]) < 1e-9
     assert doc["solar_fraction"] == 1.0

@@ -69,6 +69,7 @@ def test_validate_quick_runs_every_family_within_its_limits(run_cli):
     assert out.splitlines()[-1] == f"{passed} passed, 0 failed" and passed > 150
 
 
+@pytest.mark.slow
 def test_bench_times_a_small_model_and_reports_json(run_cli):
     code, out, err = run_cli("bench", "--triangles", "3000", "--attitudes", "2", "--json")
     assert code == 0, err

@@ -6,19 +6,18 @@ from __future__ import annotations
 
 import csv
 import json
-import math
 
 import numpy as np
 import pytest
 import xarray as xr
 
+from helpers.planet import BLACK, R_EARTH, infrared_on_black_sphere, materials_toml, write_sphere
 from sunwind.forces import Model
 from sunwind.forces.earth import Place, earth_radiation
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, fly, propagate
 from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.planet.bodies import PlanetLight, planet
-from sunwind.forces.radiation.law import SPEED_OF_LIGHT
 from sunwind.forces.tables.jobs import SrpSetup
 from sunwind.forces.thermal import ThermalModel
 from sunwind.geometry.materials import Material
@@ -27,7 +26,6 @@ from sunwind.meshes.primitives import box_wing
 
 EPOCH = Epoch.of("2024-06-01T00:00:00Z")
 PAINT = Material("paint", 0.5, 0.4, 0.0, emissivity=0.85)
-R_EARTH = 6_378_137.0
 
 
 @pytest.fixture(scope="module")
@@ -101,29 +99,13 @@ def test_summary_and_files_carry_the_parts(run, tmp_path):
     assert f"part_temperature_K[{result.part_names[0]}]" in header and "thermal_force_body_N_z" in header
 
 
-BLACK = """[materials.black]
-reflectivity = 0.0
-specular_fraction = 0.0
-emissivity = 1.0
-[parts]
-"*" = "black"
-"""
-
-
 @pytest.fixture(scope="module")
 def sphere(tmp_path_factory):
-    from sunwind.geometry.io import save_mesh
-    from sunwind.meshes.primitives import sphere
-
     folder = tmp_path_factory.mktemp("orbit_earth")
-    mesh = sphere(1.0, 24)
-    save_mesh(mesh, folder / "sphere.obj")
-    corners = mesh.vertices[mesh.faces]
-    doubled = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    (folder / "area").write_text(repr(0.5 * float(np.linalg.norm(doubled, axis=1).sum())))
+    (folder / "area").write_text(repr(write_sphere(folder / "sphere.obj", 24)))
     (folder / "black.toml").write_text(BLACK)
     (folder / "iso.toml").write_text(BLACK + '[thermal."*"]\nisothermal = true\n')
-    (folder / "bare.toml").write_text(BLACK.replace("emissivity = 1.0\n", ""))
+    (folder / "bare.toml").write_text(materials_toml("black", 0.0, 0.0, None))
     return folder
 
 
@@ -141,11 +123,8 @@ def test_an_absorbing_sphere_has_the_closed_form_infrared_and_an_isothermal_one_
     )
     assert code == 0, err
     doc = json.loads(out)
-    area = (sphere / "area").read_text()
-    area = float(area)
-    sin2 = (R_EARTH / (R_EARTH + 5e5)) ** 2
-    # nadir attitude: the Earth along body +z; pi a^2 M sin^2(theta_0) / c away from it
-    expected = -math.pi * 240.0 * sin2 / SPEED_OF_LIGHT * area / (4 * math.pi)
+    # nadir attitude: the Earth along body +z; the closed form away from it
+    expected = -infrared_on_black_sphere(float((sphere / "area").read_text()), 240.0, 500.0)
     infrared = np.array(doc["infrared_force_body_N"])
     assert infrared[:, 2] == pytest.approx(expected, rel=1e-4)  # to the faceting
     assert np.abs(infrared[:, :2]).max() < 1e-12 * abs(expected)

@@ -89,6 +89,7 @@ def _square(normal: np.ndarray) -> np.ndarray:
     return np.array([-a - b, a - b, a + b, -a + b]) / 2
 
 
+@pytest.mark.slow
 def test_absorbing_sphere_against_its_closed_forms():
     """Infrared and subsolar albedo force on an absorbing sphere of radius 1 m: faceting only (1e-4)."""
     craft = build_spacecraft(primitives.sphere(1.0), uniform=Material("black", 0.0, 0.0, 0.0, emissivity=1.0))

@@ -11,34 +11,27 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from helpers.planet import (
+    BLACK,
+    EARTH_EXITANCE,
+    R_EARTH,
+    infrared_on_black_sphere,
+    materials_toml,
+    write_sphere,
+)
 from helpers.shapes import HINGED_MATERIALS, hinged_box_wing
 from sunwind.forces import export
 from sunwind.forces.earth import Place, earth_radiation
 from sunwind.forces.model import load
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.shadow import sphere_visible
-from sunwind.forces.radiation.law import SPEED_OF_LIGHT
 from sunwind.forces.tables import EarthSetup, SrpSetup, SweepRun, TableInterpolator, open_table, sweep
 from sunwind.forces.tables.attitudes import read_attitude_csv
 from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.errors import InputError, SunwindError
 
-R_EARTH = 6_378_137.0
 AU_M = 149_597_870_700.0
-PAINT = """[materials.paint]
-reflectivity = 0.4
-specular_fraction = 0.5
-emissivity = 0.8
-[parts]
-"*" = "paint"
-"""
-BLACK = """[materials.black]
-reflectivity = 0.0
-specular_fraction = 0.0
-emissivity = 1.0
-[parts]
-"*" = "black"
-"""
+PAINT = materials_toml("paint", 0.4, 0.5, 0.8)
 #: The fixed Sun of most tables: 45 deg grids put the Earth in front of it at some nodes.
 SUN = (0.6, 0.0, 0.8)
 
@@ -46,15 +39,12 @@ SUN = (0.6, 0.0, 0.8)
 @pytest.fixture(scope="module")
 def folder(tmp_path_factory):
     """Small spheres (12 and 16 bands), their painted, black and emissivity-less materials."""
-    from sunwind.geometry.io import save_mesh
-    from sunwind.meshes.primitives import sphere
-
     folder = tmp_path_factory.mktemp("earth-table")
-    save_mesh(sphere(1.0, 12), folder / "sphere.obj")
-    save_mesh(sphere(1.0, 16), folder / "fine.obj")
+    write_sphere(folder / "sphere.obj", 12)
+    write_sphere(folder / "fine.obj", 16)
     (folder / "paint.toml").write_text(PAINT)
     (folder / "black.toml").write_text(BLACK)
-    (folder / "bare.toml").write_text(PAINT.replace("emissivity = 0.8\n", ""))
+    (folder / "bare.toml").write_text(materials_toml("paint", 0.4, 0.5, None))
     return folder
 
 
@@ -134,14 +124,13 @@ def test_an_absorbing_sphere_feels_the_closed_form_of_a_uniform_emitter(folder):
     away from the Earth at every node, sin(theta_0) = R/(R + h), pi a^2 the faceted sphere's area/4."""
     model = load(folder / "fine.obj", folder / "black.toml")
     area = float(model.craft.facet_areas.sum())
-    sin2 = (R_EARTH / (R_EARTH + 4e5)) ** 2
-    for infrared, exitance in ((None, (1 - 0.3) * 1361 / 4), (200.0, 200.0)):
+    for infrared, exitance in ((None, EARTH_EXITANCE), (200.0, 200.0)):
         setup = EarthSetup(
             altitude_km=400.0, sun_vector=(1, 0, 0), infrared_W_m2=infrared, reflections="none"
         )
         table = sweep(model, earth=setup, step_deg=45.0)
         u = table["earth_vector"].values
-        expected = -(area / 4 * exitance * sin2 / SPEED_OF_LIGHT) * u
+        expected = -infrared_on_black_sphere(area, exitance, 400.0) * u
         force = table["earth_infrared_force_N"].values
         scale = np.linalg.norm(expected, axis=-1, keepdims=True)
         assert np.all(np.abs(force - expected) <= 1e-4 * scale)
