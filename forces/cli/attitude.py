@@ -32,6 +32,7 @@ from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.results import DragResult
 from sunwind.forces.srp import srp as srp_of
+from sunwind.geometry.spacecraft import infrared_optics
 
 
 @click.command()
@@ -105,6 +106,8 @@ def forces(
     """Solar-radiation pressure and free-molecular drag together for one attitude, and their total
     (with --earth-radiation, the Earth's albedo and infrared too, and --thermal the thermal recoil)."""
     model = posed(loaded(source, **references), sun.vector, "forces")
+    if earth is not None:
+        infrared_optics(model.craft)  # a missing emissivity refused before any work
     light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     gas = _drag(model, flow, reflections, sampling)
     if earth is None:

@@ -125,9 +125,11 @@ def test_forces_adds_the_earth_terms_of_sunwind_earth_to_its_total(run_cli, sphe
         (["--earth-radiation"], "--earth-radiation needs --earth X Y Z"),
         (["--thermal"], "--thermal needs --earth-radiation"),
         (["--earth", "0", "0", "1", "--albedo", "0.2"], "--albedo, --earth need --earth-radiation"),
+        (["--earth-radiation", "--earth", "0", "0", "1", "-m", "bare.toml"], "has no emissivity"),
     ],
 )
 def test_forces_earth_options_are_checked_in_one_line(run_cli, sphere, extra, message):
+    extra = [sphere / e if str(e).endswith(".toml") else e for e in extra]
     code, out, err = run_cli(*_forces(sphere, *extra))
     assert code == 1 and out == ""
     assert err.startswith("sunwind: error:") and message in err and err.count("\n") == 1, err
