@@ -59,7 +59,7 @@ class EarthResult:
     rays : int
         Shadow and beam rays cast.
     reflections : str
-        The inter-reflection mode used ("auto" resolved).
+        The inter-reflection mode used ("auto" resolved; "plates" in the plate mode).
     reference_point_m : (3,) float64
     reference_point : str
     craft : Spacecraft
@@ -197,6 +197,7 @@ def earth_radiation(
     tolerance: float = DEFAULT_TOLERANCE,
     reflections: str | ReflectionSettings = "auto",
     step_deg: float = DEFAULT_STEP_DEG,
+    plates: bool = False,
 ) -> EarthResult:
     """Albedo and infrared force and torque from the planet below, and the power each side absorbs
     from them and from the Sun.
@@ -218,6 +219,10 @@ def earth_radiation(
     step_deg : float
         Size of the cap's cells [deg] in (0, 90]: one shadow pass each. Sides no other side can shadow
         are exact at any step.
+    plates : bool
+        The fast mode of plate models: every side an independent plate that sees the whole planet (its
+        exact integrals, the dissertation's closed-form view factors), no self-shadowing and no
+        inter-reflection (``reflections`` is then ``"none"``); no ray is cast.
     """
     model = as_model(model)
     craft = model.craft
@@ -227,7 +232,7 @@ def earth_radiation(
         raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
     check_sampling(samples, tolerance)
     reference, reference_name = model.reference(reference_point_m)
-    settings = ReflectionSettings.of(reflections)
+    settings = ReflectionSettings.of("none" if plates else reflections)
     body = light.planet
     distance = body.radius_m + place.altitude_km * 1e3
     caps = [
@@ -239,6 +244,7 @@ def earth_radiation(
         "tolerance": tolerance,
         "cutoff": settings.cutoff,
         "depth": settings.depth,
+        "shadows": not plates,
     }
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
@@ -267,7 +273,7 @@ def earth_radiation(
         light=light,
         cells=len(directions),
         rays=rays + solar_rays,
-        reflections=plan.mode,
+        reflections="plates" if plates else plan.mode,
         reference_point_m=reference,
         reference_point=reference_name,
         craft=craft,

@@ -52,6 +52,7 @@ class Below:
     earth_ir: float | None
     eclipse: str
     step_deg: float
+    plates: bool = False
 
 
 def _light_options() -> list:
@@ -91,6 +92,9 @@ def planet_options() -> click.decorators.FC:
                      help="The planet's shadow on the Sun (sunlight in the heat budget)."),
         click.option("--step", "step_deg", type=float, default=DEFAULT_STEP_DEG, show_default=True,
                      help="Cell size of the planet's disc for shadowing and reflections [deg]."),
+        click.option("--plates", is_flag=True,
+                     help="Fast mode: every side an independent plate seeing the whole planet (exact "
+                     "plate factors), no self-shadowing or inter-reflection; no ray cast."),
     ]  # fmt: skip
     return group("below", options, lambda values: Below(**values))
 
@@ -223,10 +227,11 @@ def radiation(
     """The planet's radiation on ``model`` at the place of ``below`` with the command's reflections and
     shadow ``sampling``, and (``thermal``) the equilibrium temperatures and recoil."""
     place, light = place_and_light(below, sun)
+    step, plates = below.step_deg, below.plates
     result = earth_radiation(
-        model, place, light, reflections=reflections, step_deg=below.step_deg, **sampling
+        model, place, light, reflections=reflections, step_deg=step, plates=plates, **sampling
     )
-    return result, result.equilibrium(reflections) if thermal else None
+    return result, result.equilibrium("none" if plates else reflections) if thermal else None
 
 
 def earth_at(

@@ -142,12 +142,14 @@ def band_loads(
     tolerance: float,
     cutoff: float,
     depth: int,
+    shadows: bool = True,
 ) -> tuple[list[BandLoad], int]:
     """The :class:`BandLoad` of each source, whose cells lie along ``directions`` (k, 3), and the
-    shadow rays cast. One shadow pass per cell serves every source."""
+    shadow rays cast. One shadow pass per cell serves every source; none without ``shadows`` (every
+    side sees the whole source, and no beam is followed)."""
     running = [_Running(craft.n_sides) for _ in sources]
     sampler = side_sampler(craft)
-    shadowing = not bool(np.all(clearance(craft).open_sky))
+    shadowing = shadows and not bool(np.all(clearance(craft).open_sky))
     rays = 0
     for k, direction in enumerate(directions):
         live = [(s, r) for s, r in zip(sources, running, strict=True) if s.weights[k] > 0]

@@ -149,3 +149,12 @@ def test_earth_without_the_earth_direction_is_one_line(run_cli, sphere):
         "0",
     )
     assert code == 1 and "give --earth X Y Z" in err and err.count("\n") == 1, err
+
+
+def test_the_plate_mode_casts_no_ray_and_says_so(run_cli, sphere):
+    code, out, err = run_cli(
+        *_args(sphere, "--altitude", "500", "--sun", "1", "0", "0", "--plates", "--json")
+    )
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["rays"] == 0 and doc["reflections"] == "plates"

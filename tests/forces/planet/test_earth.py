@@ -113,11 +113,7 @@ def test_absorbing_sphere_against_its_closed_forms():
 def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
     """A 1 m plate facing the planet with a 0.4 m plate 0.3 m below it: the shadowed irradiance and force
     on the big plate against the ray brute force, falling with the cell size."""
-    big = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0.0]])[::-1]
-    small = np.array([[-0.2, -0.2, -0.3], [0.2, -0.2, -0.3], [0.2, 0.2, -0.3], [-0.2, 0.2, -0.3]])
-    material = Material("grey", 0.0, 0.0, 0.0, emissivity=1.0)
-    mesh = MeshData.concatenate([quad_sheet(big, "big", 1), quad_sheet(small, "small", 1)])
-    craft = build_spacecraft(mesh, uniform=material, two_sided=["*"])
+    craft, big, small = _plate_over_plate()
     body = ref.Planet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
     sun = SUNS[1]
     result = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", step_deg=step_deg)
@@ -128,6 +124,35 @@ def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
         expected = ref.shadowed_plate_irradiance(blockers, big, [0, 0, -1.0], NADIR, sun, body, band)
         got = getattr(result, band).incident_side_W[facing].sum()
         assert abs(got - expected.irradiance_W_m2) <= tolerance * expected.irradiance_W_m2
+
+
+def _plate_over_plate():
+    """A 1 m plate facing the planet, a 0.4 m plate 0.3 m below it (toward the planet): two-sided."""
+    big = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0.0]])[::-1]
+    small = np.array([[-0.2, -0.2, -0.3], [0.2, -0.2, -0.3], [0.2, 0.2, -0.3], [-0.2, 0.2, -0.3]])
+    material = Material("grey", 0.0, 0.0, 0.0, emissivity=1.0)
+    mesh = MeshData.concatenate([quad_sheet(big, "big", 1), quad_sheet(small, "small", 1)])
+    return build_spacecraft(mesh, uniform=material, two_sided=["*"]), big, small
+
+
+def test_the_plate_mode_gives_every_side_the_closed_form_factors_of_a_plate_alone():
+    """``plates``: each side of the shadowing pair gets the dissertation's ``M phi_1`` and, with the Sun
+    overhead (where the closed form is exact), ``A S phi_2``, as if it were alone; no ray is cast. The
+    default, which shadows, gives the big plate less."""
+    craft, _, _ = _plate_over_plate()
+    sun = SUNS[0]
+    alone = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, plates=True)
+    theta_0 = float(ref.theta_0_of(EARTH.radius_m, 500e3))
+    normals, areas = craft.side_normals, craft.side_areas
+    infrared = (1 - EARTH.albedo) * FLUX / 4 * np.asarray(ref.infrared_factor_closed(NADIR, normals, theta_0))
+    albedo = EARTH.albedo * FLUX * np.asarray(ref.albedo_factor_closed(NADIR, sun, normals, theta_0))
+    assert np.all(ref.albedo_closed_is_exact(NADIR, sun, normals[infrared > 0], theta_0))
+    assert np.allclose(alone.infrared.incident_side_W, infrared * areas, rtol=1e-9, atol=1e-12)
+    assert np.allclose(alone.albedo.incident_side_W, albedo * areas, rtol=1e-9, atol=1e-12)
+    assert alone.rays == 0 and alone.reflections == "plates"
+    shadowed = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none")
+    big = craft.facet_part[craft.side_facet] == craft.part_names.index("big")
+    assert shadowed.infrared.incident_side_W[big].sum() < 0.9 * alone.infrared.incident_side_W[big].sum()
 
 
 def test_power_balances_in_a_cavity_with_every_reflection():
