@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap
-from sunwind.forces.planet.loads import BandLoad, Source, band_loads
+from sunwind.forces.planet.loads import BandLoad, CellSampling, Source, band_loads
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
@@ -34,6 +34,8 @@ from sunwind.geometry.spacecraft import Spacecraft, infrared_optics
 
 #: Default size of the cap's cells for shadowing and reflections [deg].
 DEFAULT_STEP_DEG = 10.0
+#: The ``reflections`` of the plate mode: every side alone, no shadowing or inter-reflection.
+PLATES = "plates"
 #: Altitudes accepted [km]: above the surface, and below 100 times the Moon's distance.
 MAX_ALTITUDE_KM = 4.0e7
 
@@ -197,7 +199,6 @@ def earth_radiation(
     tolerance: float = DEFAULT_TOLERANCE,
     reflections: str | ReflectionSettings = "auto",
     step_deg: float = DEFAULT_STEP_DEG,
-    plates: bool = False,
 ) -> EarthResult:
     """Albedo and infrared force and torque from the planet below, and the power each side absorbs
     from them and from the Sun.
@@ -215,14 +216,13 @@ def earth_radiation(
     samples, tolerance
         Shadow sampling, as for :func:`~sunwind.forces.srp.srp`.
     reflections : str or ReflectionSettings
-        As for :func:`~sunwind.forces.srp.srp`; ``auto`` decides by the model's ``K_IS``.
+        As for :func:`~sunwind.forces.srp.srp`; ``auto`` decides by the model's ``K_IS``. ``"plates"``:
+        the fast mode of plate models, every side an independent plate that sees the whole planet (its
+        exact integrals, the dissertation's closed-form view factors), no self-shadowing and no
+        inter-reflection; no ray is cast.
     step_deg : float
         Size of the cap's cells [deg] in (0, 90]: one shadow pass each. Sides no other side can shadow
         are exact at any step.
-    plates : bool
-        The fast mode of plate models: every side an independent plate that sees the whole planet (its
-        exact integrals, the dissertation's closed-form view factors), no self-shadowing and no
-        inter-reflection (``reflections`` is then ``"none"``); no ray is cast.
     """
     model = as_model(model)
     craft = model.craft
@@ -232,6 +232,7 @@ def earth_radiation(
         raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
     check_sampling(samples, tolerance)
     reference, reference_name = model.reference(reference_point_m)
+    plates = isinstance(reflections, str) and reflections == PLATES
     settings = ReflectionSettings.of("none" if plates else reflections)
     body = light.planet
     distance = body.radius_m + place.altitude_km * 1e3
@@ -239,13 +240,7 @@ def earth_radiation(
         Cap(place.nadir, place.sun_vector, place.pole, distance, body.radius_m, law)
         for law in (light.albedo, light.infrared)
     ]
-    sampling = {
-        "samples": samples,
-        "tolerance": tolerance,
-        "cutoff": settings.cutoff,
-        "depth": settings.depth,
-        "shadows": not plates,
-    }
+    sampling = CellSampling(samples, tolerance, settings.cutoff, settings.depth, shadows=not plates)
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
         cells = [cap.patches(step_deg) for cap in caps]  # one geometry: the same directions
@@ -260,10 +255,10 @@ def earth_radiation(
                 ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
         ]  # fmt: skip
-        loads, rays = band_loads(craft, sources, directions, reference, **sampling)
+        loads, rays = band_loads(craft, sources, directions, reference, sampling)
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
-        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, **sampling)
+        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, sampling)
     return EarthResult(
         albedo=loads[0],
         infrared=loads[1],
@@ -273,7 +268,7 @@ def earth_radiation(
         light=light,
         cells=len(directions),
         rays=rays + solar_rays,
-        reflections="plates" if plates else plan.mode,
+        reflections=PLATES if plates else plan.mode,
         reference_point_m=reference,
         reference_point=reference_name,
         craft=craft,

@@ -25,7 +25,7 @@ from sunwind.forces.cli.options import (
     sun_options,
 )
 from sunwind.forces.cli.report import about, print_json, vector
-from sunwind.forces.earth import DEFAULT_STEP_DEG, EarthResult, Place, earth_radiation
+from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, EarthResult, Place, earth_radiation
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
@@ -227,11 +227,9 @@ def radiation(
     """The planet's radiation on ``model`` at the place of ``below`` with the command's reflections and
     shadow ``sampling``, and (``thermal``) the equilibrium temperatures and recoil."""
     place, light = place_and_light(below, sun)
-    step, plates = below.step_deg, below.plates
-    result = earth_radiation(
-        model, place, light, reflections=reflections, step_deg=step, plates=plates, **sampling
-    )
-    return result, result.equilibrium("none" if plates else reflections) if thermal else None
+    mode = PLATES if below.plates else reflections
+    result = earth_radiation(model, place, light, reflections=mode, step_deg=below.step_deg, **sampling)
+    return result, result.equilibrium("none" if below.plates else reflections) if thermal else None
 
 
 def earth_at(

@@ -132,24 +132,32 @@ class _Running:
         self.chains: list[ChainTotals] = []
 
 
+@dataclass(frozen=True)
+class CellSampling:
+    """How each cell is shadowed and its beams followed: the shadow pass's ``samples`` and
+    ``tolerance``, the chains' power ``cutoff`` and ``depth``, and whether to shadow at all."""
+
+    samples: int | None
+    tolerance: float
+    cutoff: float
+    depth: int
+    shadows: bool = True
+
+
 def band_loads(
     craft: Spacecraft,
     sources: Sequence[Source],
     directions: NDArray[np.float64],
     reference_m: NDArray[np.float64],
-    *,
-    samples: int | None,
-    tolerance: float,
-    cutoff: float,
-    depth: int,
-    shadows: bool = True,
+    sampling: CellSampling,
 ) -> tuple[list[BandLoad], int]:
     """The :class:`BandLoad` of each source, whose cells lie along ``directions`` (k, 3), and the
-    shadow rays cast. One shadow pass per cell serves every source; none without ``shadows`` (every
-    side sees the whole source, and no beam is followed)."""
+    shadow rays cast. One shadow pass per cell serves every source; none without ``sampling.shadows``
+    (every side sees the whole source, and no beam is followed)."""
     running = [_Running(craft.n_sides) for _ in sources]
     sampler = side_sampler(craft)
-    shadowing = shadows and not bool(np.all(clearance(craft).open_sky))
+    samples, tolerance, cutoff, depth = sampling.samples, sampling.tolerance, sampling.cutoff, sampling.depth
+    shadowing = sampling.shadows and not bool(np.all(clearance(craft).open_sky))
     rays = 0
     for k, direction in enumerate(directions):
         live = [(s, r) for s, r in zip(sources, running, strict=True) if s.weights[k] > 0]

@@ -136,12 +136,12 @@ def _plate_over_plate():
 
 
 def test_the_plate_mode_gives_every_side_the_closed_form_factors_of_a_plate_alone():
-    """``plates``: each side of the shadowing pair gets the dissertation's ``M phi_1`` and, with the Sun
-    overhead (where the closed form is exact), ``A S phi_2``, as if it were alone; no ray is cast. The
-    default, which shadows, gives the big plate less."""
+    """``reflections="plates"``: each side of the shadowing pair gets the dissertation's ``M phi_1``
+    and, with the Sun overhead (where the closed form is exact), ``A S phi_2``, as if it were alone; no
+    ray is cast. The default, which shadows, gives the big plate less."""
     craft, _, _ = _plate_over_plate()
     sun = SUNS[0]
-    alone = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, plates=True)
+    alone = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="plates")
     theta_0 = float(ref.theta_0_of(EARTH.radius_m, 500e3))
     normals, areas = craft.side_normals, craft.side_areas
     infrared = (1 - EARTH.albedo) * FLUX / 4 * np.asarray(ref.infrared_factor_closed(NADIR, normals, theta_0))
