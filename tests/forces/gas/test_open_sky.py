@@ -75,6 +75,7 @@ def test_the_stream_per_direction_integrates_to_the_closed_forms(ratio, gamma):
     assert abs(momentum_vector[1]) < 1e-12
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("alpha_n", "ratio"), [(0.2, 1.5), (0.8, 1.5), (0.2, 8.0), (1.0, 3.0)])
 def test_cll_normal_momentum_per_direction_integrates_to_the_exact_cll_normal(alpha_n, ratio):
     table = cll_normal_table(alpha_n, 0.3, ratio + 1.0)

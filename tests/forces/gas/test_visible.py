@@ -90,6 +90,7 @@ def test_every_side_of_a_convex_body_is_its_own_gas_surface_law():
     assert np.all(error <= 1e-12 * np.linalg.norm(expected, axis=1) + 1e-15 * np.abs(expected).max())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("samples", [1, 4, None])
 def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, samples):
     kwargs = {"samples": samples, "reflections": "full"}

@@ -54,6 +54,7 @@ def test_power_balances_in_a_cavity_with_fixed_samples(material, samples):
         assert abs(result.power.imbalance) < 1e-9
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("psi", [20.0, -35.0])
 def test_fixed_and_adaptive_first_beams_agree_on_a_fine_groove(psi):
     """Mirror V-groove lit across its axis, 32 x 32 cells a wall: one beam from each lit side is

@@ -22,6 +22,7 @@ def full(mode: str = "full", **options) -> ReflectionSettings:
     return ReflectionSettings(mode, **options)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "mesh", [primitives.sphere(1.0, 3), primitives.box((1.0, 2.0, 0.5), 3), primitives.cylinder(0.5, 2.0)]
 )

@@ -119,6 +119,7 @@ def test_the_table_states_its_slice_units_and_settings(thermal_table):
     assert table["earth_solar_fraction"].attrs["units"] == "1"
 
 
+@pytest.mark.slow
 def test_an_absorbing_sphere_feels_the_closed_form_of_a_uniform_emitter(folder):
     """(b) a black sphere of radius a under the Earth's uniform infrared M: pi a^2 M sin^2(theta_0)/c
     away from the Earth at every node, sin(theta_0) = R/(R + h), pi a^2 the faceted sphere's area/4."""
