@@ -12,13 +12,13 @@ import pytest
 import xarray as xr
 
 from helpers.planet import BLACK, R_EARTH, infrared_on_black_sphere, materials_toml, write_sphere
+from helpers.runs import stopped_then_resumed
 from sunwind.forces import Model
 from sunwind.forces.earth import Place, earth_radiation
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, fly, propagate
 from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.planet.bodies import PlanetLight, planet
-from sunwind.forces.tables import SweepRun
 from sunwind.forces.tables.jobs import SrpSetup
 from sunwind.forces.thermal import ThermalModel
 from sunwind.geometry.materials import Material
@@ -159,21 +159,8 @@ def test_a_resumed_run_keeps_the_per_part_records_of_its_checkpoint(model, run, 
     surface = SrpSetup(reflections="none")
     loads = Loads(surface, earth=EarthTerms(surface, step_deg=15.0, thermal=True))
     law = AttitudeLaw.parse("lvlh:5,-10,3")
-    checkpoint = tmp_path / "run.checkpoint"
-
-    def stop(done: int) -> None:
-        if done >= 4:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        fly(model, path, law, loads, run=SweepRun(chunk=4, checkpoint=checkpoint, progress=stop))
-    notices = []
-    resumed = fly(
-        model,
-        path,
-        law,
-        loads,
-        run=SweepRun(chunk=4, checkpoint=checkpoint, resume=True, notice=notices.append),
+    resumed, notices = stopped_then_resumed(
+        lambda run: fly(model, path, law, loads, run=run), tmp_path / "run.checkpoint", 4
     )
     assert notices == ["checkpoint: kept 1 chunks, recomputing 2"]
     for name in ("part_temperature_K", "part_albedo_W", "thermal_torque_body_Nm", "force_body_N"):

@@ -8,12 +8,12 @@ import json
 import numpy as np
 import pytest
 
+from helpers.runs import stopped_then_resumed
 from sunwind.forces import Model, drag, nrlmsis, srp
 from sunwind.forces.orbit import SERIES, AttitudeLaw, Elements, Epoch, Loads, fly, propagate
 from sunwind.forces.orbit.flight import geodetic
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.reflection import ReflectionSettings
-from sunwind.forces.tables import SweepRun
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry.materials import Material
 from sunwind.geometry.spacecraft import build_spacecraft
@@ -146,21 +146,7 @@ def test_an_interrupted_run_resumes_from_its_checkpoint_and_gives_the_same_serie
     law = AttitudeLaw.parse("nadir")
     whole = fly(model, path, law, loads)
     checkpoint = tmp_path / "run.checkpoint"
-
-    def stop(done: int) -> None:
-        if done >= 2:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        fly(model, path, law, loads, run=SweepRun(chunk=2, checkpoint=checkpoint, progress=stop))
-    notices = []
-    resumed = fly(
-        model,
-        path,
-        law,
-        loads,
-        run=SweepRun(chunk=2, checkpoint=checkpoint, resume=True, notice=notices.append),
-    )
+    resumed, notices = stopped_then_resumed(lambda run: fly(model, path, law, loads, run=run), checkpoint, 2)
     assert notices == ["checkpoint: kept 1 chunks, recomputing 2"]
     for name in ("srp_force_body_N", "torque_body_Nm", "angular_impulse_eci_Nms"):
         assert np.array_equal(resumed.series[name], whole.series[name])

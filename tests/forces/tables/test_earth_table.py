@@ -19,13 +19,14 @@ from helpers.planet import (
     materials_toml,
     write_sphere,
 )
+from helpers.runs import stopped_then_resumed
 from helpers.shapes import HINGED_MATERIALS, hinged_box_wing
 from sunwind.forces import export
 from sunwind.forces.earth import Place, earth_radiation
 from sunwind.forces.model import load
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.shadow import sphere_visible
-from sunwind.forces.tables import EarthSetup, SrpSetup, SweepRun, TableInterpolator, open_table, sweep
+from sunwind.forces.tables import EarthSetup, SrpSetup, TableInterpolator, open_table, sweep
 from sunwind.forces.tables.attitudes import read_attitude_csv
 from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.errors import InputError, SunwindError
@@ -168,20 +169,10 @@ def test_a_tracking_hinge_is_turned_to_the_fixed_sun_and_listed_angles_are_poses
 
 
 def test_an_earth_sweep_resumes_from_its_checkpoint(painted, tmp_path):
-    checkpoint = tmp_path / "t.checkpoint"
     setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, step_deg=30.0)
-
-    def stop(done: int) -> None:
-        if done >= 13:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        sweep(
-            painted, earth=setup, step_deg=45.0, run=SweepRun(chunk=13, checkpoint=checkpoint, progress=stop)
-        )
-    notices = []
-    run = SweepRun(chunk=13, checkpoint=checkpoint, resume=True, notice=notices.append)
-    resumed = sweep(painted, earth=setup, step_deg=45.0, run=run)
+    resumed, notices = stopped_then_resumed(
+        lambda run: sweep(painted, earth=setup, step_deg=45.0, run=run), tmp_path / "t.checkpoint", 13
+    )
     assert notices and notices[0].startswith("checkpoint: kept 1 chunks")
     xr.testing.assert_identical(resumed, sweep(painted, earth=setup, step_deg=45.0))
 

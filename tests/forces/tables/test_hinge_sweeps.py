@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from helpers.runs import stopped_then_resumed
 from helpers.shapes import hinged_box_wing
 from sunwind.forces import explicit, load, srp, sweep
-from sunwind.forces.tables import SweepRun
 from sunwind.forces.tables.jobs import DragSetup, SrpSetup
 from sunwind.geometry.directions import azel_to_vector
 
@@ -57,19 +57,12 @@ def test_each_listed_angle_is_a_pose_and_each_entry_the_call_at_that_pose(model)
 
 
 def test_a_sweep_over_angles_resumes_from_its_checkpoint(model, tmp_path):
-    checkpoint = tmp_path / "t.checkpoint"
     setup = SrpSetup(reflections="none")
-
-    def stop(done: int) -> None:
-        if done >= 26:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        run = SweepRun(chunk=26, checkpoint=checkpoint, progress=stop)
-        sweep(model, srp=setup, step_deg=45.0, hinge_angles={"wing_*": ANGLES}, run=run)
-    notices = []
-    run = SweepRun(chunk=26, checkpoint=checkpoint, resume=True, notice=notices.append)
-    resumed = sweep(model, srp=setup, step_deg=45.0, hinge_angles={"wing_*": ANGLES}, run=run)
+    resumed, notices = stopped_then_resumed(
+        lambda run: sweep(model, srp=setup, step_deg=45.0, hinge_angles={"wing_*": ANGLES}, run=run),
+        tmp_path / "t.checkpoint",
+        26,
+    )
     whole = sweep(model, srp=setup, step_deg=45.0, hinge_angles={"wing_*": ANGLES})
     assert notices and notices[0].startswith("checkpoint: kept 1 chunks")
     xr.testing.assert_identical(resumed, whole)
