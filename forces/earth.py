@@ -160,6 +160,26 @@ class EarthResult:
         }
 
 
+def check_altitude(altitude_km: float) -> None:
+    """Refuse a height above the planet's surface [km] that is not a number in (0, MAX_ALTITUDE_KM]."""
+    if (
+        isinstance(altitude_km, bool)
+        or not isinstance(altitude_km, int | float | np.floating | np.integer)
+        or not (math.isfinite(altitude_km) and 0.0 < altitude_km <= MAX_ALTITUDE_KM)
+    ):
+        raise InputError(
+            f"altitude_km {altitude_km} is not in (0, {MAX_ALTITUDE_KM:g}] km",
+            hint="give the height above the surface in km, e.g. 500",
+            parameters=("altitude_km",),
+        )
+
+
+def check_step(step_deg: float) -> None:
+    """Refuse a cell size of the planet's disc [deg] outside (0, 90]."""
+    if not (math.isfinite(step_deg) and 0.0 < step_deg <= 90.0):
+        raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
+
+
 @dataclass(frozen=True, eq=False)
 class Place:
     """Where the spacecraft is, in its body frame: the planet's centre along ``nadir``, ``altitude_km``
@@ -177,12 +197,7 @@ class Place:
         object.__setattr__(self, "sun_vector", unit_vector(self.sun_vector, "sun_vector"))
         pole = np.array([0.0, 0.0, 1.0]) if self.pole is None else unit_vector(self.pole, "pole")
         object.__setattr__(self, "pole", pole)
-        if not (math.isfinite(self.altitude_km) and 0.0 < self.altitude_km <= MAX_ALTITUDE_KM):
-            raise InputError(
-                f"altitude_km {self.altitude_km} is not in (0, {MAX_ALTITUDE_KM:g}] km",
-                hint="give the height above the surface in km, e.g. 500",
-                parameters=("altitude_km",),
-            )
+        check_altitude(self.altitude_km)
         if not (math.isfinite(self.solar_fraction) and 0.0 <= self.solar_fraction <= 1.0):
             raise InputError(
                 f"solar_fraction {self.solar_fraction} is not in [0, 1]", parameters=("solar_fraction",)
@@ -228,8 +243,7 @@ def earth_radiation(
     craft = model.craft
     band_optics = (craft.side_optics, infrared_optics(craft))  # no emissivity: an error before any work
     light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
-    if not (math.isfinite(step_deg) and 0.0 < step_deg <= 90.0):
-        raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
+    check_step(step_deg)
     check_sampling(samples, tolerance)
     reference, reference_name = model.reference(reference_point_m)
     plates = isinstance(reflections, str) and reflections == PLATES

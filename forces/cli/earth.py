@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -141,9 +142,8 @@ def earth_request(values: dict) -> EarthRequest | None:
     if "earth_nadir" in mine:
         mine["nadir"] = mine.pop("earth_nadir")
     if not mine.pop("earth_on"):
-        given = [
-            flag
-            for flag, value in (
+        refuse_without_earth(
+            (
                 ("--albedo", mine["albedo"]),
                 ("--earth-ir", mine["earth_ir"]),
                 ("--thermal", mine["thermal"] or None),
@@ -151,16 +151,20 @@ def earth_request(values: dict) -> EarthRequest | None:
                 ("--pole", mine.get("pole")),
                 ("--albedo-model knocke", mine["albedo_model"] == "knocke" or None),
             )
-            if value is not None
-        ]
-        if given:
-            verb = "needs" if len(given) == 1 else "need"
-            raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
+        )
         return None
     step = mine["step_deg"]
     if not (math.isfinite(step) and 0.0 < step <= 90.0):
         raise InputError(f"--earth-step {step:g} is not in (0, 90] deg", hint="e.g. --earth-step 10")
     return EarthRequest(**mine)
+
+
+def refuse_without_earth(flags: Sequence[tuple[str, object]]) -> None:
+    """Refuse in one line the ``(flag, value)`` pairs given (value not None) without ``--earth-radiation``."""
+    given = [flag for flag, value in flags if value is not None]
+    if given:
+        verb = "needs" if len(given) == 1 else "need"
+        raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
 
 
 #: The keyword names of :func:`earth_term_options`.

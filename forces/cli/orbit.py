@@ -30,6 +30,7 @@ from sunwind.forces.gas import explicit
 from sunwind.forces.model import ModelSource
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, SpaceWeather, Trajectory, fly, propagate
 from sunwind.forces.orbit.attitude import INTERPOLATIONS
+from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
 from sunwind.forces.orbit.ephemeris_csv import ephemeris_trajectory, read_ephemeris
 from sunwind.forces.orbit.flight import check_sun, geodetic
@@ -432,7 +433,7 @@ def _print_summary(name: str, result, mass_kg: float | None) -> None:
         if f"mean_{term}_force_body_N" in summary:
             print(f"    of it {term:<9}{vector(np.array(summary[f'mean_{term}_force_body_N']))} N")
     for name, part in summary.get("parts", {}).items():
-        heat = ", ".join(f"{part[f'mean_{k}_W']:.4g}" for k in ("solar", "albedo", "infrared", "reflected"))
+        heat = ", ".join(f"{part[f'mean_{k}_W']:.4g}" for k in PART_SOURCES)
         span = (
             f"; {part['min_temperature_K']:.1f} to {part['max_temperature_K']:.1f} K"
             if "min_temperature_K" in part

@@ -134,11 +134,17 @@ def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
     print(f"  validity         {VALIDITY}")
 
 
+def _total(light: SrpResult, gas: DragResult, extra: Terms) -> tuple[np.ndarray, np.ndarray]:
+    """Force [N] and torque [N m] of SRP, drag and the ``extra`` terms together."""
+    force = light.force_N + gas.force_N + sum((f for _, f, _ in extra), np.zeros(3))
+    torque = light.torque_Nm + gas.torque_Nm + sum((t for _, _, t in extra), np.zeros(3))
+    return force, torque
+
+
 def forces_document(light: SrpResult, gas: DragResult, extra: Terms = ()) -> dict:
     """The JSON document of ``sunwind forces``: both results, the ``extra`` terms' loads (name, force
     [N], torque [N m]) and the total of all."""
-    force = light.force_N + gas.force_N + sum((f for _, f, _ in extra), np.zeros(3))
-    torque = light.torque_Nm + gas.torque_Nm + sum((t for _, _, t in extra), np.zeros(3))
+    force, torque = _total(light, gas, extra)
     total = {
         "force_N": force.tolist(),
         "torque_Nm": torque.tolist(),
@@ -152,8 +158,7 @@ def forces_document(light: SrpResult, gas: DragResult, extra: Terms = ()) -> dic
 def print_forces(light: SrpResult, gas: DragResult, extra: Terms = ()) -> None:
     """The human-readable report of ``sunwind forces`` (the total with the ``extra`` terms)."""
     craft = light.craft
-    force = light.force_N + gas.force_N + sum((f for _, f, _ in extra), np.zeros(3))
-    torque = light.torque_Nm + gas.torque_Nm + sum((t for _, _, t in extra), np.zeros(3))
+    force, torque = _total(light, gas, extra)
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
     print_articulation(craft)
     print(f"  total force  [N]    {vector(force)}  |F| = {np.linalg.norm(force):.6e}")

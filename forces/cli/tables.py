@@ -21,7 +21,7 @@ from rich.progress import (
 )
 from rich.text import Text
 
-from sunwind.forces.cli.earth import earth_request, earth_term_options
+from sunwind.forces.cli.earth import earth_request, earth_term_options, refuse_without_earth
 from sunwind.forces.cli.free_stream import flow_options
 from sunwind.forces.cli.options import (
     Sun,
@@ -188,14 +188,7 @@ def _earth_table(values: dict) -> EarthSetup | None:
     altitude, sun = values.pop("earth_altitude"), values.pop("earth_sun")
     request = earth_request(values)
     if request is None:
-        given = [
-            flag
-            for flag, value in (("--earth-altitude", altitude), ("--earth-sun", sun))
-            if value is not None
-        ]
-        if given:
-            verb = "needs" if len(given) == 1 else "need"
-            raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
+        refuse_without_earth((("--earth-altitude", altitude), ("--earth-sun", sun)))
         return None
     if request.albedo_model == "knocke":
         raise InputError(

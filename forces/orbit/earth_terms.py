@@ -14,11 +14,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, earth_radiation
+from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_step, earth_radiation
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.tables.jobs import SrpSetup
-from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import infrared_optics
 
 #: Albedo and infrared loads of a step (body frame): record name -> width.
@@ -65,10 +64,7 @@ class EarthTerms:
 
     def __post_init__(self) -> None:
         PlanetLight.of(planet("earth"), 1.0, albedo=self.albedo, infrared_W_m2=self.infrared_W_m2)
-        if not (np.isfinite(self.step_deg) and 0.0 < self.step_deg <= 90.0):
-            raise InputError(
-                f"step_deg {self.step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",)
-            )
+        check_step(self.step_deg)
 
     def fields(self, n_parts: int) -> dict[str, int]:
         """Record name -> width of a step, for a model of ``n_parts`` parts."""

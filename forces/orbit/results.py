@@ -21,6 +21,7 @@ from scipy.integrate import cumulative_trapezoid
 
 from sunwind.forces.model import Model
 from sunwind.forces.orbit.attitude import AttitudeLaw
+from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.steps import FLUX, SUN, VELOCITY, OrbitSetup, StepInputs
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
@@ -99,7 +100,9 @@ class OrbitResult:
         fraction = steps.solar_fraction
         per_step = [setup.angles(model, row) for row in rows]
         angles = {hinge.pattern: np.array([a[hinge.pattern] for a in per_step]) for hinge in model.hinges}
-        terms = tuple(term for term in TERMS if f"{term}_force_body_N" in records)
+        asked = {"srp": setup.srp, "drag": setup.drag, "albedo": setup.earth, "infrared": setup.earth}
+        asked["thermal"] = setup.earth if setup.earth is not None and setup.earth.thermal else None
+        terms = tuple(term for term in TERMS if asked[term] is not None)
         force = sum(records[f"{term}_force_body_N"] for term in terms)
         torque = sum(records[f"{term}_torque_body_Nm"] for term in terms)
         torque_eci = np.einsum("nij,nj->ni", body_to_eci, torque)
@@ -126,9 +129,6 @@ class OrbitResult:
                 values = records[name]
                 series[name] = values.reshape(len(t), -1) if name.startswith("part_") else values
         point, name = model.reference()
-        asked = {"srp": setup.srp, "drag": setup.drag, "albedo": setup.earth, "infrared": setup.earth}
-        asked["thermal"] = setup.earth if setup.earth is not None and setup.earth.thermal else None
-        terms = tuple(term for term in TERMS if asked[term] is not None)
         attributes = {
             "frame": "body loads in the body frame, ECI = GCRF",
             "epoch_utc": trajectory.epoch.iso(),
@@ -205,7 +205,7 @@ class OrbitResult:
         temperature [K] (with thermal recoil)."""
         s, t = self.series, self.series["time_s"]
         out: dict[str, dict[str, float]] = {name: {} for name in self.part_names}
-        for source in ("solar", "albedo", "infrared", "reflected"):
+        for source in PART_SOURCES:
             for name, mean in zip(
                 self.part_names, np.atleast_1d(_mean(t, s[f"part_{source}_W"])), strict=True
             ):

@@ -19,7 +19,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.earth import DEFAULT_STEP_DEG, MAX_ALTITUDE_KM, Place, earth_radiation
+from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_altitude, check_step, earth_radiation
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.shadow import sun_behind
@@ -28,7 +28,6 @@ from sunwind.forces.reflection import reflection_plan
 from sunwind.forces.tables.jobs import EARTH_FIELDS, EARTH_THERMAL_FIELDS, Records, _Setup, empty_records
 from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.directions import unit_vector
-from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import infrared_optics
 
 #: The eclipse model of the Sun's share behind the Earth.
@@ -76,25 +75,12 @@ class EarthSetup(_Setup):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        altitude = self.altitude_km
-        if (
-            isinstance(altitude, bool)
-            or not isinstance(altitude, int | float)
-            or not (math.isfinite(altitude) and 0.0 < altitude <= MAX_ALTITUDE_KM)
-        ):
-            raise InputError(
-                f"altitude_km {altitude} is not in (0, {MAX_ALTITUDE_KM:g}] km",
-                hint="give the height above the surface in km, e.g. 500",
-                parameters=("altitude_km",),
-            )
+        check_altitude(self.altitude_km)
         sun = unit_vector(self.sun_vector, "sun_vector")
         object.__setattr__(self, "sun_vector", tuple(float(v) for v in sun))
         solar_flux(self.flux_W_m2)
         self.light()  # the albedo and infrared checked
-        if not (math.isfinite(self.step_deg) and 0.0 < self.step_deg <= 90.0):
-            raise InputError(
-                f"step_deg {self.step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",)
-            )
+        check_step(self.step_deg)
 
     @property
     def fields(self) -> dict[str, int]:
@@ -156,7 +142,6 @@ class EarthSetup(_Setup):
         posed = self.posed(model)
         light, earth = self.light(), planet("earth")
         albedo = earth.albedo if self.albedo is None else self.albedo
-        exitance = (1 - albedo) * self.flux_W_m2 / 4 if self.infrared_W_m2 is None else self.infrared_W_m2
         distance = earth.radius_m + self.altitude_km * 1e3
         tracking = [hinge.pattern for hinge in model.hinges if hinge.law == "track"]
         return {
@@ -168,7 +153,7 @@ class EarthSetup(_Setup):
             "earth_flux_W_m2": self.flux_W_m2,
             "earth_model": light.description,
             "earth_albedo": albedo,
-            "earth_infrared_W_m2": exitance,
+            "earth_infrared_W_m2": light.infrared.uniform_W_m2,
             "earth_cell_deg": self.step_deg,
             "earth_eclipse": ECLIPSE,
             "earth_thermal": self.thermal,
