@@ -315,6 +315,12 @@ class Spacecraft:
         """Axis-aligned bounding box [m], (2, 3): min and max corner."""
         return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
 
+    @cached_property
+    def diagonal_m(self) -> float:
+        """The diagonal of the model's axis-aligned box [m]: its size ``L`` where a torque too small to
+        be measured against itself is measured against one the force could give, ``|F| L``."""
+        return float(np.linalg.norm(np.ptp(self.vertices, axis=0)))
+
     @property
     def scene(self) -> RayScene:
         """The Embree scene of the facets, built on first use and kept in :attr:`cache`."""

@@ -12,13 +12,11 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
-#: What becomes of a node: wholly lit or dark, cut exactly along the outline, cut along the outline
-#: once a ray from inside the region it bounds gives that region's state, checked by rays at its edge
-#: midpoints (then uniform, a chord or split), cut along the chord its two mixed edges are bisected
-#: to, or split into four.
-UNIFORM, EXACT_CUT, REGION, CHECK, BISECT, SPLIT = 0, 1, 2, 3, 4, 5
-#: Most outline segments crossing one node that are cut along together.
-MAX_LINES = 6
+#: Most outline lines a node is cut along at once (``2**MAX_LINES`` sign patterns, the cells of their
+#: arrangement; a leaf's lit cells are a bit mask of them).
+MAX_LINES = 4
+#: Share of the way toward the side's centroid that corner and edge points are drawn in before casting.
+INSET = 1e-4
 #: Margin in side coordinates within which a point counts as on a line or a node's boundary.
 _MARGIN = 1e-9
 
@@ -166,7 +164,7 @@ def outline_segments(
             head += 1
             if not _project(triangles, side_facet, normals, side, ends, direction, segment):
                 continue
-            if _through(whole, segment[0], segment[1]) == 0:
+            if through(whole, segment[0], segment[1]) == 0:
                 continue
             if count == capacity:
                 capacity *= 2
@@ -188,7 +186,38 @@ def outline_segments(
 
 
 @numba.njit(cache=True, nogil=True)
-def _through(corners: NDArray[np.float64], p: NDArray[np.float64], q: NDArray[np.float64]) -> int:
+def crossing_outlines(
+    triangles: NDArray[np.float64],
+    side_facet: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    side: NDArray[np.int64],
+    other: NDArray[np.int64],
+    open_edges: NDArray[np.bool_],
+) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """The shadows on each of ``side`` of the edges of the facet ``other`` that passes through it and
+    that nothing in front of the side continues (``open_edges`` (k, 3)), their parts in front of the
+    side's plane: what lies behind the side's plane shades it not, so such an edge may bound the
+    crossing facet's shadow, fold or not. Returns the sides and segments (k, 2, 2) in side
+    coordinates."""
+    out_side = np.empty(3 * side.shape[0], dtype=np.int64)
+    out_segment = np.empty((3 * side.shape[0], 2, 2))
+    ends = np.empty((2, 3))
+    segment = np.empty((2, 2))
+    count = 0
+    for k in range(side.shape[0]):
+        for e in range(3):
+            if not open_edges[k, e]:
+                continue
+            ends[0], ends[1] = triangles[other[k], e], triangles[other[k], (e + 1) % 3]
+            if _project(triangles, side_facet, normals, side[k], ends, direction, segment):
+                out_side[count], out_segment[count] = side[k], segment
+                count += 1
+    return out_side[:count], out_segment[:count]
+
+
+@numba.njit(cache=True, nogil=True)
+def through(corners: NDArray[np.float64], p: NDArray[np.float64], q: NDArray[np.float64]) -> int:
     """How segment ``p``-``q`` meets triangle ``corners`` (3, 2): 0 not at all, 1 with an end inside,
     2 passing through (both ends outside). Cyrus-Beck clipping of the segment by the three edges."""
     orient = (corners[1, 0] - corners[0, 0]) * (corners[2, 1] - corners[0, 1]) - (
@@ -214,7 +243,7 @@ def _through(corners: NDArray[np.float64], p: NDArray[np.float64], q: NDArray[np
 
 
 @numba.njit(cache=True, nogil=True)
-def _line(p: NDArray[np.float64], q: NDArray[np.float64]) -> tuple[float, float, float]:
+def line_through(p: NDArray[np.float64], q: NDArray[np.float64]) -> tuple[float, float, float]:
     """``(a, b, c)`` of the line through ``p`` and ``q``, positive on the left of ``p -> q``."""
     a, b = -(q[1] - p[1]), q[0] - p[0]
     return a, b, -(a * p[0] + b * p[1])
@@ -266,195 +295,3 @@ def clip_moments(
         out[0] += piece
         out[1] += piece * (p[0] + q[0] + r[0]) / 3.0
         out[2] += piece * (p[1] + q[1] + r[1]) / 3.0
-
-
-@numba.njit(cache=True, nogil=True)
-def _cut(
-    corners: NDArray[np.float64],
-    lit: NDArray[np.bool_],
-    lines: NDArray[np.float64],
-    n_lines: int,
-    scratch: NDArray[np.float64],
-    out: NDArray[np.float64],
-) -> bool:
-    """Write the lit moments of a node cut by an outline into ``out``: the region where the ``n_lines``
-    lines (oriented so that it is their common positive side) are all positive is one state and the
-    rest the other, as its corners say. False, writing nothing, when the corners do not say it cleanly
-    (a corner of each state on one side, or no corner on one side)."""
-    inside = outside = 0  # +1 lit, -1 dark, 0 no corner yet
-    for i in range(3):
-        where = 1
-        for j in range(n_lines):
-            where = min(where, _side_of(lines[j], corners[i]))
-        if where == 0:
-            continue
-        state = 1 if lit[i] else -1
-        if where > 0:
-            if inside == -state:
-                return False
-            inside = state
-        else:
-            if outside == -state:
-                return False
-            outside = state
-    if inside * outside != -1:
-        return False
-    clip_moments(corners, lines, n_lines, scratch, out)
-    if inside == -1:  # the rest is lit: the whole node less the clipped part
-        area, w1, w2 = out[0], out[1], out[2]
-        clip_moments(corners, lines, 0, scratch, out)
-        out[0] -= area
-        out[1] -= w1
-        out[2] -= w2
-    return True
-
-
-@numba.njit(cache=True, nogil=True)
-def classify_nodes(
-    node_side: NDArray[np.int64],
-    corners: NDArray[np.float64],
-    lit: NDArray[np.bool_],
-    depth: int,
-    centre_differs: NDArray[np.bool_],
-    segment_side: NDArray[np.int64],
-    segments: NDArray[np.float64],
-    depths: NDArray[np.int64],
-) -> tuple[NDArray[np.int8], NDArray[np.float64]]:
-    """What becomes of each node at ``depth`` (``UNIFORM``, ``EXACT_CUT``, ``REGION``, ``CHECK``,
-    ``BISECT``, ``SPLIT``) and moments ``(area, area * w1, area * w2)``, (n, 3): the lit part of a
-    leaf, or the region a ``REGION`` node's ray is to be cast from the centroid of.
-
-    ``segments`` (m, 2, 2) are the outline segments on the sides ``segment_side`` (ascending).
-    ``centre_differs``: the side's centroid ray disagrees with the node's corners (whole sides only).
-    The outline in a node is one segment passing through it, two meeting inside it at a shared end (an
-    outline's corner), or two passing through it without meeting (the two sides of a thin shadow). A
-    node whose corners disagree is cut along it exactly when its corners of each state lie on their own
-    side of it. A node whose corners agree and lie outside the region the outline bounds (a shadow's
-    corner nicking it, a thin shadow across it) is a ``REGION``: one ray from inside the region says
-    its state. Otherwise, with ``depths`` = (uniform, mixed, most): a node with disagreeing corners is
-    split below depth ``mixed`` if a segment crosses it (below ``most`` while two or more do), else
-    checked (a chord if its edge midpoints confirm one crossing per mixed edge), and cut along a
-    bisected chord at the limit; a node with
-    agreeing corners that a segment crosses is split below ``uniform`` (an outline whose edge is
-    shadowed elsewhere), or below ``most`` while two or more pass through it; a whole side with
-    agreeing corners and no segment is checked (a shadow thinner than it, between its corners).
-    """
-    n = node_side.shape[0]
-    action = np.empty(n, dtype=np.int8)
-    moments = np.zeros((n, 3))
-    lines = np.empty((MAX_LINES, 3))
-    scratch = np.empty((2, 3 + MAX_LINES, 2))
-    chosen = np.empty(MAX_LINES, dtype=np.int64)
-    for k in range(n):
-        first = np.searchsorted(segment_side, node_side[k])
-        last = np.searchsorted(segment_side, node_side[k], side="right")
-        crossing = through = 0
-        for j in range(first, last):
-            how = _through(corners[k], segments[j, 0], segments[j, 1])
-            if how:
-                if crossing < MAX_LINES:
-                    chosen[crossing] = j
-                crossing += 1
-                through += how == 2
-        agree = lit[k, 0] == lit[k, 1] and lit[k, 1] == lit[k, 2]
-        n_lines = _outline_lines(corners[k], segments, chosen, crossing, lines)
-        if n_lines and not agree and _cut(corners[k], lit[k], lines, n_lines, scratch, moments[k]):
-            action[k] = EXACT_CUT
-            continue
-        region = n_lines >= 2 and agree and not centre_differs[k]
-        if region and _region(corners[k], lines, n_lines, scratch, moments[k]):
-            action[k] = REGION
-            continue
-        if not agree:
-            deeper = crossing and (depth < depths[1] or (crossing >= 2 and depth < depths[2]))
-            action[k] = SPLIT if deeper else (CHECK if depth < depths[1] else BISECT)
-        elif centre_differs[k]:
-            action[k] = SPLIT if depth < depths[1] else UNIFORM
-        elif crossing and (depth < depths[0] or (through >= 2 and depth < depths[2])):
-            action[k] = SPLIT
-        else:
-            action[k] = CHECK if depth == 0 else UNIFORM
-        if action[k] == UNIFORM and lit[k, 0]:
-            clip_moments(corners[k], lines, 0, scratch, moments[k])
-    return action, moments
-
-
-@numba.njit(cache=True, nogil=True)
-def _inside(corners: NDArray[np.float64], point: NDArray[np.float64]) -> bool:
-    """Whether ``point`` lies strictly inside triangle ``corners`` (3, 2)."""
-    total = 0
-    for i in range(3):
-        a, b = corners[i], corners[(i + 1) % 3]
-        value = (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0])
-        total += 0 if abs(value) <= _MARGIN else (1 if value > 0 else -1)
-    return abs(total) == 3
-
-
-@numba.njit(cache=True, nogil=True)
-def _shared(segments: NDArray, chosen: NDArray[np.int64], crossing: int, j: int, point: NDArray) -> bool:
-    """Whether ``point`` is (within round-off) an end of a chosen segment other than ``j``."""
-    for i in range(crossing):
-        if i == j:
-            continue
-        for e in range(2):
-            other = segments[chosen[i], e]
-            if max(abs(other[0] - point[0]), abs(other[1] - point[1])) <= 1e3 * _MARGIN:
-                return True
-    return False
-
-
-@numba.njit(cache=True, nogil=True)
-def _outline_lines(
-    corners: NDArray[np.float64],
-    segments: NDArray[np.float64],
-    chosen: NDArray[np.int64],
-    crossing: int,
-    lines: NDArray[np.float64],
-) -> int:
-    """Write the lines of the outline segments crossing a node (``chosen``, ``crossing`` of them) into
-    ``lines`` and return how many, or 0 if they do not bound one convex region. One segment: its line.
-    Several: each line is oriented toward the other segments, which must all lie on its positive side,
-    so their common positive side is the convex region they bound (the wedge of an outline's corner,
-    the strip between the two sides of a thin shadow, its end). Segments that cross, or that end inside
-    the node (``corners``) other than at another's end, are refused."""
-    if crossing == 0 or crossing > lines.shape[0]:
-        return 0
-    for j in range(crossing):
-        for e in range(2):  # an end inside the node must be another segment's: the outline turns there
-            point = segments[chosen[j], e]
-            if _inside(corners, point) and not _shared(segments, chosen, crossing, j, point):
-                return 0
-        lines[j, 0], lines[j, 1], lines[j, 2] = _line(segments[chosen[j], 0], segments[chosen[j], 1])
-    if crossing == 1:
-        return 1
-    for j in range(crossing):
-        low = high = 0
-        for i in range(crossing):
-            if i == j:
-                continue
-            for e in range(2):
-                side = _side_of(lines[j], segments[chosen[i], e])
-                low, high = min(low, side), max(high, side)
-        if low < 0 and high > 0:
-            return 0
-        if low < 0:
-            for c in range(3):
-                lines[j, c] = -lines[j, c]
-    return crossing
-
-
-@numba.njit(cache=True, nogil=True)
-def _region(
-    corners: NDArray[np.float64], lines: NDArray[np.float64], n_lines: int, scratch: NDArray, out: NDArray
-) -> bool:
-    """Write the moments of the part of a node where the first ``n_lines`` of ``lines`` are all positive
-    into ``out``; False when a corner lies inside it (the corners would then have said its state) or it
-    is empty."""
-    for i in range(3):
-        inside = 1
-        for j in range(n_lines):
-            inside = min(inside, _side_of(lines[j], corners[i]))
-        if inside > 0:
-            return False
-    clip_moments(corners, lines, n_lines, scratch, out)
-    return out[0] > 0.0

@@ -29,6 +29,8 @@ from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import count, require
 from sunwind.geometry.parallel import map_ranges
+from sunwind.geometry.rays.certificate import ShadowCheck
+from sunwind.geometry.rays.quadtree import uncovered
 from sunwind.geometry.rays.shadow_edges import refine_edges
 from sunwind.geometry.rays.shadow_kernels import (
     BLOCK,
@@ -89,6 +91,10 @@ class Illumination:
     level : int or None
         Subdivision level of fixed sampling (``level**2`` points on every facing side); None for the
         default pass.
+    check : ShadowCheck or None
+        What the default pass's check found (:mod:`.certificate`), from which
+        :meth:`ShadowCheck.loads_error` estimates the error of any load summed over the lit sides; None
+        for fixed sampling.
     """
 
     direction: NDArray[np.float64]
@@ -99,6 +105,7 @@ class Illumination:
     rays: int
     sampling: str
     level: int | None = None
+    check: ShadowCheck | None = None
 
     @cached_property
     def cos_incidence(self) -> NDArray[np.float64]:
@@ -308,7 +315,8 @@ class SideSampler:
 
         def work(first: int, last: int) -> tuple:
             facing, mine = self._facing_origins(direction, level, first, last)
-            share = self._shares(facing, self._lit(mine, direction), level, centroid)
+            lit = self._uncovered(facing, self._lit(mine, direction), level)
+            share = self._shares(facing, lit, level, centroid)
             if reduce is not None:
                 reduce(facing, share, centroid)
             return facing, share
@@ -347,11 +355,14 @@ class SideSampler:
             facing, share = (sides,), (self._shares(sides, lit, level, centroid),)
         rays = sum(map(len, facing)) * level**2
         sampling = f"{level**2} points per side"
+        check = None
         if not fixed:
             sides, centre_lit = _joined(facing), _joined(share)
             fraction = np.zeros(craft.n_sides)
             fraction[sides] = centre_lit
-            rays += refine_edges(craft, direction, sides, centre_lit, fraction, centroid, tolerance)
+            refined = refine_edges(craft, direction, sides, centre_lit, fraction, centroid, tolerance)
+            rays += refined.rays
+            check = refined.check
             share = tuple(fraction[run] for run in facing)
             sampling = f"shadow edges located, tolerance {tolerance:g}"
         if reduce is not None:  # each run is whole blocks: the threads sum them side by side
@@ -359,7 +370,15 @@ class SideSampler:
                 lambda lo, hi: [reduce(facing[k], share[k], centroid) for k in range(lo, hi)], len(facing), 1
             )
         return Illumination(
-            direction, craft.side_normals, facing, share, centroid, rays, sampling, level if fixed else None
+            direction,
+            craft.side_normals,
+            facing,
+            share,
+            centroid,
+            rays,
+            sampling,
+            level if fixed else None,
+            check,
         )
 
     def _shares(
@@ -386,4 +405,18 @@ class SideSampler:
         batches = [sides[start : start + per_batch] for start in range(0, len(sides), per_batch)]
         if not batches:
             return np.zeros((0, level**2), dtype=bool)
-        return np.concatenate([self._lit(self._origins_of(batch, level), direction) for batch in batches])
+        return np.concatenate(
+            [
+                self._uncovered(batch, self._lit(self._origins_of(batch, level), direction), level)
+                for batch in batches
+            ]
+        )
+
+    def _uncovered(self, sides: NDArray[np.int64], lit: NDArray[np.bool_], level: int) -> NDArray[np.bool_]:
+        """Lit flags ``lit`` (len(sides), level**2) with the points a coplanar facet covers made dark."""
+        points = tri.subdivision_barycentric(level)[:, 1:]
+        n = len(sides)
+        flat = uncovered(
+            self.craft, np.repeat(sides, level**2), np.tile(points, (n, 1)), lit.reshape(-1).copy()
+        )
+        return flat.reshape(lit.shape)

@@ -7,8 +7,9 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from sunwind.geometry.materials import Material
+from sunwind.geometry.materials import Material, parse_materials
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.spacecraft import build_spacecraft
 
 #: The repository's root: README.md, METHOD.md, meshes/data/.
 REPO = Path(__file__).resolve().parents[2]
@@ -43,3 +44,20 @@ def quad_sheet(corners: np.ndarray, part: str, n: int = 1) -> MeshData:
 
 ABSORBER = Material("black", 0.0, 0.0, 0.0)
 MIXED = Material("mixed", 0.6, 0.3, 0.1)
+
+
+def shaded_floor(n: int = 8) -> tuple:
+    """A unit floor (one-sided, z = 0) under a 0.37 m square blind at z = 0.5, offset off the grid."""
+    floor = quad_sheet(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float), "floor", n)
+    c = np.array([0.41, 0.53, 0.5])
+    h = 0.37 / 2
+    blind = quad_sheet(c + np.array([[-h, -h, 0], [h, -h, 0], [h, h, 0], [-h, h, 0]]), "blind", 1)
+    mesh = MeshData.concatenate([floor, blind])
+    spec = parse_materials(
+        {
+            "materials": {"black": {"reflectivity": 0, "specular_fraction": 0}},
+            "parts": {"floor": {"front": "black"}, "blind": {"front": "black", "back": "black"}},
+        }
+    )
+    craft = build_spacecraft(mesh, spec)
+    return craft, c, h

@@ -4,9 +4,8 @@ import numpy as np
 import pytest
 import trimesh
 
-from helpers import ABSORBER, mesh_from_trimesh, quad_sheet
-from sunwind.geometry.materials import parse_materials
-from sunwind.geometry.mesh_data import MeshData
+from helpers import ABSORBER, mesh_from_trimesh, quad_sheet, shaded_floor
+from sunwind.geometry.rays.certificate import CHECK_POINTS, CHECK_ROUNDS, LEAST_CHECKED
 from sunwind.geometry.rays.shadows import level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft
 
@@ -21,8 +20,12 @@ def test_a_convex_body_has_no_shadow_on_any_side_facing_the_sun(samples):
         facing = light.cos_incidence > 0
         assert np.array_equal(light.lit_fraction, facing.astype(float))
         assert np.array_equal(np.sort(light.facing), np.flatnonzero(facing))
-        if samples is None:  # a centroid ray per side, and the probes of the outline (all escaping)
-            assert facing.sum() < light.rays < 2 * facing.sum()
+        if samples is None:  # a centroid ray per side and the outline's probes (all escaping); the check
+            checked = light.check.rays
+            assert light.check.wrong == 0
+            assert facing.sum() < light.rays - checked < 2 * facing.sum()
+            least = CHECK_ROUNDS * LEAST_CHECKED * CHECK_POINTS
+            assert checked <= max(1.5 * least, 0.2 * (light.rays - checked))  # a Poisson draw
         else:
             assert light.rays == facing.sum() * level_for_samples(samples) ** 2
 
@@ -30,23 +33,6 @@ def test_a_convex_body_has_no_shadow_on_any_side_facing_the_sun(samples):
 @pytest.mark.parametrize("samples, level", [(1, 1), (2, 2), (4, 2), (5, 3), (16, 4), (17, 5)])
 def test_sample_counts_round_up_to_squares(samples, level):
     assert level_for_samples(samples) == level
-
-
-def shaded_floor(n: int = 8) -> tuple:
-    """A unit floor (one-sided, z = 0) under a 0.37 m square blind at z = 0.5, offset off the grid."""
-    floor = quad_sheet(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float), "floor", n)
-    c = np.array([0.41, 0.53, 0.5])
-    h = 0.37 / 2
-    blind = quad_sheet(c + np.array([[-h, -h, 0], [h, -h, 0], [h, h, 0], [-h, h, 0]]), "blind", 1)
-    mesh = MeshData.concatenate([floor, blind])
-    spec = parse_materials(
-        {
-            "materials": {"black": {"reflectivity": 0, "specular_fraction": 0}},
-            "parts": {"floor": {"front": "black"}, "blind": {"front": "black", "back": "black"}},
-        }
-    )
-    craft = build_spacecraft(mesh, spec)
-    return craft, c, h
 
 
 @pytest.mark.parametrize("n", [8, 2])
