@@ -14,6 +14,7 @@ the direct pass), :mod:`~sunwind.forces.reflection` (beam chains and the diffuse
 
 from sunwind.forces.batches import DragBatch, ResultBatch, SrpBatch
 from sunwind.forces.drag import drag
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import (
     Atmosphere,
     circular_speed,
@@ -43,6 +44,7 @@ __all__ = [
     "DragBatch",
     "DragResult",
     "DragSetup",
+    "ErrorEstimate",
     "Model",
     "ModelSource",
     "PowerBalance",

@@ -58,8 +58,9 @@ BenchProgress = Callable[[str, int, int], None]
 class LoadError:
     """Error of a timed setting over its attitudes against the reference of each attitude, worst and
     median [-]: ``|F - F_ref| / |F_ref|``, ``|M - M_ref| / |M_ref|``, and the torque's on the scale of a
-    torque the force could give, ``|M - M_ref| / (|F_ref| L)`` with ``L`` the model's size (the
-    diagonal of its box), which stays meaningful where the torque is small."""
+    torque the force could give, ``|M - M_ref| / (|F_ref| L)`` with ``L`` the model's size
+    (:attr:`~sunwind.geometry.spacecraft.Spacecraft.diagonal_m`, the diagonal of its box), which stays
+    meaningful where the torque is small."""
 
     force_worst: float
     force_median: float
@@ -84,11 +85,6 @@ class LoadError:
             f"torque {self.torque_worst:.1e} worst, {self.torque_median:.1e} median, "
             f"{self.torque_of_force_worst:.1e} of |F| L worst"
         )
-
-
-def model_size(craft: Spacecraft) -> float:
-    """The diagonal of the model's box [m]: the ``L`` of :class:`LoadError`."""
-    return float(np.linalg.norm(np.ptp(craft.vertices, axis=0)))
 
 
 def _loads(result) -> Loads:
@@ -223,10 +219,10 @@ def _reflection_figures(
         "full_ms": 1e3 * float(np.mean(full["times"])),
         "full_median_ms": 1e3 * float(np.median(full["times"])),
         "full_over_direct": float(np.median(full["times"]) / np.median(direct["default"]["times"])),
-        "full_error": LoadError.of(full["loads"], references, model_size(craft)),
+        "full_error": LoadError.of(full["loads"], references, craft.diagonal_m),
         "beam_rays_per_attitude": float(np.mean(full["beam_rays"])),
         "fixed_full_ms": 1e3 * float(np.mean(fixed["times"])),
-        "fixed_full_error": LoadError.of(fixed["loads"], references, model_size(craft)),
+        "fixed_full_error": LoadError.of(fixed["loads"], references, craft.diagonal_m),
     }, full["times"]
 
 
@@ -279,10 +275,10 @@ def _drag_figures(
         figures[f"{key}_ms"] = 1e3 * float(np.median(times))
         ratio_key = "drag_over_srp" if mode == "none" else "drag_full_over_srp_full"
         figures[ratio_key] = float(np.median(times) / np.median(srp_reference))
-        figures[f"{key}_error"] = LoadError.of(timed["default"]["loads"], references, model_size(craft))
+        figures[f"{key}_error"] = LoadError.of(timed["default"]["loads"], references, craft.diagonal_m)
         if mode == "none":
             figures["fixed_drag_ms"] = 1e3 * float(np.median(timed["fixed"]["times"]))
-            figures["fixed_drag_error"] = LoadError.of(timed["fixed"]["loads"], references, model_size(craft))
+            figures["fixed_drag_error"] = LoadError.of(timed["fixed"]["loads"], references, craft.diagonal_m)
     return figures
 
 
@@ -351,11 +347,11 @@ def benchmark(
         default_ms=1e3 * float(np.mean(default["times"])),
         default_median_ms=1e3 * float(np.median(default["times"])),
         default_rays_per_attitude=float(np.mean(default["rays"])),
-        default_error=LoadError.of(default["loads"], references, model_size(craft)),
+        default_error=LoadError.of(default["loads"], references, craft.diagonal_m),
         fixed_ms=1e3 * float(np.mean(fixed["times"])),
         fixed_median_ms=1e3 * float(np.median(fixed["times"])),
         fixed_rays_per_attitude=fixed_rays / attitudes,
-        fixed_error=LoadError.of(fixed["loads"], references, model_size(craft)),
+        fixed_error=LoadError.of(fixed["loads"], references, craft.diagonal_m),
         default_over_fixed=float(np.median(default["times"]) / np.median(fixed["times"])),
         fixed_rays_per_s=fixed_rays / float(np.sum(fixed["times"])),
         raw_embree_ms=1e3 * float(np.mean(raw_times)),
@@ -420,7 +416,7 @@ def _setup_error(model, setup: SrpSetup | DragSetup, directions: np.ndarray) -> 
         list(zip(records["force_N"], records["torque_Nm"], strict=True))
         for records in (setup.evaluate(model, directions), reference.evaluate(model, directions))
     )
-    return LoadError.of(got, exact, model_size(model.craft))
+    return LoadError.of(got, exact, model.craft.diagonal_m)
 
 
 def sweep_benchmark(

@@ -65,7 +65,8 @@ def drag(
     reference_point_m : (3,) array_like, optional
         Torque reference point [m]; default as :func:`sunwind.forces.srp.srp`.
     samples, tolerance
-        Shadow-ray sampling along the flow, as for sunlight: the core of the open-sky integral.
+        Shadow-ray sampling along the flow, as for sunlight: the core of the open-sky integral. The
+        default pass's estimate of the error it left is the result's ``error_estimate``.
     reflections : str or ReflectionSettings
         ``"none"``, ``"full"`` or ``"auto"`` (full when the molecular ``K_IS >= 0.1``).
     gas_sampling : GasSampling, optional
@@ -158,6 +159,8 @@ def _one(
     wetted = craft.side_areas[facing] * flow.lit_fraction[facing]
     projected = np.einsum("i,i->", wetted, gamma[groups.side[facing]])
     area, length = model.reference_sizes
+    check = flow.check
+    shadow_error = None if check is None else check.loads_error(craft, panel.lit_load, ref)
     return DragResult(
         force_N=panel_force + reflected.force_N,
         torque_Nm=panel_torque + reflected.torque_Nm,
@@ -180,4 +183,5 @@ def _one(
         side_torque_Nm=side_torque,
         open_sky=sky,
         core_half_angle_rad=panel.core_half_angle,
+        shadow_error=shadow_error,
     )

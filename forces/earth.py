@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.error_estimate import ErrorEstimate, summed
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap
@@ -29,6 +30,7 @@ from sunwind.forces.thermal import ThermalState, infrared_exchange, thermal_mode
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import using_threads
+from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 from sunwind.geometry.spacecraft import Spacecraft, infrared_optics
 
@@ -90,6 +92,21 @@ class EarthResult:
         """Albedo plus infrared torque about the reference point [N m], (3,)."""
         return self.albedo.torque_Nm + self.infrared.torque_Nm
 
+    @property
+    def shadow_error(self) -> LoadsError | None:
+        """The shadow passes' estimated absolute error in :attr:`force_N` [N] and :attr:`torque_Nm`
+        [N m]: the albedo's and the infrared's added (:attr:`BandLoad.shadow_error`); None with fixed
+        sampling or plates."""
+        return summed([self.albedo.shadow_error, self.infrared.shadow_error])
+
+    @property
+    def error_estimate(self) -> ErrorEstimate | None:
+        """:attr:`shadow_error` relative to the albedo plus infrared force and torque."""
+        error = self.shadow_error
+        if error is None:
+            return None
+        return ErrorEstimate.of(error, self.force_N, self.torque_Nm, self.craft.diagonal_m)
+
     def absorbed_side_W(self) -> dict[str, NDArray[np.float64]]:
         """Power each side absorbs [W], (n_sides,) per source: ``solar``, ``albedo``, ``infrared`` as
         they arrive, and ``reflected``: what arrives after reflections, of every band."""
@@ -138,6 +155,7 @@ class EarthResult:
 
     def to_json(self) -> dict:
         """Plain-JSON summary; keys carry their units."""
+        estimate = self.error_estimate
         return {
             "frame": FRAME,
             "planet": self.light.planet.name,
@@ -153,6 +171,7 @@ class EarthResult:
             "reflections": self.reflections,
             "cells": self.cells,
             "rays": self.rays,
+            "error_estimate": None if estimate is None else estimate.to_json(),
             "albedo": self.albedo.to_json(),
             "infrared": self.infrared.to_json(),
             "solar": self.solar.to_json(),
@@ -229,7 +248,8 @@ def earth_radiation(
     reference_point_m : (3,) array_like, optional
         Torque reference point [m]; default the model's.
     samples, tolerance
-        Shadow sampling, as for :func:`~sunwind.forces.srp.srp`.
+        Shadow sampling, as for :func:`~sunwind.forces.srp.srp`; the result's ``error_estimate`` is the
+        error the cells' passes estimate they left (None with ``samples``).
     reflections : str or ReflectionSettings
         As for :func:`~sunwind.forces.srp.srp`; ``auto`` decides by the model's ``K_IS``. ``"plates"``:
         the fast mode of plate models, every side an independent plate that sees the whole planet (its

@@ -16,11 +16,13 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.chains import ChainTotals
 from sunwind.forces.radiation.law import surface_forces
 from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings, interference
 from sunwind.geometry.directions import vector_to_azel
+from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.sky import OpenSky
@@ -88,6 +90,10 @@ class AttitudeResult:
         How sides were sampled for shadowing.
     craft : Spacecraft
         The model evaluated.
+    shadow_error : LoadsError or None
+        The shadow pass's estimated absolute error in the direct force [N] and torque [N m], from its
+        check and each side's load per unit lit area; None with fixed sampling (no check).
+        :attr:`error_estimate` states it relative to the totals.
 
     Both kinds give ``side_force_N`` and ``side_torque_Nm`` (n_sides, 3): the direct force on each side
     and its torque about the reference point, which :attr:`facet_force_N` and :attr:`facet_torque_Nm`
@@ -107,11 +113,19 @@ class AttitudeResult:
     rays: int
     sampling: str
     craft: Spacecraft = field(repr=False)
+    shadow_error: LoadsError | None = field(kw_only=True)
 
     @property
     def direction(self) -> NDArray[np.float64]:
         """Unit vector of the attitude, body frame: toward the Sun, or along ``v_rel``."""
         raise NotImplementedError
+
+    @property
+    def error_estimate(self) -> ErrorEstimate | None:
+        """:attr:`shadow_error` relative to the total force and torque (None with fixed sampling)."""
+        if self.shadow_error is None:
+            return None
+        return ErrorEstimate.of(self.shadow_error, self.force_N, self.torque_Nm, self.craft.diagonal_m)
 
     @property
     def azel_deg(self) -> tuple[float, float]:
@@ -145,6 +159,7 @@ class AttitudeResult:
 
     def to_json(self) -> dict:
         """Plain-JSON summary; keys carry their units."""
+        estimate = self.error_estimate
         return {
             "frame": FRAME,
             "force_N": self.force_N.tolist(),
@@ -162,6 +177,7 @@ class AttitudeResult:
             "projected_area_m2": self.projected_area_m2,
             "rays": self.rays,
             "sampling": self.sampling,
+            "error_estimate": None if estimate is None else estimate.to_json(),
         }
 
 

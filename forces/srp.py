@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.batches import SrpBatch
 from sunwind.forces.model import Model, as_model
-from sunwind.forces.radiation.direct import direct_pass
+from sunwind.forces.radiation.direct import direct_pass, lit_area_loads
 from sunwind.forces.radiation.law import radiation_pressure, solar_flux
 from sunwind.forces.reflection import ReflectionSettings, reflected_part, reflection_plan
 from sunwind.forces.results import SrpResult
@@ -50,7 +50,8 @@ def srp(
         cut along the outline (:mod:`sunwind.geometry.rays.shadow_edges`).
     tolerance : float
         The default pass's tolerance: the share of a refined side's area its lit part is found to, in
-        [1e-6, 1).
+        [1e-6, 1). The pass checks itself: the result's ``error_estimate`` is the error it estimates it
+        left, relative to the force and torque (None with ``samples``).
     reflections : str or ReflectionSettings
         ``"none"``, ``"specular"``, ``"full"`` or ``"auto"`` (full when ``K_IS >= 0.1``), or settings
         with chain cutoff, depth and view-factor sampling
@@ -90,6 +91,10 @@ def _one(
     light = direct.illumination
     reflected = reflected_part(craft, direct, flux, ref, settings, plan)
     force, torque = pressure * direct.force, pressure * direct.torque
+    shadow_error = None
+    if light.check is not None:  # the default pass checked itself: what its errors cost in eq. (4)
+        loads = lit_area_loads(craft, u_sun, pressure, light.check.needed)
+        shadow_error = light.check.loads_error(craft, loads, ref)
     return SrpResult(
         force_N=force + reflected.force_N,
         torque_Nm=torque + reflected.torque_Nm,
@@ -108,4 +113,5 @@ def _one(
         pressure_Pa=pressure,
         lit_area_m2=direct.lit_area_m2,
         illumination=light,
+        shadow_error=shadow_error,
     )

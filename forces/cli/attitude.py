@@ -26,7 +26,14 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
-from sunwind.forces.cli.report import forces_document, print_drag, print_forces, print_json, print_srp
+from sunwind.forces.cli.report import (
+    forces_document,
+    print_drag,
+    print_forces,
+    print_json,
+    print_srp,
+    warn_results,
+)
 from sunwind.forces.drag import drag as drag_of
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.reflection import ReflectionSettings
@@ -57,6 +64,7 @@ def srp(
         print_json(model.craft, result.to_json())
     else:
         print_srp(result)
+    warn_results({"srp": result.error_estimate}, sampling["tolerance"])
 
 
 @click.command()
@@ -82,6 +90,7 @@ def drag(
         print_json(craft, result.to_json())
     else:
         print_drag(result, f"sunwind drag: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+    warn_results({"drag": result.error_estimate}, sampling["tolerance"])
 
 
 @click.command()
@@ -110,18 +119,21 @@ def forces(
         infrared_optics(model.craft)  # a missing emissivity refused before any work
     light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     gas = _drag(model, flow, reflections, sampling)
+    estimates = {"srp": light.error_estimate, "drag": gas.error_estimate}
     if earth is None:
         if as_json:
             print_json(model.craft, forces_document(light, gas))
         else:
             print_forces(light, gas)
+        warn_results(estimates, sampling["tolerance"])
         return
     result, state = earth_at(model, earth, sun, flow, reflections, sampling)
     terms = [(band.name, band.force_N, band.torque_Nm) for band in (result.albedo, result.infrared)]
     if state is not None:
         terms.append(("thermal", state.force_N, state.torque_Nm))
+    errors = [result.shadow_error]  # the albedo's and the infrared's; the thermal recoil casts no ray
     if as_json:
-        document = forces_document(light, gas, terms)
+        document = forces_document(light, gas, terms, errors)
         planet = earth_document(result, state)
         for key in ("albedo", "infrared", "thermal", "parts"):
             if key in planet:
@@ -129,8 +141,9 @@ def forces(
         document["planet"] = planet
         print_json(model.craft, document)
     else:
-        print_forces(light, gas, terms)
+        print_forces(light, gas, terms, errors)
         print_earth(result, state, title="  planet:")
+    warn_results(estimates | {"planet": result.error_estimate}, sampling["tolerance"])
 
 
 def _drag(model: Model, flow: FreeStream, reflections: ReflectionSettings, sampling: dict) -> DragResult:

@@ -25,7 +25,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
-from sunwind.forces.cli.report import about, print_json, vector
+from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
 from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, EarthResult, Place, earth_radiation
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
@@ -223,6 +223,7 @@ def earth(
         print_json(model.craft, earth_document(result, state))
     else:
         print_earth(result, state)
+    warn_results({"earth": result.error_estimate}, sampling["tolerance"])
 
 
 def radiation(
@@ -322,6 +323,8 @@ def print_earth(result: EarthResult, state: ThermalState | None, title: str | No
         print(f"           torque [N m] {vector(state.torque_Nm)}")
     print(f"  about   [m]      {about(result.reference_point_m, result.reference_point)}")
     print(f"  reflections      {result.reflections}; {result.cells} cells, {result.rays} rays")
+    without = "plates: no shadowing" if result.reflections == PLATES else "fixed points per side, --samples"
+    print(f"  shadow error     albedo + infrared: {estimated(result.error_estimate, without)}")
     temperatures = {} if state is None else _part_temperatures(result, state)
     print(
         "  absorbed [W]     part: solar, albedo, infrared, reflected" + (", temperature [K]" if state else "")

@@ -23,9 +23,10 @@ from sunwind.forces.cli.options import (
     reflection_options,
     sampling_options,
 )
-from sunwind.forces.cli.report import print_json, vector
+from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
 from sunwind.forces.cli.runs import check_run, run_options, sweep_run
 from sunwind.forces.cli.tables import check_writable
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
 from sunwind.forces.model import ModelSource
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, SpaceWeather, Trajectory, fly, propagate
@@ -402,10 +403,13 @@ def orbit(
         written.append(output["plot"])
     if output["as_json"]:
         print_json(model.craft, result.to_json(environment.mass_kg))
-        return
-    _print_summary(model.craft.source, result, environment.mass_kg)
-    for target in written:
-        print(f"  wrote {target}")
+    else:
+        _print_summary(model.craft.source, result, environment.mass_kg)
+        for target in written:
+            print(f"  wrote {target}")
+    if "error_estimate_force" in result.series:
+        series = (result.series["error_estimate_force"], result.series["error_estimate_torque"])
+        warn_beyond({"orbit": series}, sampling["tolerance"], "steps")
 
 
 def _print_summary(name: str, result, mass_kg: float | None) -> None:
@@ -441,6 +445,9 @@ def _print_summary(name: str, result, mass_kg: float | None) -> None:
         )
         print(f"  part {name}: mean absorbed solar, albedo, infrared, reflected {heat} W{span}")
     print(f"  largest torque {summary['max_torque_Nm']:.4e} N m at t = {summary['max_torque_time_s']:g} s")
+    worst = summary.get("error_estimate_worst")
+    estimate = None if worst is None else ErrorEstimate(worst["force"], worst["torque"])
+    print(f"  shadow error   {'' if worst is None else 'worst step: '}{estimated(estimate)}")
     print(f"  angular impulse body {vector(np.array(summary['angular_impulse_body_Nms']))} N m s")
     print(f"  angular impulse ECI  {vector(np.array(summary['angular_impulse_eci_Nms']))} N m s")
     if "momentum_per_orbit_Nms" in summary:

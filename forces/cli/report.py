@@ -4,11 +4,15 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Sequence
+import warnings
+from collections.abc import Mapping, Sequence
 
 import numpy as np
+from numpy.typing import NDArray
 
+from sunwind.forces.error_estimate import ADVICE, ErrorEstimate, ShadowErrorWarning, summed
 from sunwind.forces.results import FRAME, VALIDITY, DragResult, SrpResult
+from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.spacecraft import Spacecraft
 
 #: Loads added to a total: (name, force [N] (3,), torque [N m] (3,)) each.
@@ -47,6 +51,47 @@ def print_articulation(craft: Spacecraft) -> None:
         print(f"  articulation     {'; '.join(angles)}")
 
 
+def estimated(estimate: ErrorEstimate | None, without: str = "fixed points per side, --samples") -> str:
+    """The text of a shadow error estimate: its relative force and torque, or why there is none
+    (``without``)."""
+    return f"not estimated ({without})" if estimate is None else str(estimate)
+
+
+def warn_beyond(estimates: Mapping[str, tuple[NDArray, NDArray]], tolerance: float, entries: str) -> None:
+    """One ``sunwind: warning:`` line when the shadow pass's estimated error exceeds ``tolerance``:
+    ``estimates`` holds per quantity (srp, drag, ...) the relative force and torque estimates of its
+    ``entries`` (attitudes, steps), (n,) each, NaN where there is none. With one entry per quantity the
+    line gives the estimates; with more, how many entries exceed it and the worst."""
+    beyond = []
+    for name, (force, torque) in estimates.items():
+        worst = np.fmax(force, torque)
+        over = worst > tolerance
+        if not over.any():
+            continue
+        largest = f"force {np.nanmax(force):.1e}, torque {np.nanmax(torque):.1e}, relative"
+        if len(worst) == 1:
+            beyond.append(f"{name} {largest}")
+        else:
+            beyond.append(f"{name} at {int(over.sum())} of {len(worst)} {entries} (worst {largest})")
+    if beyond:
+        warnings.warn(
+            f"the shadow pass's estimated error exceeds the tolerance {tolerance:g}: "
+            f"{'; '.join(beyond)}; {ADVICE}",
+            ShadowErrorWarning,
+            stacklevel=2,
+        )
+
+
+def warn_results(results: Mapping[str, ErrorEstimate | None], tolerance: float) -> None:
+    """:func:`warn_beyond` of single results' estimates, by name (None: not estimated)."""
+    estimates = {
+        name: (np.array([estimate.force]), np.array([estimate.torque]))
+        for name, estimate in results.items()
+        if estimate is not None
+    }
+    warn_beyond(estimates, tolerance, "attitudes")
+
+
 def print_json(craft: Spacecraft, document: dict) -> None:
     """One JSON object: the model, the ``document``, the repair notices."""
     print(json.dumps({**header(craft), **document, "notices": list(craft.notices)}, indent=2))
@@ -72,6 +117,7 @@ def print_srp(result: SrpResult) -> None:
     print(f"  lit area         {result.lit_area_m2:.6f} m^2")
     print(f"  projected area   {result.projected_area_m2:.6f} m^2")
     print(f"  shadow rays      {result.rays} ({result.sampling})")
+    print(f"  shadow error     {estimated(result.error_estimate)}")
     print(
         f"  reflections      {result.reflections} (asked: {result.settings.mode}); "
         f"K_IS = {result.k_is:.4f} (eq. 7; inter-reflection matters from 0.1)"
@@ -130,6 +176,7 @@ def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
         f"  rays             {result.rays} (shadow along the flow: {result.sampling}; core cone "
         f"{math.degrees(result.core_half_angle_rad):.1f} deg)"
     )
+    print(f"  shadow error     {estimated(result.error_estimate)}")
     print(f"  open sky         {sky.rays_per_side} rays per side, {sky.origin}")
     print(f"  validity         {VALIDITY}")
 
@@ -141,22 +188,42 @@ def _total(light: SrpResult, gas: DragResult, extra: Terms) -> tuple[np.ndarray,
     return force, torque
 
 
-def forces_document(light: SrpResult, gas: DragResult, extra: Terms = ()) -> dict:
-    """The JSON document of ``sunwind forces``: both results, the ``extra`` terms' loads (name, force
-    [N], torque [N m]) and the total of all."""
+def total_estimate(
+    light: SrpResult, gas: DragResult, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
+) -> ErrorEstimate | None:
+    """The shadow passes' estimated error of the total of SRP, drag and the ``extra`` terms, relative:
+    the absolute errors of both results and ``errors`` (those of the extra terms that have one) added."""
+    error = summed([light.shadow_error, gas.shadow_error, *errors])
+    if error is None:
+        return None
     force, torque = _total(light, gas, extra)
+    return ErrorEstimate.of(error, force, torque, light.craft.diagonal_m)
+
+
+def forces_document(
+    light: SrpResult, gas: DragResult, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
+) -> dict:
+    """The JSON document of ``sunwind forces``: both results, the ``extra`` terms' loads (name, force
+    [N], torque [N m]) and the total of all, with its :func:`total_estimate` (``errors``: the extra
+    terms' absolute shadow errors)."""
+    force, torque = _total(light, gas, extra)
+    estimate = total_estimate(light, gas, extra, errors)
     total = {
         "force_N": force.tolist(),
         "torque_Nm": torque.tolist(),
         "reference_point_m": light.reference_point_m.tolist(),
         "reference_point": light.reference_point,
         "frame": FRAME,
+        "error_estimate": None if estimate is None else estimate.to_json(),
     }
     return {"srp": light.to_json(), "drag": gas.to_json(), "total": total}
 
 
-def print_forces(light: SrpResult, gas: DragResult, extra: Terms = ()) -> None:
-    """The human-readable report of ``sunwind forces`` (the total with the ``extra`` terms)."""
+def print_forces(
+    light: SrpResult, gas: DragResult, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
+) -> None:
+    """The human-readable report of ``sunwind forces`` (the total with the ``extra`` terms, whose
+    absolute shadow errors are ``errors``)."""
     craft = light.craft
     force, torque = _total(light, gas, extra)
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
@@ -164,6 +231,8 @@ def print_forces(light: SrpResult, gas: DragResult, extra: Terms = ()) -> None:
     print(f"  total force  [N]    {vector(force)}  |F| = {np.linalg.norm(force):.6e}")
     print(f"  total torque [N m]  {vector(torque)}")
     print(f"  about        [m]    {about(light.reference_point_m, light.reference_point)}")
+    print(f"  shadow error        {estimated(total_estimate(light, gas, extra, errors))}")
     print(f"  srp force    [N]    {vector(light.force_N)}  (sun {vector(light.sun_vector, '{:+.4f}')})")
     print(f"  srp torque   [N m]  {vector(light.torque_Nm)}")
+    print(f"  srp shadow error    {estimated(light.error_estimate)}")
     print_drag(gas, "  drag:", hinges=False)

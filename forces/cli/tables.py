@@ -11,6 +11,9 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import click
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
@@ -35,7 +38,9 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
+from sunwind.forces.cli.report import warn_beyond
 from sunwind.forces.cli.runs import check_run, run_options, sweep_run
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import (
@@ -47,7 +52,7 @@ from sunwind.forces.tables import (
     read_attitude_csv,
     sweep,
 )
-from sunwind.forces.tables.dataset import one_pose, open_table
+from sunwind.forces.tables.dataset import GRID_DIMS, kinds_of, one_pose, open_table
 from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
@@ -297,8 +302,32 @@ def sweep_command(
     written = write(result, table.output, table.format)
     kinds = ", ".join(table.kinds)
     print(f"sunwind sweep: {model.craft.source}: {total} attitudes ({kinds}) in {seconds:.1f} s")
+    estimates = table_estimates(result, table.step_deg)
+    for kind, (force, torque) in estimates.items():
+        print(f"  shadow error     {kind} worst {ErrorEstimate(float(force.max()), float(torque.max()))}")
     for path in written:
         print(f"  wrote {path}")
+    warn_beyond(estimates, sampling["tolerance"], "attitudes")
+
+
+def table_estimates(table: xr.Dataset, step_deg: float | None) -> dict[str, tuple[NDArray, NDArray]]:
+    """The shadow error estimates of a sweep's table, per quantity that has them: relative force and
+    torque of each distinct attitude (a grid's shared directions once; every pose's), (n,) each."""
+    out = {}
+    for kind in kinds_of(table):
+        if f"{kind}_error_estimate_force" in table:
+            force, torque = (table[f"{kind}_error_estimate_{what}"] for what in ("force", "torque"))
+            out[kind] = (_distinct(force, kind, step_deg), _distinct(torque, kind, step_deg))
+    return out
+
+
+def _distinct(values: xr.DataArray, kind: str, step_deg: float | None) -> NDArray:
+    """``values`` of a table's ``kind`` at its distinct attitudes, flat (a list's rows are all distinct)."""
+    if step_deg is None:
+        return values.values.ravel()
+    grid = direction_grid(step_deg)
+    _, first = np.unique(grid.distinct[1], return_index=True)
+    return values.transpose(..., *GRID_DIMS[kind]).values.reshape(-1, grid.nodes)[:, first].ravel()
 
 
 def _count(table: TableRequest, attitudes) -> int:

@@ -31,7 +31,7 @@ from sunwind.forces.gas.core_cone import CoreCone, core_cone
 from sunwind.forces.gas.core_rays import MIN_SIDES_PER_CHUNK, core_corrections
 from sunwind.forces.gas.laws import GasSurfaces
 from sunwind.forces.gas.panel import GasGroups, species_laws
-from sunwind.forces.gas.visible_kernels import side_loads, sky_sums
+from sunwind.forces.gas.visible_kernels import core_loads, side_loads, sky_sums
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
@@ -49,6 +49,10 @@ class Arrival:
     emitted : (2, n_sides) float64
         The first diffuse re-emission of each side: momentum per second [N] and sqrt(mass)-weighted
         molecules per second [sqrt(kg)/s] (:mod:`sunwind.forces.gas.exchange`).
+    lit_load : (n_sides, 3) float64
+        What one unit of a side's area that the shadow along ``u`` leaves lit takes of the stream [Pa]:
+        the core ``K`` of an unobstructed side (what an error in ``f_u`` costs; exact where the side's
+        core is followed by rays, an upper bound where it sees the whole core and ``f_u`` only places it).
     rays : int
         Rays cast: the shadow pass's and the core's.
     core_half_angle : float
@@ -58,6 +62,7 @@ class Arrival:
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
     emitted: NDArray[np.float64]
+    lit_load: NDArray[np.float64]
     rays: int
     core_half_angle: float
 
@@ -196,4 +201,6 @@ def arrival(
         n,
         MIN_SIDES_PER_CHUNK,
     )
-    return Arrival(force.T, torque.T, emitted, flow.rays + core.rays, cone.half_angle)
+    lit_load = np.empty((n, 3))
+    core_loads(groups.side, groups.law, groups.normals, cone.gamma_table, u, lit_load)
+    return Arrival(force.T, torque.T, emitted, lit_load, flow.rays + core.rays, cone.half_angle)

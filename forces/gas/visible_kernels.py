@@ -311,23 +311,10 @@ def side_loads(
     areas, centroids = sides
     at_lit, at_centroid, lit_centroid, core_force, core_moment, core_emitted = core_parts
     keeps_open, sky_force, sky_moment, sky_emitted = sky
-    n_gamma = core.shape[2]
     for s in range(lo, hi):
         group = side_group[s]
         law = group_law[group]
-        n0, n1, n2 = group_normals[group, 0], group_normals[group, 1], group_normals[group, 2]
-        gamma = n0 * u[0] + n1 * u[1] + n2 * u[2]
-        position = (min(max(gamma, -1.0), 1.0) + 1.0) * 0.5 * (n_gamma - 1)
-        i = min(int(position), n_gamma - 2)
-        t = position - i
-        c_n = core[law, 0, i] + t * (core[law, 0, i + 1] - core[law, 0, i])
-        c_t = core[law, 1, i] + t * (core[law, 1, i + 1] - core[law, 1, i])
-        a0, a1, a2 = u[0] - gamma * n0, u[1] - gamma * n1, u[2] - gamma * n2
-        length = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
-        t0 = t1 = t2 = 0.0
-        if length > 1e-12:
-            t0, t1, t2 = -a0 / length, -a1 / length, -a2 / length
-        k0, k1, k2 = c_n * n0 + c_t * t0, c_n * n1 + c_t * t1, c_n * n2 + c_t * t2
+        k0, k1, k2, i, t = _core_load(core, law, group_normals[group], u)
         core_e0 = core[law, 2, i] + t * (core[law, 2, i + 1] - core[law, 2, i])
         core_e1 = core[law, 3, i] + t * (core[law, 3, i + 1] - core[law, 3, i])
         sign = 1.0 if keeps_open[s] else -1.0
@@ -363,3 +350,44 @@ def side_loads(
         torque[1, s] = area * ((c2 * p0 - c0 * p2) + (l2 * q0 - l0 * q2) + m1)
         torque[2, s] = area * ((c0 * p1 - c1 * p0) + (l0 * q1 - l1 * q0) + m2)
         emitted[0, s], emitted[1, s] = area * e0, area * e1
+
+
+@numba.njit(cache=True, nogil=True)
+def _core_load(
+    core: NDArray[np.float64], law: int, normal: NDArray[np.float64], u: NDArray[np.float64]
+) -> tuple[float, float, float, int, float]:
+    """``K``: the force per unit area [Pa] the core brings an unobstructed side of ``law`` and unit
+    ``normal``, from ``core`` (n_laws, 4, n_gamma) on ``gamma = normal . u`` in [-1, 1]: its normal part
+    along the normal, its tangential part along ``t_hat``, against the flow's share in the side's plane;
+    and where ``gamma`` falls in the table (row ``i``, share ``t`` of the way to the next)."""
+    n0, n1, n2 = normal[0], normal[1], normal[2]
+    n_gamma = core.shape[2]
+    gamma = n0 * u[0] + n1 * u[1] + n2 * u[2]
+    position = (min(max(gamma, -1.0), 1.0) + 1.0) * 0.5 * (n_gamma - 1)
+    i = min(int(position), n_gamma - 2)
+    t = position - i
+    c_n = core[law, 0, i] + t * (core[law, 0, i + 1] - core[law, 0, i])
+    c_t = core[law, 1, i] + t * (core[law, 1, i + 1] - core[law, 1, i])
+    a0, a1, a2 = u[0] - gamma * n0, u[1] - gamma * n1, u[2] - gamma * n2
+    length = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+    t0 = t1 = t2 = 0.0
+    if length > 1e-12:
+        t0, t1, t2 = -a0 / length, -a1 / length, -a2 / length
+    return c_n * n0 + c_t * t0, c_n * n1 + c_t * t1, c_n * n2 + c_t * t2, i, t
+
+
+@numba.njit(cache=True, nogil=True)
+def core_loads(
+    side_group: NDArray[np.int64],
+    group_law: NDArray[np.int64],
+    group_normals: NDArray[np.float64],
+    core: NDArray[np.float64],
+    u: NDArray[np.float64],
+    out: NDArray[np.float64],
+) -> None:
+    """``K`` of every side (:func:`_core_load`) into ``out`` (n_sides, 3) [Pa]: the force the core brings
+    one unit of the side's area that the shadow along ``u`` leaves lit."""
+    for s in range(side_group.shape[0]):
+        group = side_group[s]
+        k0, k1, k2, _, _ = _core_load(core, group_law[group], group_normals[group], u)
+        out[s, 0], out[s, 1], out[s, 2] = k0, k1, k2

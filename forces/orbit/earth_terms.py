@@ -18,6 +18,7 @@ from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_step, earth_radi
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.tables.jobs import SrpSetup
+from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.spacecraft import infrared_optics
 
 #: Albedo and infrared loads of a step (body frame): record name -> width.
@@ -80,9 +81,11 @@ class EarthTerms:
 
     def evaluate(
         self, model: Model, place: Place, sunlight_W_m2: float, julian_tt: float
-    ) -> dict[str, NDArray[np.float64]]:
-        """One step's records: ``place`` (body frame; its solar fraction the eclipse), the solar flux at
-        the spacecraft's distance without eclipse [W/m^2], the TT Julian date (Knocke's season)."""
+    ) -> tuple[dict[str, NDArray[np.float64]], LoadsError | None]:
+        """One step's records, and the shadow passes' estimated error of its albedo and infrared loads
+        (:attr:`~sunwind.forces.earth.EarthResult.shadow_error`): ``place`` (body frame; its solar
+        fraction the eclipse), the solar flux at the spacecraft's distance without eclipse [W/m^2], the
+        TT Julian date (Knocke's season)."""
         light = PlanetLight.of(
             planet("earth"),
             sunlight_W_m2,
@@ -105,7 +108,7 @@ class EarthTerms:
             state = result.equilibrium(options["reflections"])
             out["thermal_force_body_N"], out["thermal_torque_body_Nm"] = state.force_N, state.torque_Nm
             out["part_temperature_K"] = result.part_temperatures(state.temperature_K)
-        return out
+        return out, result.shadow_error
 
     def describe(self) -> dict:
         """JSON-ready settings."""

@@ -19,12 +19,14 @@ import xarray as xr
 from numpy.typing import NDArray
 from scipy.integrate import cumulative_trapezoid
 
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.model import Model
 from sunwind.forces.orbit.attitude import AttitudeLaw
 from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.steps import FLUX, SUN, VELOCITY, OrbitSetup, StepInputs
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
+from sunwind.geometry.rays.certificate import LoadsError
 
 #: Time series of the output, in order, with their units.
 SERIES = {
@@ -60,6 +62,14 @@ EARTH_SERIES = {
     "part_reflected_W": "W",
     "part_temperature_K": "K",
 }
+#: Series of a run whose every term uses the default shadow pass: the error the passes estimate they
+#: left in the step's total force and torque, relative (:class:`~sunwind.forces.error_estimate.
+#: ErrorEstimate` of their absolute errors added over the terms), with their long names.
+ESTIMATE_SERIES = {
+    "error_estimate_force": "estimated relative error of force_body_N left by the shadow passes, |dF| / |F|",
+    "error_estimate_torque": "estimated relative error of torque_body_Nm left by the shadow passes, "
+    "|dM| / max(|M|, 0.01 |F| L), L the diagonal of the model's bounding box",
+}
 #: Terms a run can add up, each with its force and torque series.
 TERMS = ("srp", "drag", "albedo", "infrared", "thermal")
 
@@ -82,8 +92,8 @@ class OrbitResult:
     @property
     def names(self) -> list[str]:
         """The output series of this run, in order (:data:`SERIES`, then those of :data:`EARTH_SERIES`
-        it has)."""
-        return [*SERIES, *(name for name in EARTH_SERIES if name in self.series)]
+        and :data:`ESTIMATE_SERIES` it has)."""
+        return [*SERIES, *(name for name in (*EARTH_SERIES, *ESTIMATE_SERIES) if name in self.series)]
 
     @classmethod
     def of(
@@ -128,6 +138,15 @@ class OrbitResult:
             if name in records:
                 values = records[name]
                 series[name] = values.reshape(len(t), -1) if name.startswith("part_") else values
+        if "shadow_error_force_N" in records:
+            errors = zip(records["shadow_error_force_N"], records["shadow_error_torque_Nm"], strict=True)
+            size = model.craft.diagonal_m
+            estimates = [
+                ErrorEstimate.of(LoadsError(float(f), float(m)), force[k], torque[k], size)
+                for k, (f, m) in enumerate(errors)
+            ]
+            series["error_estimate_force"] = np.array([e.force for e in estimates])
+            series["error_estimate_torque"] = np.array([e.torque for e in estimates])
         point, name = model.reference()
         attributes = {
             "frame": "body loads in the body frame, ECI = GCRF",
@@ -188,6 +207,11 @@ class OrbitResult:
             if term in self.terms:
                 out[f"mean_{term}_force_body_N"] = _mean(t, s[f"{term}_force_body_N"])
                 out[f"mean_{term}_torque_body_Nm"] = _mean(t, s[f"{term}_torque_body_Nm"])
+        if "error_estimate_force" in s:
+            out["error_estimate_worst"] = {
+                "force": float(s["error_estimate_force"].max()),
+                "torque": float(s["error_estimate_torque"].max()),
+            }
         if self.part_names:
             out["parts"] = self._part_summary()
         if mass_kg is not None:
@@ -237,11 +261,14 @@ class OrbitResult:
     def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
         """The series as an xarray Dataset on dimensions ``time``, ``xyz`` and ``part``, units in
         attributes."""
-        variables, units = {}, SERIES | EARTH_SERIES
+        variables, units = {}, SERIES | EARTH_SERIES | dict.fromkeys(ESTIMATE_SERIES, "1")
         for name in self.names:
             values = self.series[name]
             dims = ("time",) if values.ndim == 1 else ("time", "part" if name.startswith("part_") else "xyz")
-            variables[name] = xr.Variable(dims, values, {"units": units[name]})
+            attrs = {"units": units[name]} | (
+                {"long_name": ESTIMATE_SERIES[name]} if name in ESTIMATE_SERIES else {}
+            )
+            variables[name] = xr.Variable(dims, values, attrs)
         for pattern, angles in self.hinge_angles_deg.items():
             variables[f"hinge_angle_deg[{pattern}]"] = xr.Variable(("time",), angles, {"units": "deg"})
         summary = {f"summary_{k}": _attribute(v) for k, v in self.summary(mass_kg).items()}

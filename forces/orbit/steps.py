@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.drag import drag
 from sunwind.forces.earth import Place
+from sunwind.forces.error_estimate import summed
 from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning
 from sunwind.forces.gas.msis import (
     FREE_MOLECULAR_MIN_ALTITUDE_KM,
@@ -132,6 +133,9 @@ class OrbitSetup:
         "density_kg_m3": 1,
         "dynamic_pressure_Pa": 1,
     }
+    #: Records of a run whose every term uses the default shadow pass: the passes' estimated absolute
+    #: errors of the step's loads, added over its terms [N], [N m].
+    estimate_fields: ClassVar[dict[str, int]] = {"shadow_error_force_N": 1, "shadow_error_torque_Nm": 1}
     srp: SrpSetup | None
     drag: GasOptions | None
     air: SpaceWeather | Atmosphere
@@ -149,7 +153,13 @@ class OrbitSetup:
     def fields(self) -> dict[str, int]:
         """The records of a step: name -> width."""
         extra = {} if self.earth is None else self.earth.fields(self.n_parts)
-        return self.base_fields | extra
+        return self.base_fields | extra | (self.estimate_fields if self.estimates else {})
+
+    @property
+    def estimates(self) -> bool:
+        """Whether every term uses the default shadow pass, which estimates its error (not ``samples``)."""
+        surface = None if self.earth is None else self.earth.surface
+        return all(part.samples is None for part in (self.srp, self.drag, surface) if part is not None)
 
     def precompute(self, model: Model) -> None:
         """View factors and open skies, made once before the first step."""
@@ -165,20 +175,31 @@ class OrbitSetup:
         for i, row in enumerate(rows):
             posed = model.posed(self.angles(model, row))
             flux = float(row[FLUX])
+            errors = []
             if self.srp is not None and flux > 0:
                 light = srp(posed, row[SUN], flux_W_m2=flux, **self.srp.options())
                 out["srp_force_body_N"][i], out["srp_torque_body_Nm"][i] = light.force_N, light.torque_Nm
+                errors.append(light.shadow_error)
             if self.drag is not None:
                 air = self.air_at(row)
                 gas = drag(posed, row[VELOCITY], air, **self.drag.options())
                 out["drag_force_body_N"][i], out["drag_torque_body_Nm"][i] = gas.force_N, gas.torque_Nm
                 out["density_kg_m3"][i] = air.density_kg_m3
                 out["dynamic_pressure_Pa"][i] = gas.dynamic_pressure_Pa
+                errors.append(gas.shadow_error)
             if self.earth is not None:
                 place = Place(row[NADIR], float(row[HEIGHT]), row[SUN], row[POLE], float(row[FRACTION]))
                 julian = float(sum(self.epoch.tt(float(row[TIME]))))
-                for name, value in self.earth.evaluate(posed, place, float(row[SUNLIGHT]), julian).items():
+                records, error = self.earth.evaluate(posed, place, float(row[SUNLIGHT]), julian)
+                for name, value in records.items():
                     out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
+                errors.append(error)
+            total = summed(errors)
+            if self.estimates and total is not None:
+                out["shadow_error_force_N"][i], out["shadow_error_torque_Nm"][i] = (
+                    total.force_N,
+                    total.torque_Nm,
+                )
         return out
 
     def air_at(self, row: NDArray[np.float64]) -> Atmosphere:

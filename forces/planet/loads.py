@@ -28,9 +28,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.error_estimate import summed
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
 from sunwind.forces.reflection import ChainTotals, PowerBalance, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals
+from sunwind.geometry.rays.certificate import LoadsError, ShadowCheck
 from sunwind.geometry.rays.hull import clearance
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.sides import TWO_SIDED
@@ -91,6 +93,10 @@ class BandLoad:
         ``power.absorbed_W``, or dropped by a chain's cutoff, ``power.truncated_W`` [W]: on no side.
     rays : int
         Shadow and beam rays cast.
+    shadow_error : LoadsError or None
+        The shadow passes' estimated absolute error in the direct force [N] and torque [N m]: each
+        cell's pass's (from its check and the cell's load per unit lit area), added over the cells; 0
+        where no side can be shadowed; None with fixed sampling or without shadowing (plates).
     """
 
     name: str
@@ -106,6 +112,7 @@ class BandLoad:
     reflected_side_W: NDArray[np.float64]
     lost_W: float
     rays: int
+    shadow_error: LoadsError | None = None
 
     def to_json(self) -> dict:
         """Plain-JSON summary; keys carry their units."""
@@ -122,13 +129,14 @@ class BandLoad:
 
 
 class _Running:
-    """What the cells of one source add up: shadow corrections and beam chains."""
+    """What the cells of one source add up: shadow corrections, the passes' errors and beam chains."""
 
-    def __init__(self, n_sides: int) -> None:
+    def __init__(self, n_sides: int, shadow_error: LoadsError | None) -> None:
         self.lost_i0 = np.zeros(n_sides)
         self.lost_i1 = np.zeros((n_sides, 3))
         self.lost_i2 = np.zeros(n_sides)
         self.shift_torque = np.zeros(3)  # [N m]: forces moved to the lit centroids
+        self.shadow_error = shadow_error
         self.chains: list[ChainTotals] = []
 
 
@@ -154,9 +162,10 @@ def band_loads(
     """The :class:`BandLoad` of each source, whose cells lie along ``directions`` (k, 3), and the
     shadow rays cast. One shadow pass per cell serves every source; none without ``sampling.shadows``
     (every side sees the whole source, and no beam is followed)."""
-    running = [_Running(craft.n_sides) for _ in sources]
-    sampler = side_sampler(craft)
     samples, tolerance, cutoff, depth = sampling.samples, sampling.tolerance, sampling.cutoff, sampling.depth
+    checked = sampling.shadows and samples is None  # the default pass estimates its error; 0 when convex
+    running = [_Running(craft.n_sides, LoadsError(0.0, 0.0) if checked else None) for _ in sources]
+    sampler = side_sampler(craft)
     shadowing = sampling.shadows and not bool(np.all(clearance(craft).open_sky))
     rays = 0
     for k, direction in enumerate(directions):
@@ -172,6 +181,9 @@ def band_loads(
             weight = float(source.weights[k])
             if len(dark):
                 _shadow(craft, source.optics, direction, weight, dark, dark_share, light.lit_centroid, sums)
+            if light.check is not None:
+                error = _cell_error(craft, source.optics, (direction, weight), light.check, reference_m)
+                sums.shadow_error = summed([sums.shadow_error, error])
             if source.beams and shadowing:
                 chains = follow_chains(craft, light, weight, reference_m, cutoff, depth, light.level)
                 rays += chains.rays
@@ -200,6 +212,22 @@ def _shadow(
     lit_force = _law(normals, craft.side_areas[sides], optics[sides], weight * cos * share, direction, cos)
     offset = lit_centroid[sides] - craft.side_centroids[sides]
     sums.shift_torque += np.cross(offset, lit_force).sum(axis=0)
+
+
+def _cell_error(
+    craft: Spacecraft,
+    optics: NDArray[np.float64],
+    cell: tuple[NDArray[np.float64], float],
+    check: ShadowCheck,
+    reference_m: NDArray[np.float64],
+) -> LoadsError:
+    """The error a cell's shadow pass leaves in a source's force and torque: what its ``check`` found,
+    with the force of the cell (``cell`` = its direction and irradiance [W/m^2]) on one unit of each
+    side's lit area as the load."""
+    direction, weight = cell
+    cos = np.maximum(craft.side_normals @ direction, 0.0)
+    load = _law(craft.side_normals, np.ones(craft.n_sides), optics, weight * cos, direction, cos)
+    return check.loads_error(craft, load, reference_m)
 
 
 def _law(
@@ -254,7 +282,7 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
         power = PowerBalance(total_in, total_absorbed, total_in - total_absorbed)
         return BandLoad(
             source.name, force, torque, force, torque, zero, zero, power, incident, absorbed,
-            reflected_side, 0.0, 0,
+            reflected_side, 0.0, 0, sums.shadow_error,
         )  # fmt: skip
     chains = _sum_chains(sums.chains, craft.n_sides)
     r_force, r_torque = chains.force_N.copy(), chains.torque_Nm.copy()
@@ -288,7 +316,7 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
     power = PowerBalance(total_in, total_absorbed, float(escaped), chains.truncated_W)
     return BandLoad(
         source.name, force + r_force, torque + r_torque, force, torque, r_force, r_torque, power,
-        incident, absorbed, reflected_side, lost, chains.rays,
+        incident, absorbed, reflected_side, lost, chains.rays, sums.shadow_error,
     )  # fmt: skip
 
 

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.radiation.law import surface_forces
 from sunwind.forces.radiation.moments import (
     ABSORBED,
     FORCE,
@@ -137,3 +138,38 @@ def direct_pass(
         absorbed_area_m2=float(totals[ABSORBED]),
         channels_m2=totals[TOTALS:],
     )
+
+
+def lit_area_loads(
+    craft: Spacecraft,
+    u_sun: NDArray[np.float64],
+    pressure_Pa: float,
+    sides: NDArray[np.int64] | None = None,
+) -> NDArray[np.float64]:
+    """Force of eq. (4) on one unit of lit area of every side [N/m^2], (n_sides, 3): what an error in a
+    side's lit area costs (:meth:`~sunwind.geometry.rays.certificate.ShadowCheck.loads_error`); zero on
+    the sides facing away from ``u_sun``, and on all but ``sides`` when they are given (the check's
+    :attr:`~sunwind.geometry.rays.certificate.ShadowCheck.needed`, a few of a large model's).
+
+    Examples
+    --------
+    A black side facing the Sun is pushed away from it by ``P cos(theta)`` per unit lit area:
+
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> plate = MeshData(np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]), np.array([[0, 1, 2]]),
+    ...                  np.zeros(1, np.int32), ("plate",), -np.ones(1, np.int32))
+    >>> craft = build_spacecraft(plate, uniform=Material("black", 0.0, 0.0, 0.0), two_sided=["*"])
+    >>> lit_area_loads(craft, np.array([0.0, 0.6, 0.8]), 2.0)
+    array([[-0.  , -0.96, -1.28],
+           [ 0.  ,  0.  ,  0.  ]])
+    """
+    rows = np.arange(craft.n_sides) if sides is None else sides
+    normals = craft.side_normals[rows]
+    cos_theta = np.maximum(normals @ u_sun, 0.0)
+    rho, beta, sigma = craft.side_optics[rows].T
+    loads = np.zeros((craft.n_sides, 3))
+    unit = np.ones(len(rows))
+    loads[rows] = surface_forces(normals, unit, cos_theta, rho, beta, sigma, u_sun, pressure_Pa)
+    return loads

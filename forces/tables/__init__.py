@@ -10,6 +10,7 @@ from sunwind.forces.tables.interpolation import Loads, TableInterpolator
 from sunwind.forces.tables.jobs import (
     DRAG_FIELDS,
     EARTH_FIELDS,
+    ESTIMATE_FIELDS,
     FIELDS,
     KINDS,
     SRP_FIELDS,
@@ -23,6 +24,7 @@ __all__ = [
     "DEFAULT_STEP",
     "DRAG_FIELDS",
     "EARTH_FIELDS",
+    "ESTIMATE_FIELDS",
     "FIELDS",
     "KINDS",
     "SRP_FIELDS",

@@ -3,13 +3,14 @@ and tables"); the writers of its file formats are :mod:`sunwind.forces.export`.
 
 **Grid tables** have the dimensions ``sun_azimuth, sun_elevation`` for SRP, ``flow_azimuth,
 flow_elevation`` for drag and ``earth_azimuth, earth_elevation`` for the Earth's radiation (degrees,
--180..180 and -90..90 with both ends), and ``component`` (x, y, z) for vectors. **List tables** have
-one dimension ``attitude`` (rows of the attitude CSV) shared by SRP and drag. Variables are ``srp_*``
-(force, torque, their direct and reflected parts, lit and projected area, ``sun_vector``), ``drag_*``
-(the same parts and areas, the coefficients ``CD, CS, CL`` and ``CM``, ``flow_vector``) and ``earth_*``
-(grid tables only: the albedo plus infrared (plus thermal recoil) force and torque, each band apart,
-the visible share of the Sun, ``earth_vector``; the Sun fixed in the body frame, see
-:mod:`.earth_setup`); every variable and coordinate has ``units`` and ``long_name`` (CF-1.8,
+-180..180 and -90..90 with both ends), and ``component`` (x, y, z) for vectors. **List tables** have one
+dimension ``attitude`` (rows of the attitude CSV) shared by SRP and drag. Variables are ``srp_*`` (force,
+torque, their direct and reflected parts, lit and projected area, ``sun_vector``), ``drag_*`` (the same
+parts and areas, the coefficients ``CD, CS, CL`` and ``CM``, ``flow_vector``) and ``earth_*`` (grid tables
+only: the albedo plus infrared (plus thermal recoil) force and torque, each band apart, the visible share
+of the Sun, ``earth_vector``; the Sun fixed in the body frame, see :mod:`.earth_setup`); with the default
+shadow pass, each kind's ``*_error_estimate_force`` and ``*_error_estimate_torque`` (the error the pass
+estimates it left, relative). Every variable and coordinate has ``units`` and ``long_name`` (CF-1.8,
 ``Conventions``); the global attributes hold the frame, the sign conventions (``comment``), reference
 point, solar flux, atmosphere (its source and altitude), the Earth's slice, albedo and infrared
 (``earth_*``), coefficient references, the reflection mode each quantity used (``srp_reflections``,
@@ -57,6 +58,8 @@ UNITS = {
     "thermal_force_N": "N",
     "thermal_torque_Nm": "N m",
     "solar_fraction": "1",
+    "error_estimate_force": "1",
+    "error_estimate_torque": "1",
 }
 #: Long names by field name.
 LONG_NAMES = {
@@ -79,6 +82,16 @@ LONG_NAMES = {
     "thermal_force_N": "recoil of each side's infrared at radiative equilibrium, body frame",
     "thermal_torque_Nm": "torque of the thermal recoil",
     "solar_fraction": "share of the solar disc in view (0: the Earth hides the Sun)",
+    "error_estimate_force": "estimated relative error of the force left by the shadow pass",
+    "error_estimate_torque": "estimated relative error of the torque left by the shadow pass",
+}
+#: What the variables of some fields mean beyond their long names (attribute ``comment``).
+COMMENTS = {
+    "error_estimate_force": "|dF| / |F|: the shadow pass's check (rays at random points of a sample of "
+    "the sides) and each side's load per unit lit area give the absolute error dF; 0 where nothing can be "
+    "wrong; not written with fixed sampling (samples)",
+    "error_estimate_torque": "|dM| / max(|M|, 0.01 |F| L), L the diagonal of the model's bounding box: "
+    "against the torque, or where that is small against a torque the force could give",
 }
 #: Long names of an earth table's totals, without and with the thermal recoil.
 _EARTH_TOTALS = {
@@ -130,6 +143,8 @@ def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[
         vector = values.ndim == 2
         data = values.reshape((*shape, 3) if vector else shape)
         attrs = {"units": UNITS[name], "long_name": f"{_TITLES[kind]} {names[name]}"}
+        if name in COMMENTS:
+            attrs["comment"] = COMMENTS[name]
         out[f"{kind}_{name}"] = xr.Variable((*dims, "component") if vector else dims, data, attrs)
     return out
 

@@ -20,12 +20,20 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_altitude, check_step, earth_radiation
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.shadow import sun_behind
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, solar_flux
 from sunwind.forces.reflection import reflection_plan
-from sunwind.forces.tables.jobs import EARTH_FIELDS, EARTH_THERMAL_FIELDS, Records, _Setup, empty_records
+from sunwind.forces.tables.jobs import (
+    EARTH_FIELDS,
+    EARTH_THERMAL_FIELDS,
+    Records,
+    _Setup,
+    empty_records,
+    estimate_records,
+)
 from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.spacecraft import infrared_optics
@@ -84,8 +92,9 @@ class EarthSetup(_Setup):
 
     @property
     def fields(self) -> dict[str, int]:
-        """The records of an entry: name -> width (the thermal recoil's with :attr:`thermal`)."""
-        return EARTH_FIELDS | (EARTH_THERMAL_FIELDS if self.thermal else {})
+        """The records of an entry: name -> width (the thermal recoil's with :attr:`thermal`, the error
+        estimate with the default shadow pass)."""
+        return EARTH_FIELDS | (EARTH_THERMAL_FIELDS if self.thermal else {}) | self.estimates
 
     def light(self) -> PlanetLight:
         """The Earth's albedo and infrared laws under :attr:`flux_W_m2`."""
@@ -121,6 +130,7 @@ class EarthSetup(_Setup):
         model = self.posed(model)
         light, options, sun = self.light(), self.options(), np.asarray(self.sun_vector)
         out = empty_records(self.fields, len(directions))
+        estimates = []
         for i, u in enumerate(directions):
             fraction = self.solar_fraction(u)
             place = Place(u, self.altitude_km, sun, None, fraction)
@@ -134,6 +144,12 @@ class EarthSetup(_Setup):
             for name, band in (("albedo", result.albedo), ("infrared", result.infrared)):
                 out[f"{name}_force_N"][i], out[f"{name}_torque_Nm"][i] = band.force_N, band.torque_Nm
             out["solar_fraction"][i] = fraction
+            error = result.shadow_error  # relative to the loads recorded, the thermal recoil's too
+            estimates.append(
+                None if error is None else ErrorEstimate.of(error, force, torque, model.craft.diagonal_m)
+            )
+        if self.estimates:
+            out |= estimate_records(estimates)
         return out
 
     def attributes(self, model: Model) -> dict:

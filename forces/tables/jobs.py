@@ -11,6 +11,8 @@ the directions.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from typing import ClassVar
 
@@ -19,6 +21,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.batches import SrpBatch
 from sunwind.forces.drag import drag
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.exchange import gas_interference_criterion
 from sunwind.forces.gas.flow import flow_speed
@@ -67,8 +70,15 @@ EARTH_FIELDS: dict[str, int] = {
 }
 #: What the Earth's radiation records besides, with the thermal recoil.
 EARTH_THERMAL_FIELDS: dict[str, int] = {"thermal_force_N": 3, "thermal_torque_Nm": 3}
+#: What every kind records besides with the default shadow pass: the error it estimates it left in the
+#: force and torque, relative (:class:`~sunwind.forces.error_estimate.ErrorEstimate`).
+ESTIMATE_FIELDS: dict[str, int] = {"error_estimate_force": 1, "error_estimate_torque": 1}
 #: Every field each kind may record (the Earth's with its thermal recoil: the most it records).
-FIELDS = {"srp": SRP_FIELDS, "drag": DRAG_FIELDS, "earth": EARTH_FIELDS | EARTH_THERMAL_FIELDS}
+FIELDS = {
+    "srp": SRP_FIELDS | ESTIMATE_FIELDS,
+    "drag": DRAG_FIELDS | ESTIMATE_FIELDS,
+    "earth": EARTH_FIELDS | EARTH_THERMAL_FIELDS | ESTIMATE_FIELDS,
+}
 #: Records of some attitudes: field name -> (n,) or (n, 3) float64.
 Records = dict[str, NDArray[np.float64]]
 
@@ -84,12 +94,27 @@ def record_shape(width: int, n: int) -> tuple[int, ...]:
     return (n,) if width == 1 else (n, width)
 
 
+def estimate_records(estimates: Sequence[ErrorEstimate | None]) -> Records:
+    """The :data:`ESTIMATE_FIELDS` records of attitudes with these estimates (NaN for None).
+
+    Examples
+    --------
+    >>> estimate_records([ErrorEstimate(1e-6, 2e-6), None])["error_estimate_torque"]
+    array([2.e-06,    nan])
+    """
+    missing = ErrorEstimate(math.nan, math.nan)
+    rows = [missing if e is None else e for e in estimates]
+    return {
+        "error_estimate_force": np.array([e.force for e in rows], dtype=np.float64),
+        "error_estimate_torque": np.array([e.torque for e in rows], dtype=np.float64),
+    }
+
+
 @dataclass(frozen=True)
 class _Setup:
     """What the SRP and drag settings share: sampling, inter-reflection and the reference point."""
 
     kind: ClassVar[str]
-    fields: ClassVar[dict[str, int]]
     reference_point_m: tuple[float, float, float] | None = field(default=None, kw_only=True)
     samples: int | None = field(default=None, kw_only=True)
     tolerance: float = field(default=DEFAULT_TOLERANCE, kw_only=True)
@@ -100,6 +125,12 @@ class _Setup:
         ReflectionSettings.of(self.reflections)
         if self.reference_point_m is not None:
             finite_point(self.reference_point_m, "reference_point_m")
+
+    @property
+    def estimates(self) -> dict[str, int]:
+        """:data:`ESTIMATE_FIELDS` with the default shadow pass (which estimates its error), none with
+        fixed sampling."""
+        return ESTIMATE_FIELDS if self.samples is None else {}
 
     @property
     def settings(self) -> ReflectionSettings:
@@ -133,12 +164,16 @@ class SrpSetup(_Setup):
     """Settings of every SRP attitude (see :func:`~sunwind.forces.srp.srp`)."""
 
     kind: ClassVar[str] = "srp"
-    fields: ClassVar[dict[str, int]] = SRP_FIELDS
     flux_W_m2: float = SOLAR_FLUX_1AU
 
     def __post_init__(self) -> None:
         super().__post_init__()
         solar_flux(self.flux_W_m2)
+
+    @property
+    def fields(self) -> dict[str, int]:
+        """The records of an attitude: name -> width (:data:`SRP_FIELDS`, and the error estimate)."""
+        return SRP_FIELDS | self.estimates
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of Sun directions ``directions`` (n, 3); a model whose hinges track the Sun is
@@ -151,7 +186,8 @@ class SrpSetup(_Setup):
             )
         else:
             batch = srp(model, directions, **options)
-        return {name: batch.stacked(name) for name in SRP_FIELDS}
+        out = {name: batch.stacked(name) for name in SRP_FIELDS}
+        return out | (estimate_records([r.error_estimate for r in batch]) if self.estimates else {})
 
     def attributes(self, model: Model) -> dict:
         """What a table of this setup states about its environment and the reflection mode it used."""
@@ -193,7 +229,6 @@ class DragSetup(GasOptions):
     """Settings of every drag attitude (see :func:`~sunwind.forces.drag.drag`); ``v_rel = speed * u``."""
 
     kind: ClassVar[str] = "drag"
-    fields: ClassVar[dict[str, int]] = DRAG_FIELDS
     speed_m_s: float = field(kw_only=True)
     atmosphere: Atmosphere = field(kw_only=True)
 
@@ -205,10 +240,16 @@ class DragSetup(GasOptions):
             )
         flow_speed(self.speed_m_s)
 
+    @property
+    def fields(self) -> dict[str, int]:
+        """The records of an attitude: name -> width (:data:`DRAG_FIELDS`, and the error estimate)."""
+        return DRAG_FIELDS | self.estimates
+
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of flow directions ``u`` (n, 3)."""
         batch = drag(model, self.speed_m_s * directions, self.atmosphere, **self.options())
-        return {name: batch.stacked(name) for name in DRAG_FIELDS}
+        out = {name: batch.stacked(name) for name in DRAG_FIELDS}
+        return out | (estimate_records([r.error_estimate for r in batch]) if self.estimates else {})
 
     def describe(self) -> dict:
         """JSON-ready settings, the atmosphere in full."""
