@@ -1,4 +1,5 @@
-"""What ``sunwind info`` reports about a mesh: size, parts, materials and every check's outcome."""
+"""What ``sunwind info`` reports about a mesh: size, parts, materials, every check's outcome and the
+survey of what its CAD export did (:mod:`sunwind.geometry.survey`)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from sunwind.geometry.errors import MaterialError
 from sunwind.geometry.materials import Material, MaterialSpec, load_materials
 from sunwind.geometry.sides import ONE_SIDED, SOLID, TWO_SIDED, assign_sides, declared_kinds
 from sunwind.geometry.spacecraft import CENTRE_OF_MASS
+from sunwind.geometry.survey import survey_mesh
 
 _SURFACE = {SOLID: "closed body", ONE_SIDED: "one-sided sheet", TWO_SIDED: "two-sided sheet"}
 
@@ -27,13 +29,23 @@ def describe(
     """Load a mesh and report on it without stopping at problems a user needs to see all of.
 
     A part without material, or an open part not declared a sheet, is listed in ``checks``; a file
-    that cannot be read, or a materials file that is invalid, still raises.
+    that cannot be read, or a materials file that is invalid, still raises. The survey
+    (:func:`sunwind.geometry.survey.survey_mesh`) is of the mesh as read, whether or not it passes
+    the checks.
 
     Returns
     -------
     dict
         JSON-ready: mesh, unit, triangles, area_m2, volume_m3, closed, bounds_m, reference_point,
-        checks (list of str), parts (list of dict), materials (list of dict).
+        checks (list of str), parts (list of dict), materials (list of dict), survey (dict,
+        :meth:`sunwind.geometry.survey.Survey.to_json`).
+
+    Examples
+    --------
+    >>> from sunwind.meshes.samples import sample_path
+    >>> report = describe(sample_path("sample_spacecraft.usda"))
+    >>> report["triangles"], report["checks"], report["survey"]["open_edges"]["count"]
+    (19984, ['all passed'], 618)
     """
     from sunwind.geometry.io import load_mesh
 
@@ -64,11 +76,11 @@ def describe(
     facet_kind = kind[check.kept]
     closed = check.closed and bool(np.all(facet_kind == SOLID))
     if spec is not None and spec.centre_of_mass_m is not None:
-        reference, name = np.array(spec.centre_of_mass_m), CENTRE_OF_MASS
+        reference, reference_name = np.array(spec.centre_of_mass_m), CENTRE_OF_MASS
     elif closed:
-        reference, name = tri.volume_centroid(corners), "volume centroid (default)"
+        reference, reference_name = tri.volume_centroid(corners), "volume centroid (default)"
     else:
-        reference, name = areas @ tri.centroids(corners) / areas.sum(), "area centroid (default)"
+        reference, reference_name = areas @ tri.centroids(corners) / areas.sum(), "area centroid (default)"
     keys = (*mesh.material_names, "")
     parts = []
     for index, name in enumerate(mesh.part_names):
@@ -98,7 +110,7 @@ def describe(
         "volume_m3": tri.signed_volume(corners) if closed else None,
         "closed": closed,
         "bounds_m": [check.vertices.min(axis=0).tolist(), check.vertices.max(axis=0).tolist()],
-        "reference_point": f"{name} {np.round(reference, 6).tolist()} m",
+        "reference_point": f"{reference_name} {np.round(reference, 6).tolist()} m",
         "checks": checks or ["all passed"],
         "parts": parts,
         "materials": [
@@ -113,4 +125,5 @@ def describe(
         ]
         if table is not None
         else [],
+        "survey": survey_mesh(mesh, kind).to_json(),
     }

@@ -51,6 +51,13 @@ def info(source: ModelSource, reflections: ReflectionSettings, no_k_is: bool, as
     print("  checks:")
     for line in report["checks"]:
         print(f"    {line}")
+    survey = report["survey"]
+    print(
+        f"  survey of the mesh as read ({survey['facets']} facets; edges by position, corners within "
+        f"{survey['weld_m']:.3g} m one):"
+    )
+    for name, line in _survey_lines(survey):
+        print(f"    {name:<15}{line}")
     print("  parts:")
     for part in report["parts"]:
         print(
@@ -64,6 +71,90 @@ def info(source: ModelSource, reflections: ReflectionSettings, no_k_is: bool, as
                 f"    {m['name']:<24}{m['reflectivity']:.3f}  {m['specular_fraction']:.3f}  "
                 f"{m['transmissivity']:.3f}  {m['absorptivity']:.3f}"
             )
+
+
+def _survey_lines(survey: dict) -> list[tuple[str, str]]:
+    """The survey of ``sunwind info`` (:meth:`sunwind.geometry.survey.Survey.to_json`) as one line per
+    finding: what was found, then what loading and the methods do about it."""
+    gap, offset = survey["gap_m"], survey["offset_m"]
+    crossing = ", ".join(
+        f"{' x '.join(c['parts']) if c['parts'][0] != c['parts'][1] else c['parts'][0] + ' with itself'} "
+        f"{c['length_m']:.4g} m ({c['facet_pairs']} facet pairs)"
+        for c in survey["crossings"][:3]
+    ) + (f", {len(survey['crossings']) - 3} more pairs" if len(survey["crossings"]) > 3 else "")
+    coincident, layered, slivers = survey["coincident"], survey["layered"], survey["slivers"]
+    shells = {part: n for part, n in survey["shells"].items() if n > 1}
+    return [
+        (
+            "open edges",
+            f"{_edges(survey['open_edges'])}: one facet each (a sheet's border, an open seam); outlines "
+            "cast from them as silhouette edges; refused on closed bodies (checks)",
+        ),
+        (
+            "non-manifold",
+            f"{_edges(survey['nonmanifold_edges'])}: three or more facets each; silhouette edges found by "
+            "position and fold, not winding",
+        ),
+        (
+            "mixed winding",
+            f"{_edges(survey['mixed_winding'])}, {survey['mixed_on_sheets']} on sheets: two facets run "
+            "each the same way; closed bodies made consistent on loading; silhouette edges found by "
+            "position and fold, not winding; a sheet's front (its material) follows each facet's winding",
+        ),
+        (
+            "seams",
+            f"{_edges(survey['seams'])}: coinciding corners that are separate vertices; merged on loading "
+            f"within {survey['merge_m']:.3g} m ({survey['seams_unmerged']} edges stay apart: no near-field "
+            "view factors across them); the shadow pass joins edges by position",
+        ),
+        (
+            "gaps",
+            f"{_edges(survey['gaps'])}: open edges within {gap:.3g} m of another across empty space; light "
+            f"passes, their edges cast outlines (closed bodies' cracks under {survey['crack_m']:.3g} m "
+            "closed on loading)",
+        ),
+        (
+            "crossings",
+            f"{crossing or 'none'}: the lines where parts cross are outline segments of the shadow pass",
+        ),
+        (
+            "duplicates",
+            f"{coincident['facets']} facets coincident{_parts(coincident['parts'])}, {layered['facets']} "
+            f"layered within {gap:.3g} m{_parts(layered['parts'])}, sharing "
+            f"{coincident['area_m2'] + layered['area_m2']:.4g} m^2, of which "
+            f"{coincident['coplanar_area_m2'] + layered['coplanar_area_m2']:.4g} m^2 closer than the shadow "
+            f"rays' offset ({offset:.3g} m): there the later layer in the file covers the earlier, lit "
+            "once, but drag's open-sky integral counts both; farther apart, the upper layer shades the lower",
+        ),
+        (
+            "slivers",
+            f"{slivers['count']} facets over 1000 times longer than wide{_parts(slivers['parts'])}, "
+            f"{slivers['degenerate']} degenerate (dropped on loading); facet areas "
+            f"{slivers['area_min_m2']:.3g} to {slivers['area_max_m2']:.3g} m^2; probe spacing "
+            f"{slivers['probe_spacing_m']:.3g} m from the 10th percentile of facet widths "
+            f"({slivers['width_p10_m']:.3g} m)",
+        ),
+        (
+            "shells",
+            (f"{len(shells)} parts in several pieces{_parts(shells)}" if shells else "every part one piece")
+            + ": pieces of a part sharing no corner; each closed piece turned outward on its own on "
+            "loading, no connection needed by the shadow pass",
+        ),
+    ]
+
+
+def _parts(parts: dict[str, int], most: int = 3) -> str:
+    """``" (a 3, b 2, 4 more parts)"``: the parts with the most, or nothing when there are none."""
+    ranked = sorted(parts.items(), key=lambda item: -item[1])
+    words = [f"{name} {n}" for name, n in ranked[:most]]
+    if len(ranked) > most:
+        words.append(f"{len(ranked) - most} more parts")
+    return f" ({', '.join(words)})" if words else ""
+
+
+def _edges(tally: dict) -> str:
+    """``"12 edges, 3.4 m (a 8, b 4)"``."""
+    return f"{tally['count']} edges, {tally['length_m']:.4g} m{_parts(tally['parts'])}"
 
 
 def builder_params(kind: str, builder, words: list[str]) -> dict:
