@@ -62,7 +62,8 @@ def test_view_factor_equals_brute_force_in_all_three_ranges(altitude):
         n = from_nadir(psi, 0.7)
         got = plate_irradiance(NADIR, None, n, planet, "infrared") / exitance
         want = phi_1(t0, psi)
-        assert want == pytest.approx(infrared_factor_closed(NADIR, n, t0), rel=1e-12, abs=1e-15)
+        # at the branch ends (psi = pi/2 -+ t0) arccos near +-1 turns round-off of 1e-16 into 1e-9
+        assert want == pytest.approx(infrared_factor_closed(NADIR, n, t0), rel=1e-8, abs=1e-15)
         if psi > np.pi / 2 + t0:
             assert got == 0.0 and want == 0.0
         else:
