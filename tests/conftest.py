@@ -44,3 +44,9 @@ def run_cli(capsys):
 def pytest_addoption(parser):
     """``--update-readme``: tests/test_readme.py rewrites README's printed outputs from actual runs."""
     parser.addoption("--update-readme", action="store_true", help="rewrite README's printed example outputs")
+
+
+def pytest_configure(config):
+    """``--update-readme`` rewrites one file from every test: refuse it on several workers (``-n 0``)."""
+    if config.getoption("--update-readme") and (getattr(config.option, "numprocesses", 0) or 0) > 0:
+        raise pytest.UsageError("--update-readme writes README.md from one process: add -n 0")

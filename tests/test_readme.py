@@ -101,7 +101,7 @@ def test_printed_outputs_are_what_the_commands_print(run_cli, monkeypatch, reque
     """Every README output block against a run, numbers to the digits shown (tests/helpers/readme.py).
 
     After a change of what a command prints, refresh README's blocks from actual runs with
-    ``python -m pytest -p no:cacheprovider tests/test_readme.py -m slow -k printed --update-readme``
+    ``python -m pytest -p no:cacheprovider -n 0 tests/test_readme.py -m slow -k printed --update-readme``
     (then review ``git diff README.md``).
     """
     monkeypatch.chdir(ROOT)
