@@ -27,17 +27,17 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.geometry.materials import Material
+from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
-from sunwind.validation.shadow_reference import ERROR_SIGMAS, shadow_reference
+from sunwind.validation.shadow_reference import ERROR_SIGMAS, projected_area_loads, shadow_reference
 
 __all__ = ["PassComparison", "check_directions", "compare_pass", "unit_area_loads"]
 
 #: The finish every model is given: a grey, partly specular surface (rho 0.4, beta 0.5).
 GREY = Material("grey", 0.4, 0.5)
-#: Torques are made relative to ``max(|M|, TORQUE_FLOOR |F| L)``, as the results' ``error_estimate``.
-TORQUE_FLOOR = 0.01
 
 
 @dataclass(frozen=True)
@@ -89,13 +89,8 @@ def unit_area_loads(craft: Spacecraft, sun_vector: NDArray[np.float64]) -> NDArr
     >>> unit_area_loads(black, np.array([0.0, 0.0, 1.0]))[black.side_normals[:, 2] > 0.5][0] + 0.0
     array([ 0.,  0., -1.])
     """
-    rho, beta, sigma = craft.side_optics.T
     cosine = craft.side_normals @ sun_vector
-    specular = rho * beta
-    normal = 2 * specular * cosine + 2 / 3 * rho * (1 - beta)
-    return -cosine[:, None] * (
-        (1 - sigma - specular)[:, None] * sun_vector + normal[:, None] * craft.side_normals
-    )
+    return cosine[:, None] * projected_area_loads(craft, sun_vector)
 
 
 def compare_pass(craft: Spacecraft, sun_vectors: NDArray[np.float64], pixel_m: float) -> list[PassComparison]:
@@ -109,7 +104,6 @@ def compare_pass(craft: Spacecraft, sun_vectors: NDArray[np.float64], pixel_m: f
     >>> [c.force_error < 1e-3 for c in compare_pass(craft, np.array([[0.3, 0.4, 0.866]]), 0.01)]
     [True]
     """
-    size = float(np.linalg.norm(np.ptp(craft.vertices, axis=0)))
     reference_m = craft.vertices.mean(axis=0)
     sampler = side_sampler(craft)
     out = []
@@ -122,18 +116,28 @@ def compare_pass(craft: Spacecraft, sun_vectors: NDArray[np.float64], pixel_m: f
         lit = (light.lit_fraction * craft.side_areas)[:, None] * load
         force, torque = lit.sum(axis=0), np.cross(light.lit_centroid - reference_m, lit).sum(axis=0)
         truth = shadow_reference(craft, u, pixel_m, reference_m)
-        scale_f = float(np.linalg.norm(truth.force_N))
-        scale_m = max(float(np.linalg.norm(truth.torque_Nm)), TORQUE_FLOOR * scale_f * size)
-        estimate = light.check.loads_error(craft, load, reference_m)
+
+        # the error, its estimate and the reference's noise, relative as results report their estimate
+        error, estimate, noise = (
+            ErrorEstimate.of(loads, truth.force_N, truth.torque_Nm, craft.diagonal_m)
+            for loads in (
+                LoadsError(
+                    float(np.linalg.norm(force - truth.force_N)),
+                    float(np.linalg.norm(torque - truth.torque_Nm)),
+                ),
+                light.check.loads_error(craft, load, reference_m),
+                LoadsError(ERROR_SIGMAS * truth.force_sigma_N, ERROR_SIGMAS * truth.torque_sigma_Nm),
+            )
+        )
         out.append(
             PassComparison(
                 sun_vector=u,
-                force_error=float(np.linalg.norm(force - truth.force_N)) / scale_f,
-                torque_error=float(np.linalg.norm(torque - truth.torque_Nm)) / scale_m,
-                force_estimate=estimate.force_N / scale_f,
-                torque_estimate=estimate.torque_Nm / scale_m,
-                force_noise=ERROR_SIGMAS * truth.force_sigma_N / scale_f,
-                torque_noise=ERROR_SIGMAS * truth.torque_sigma_Nm / scale_m,
+                force_error=error.force,
+                torque_error=error.torque,
+                force_estimate=estimate.force,
+                torque_estimate=estimate.torque,
+                force_noise=noise.force,
+                torque_noise=noise.torque,
                 rays=int(light.rays),
                 seconds=seconds,
             )

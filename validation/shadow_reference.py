@@ -48,7 +48,13 @@ from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.spacecraft import Spacecraft
 
-__all__ = ["ConvergenceEstimate", "ShadowReference", "converged_reference", "shadow_reference"]
+__all__ = [
+    "ConvergenceEstimate",
+    "ShadowReference",
+    "converged_reference",
+    "projected_area_loads",
+    "shadow_reference",
+]
 
 #: Pixels along each side of a tile (even: pixels pair up along X within a tile).
 TILE = 512
@@ -215,13 +221,8 @@ def shadow_reference(
     first = np.floor((flat.min(axis=1) - low) / pixel_m).astype(np.int64)
     last = np.minimum(np.floor((flat.max(axis=1) - low) / pixel_m).astype(np.int64), shape - 1)
     dA = pixel_m**2
-    normal = craft.side_normals
-    rho, beta, sigma = craft.side_optics.T
-    cosine = normal @ u
-    per_sample = -dA * (
-        (1 - sigma - rho * beta)[:, None] * u
-        + (2 * rho * beta * cosine + (2 / 3) * rho * (1 - beta))[:, None] * normal
-    )
+    cosine = craft.side_normals @ u
+    per_sample = dA * projected_area_loads(craft, u)
     image = _Image(
         projected, np.column_stack([first, last]), struck, shape, low, per_sample, frame, centre - reference
     )
@@ -284,6 +285,28 @@ def converged_reference(
         torque_error_Nm=max(torque, ERROR_SIGMAS * fine.torque_sigma_Nm),
         projected_area_error_m2=max(area, ERROR_SIGMAS * fine.projected_area_sigma_m2),
         seconds=time.perf_counter() - start,
+    )
+
+
+def projected_area_loads(craft: Spacecraft, sun_vector: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Eq. (4) of METHOD.md at ``P = 1 Pa`` per unit of each side's area projected along the unit
+    ``sun_vector`` [N/m^2], (n_sides, 3): the force of one sample of unit pixel area.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> white = build_spacecraft(box(), uniform=Material("white", 1.0, 1.0))  # a mirror: 2 cos n
+    >>> top = white.side_normals[:, 2] > 0.5
+    >>> projected_area_loads(white, np.array([0.0, 0.0, 1.0]))[top][0] + 0.0
+    array([ 0.,  0., -2.])
+    """
+    rho, beta, sigma = craft.side_optics.T
+    normal = craft.side_normals
+    cosine = normal @ sun_vector
+    return -(
+        (1 - sigma - rho * beta)[:, None] * sun_vector
+        + (2 * rho * beta * cosine + (2 / 3) * rho * (1 - beta))[:, None] * normal
     )
 
 
