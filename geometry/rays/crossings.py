@@ -70,11 +70,6 @@ class Crossings:
         covers it."""
         return _covered(self.cover_start, self.cover, facets, np.ascontiguousarray(points, dtype=np.float64))
 
-    @property
-    def n_facets_crossed(self) -> int:
-        """Facets that another facet passes through."""
-        return int(np.count_nonzero(np.diff(self.start)))
-
 
 def crossings(craft: Spacecraft) -> Crossings:
     """The :class:`Crossings` of ``craft``, made once and kept in its cache."""
@@ -87,9 +82,7 @@ def crossings(craft: Spacecraft) -> Crossings:
         keep, ends, cover = _crossing_tests(triangles, near.first, near.second, corner, half)
         first, second, ends, cover = near.first[keep], near.second[keep], ends[keep], cover[keep]
         crossed, above = first[cover], second[cover]  # a coplanar facet covers the one before it
-        shade = np.zeros((len(crossed), 3, 2))
-        for k in range(len(crossed)):
-            _in_coordinates(triangles[crossed[k]], triangles[above[k]], shade[k])
+        shade = _shades(triangles, crossed, above)
         cover_order = np.argsort(crossed, kind="stable")
         cover_start = np.searchsorted(crossed[cover_order], np.arange(craft.n_facets + 1))
         shade = shade[cover_order]
@@ -232,6 +225,17 @@ def _overlap(t1: NDArray[np.float64], t2: NDArray[np.float64]) -> bool:
     part = np.empty(3)
     clip_moments(whole, lines, 3, np.empty((2, 6, 2)), part)
     return part[0] > _SHARED_AREA
+
+
+@numba.njit(cache=True, nogil=True)
+def _shades(
+    triangles: NDArray[np.float64], crossed: NDArray[np.int64], above: NDArray[np.int64]
+) -> NDArray[np.float64]:
+    """Corners of each covering facet ``above`` in the coordinates of the facet it covers, (m, 3, 2)."""
+    out = np.zeros((crossed.shape[0], 3, 2))
+    for k in range(crossed.shape[0]):
+        _in_coordinates(triangles[crossed[k]], triangles[above[k]], out[k])
+    return out
 
 
 @numba.njit(cache=True, nogil=True)

@@ -250,15 +250,6 @@ def line_through(p: NDArray[np.float64], q: NDArray[np.float64]) -> tuple[float,
 
 
 @numba.njit(cache=True, nogil=True)
-def _side_of(line: NDArray[np.float64], point: NDArray[np.float64]) -> int:
-    """+1 or -1 as ``point`` lies on the positive or negative side of ``line``, 0 on it."""
-    value = line[0] * point[0] + line[1] * point[1] + line[2]
-    if abs(value) <= _MARGIN * (abs(line[0]) + abs(line[1])):
-        return 0
-    return 1 if value > 0 else -1
-
-
-@numba.njit(cache=True, nogil=True)
 def clip_moments(
     corners: NDArray[np.float64],
     lines: NDArray[np.float64],
