@@ -30,6 +30,7 @@ from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import count, require
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.rays.certificate import ShadowCheck
+from sunwind.geometry.rays.crossings import crossings
 from sunwind.geometry.rays.quadtree import uncovered
 from sunwind.geometry.rays.shadow_edges import refine_edges
 from sunwind.geometry.rays.shadow_kernels import (
@@ -414,6 +415,8 @@ class SideSampler:
 
     def _uncovered(self, sides: NDArray[np.int64], lit: NDArray[np.bool_], level: int) -> NDArray[np.bool_]:
         """Lit flags ``lit`` (len(sides), level**2) with the points a coplanar facet covers made dark."""
+        if not len(crossings(self.craft).cover):  # most models: nothing to build the points for
+            return lit
         points = tri.subdivision_barycentric(level)[:, 1:]
         n = len(sides)
         flat = uncovered(
