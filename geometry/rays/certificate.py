@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from numpy.typing import NDArray
 
@@ -150,7 +151,7 @@ def check_pass(
     probability = _probabilities(craft, facing, budget)
     wrong_count = 0
     for round_ in range(CHECK_ROUNDS):
-        drawn = _draw(craft, facing, caster.direction, round_) < probability
+        drawn = _draw(craft, facing, caster.direction, round_, probability)
         sides, p = facing[drawn], probability[drawn]
         area, moment, points, truth = _ask(caster, leaves, sides, fraction, round_)
         sample = (sides, p, area, moment)
@@ -189,33 +190,74 @@ def check_pass(
 def _probabilities(craft: Spacecraft, facing: NDArray[np.int64], budget: int) -> NDArray[np.float64]:
     """Chance of each facing side to be checked: in proportion to its area, ``budget`` sides in all
     expected (sides whose share would exceed 1 are checked for sure, the rest shared out again)."""
-    area = craft.side_areas[facing]
-    p = np.zeros(len(facing))
     if budget >= len(facing):
         return np.ones(len(facing))
-    sure = np.zeros(len(facing), dtype=bool)
+    return _area_shares(craft.side_areas, facing, float(budget))
+
+
+@numba.njit(cache=True, nogil=True)
+def _area_shares(areas: NDArray[np.float64], facing: NDArray[np.int64], budget: float) -> NDArray[np.float64]:
+    """:func:`_probabilities`: ``min(1, c a)`` for the areas ``a`` of ``facing``, ``c`` such that they
+    sum to ``budget`` (found by raising to 1 the shares above 1 and sharing the rest again)."""
+    n = facing.shape[0]
+    p = np.empty(n)
+    sure = np.zeros(n, dtype=np.bool_)
+    n_sure = 0
     for _ in range(8):
-        left = budget - sure.sum()
-        p[~sure] = left * area[~sure] / max(area[~sure].sum(), 1e-300)
-        more = p > 1
-        if not (more & ~sure).any():
+        rest = 0.0
+        for k in range(n):
+            if not sure[k]:
+                rest += areas[facing[k]]
+        scale = (budget - n_sure) / max(rest, 1e-300)
+        more = 0
+        for k in range(n):
+            if sure[k]:
+                p[k] = 1.0
+                continue
+            p[k] = scale * areas[facing[k]]
+            if p[k] > 1.0:
+                sure[k] = True
+                more += 1
+        if more == 0:
             break
-        sure |= more
-        p[sure] = 1.0
-    return np.minimum(p, 1.0)
+        n_sure += more
+    for k in range(n):
+        p[k] = min(p[k], 1.0)
+    return p
 
 
 def _draw(
-    craft: Spacecraft, facing: NDArray[np.int64], direction: NDArray[np.float64], round_: int
-) -> NDArray[np.float64]:
-    """A uniform number in [0, 1) for each facing side, fixed for the model, direction and round: the
-    model's numbers (drawn once from a fixed seed) turned by one drawn from the direction's bits."""
+    craft: Spacecraft,
+    facing: NDArray[np.int64],
+    direction: NDArray[np.float64],
+    round_: int,
+    probability: NDArray[np.float64],
+) -> NDArray[np.int64]:
+    """Rows of ``facing`` drawn, each with its ``probability``, fixed for the model, direction and
+    round: a uniform number per side (the model's, drawn once from a fixed seed, turned by one drawn
+    from the direction's bits) below its probability."""
     numbers = craft.cache.get(
         "check numbers", lambda: np.random.default_rng(STRATIFIED_SEED).random(craft.n_sides)
     )
     turn = np.random.default_rng([round_, *_bits(direction)]).random()
-    drawn = numbers[facing] + turn
-    return drawn - (drawn >= 1.0)  # (a + t) mod 1, exactly, at a fraction of np.mod's cost
+    return _below(numbers, facing, turn, probability)
+
+
+@numba.njit(cache=True, nogil=True)
+def _below(
+    numbers: NDArray[np.float64], facing: NDArray[np.int64], turn: float, probability: NDArray[np.float64]
+) -> NDArray[np.int64]:
+    """:func:`_draw`: the rows ``k`` where ``(numbers[facing[k]] + turn) mod 1 < probability[k]``."""
+    out = np.empty(facing.shape[0], dtype=np.int64)
+    count = 0
+    for k in range(facing.shape[0]):
+        x = numbers[facing[k]] + turn
+        if x >= 1.0:
+            x -= 1.0
+        if x < probability[k]:
+            out[count] = k
+            count += 1
+    return out[:count]
 
 
 def _bits(direction: NDArray[np.float64]) -> NDArray[np.uint32]:
@@ -230,8 +272,7 @@ def _points(sides: NDArray[np.int64], direction: NDArray[np.float64], round_: in
     from the direction and round (deterministic)."""
     rng = np.random.default_rng([STRATIFIED_SEED, round_, *_bits(direction)])
     r = rng.random((len(sides), CHECK_POINTS, 2))
-    fold = r.sum(axis=2) > 1
-    r[fold] = 1 - r[fold]
+    r = np.where(r.sum(axis=2, keepdims=True) > 1, 1 - r, r)
     q = _QUARTERS[None]
     return (
         q[..., 0, :] + r[..., :1] * (q[..., 1, :] - q[..., 0, :]) + r[..., 1:] * (q[..., 2, :] - q[..., 0, :])

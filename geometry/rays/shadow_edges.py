@@ -70,7 +70,7 @@ def outline_of(
         id_sides,
         is_facing,
     )
-    crossed_side, crossed = _crossing_segments(craft, direction, facing)
+    crossed_side, crossed = _crossing_segments(craft, direction, is_facing)
     return Segments.of(np.concatenate([segment_side, crossed_side]), np.concatenate([segments, crossed]))
 
 
@@ -162,8 +162,9 @@ def spilled(
     owner = np.repeat(owner, count)
     facing_side = np.full(craft.n_facets, -1)
     facing_side[craft.side_facet[facing]] = facing
+    facing_side[craft.side_facet[leaves.sides]] = -1  # a side with leaves already is not spilled into
     other = facing_side[edges.facet[rows]]
-    keep = (other >= 0) & ~np.isin(other, leaves.sides)
+    keep = other >= 0
     other, owner = other[keep], owner[keep]
     lit_there = state[other]
     wrong = np.where(lit_there, has_dark.reshape(-1)[owner], has_lit.reshape(-1)[owner])
@@ -171,12 +172,17 @@ def spilled(
 
 
 def _crossing_segments(
-    craft: Spacecraft, direction: NDArray[np.float64], facing: NDArray[np.int64]
+    craft: Spacecraft, direction: NDArray[np.float64], is_facing: NDArray[np.bool_]
 ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """Outline segments where other facets pass through the facing sides (:mod:`.crossings`): the line
-    where each crosses, and the shadows of its edges in front of the side (:func:`crossing_outlines`).
-    Returns each segment's side and the segments (k, 2, 2) in side coordinates."""
+    """Outline segments where other facets pass through the facing sides (``is_facing``, by side)
+    (:mod:`.crossings`): the line where each crosses, and the shadows of its edges in front of the side
+    (:func:`crossing_outlines`). Returns each segment's side and the segments (k, 2, 2) in side
+    coordinates."""
     lines = crossings(craft)
+    crossed = craft.cache.get(
+        "crossed sides", lambda: np.flatnonzero(np.diff(lines.start)[craft.side_facet] > 0)
+    )
+    facing = crossed[is_facing[crossed]]
     first, last = lines.start[craft.side_facet[facing]], lines.start[craft.side_facet[facing] + 1]
     count = last - first
     rows = np.repeat(first - np.cumsum(count) + count, count) + np.arange(count.sum())
