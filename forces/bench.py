@@ -125,6 +125,10 @@ class BenchReport:
     fixed_rays_per_attitude: float
     fixed_error: LoadError
     default_over_fixed: float
+    default_batch_ms: float
+    fixed_batch_ms: float
+    batch_default_over_fixed: float
+    batch_identical: bool
     fixed_rays_per_s: float
     raw_embree_ms: float
     raw_embree_rays_per_s: float
@@ -282,6 +286,24 @@ def _drag_figures(
     return figures
 
 
+def _batch_figures(craft: Spacecraft, directions: np.ndarray, samples: int, one_by_one: list[Loads]) -> dict:
+    """Direct SRP per attitude of one call with every direction (a batch: attitudes evaluated two or
+    more at once, as sweeps do), default and ``samples`` points, and whether the default's loads are
+    those of the attitudes one at a time (``one_by_one``)."""
+    figures: dict = {}
+    for key, n in (("default", None), ("fixed", samples)):
+        start = time.perf_counter()
+        batch = srp(craft, directions, samples=n, reflections="none")
+        figures[f"{key}_batch_ms"] = 1e3 * (time.perf_counter() - start) / len(directions)
+        if n is None:
+            figures["batch_identical"] = all(
+                np.array_equal(r.force_N, force) and np.array_equal(r.torque_Nm, torque)
+                for r, (force, torque) in zip(batch, one_by_one, strict=True)
+            )
+    figures["batch_default_over_fixed"] = figures["default_batch_ms"] / figures["fixed_batch_ms"]
+    return figures
+
+
 #: Bytes per timed attitude: its direction as drawn and normalised, and four timings.
 _ATTITUDE_BYTES = 140
 
@@ -325,6 +347,7 @@ def benchmark(
         raw_times.append(time.perf_counter() - start)
         if progress:
             progress("timing raw Embree", k + 1, attitudes)
+    batch = _batch_figures(craft, directions, samples, direct["default"]["loads"])
     references = _references(
         lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections="none"),
         directions,
@@ -353,6 +376,7 @@ def benchmark(
         fixed_rays_per_attitude=fixed_rays / attitudes,
         fixed_error=LoadError.of(fixed["loads"], references, craft.diagonal_m),
         default_over_fixed=float(np.median(default["times"]) / np.median(fixed["times"])),
+        **batch,
         fixed_rays_per_s=fixed_rays / float(np.sum(fixed["times"])),
         raw_embree_ms=1e3 * float(np.mean(raw_times)),
         raw_embree_rays_per_s=fixed_rays / float(np.sum(raw_times)),

@@ -30,7 +30,7 @@ from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_
 from sunwind.forces.results import DragResult, GasReflected
 from sunwind.geometry.directions import unit_vector, unit_vectors
 from sunwind.geometry.errors import InputError
-from sunwind.geometry.parallel import using_threads
+from sunwind.geometry.parallel import map_items, using_threads
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -95,10 +95,11 @@ def drag(
     gas = GasSampling() if gas_sampling is None else gas_sampling
     if not isinstance(gas, GasSampling):
         raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
-    results = []
     with using_threads(model.threads):
-        for v in velocities.reshape(-1, 3):  # a loop, not a comprehension: warnings point at the caller
-            results.append(_one(model, v, atmosphere, reference, (samples, tolerance), gas, settings))
+        results = map_items(
+            lambda v: _one(model, v, atmosphere, reference, (samples, tolerance), gas, settings),
+            velocities.reshape(-1, 3),
+        )
     return results[0] if velocities.ndim == 1 else DragBatch(tuple(results))
 
 

@@ -15,7 +15,7 @@ from sunwind.forces.radiation.law import radiation_pressure, solar_flux
 from sunwind.forces.reflection import ReflectionSettings, reflected_part, reflection_plan
 from sunwind.forces.results import SrpResult
 from sunwind.geometry.directions import unit_vectors
-from sunwind.geometry.parallel import using_threads
+from sunwind.geometry.parallel import map_items, using_threads
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -68,9 +68,9 @@ def srp(
     reference = model.reference(reference_point_m)
     check_sampling(samples, tolerance)
     with using_threads(model.threads):
-        results = [
-            _one(model.craft, u, flux, reference, samples, tolerance, settings) for u in suns.reshape(-1, 3)
-        ]
+        results = map_items(
+            lambda u: _one(model.craft, u, flux, reference, samples, tolerance, settings), suns.reshape(-1, 3)
+        )
     return results[0] if suns.ndim == 1 else SrpBatch(tuple(results))
 
 

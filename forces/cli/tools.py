@@ -102,6 +102,12 @@ def bench(mesh_path, materials, triangles, attitudes, samples, what, step, as_js
     )
     print(f"{'':26}{report.fixed_error}")
     print(f"  default / {fixed:<14}{report.default_over_fixed:.2f}x (medians)")
+    same = "the same results" if report.batch_identical else "results that DIFFER from"
+    print(
+        f"  batch of {report.attitudes:<15}{report.default_batch_ms:.2f} ms per attitude, {fixed} "
+        f"{report.fixed_batch_ms:.2f} ms: {report.batch_default_over_fixed:.2f}x; attitudes side by "
+        f"side, {same} one at a time"
+    )
     print(
         f"  raw Embree, {fixed:<12}{report.raw_embree_ms:.2f} ms per attitude, "
         f"{report.raw_embree_rays_per_s / 1e6:.2f} M rays/s; overhead {report.overhead:.2f}x"

@@ -139,12 +139,14 @@ def _cells(
     points: NDArray[np.float64],
     pattern: NDArray[np.int64],
 ) -> int:
-    """Write a point inside each cell of the arrangement of ``lines[:count]`` in the node (its centroid)
-    and the cell's sign pattern (bit ``j`` set where line ``j`` is positive); return the number of
-    cells."""
+    """Write a point for each cell of the arrangement of ``lines[:count]`` in the node, placed so that
+    its ray (drawn ``INSET`` toward the side's centroid, :func:`~.edge_kernels.node_origins`) starts at
+    the cell's centroid, and the cell's sign pattern (bit ``j`` set where line ``j`` is positive);
+    return the number of cells."""
     oriented = np.empty((MAX_LINES, 3))
     part, whole = np.empty(3), np.empty(3)
     clip_moments(corners, lines, 0, scratch, whole)
+    keep = 1.0 - INSET
     cells = 0
     for p in range(2**count):
         for j in range(count):
@@ -154,7 +156,9 @@ def _cells(
         clip_moments(corners, oriented, count, scratch, part)
         if part[0] <= _SMALLEST_CELL * whole[0]:
             continue
-        points[cells, 0], points[cells, 1] = part[1] / part[0], part[2] / part[0]
+        # a cell may be thinner than the inset moves a point: the ray must start in the cell
+        x, y = part[1] / part[0], part[2] / part[0]
+        points[cells, 0], points[cells, 1] = (x - INSET / 3.0) / keep, (y - INSET / 3.0) / keep
         pattern[cells] = p
         cells += 1
     return cells

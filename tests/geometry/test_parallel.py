@@ -59,3 +59,18 @@ def test_a_call_inside_a_chunk_runs_serially():
 def test_a_thread_count_that_is_not_a_whole_number_above_zero_is_refused(bad):
     with pytest.raises(InputError, match="threads"), using_threads(bad):
         pass
+
+
+def test_map_items_keeps_the_order_and_runs_the_first_item_alone():
+    """The first item runs in the caller with the pool free (what it builds once it builds in
+    parallel); the rest run inside chunks, where nested parallel calls run serially."""
+    from sunwind.geometry.parallel import map_items, map_ranges, using_threads
+
+    def nested_chunks(x: int) -> tuple[int, int]:
+        return x, len(map_ranges(lambda lo, hi: hi - lo, 1000, 10))
+
+    with using_threads(2):
+        out = map_items(nested_chunks, list(range(9)))
+    assert [x for x, _ in out] == list(range(9))
+    assert out[0][1] > 1 and all(chunks == 1 for _, chunks in out[1:])
+    assert map_items(nested_chunks, []) == []

@@ -76,7 +76,8 @@ def test_bench_times_a_small_model_and_reports_json(run_cli):
     report = json.loads(out)
     assert report["attitudes"] == 2 and report["samples_per_side"] == 1
     assert report["overhead"] > 0 and report["full_over_direct"] > 0 and report["drag_over_srp"] > 0
-    assert report["default_over_fixed"] > 0
+    assert report["default_over_fixed"] > 0 and report["batch_default_over_fixed"] > 0
+    assert report["batch_identical"] is True  # attitudes side by side give what they give one at a time
     # every timed setting has its error against the tighter reference beside it; the default converges
     # (its error is below its own tolerance, 1e-3), one point per side does not
     for key in ("default", "fixed", "full", "fixed_full", "drag", "fixed_drag", "drag_full"):
