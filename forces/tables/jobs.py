@@ -156,6 +156,8 @@ class _Setup:
         out = asdict(self)
         out["reflections"] = asdict(self.settings)
         out["reflections"].pop("cache_dir")
+        if self.reference_point_m is not None:  # given as an array or a sequence: JSON numbers either way
+            out["reference_point_m"] = [float(x) for x in np.asarray(self.reference_point_m).ravel()]
         return out
 
 
