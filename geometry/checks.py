@@ -12,6 +12,7 @@ from scipy.spatial import cKDTree
 
 from sunwind.geometry import triangles as tri
 from sunwind.geometry.errors import MeshError, combine
+from sunwind.geometry.io.units import UNITS
 from sunwind.geometry.materials import toml_key
 from sunwind.geometry.sides import SOLID
 
@@ -24,8 +25,12 @@ DEGENERATE_RATIO = 1e-10
 #: are closed on loading: boundary vertices this close are welded, and a boundary vertex this close
 #: to another boundary edge of its part splits that edge (a T-junction).
 CRACK_TOLERANCE = 1e-4
-#: A model whose largest extent [m] is outside this range is probably in another unit.
-PLAUSIBLE_SIZE_M = (0.01, 500.0)
+#: A model whose largest extent [m] is outside this range is probably in another unit: the largest
+#: spacecraft flown (the ISS, 109 m across its trusses) and the smallest (3.5 cm chip satellites).
+PLAUSIBLE_SIZE_M = (0.02, 120.0)
+#: Extents [m] of most spacecraft (CubeSats to large buses with arrays): a unit that brings a model
+#: of implausible size into this range is the one suggested.
+TYPICAL_SIZE_M = (0.05, 30.0)
 #: Most passes of T-junction splitting (each splits every open edge at one vertex at most).
 _SPLIT_PASSES = 32
 
@@ -139,16 +144,34 @@ def check_mesh(
 
 
 def size_notice(vertices: NDArray[np.float64], unit: str) -> str | None:
-    """A notice when the model's largest extent [m] suggests that its file is in another unit."""
+    """A notice when the model's largest extent [m] suggests that its file is in another unit than
+    ``unit`` (the one it was read in, first word: ``"mm (--unit)"`` is mm), naming the unit that would
+    give it a typical spacecraft's size, never the one it was read in.
+
+    >>> print(size_notice(np.array([[0, 0, 0], [340.0, 100, 340]]), "m"))  # doctest: +ELLIPSIS
+    the model is 340 m across (...unit m), outside 0.02-120 m: if the file is in mm, give --unit mm...
+    """
     extent = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
     low, high = PLAUSIBLE_SIZE_M
     if low <= extent <= high:
         return None
+    read_in = unit.split()[0] if unit.split() and unit.split()[0] in UNITS else "m"
+    written = extent / UNITS[read_in]  # the extent as the file writes it
+    fits = [u for u in ("mm", "m", "cm", "in") if u != read_in and _typical(written * UNITS[u])]
+    advice = (
+        f"if the file is in {fits[0]}, give --unit {fits[0]} (Python: unit={fits[0]!r}; "
+        f"{written * UNITS[fits[0]]:.3g} m across)"
+        if fits
+        else f"if the file is in another unit, give it with --unit (Python: unit=): one of {', '.join(UNITS)}"
+    )
     return (
         f"the model is {extent:.4g} m across (largest extent of its bounding box; unit {unit}), "
-        f"outside {low:g}-{high:g} m: if the file is in another unit, give it with --unit "
-        "(Python: unit=), e.g. --unit mm"
+        f"outside {low:g}-{high:g} m: {advice}"
     )
+
+
+def _typical(extent_m: float) -> bool:
+    return TYPICAL_SIZE_M[0] <= extent_m <= TYPICAL_SIZE_M[1]
 
 
 def undeclared_sheets(check: MeshCheck, source: str) -> MeshError:

@@ -51,10 +51,7 @@ class SunwindError(ValueError):
         ``names[parameter]`` (a command-line flag) in the message and the hint."""
 
         def rename(text: str | None) -> str | None:
-            for parameter in self.parameters:
-                if text is not None and parameter in names:
-                    text = re.sub(rf"(?<![\w-]){re.escape(parameter)}(?![\w-])", names[parameter], text)
-            return text
+            return None if text is None else renamed_parameters(text, self.parameters, names)
 
         kind = type(self)
         return kind(
@@ -128,3 +125,26 @@ class MaterialError(SunwindError):
 
 class InputError(SunwindError):
     """A bad argument: a zero Sun vector, a NaN flux, an unknown unit."""
+
+
+def renamed_parameters(text: str, parameters: Sequence[str], names: Mapping[str, str]) -> str:
+    """``text`` with each of ``parameters`` found in ``names`` written as ``names[parameter]`` (a
+    command-line flag), where it stands as a whole word.
+
+    >>> renamed_parameters("speed_m_s 3 is slow", ("speed_m_s",), {"speed_m_s": "--speed"})
+    '--speed 3 is slow'
+    """
+    for parameter in parameters:
+        if parameter in names:
+            text = re.sub(rf"(?<![\w-]){re.escape(parameter)}(?![\w-])", names[parameter], text)
+    return text
+
+
+class UnitWarning(UserWarning):
+    """A value whose size suggests a slip of unit (km/s typed for m/s, a model in mm read as metres):
+    the run goes on with the value as given. ``parameters`` are the Python parameters the message
+    names, which the command line writes as its flags."""
+
+    def __init__(self, message: str, parameters: tuple[str, ...] = ()) -> None:
+        super().__init__(message)
+        self.parameters = parameters

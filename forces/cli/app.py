@@ -22,7 +22,7 @@ from sunwind.forces.cli.orbit import orbit
 from sunwind.forces.cli.progress import StepLines
 from sunwind.forces.cli.tables import plot, sweep_command
 from sunwind.forces.cli.tools import bench, validate
-from sunwind.geometry.errors import SunwindError
+from sunwind.geometry.errors import SunwindError, renamed_parameters
 from sunwind.geometry.memory import LIMIT_VARIABLE
 from sunwind.geometry.progress import reporting
 
@@ -44,8 +44,13 @@ def main(argv: list[str] | None = None) -> None:
     """Entry point: run the app; report a bad input as one line on stderr with a non-zero exit, and a
     warning as one line."""
 
+    said: set[str] = set()
+
     def one_line(message, category, filename, lineno, file=None, line=None) -> None:
-        print(f"sunwind: warning: {message}", file=sys.stderr)
+        text = renamed_parameters(str(message), getattr(message, "parameters", ()), FLAGS)
+        if text not in said:  # a check made for each of a batch's vectors says it once
+            said.add(text)
+            print(f"sunwind: warning: {text}", file=sys.stderr)
 
     shown = warnings.showwarning
     warnings.showwarning = one_line

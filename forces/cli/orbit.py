@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import sys
 import time
+import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -25,9 +26,10 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
 from sunwind.forces.cli.runs import check_run, run_options, sweep_run
-from sunwind.forces.cli.tables import check_writable
+from sunwind.forces.cli.tables import check_distinct, check_image, check_writable
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
+from sunwind.forces.gas.flow import EARTH_RADIUS
 from sunwind.forces.model import ModelSource
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, SpaceWeather, Trajectory, fly, propagate
 from sunwind.forces.orbit.attitude import INTERPOLATIONS
@@ -36,9 +38,11 @@ from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
 from sunwind.forces.orbit.ephemeris_csv import ephemeris_trajectory, read_ephemeris
 from sunwind.forces.orbit.flight import check_sun, geodetic
 from sunwind.forces.orbit.tle import read_tle, tle_epoch, tle_trajectory
-from sunwind.forces.orbit.trajectory import PROPAGATORS
+from sunwind.forces.orbit.trajectory import PROPAGATORS, TrajectoryWarning
+from sunwind.forces.planet.cap import check_cells
 from sunwind.forces.radiation import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.tables.checkpoint import check_place
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
@@ -49,6 +53,10 @@ DRAG_DEFAULT_BELOW_KM = 1000.0
 STEP_BYTES = 2000
 #: Default step between outputs [s].
 DEFAULT_STEP_S = 60.0
+#: Most steps a run takes unless ``--max-steps`` says more.
+DEFAULT_MAX_STEPS = 100_000
+#: A TLE used further than this from its epoch [days] is said to be stale.
+STALE_ELEMENTS_DAYS = 30.0
 
 _PATH_OPTIONS = [
     click.option(
@@ -87,6 +95,13 @@ _PATH_OPTIONS = [
     click.option(
         "--step", type=float, default=DEFAULT_STEP_S, show_default=True, help="Time between steps [s]."
     ),
+    click.option(
+        "--max-steps",
+        type=click.IntRange(min=1),
+        default=DEFAULT_MAX_STEPS,
+        show_default=True,
+        help="Refuse a run of more steps than this (a run of days at short steps takes hours).",
+    ),
 ]
 
 
@@ -101,6 +116,7 @@ class PathRequest:
     epoch: Epoch | None
     duration_s: float | None
     step_s: float
+    max_steps: int = DEFAULT_MAX_STEPS
 
     def trajectory(self) -> Trajectory:
         """The states at every step, their count checked against the memory limit first."""
@@ -121,14 +137,63 @@ class PathRequest:
         duration = self.duration_s if self.duration_s is not None else default
         if duration is None:
             raise InputError("give --duration [s]: a TLE has no natural length", parameters=())
-        count = math.floor(duration / self.step_s + 1e-9) + 1
+        count = self.step_count(duration)
         memory.require(count * STEP_BYTES, f"{count:.3g} steps", "raise --step or shorten --duration")
         time_s = np.arange(count) * self.step_s
         if self.tle is not None:
+            _warn_elements_age(tle_epoch(*read_tle(self.tle)), epoch, time_s[-1])
             return tle_trajectory(self.tle, epoch, time_s)
         if self.ephemeris is not None:
             return ephemeris_trajectory(self.ephemeris, epoch, time_s)
         return propagate(self.elements, epoch, time_s, self.propagator)
+
+    def step_count(self, duration_s: float) -> int:
+        """Steps of a run of ``duration_s`` [s]: one at the start and one per whole step after it.
+
+        Raises
+        ------
+        InputError
+            A step longer than the run, or more steps than ``max_steps``.
+        """
+        if self.step_s > duration_s * (1 + 1e-9):
+            raise InputError(
+                f"--step {self.step_s:g} s is longer than the run ({duration_s:g} s): it would be one step",
+                hint="give a --step at most the --duration, or a longer --duration",
+            )
+        steps = duration_s / self.step_s + 1  # may overflow to inf for a step of 1e-300 s
+        if not steps <= self.max_steps:
+            cost = (
+                f"{_span(steps * 0.01)} to {_span(steps * 0.1)}" if math.isfinite(steps) else "never ending"
+            )
+            many = f"{steps:.6g}" if math.isfinite(steps) else "over 1e308"
+            raise InputError(
+                f"{many} steps ({duration_s:g} s every {self.step_s:g} s) are more than --max-steps "
+                f"{self.max_steps}: at 10-100 ms per step on a model of 10 000-100 000 triangles, {cost}",
+                hint="raise --step or shorten --duration"
+                + (f", or give --max-steps {math.ceil(steps)}" if math.isfinite(steps) else ""),
+            )
+        return math.floor(steps - 1 + 1e-9) + 1
+
+
+def _span(seconds: float) -> str:
+    """A duration for a person: minutes, hours or days."""
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h" if seconds < 172800 else f"{seconds / 86400:.1f} days"
+
+
+def _warn_elements_age(elements_epoch: Epoch, start: Epoch, run_s: float) -> None:
+    """A warning when the run lies more than ``STALE_ELEMENTS_DAYS`` from the TLE's epoch: SGP4's error
+    grows by about a kilometre a day away from it."""
+    offset = (start.utc - elements_epoch.utc).total_seconds()
+    days = max(abs(offset), abs(offset + run_s)) / 86400
+    if days > STALE_ELEMENTS_DAYS:
+        warnings.warn(
+            f"the run reaches {days:.0f} days from the TLE's epoch ({elements_epoch.iso()}): SGP4's "
+            "position error grows by about a kilometre a day; use elements of the run's dates",
+            TrajectoryWarning,
+            stacklevel=2,
+        )
 
 
 def _path(values: dict) -> PathRequest:
@@ -161,7 +226,10 @@ def _path(values: dict) -> PathRequest:
         value = values[name]
         if value is not None and not (math.isfinite(value) and value > 0):
             raise InputError(f"--{name} {value:g} s must be a positive number of seconds")
-    epoch = None if values["epoch"] is None else Epoch.of(values["epoch"])
+    try:
+        epoch = None if values["epoch"] is None else Epoch.of(values["epoch"])
+    except InputError as error:
+        raise error.renamed({"time": "--epoch"}) from None
     return PathRequest(
         elements,
         values["propagator"],
@@ -170,6 +238,7 @@ def _path(values: dict) -> PathRequest:
         epoch,
         values["duration"],
         values["step"],
+        values["max_steps"],
     )
 
 
@@ -302,7 +371,7 @@ def _output(values: dict) -> dict:
             raise InputError("the time series is written as .nc or .csv", path=str(out), hint="name it so")
         check_writable(out)
     if values["plot"] is not None:
-        check_writable(values["plot"])
+        check_image(values["plot"], out)
     if values["resume"] and out is None:
         raise InputError("--resume takes up the checkpoint of an output: give -o as before")
     check_run(values)
@@ -332,6 +401,10 @@ def orbit(
     output: dict,
 ) -> None:
     """Forces, torques and accumulated momentum along an orbit, with eclipse and an attitude law."""
+    inputs = (source.mesh, source.materials, path.tle, path.ephemeris, attitude.path)
+    for written in (output["output"], output["plot"]):
+        if written is not None:
+            check_distinct(written, *(Path(p) for p in inputs if p is not None))
     trajectory = path.trajectory()
     lowest = float(geodetic(trajectory)[:, 0].min())
     drag_on = environment.drag if environment.drag is not None else lowest < DRAG_DEFAULT_BELOW_KM
@@ -361,6 +434,14 @@ def orbit(
         if output["output"] is None
         else output["output"].with_name(output["output"].name + ".checkpoint")
     )
+    if checkpoint is not None:
+        check_place(checkpoint)
+    if planet is not None:  # the largest cap, at the lowest altitude; --step is the time's here
+        radius = EARTH_RADIUS + max(lowest, 0.0) * 1e3
+        try:
+            check_cells(math.asin(EARTH_RADIUS / radius), planet.step_deg)
+        except InputError as error:
+            raise error.renamed({"step_deg": "--earth-step"}) from None
     begin = time.perf_counter()
     for part in (srp, drag, planet):  # view factors, open skies: timed apart from the steps
         if part is not None:

@@ -52,6 +52,7 @@ from sunwind.forces.tables import (
     read_attitude_csv,
     sweep,
 )
+from sunwind.forces.tables.checkpoint import check_place
 from sunwind.forces.tables.dataset import GRID_DIMS, kinds_of, one_pose, open_table
 from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector
@@ -63,6 +64,35 @@ class _RateColumn(ProgressColumn):
 
     def render(self, task) -> Text:
         return Text(f"{task.speed:.1f} att/s" if task.speed else "", style="progress.data.speed")
+
+
+#: Picture formats matplotlib writes (its file names' suffixes).
+IMAGE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp")
+
+
+def check_image(path: Path, *others: Path | None) -> None:
+    """Fail now, before any work, when ``path`` is no picture name matplotlib writes, is one of the
+    ``others`` (the run's other outputs and its inputs), or cannot be written."""
+    if path.suffix.lower() not in IMAGE_SUFFIXES:
+        raise InputError(
+            f"a plot is written as a picture, not {path.suffix or 'a file without a suffix'}",
+            path=str(path),
+            hint=f"name it with one of {', '.join(IMAGE_SUFFIXES)}",
+        )
+    check_distinct(path, *others)
+    check_writable(path)
+
+
+def check_distinct(output: Path, *others: Path | None) -> None:
+    """Fail when ``output`` is the same file as one of ``others`` (another output, or an input that
+    writing it would destroy)."""
+    for other in others:
+        if other is not None and Path(output).resolve() == Path(other).resolve():
+            raise InputError(
+                "the output is also another file of this run: writing it would overwrite that one",
+                path=str(output),
+                hint="give each output its own name",
+            )
 
 
 def check_writable(path: Path) -> None:
@@ -147,7 +177,7 @@ _OUTPUT_OPTIONS = [
     ),
 ]
 #: The flags of the earth table's settings, by the names :class:`EarthSetup` gives them in its errors.
-_EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun"}
+_EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun", "step_deg": "--earth-step"}
 
 
 @dataclass(frozen=True)
@@ -267,7 +297,10 @@ def sweep_command(
     optics = "srp" in table.kinds or "earth" in table.kinds
     model = loaded((source if optics else drag_only(source)).resolved(), **references)
     if earth is not None:
-        earth.check(model)  # the emissivities, before any work
+        try:
+            earth.check(model)  # the emissivities and the cells, before any work
+        except InputError as error:
+            raise error.renamed(_EARTH_FLAGS) from None
     tracking = [hinge.pattern for hinge in model.hinges if hinge.law == "track"]
     if tracking and "srp" in table.kinds and "drag" not in table.kinds:
         print(
@@ -276,6 +309,7 @@ def sweep_command(
             file=sys.stderr,
         )
     checkpoint = table.output.with_name(table.output.name + ".checkpoint")
+    check_place(checkpoint)
     total = _count(table, attitudes) * math.prod(len(a) for a in (hinge_angles or {}).values())
     columns = (
         TextColumn("{task.description}"),

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -11,7 +12,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.gas.atmosphere import finite_number
 from sunwind.geometry.directions import unit_vector
-from sunwind.geometry.errors import InputError
+from sunwind.geometry.errors import InputError, UnitWarning
 
 #: Earth's gravitational parameter GM [m^3/s^2] (WGS 84 / IERS Conventions 2010).
 EARTH_GM = 3.986004418e14
@@ -23,6 +24,8 @@ EARTH_ROTATION = 7.292115e-5
 #: speed ~1 km/s) is ~1e-3 and the dynamic pressure a 1e-8 share of an orbit's (~7.5 km/s); below it the
 #: directed flow the laws and the shadow follow is lost in the thermal motion.
 MIN_FLOW_SPEED = 1.0
+#: A flow speed below this [m/s] is said to look like km/s: the slowest orbital v_rel is ~3 km/s.
+KM_S_SUSPECT_BELOW = 100.0
 #: Fastest ``|v_rel|`` [m/s]: 1000 km/s, over ten times any heliocentric or meteoric speed near a planet,
 #: and still far below the speed of light (the laws are Newtonian).
 MAX_FLOW_SPEED = 1e6
@@ -48,6 +51,16 @@ def flow_speed(speed_m_s: float, name: str = "speed_m_s") -> float:
             "flow (thermal speeds are ~1 km/s)",
             hint=f"give v_rel of at least {MIN_FLOW_SPEED:g} m/s; an orbit's is ~7.5 km/s",
             parameters=(name,),
+        )
+    if speed < KM_S_SUSPECT_BELOW:
+        warnings.warn(
+            UnitWarning(
+                f"{name} gives a speed of {speed:.6g} m/s: that looks like km/s typed for m/s (an orbit's "
+                f"v_rel is ~7 500 m/s); at {speed:.3g} m/s the flow is slower than the molecules' thermal "
+                "speed and the drag is mostly their random impacts",
+                (name,),
+            ),
+            stacklevel=3,
         )
     if speed > MAX_FLOW_SPEED:
         raise InputError(

@@ -84,8 +84,13 @@ class AttitudeLaw:
             return cls(text, kind, axes=_axis_pair(axes, ("+z", "+x")))
         count = {"lvlh": 3, "inertial": 4, "thrust-sun": 3}[kind]
         values = _numbers(numbers, count, kind)
-        if kind == "inertial" and math.hypot(*values) == 0:
-            raise InputError("the inertial quaternion is zero", parameters=("attitude",))
+        if kind == "inertial" and abs(math.hypot(*values) - 1) > UNIT_TOLERANCE:  # as in an attitude file
+            raise InputError(
+                f"the inertial quaternion {','.join(f'{v:g}' for v in values)} is not of unit length "
+                f"(|q| = {math.hypot(*values):.6g})",
+                hint="give qw, qx, qy, qz of unit length, scalar first, body to GCRF (e.g. inertial:1,0,0,0)",
+                parameters=("attitude",),
+            )
         if kind == "thrust-sun":
             if math.hypot(*values) == 0:
                 raise InputError("the thrust direction is zero", parameters=("attitude",))
@@ -141,7 +146,7 @@ def read_quaternions(path: Path, epoch: Epoch) -> tuple[NDArray[np.float64], NDA
     """Times [s] after ``epoch`` and unit quaternions (scalar first, each on the same hemisphere as the
     one before) of an attitude file."""
     try:
-        with path.open(newline="") as handle:
+        with path.open(newline="", encoding="utf-8-sig") as handle:  # a byte-order mark is no column
             rows = list(csv.DictReader(row for row in handle if not row.lstrip().startswith("#")))
     except (OSError, UnicodeDecodeError) as error:
         raise InputError(f"cannot read the attitude file ({error})", path=str(path)) from None

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
+from sunwind.forces.gas.flow import EARTH_RADIUS
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.geometry.errors import InputError
@@ -29,7 +30,7 @@ def read_ephemeris(path: str | Path, epoch: Epoch | None) -> tuple[Epoch, NDArra
     velocities [m/s]."""
     path = Path(path)
     try:
-        with path.open(newline="") as handle:
+        with path.open(newline="", encoding="utf-8-sig") as handle:  # a byte-order mark is no column
             rows = list(csv.DictReader(row for row in handle if not row.lstrip().startswith("#")))
     except (OSError, UnicodeDecodeError) as error:
         raise InputError(f"cannot read the ephemeris file ({error})", path=str(path)) from None
@@ -58,7 +59,20 @@ def read_ephemeris(path: str | Path, epoch: Epoch | None) -> tuple[Epoch, NDArra
         )
     if np.any(np.diff(times) <= 0):
         raise InputError("the ephemeris times are not increasing", path=str(path))
-    return epoch, times, position * p_scale, velocity * v_scale
+    position, velocity = position * p_scale, velocity * v_scale
+    radius = np.linalg.norm(position, axis=1)
+    if np.any(radius <= EARTH_RADIUS):
+        row = int(np.argmax(radius <= EARTH_RADIUS))
+        kilometres = p_scale == 1.0 and radius[row] * 1e3 > EARTH_RADIUS
+        raise InputError(
+            f"row {row + 1}'s position is {radius[row]:.6g} m from the Earth's centre, inside the Earth"
+            + (": the positions look like km in metre columns" if kilometres else ""),
+            path=str(path),
+            hint="name the columns x_km, y_km, z_km and vx_km_s, ... for km and km/s"
+            if kilometres
+            else "give GCRF positions from the Earth's centre, not altitudes",
+        )
+    return epoch, times, position, velocity
 
 
 def ephemeris_trajectory(path: str | Path, epoch: Epoch | None, time_s: NDArray[np.float64]) -> Trajectory:

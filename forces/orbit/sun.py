@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.planet.shadow import AU_M, SUN_RADIUS_M
+from sunwind.geometry.directions import unit_vector
 
 __all__ = ["AU_M", "MOON_RADIUS_M", "SUN_RADIUS_M", "fixed_sun", "moon_position", "sun_position"]
 
@@ -37,5 +38,4 @@ def moon_position(epoch: Epoch, seconds: NDArray[np.float64]) -> NDArray[np.floa
 
 def fixed_sun(direction: NDArray[np.float64], n: int) -> NDArray[np.float64]:
     """The Sun at 1 au along ``direction`` (GCRF, normalised here) at every one of ``n`` steps [m]."""
-    u = np.asarray(direction, dtype=float)
-    return np.tile(u / np.linalg.norm(u) * AU_M, (n, 1))
+    return np.tile(unit_vector(direction, "sun_eci") * AU_M, (n, 1))  # hypot: no overflow at 1e308

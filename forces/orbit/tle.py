@@ -20,14 +20,28 @@ from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.geometry.errors import InputError
 
+#: Characters of a TLE's element line, its checksum the last.
+LINE_LENGTH = 69
+
 
 def read_tle(path: str | Path) -> tuple[str, str]:
-    """The two element lines of a TLE file (an optional name line before them is skipped)."""
+    """The two element lines of a TLE file (an optional name line before them is skipped), checked:
+    69 characters each, line 1 then line 2 of one satellite, each with its checksum (the last digit:
+    the sum of the line's digits, minus signs counting 1, modulo 10) and a readable epoch.
+
+    Raises
+    ------
+    InputError
+        No element set, a truncated or altered line, or lines of two satellites.
+    """
     path = Path(path)
     try:
-        lines = [line.rstrip() for line in path.read_text().splitlines() if line.strip()]
+        raw = path.read_bytes()
     except OSError as error:
         raise InputError(f"cannot read the TLE file ({error.strerror})", path=str(path)) from None
+    # the element lines are ASCII; a name line in another encoding is only a name
+    text = raw.decode("utf-8-sig", errors="replace")
+    lines = [line.rstrip() for line in text.splitlines() if line.strip()]
     ones = [i for i, line in enumerate(lines) if line.startswith("1 ")]
     if not ones or ones[0] + 1 >= len(lines) or not lines[ones[0] + 1].startswith("2 "):
         raise InputError(
@@ -35,7 +49,58 @@ def read_tle(path: str | Path) -> tuple[str, str]:
             path=str(path),
             hint="give the two 69-character lines of a TLE (a name line before them is allowed)",
         )
-    return lines[ones[0]], lines[ones[0] + 1]
+    pair = lines[ones[0]], lines[ones[0] + 1]
+    for number, line in enumerate(pair, start=1):
+        if len(line) != LINE_LENGTH:
+            raise InputError(
+                f"line {number} of the element set has {len(line)} characters, not {LINE_LENGTH}",
+                path=str(path),
+                hint="the line was cut or wrapped: copy both lines whole from their source",
+            )
+        expected = checksum(line)
+        if line[-1] != str(expected):
+            raise InputError(
+                f"line {number} of the element set fails its checksum (last digit {line[-1]!r}, the "
+                f"line's digits give {expected})",
+                path=str(path),
+                hint="a character was altered or mistyped: copy the line again from its source",
+            )
+    if pair[0][2:7] != pair[1][2:7]:
+        raise InputError(
+            f"the element lines are of two satellites ({pair[0][2:7].strip()} and {pair[1][2:7].strip()})",
+            path=str(path),
+            hint="give lines 1 and 2 of one satellite",
+        )
+    _epoch_field(pair[0], path)
+    return pair
+
+
+def checksum(line: str) -> int:
+    """The TLE checksum of a line: the sum of its first 68 characters' digits, each minus sign counting
+    1, modulo 10.
+
+    >>> checksum("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927")
+    7
+    """
+    return sum(int(c) if c.isdigit() else c == "-" for c in line[: LINE_LENGTH - 1]) % 10
+
+
+def _epoch_field(line1: str, path: Path) -> tuple[int, float]:
+    """Year and day of year (1-based, with its fraction) of line 1's epoch, checked."""
+    field = line1[18:32]
+    try:
+        two_digits, day = int(field[:2]), float(field[2:])
+    except ValueError:
+        two_digits, day = -1, float("nan")
+    year = two_digits + (1900 if two_digits >= 57 else 2000)
+    days = 366 if year % 4 == 0 and (year % 100 != 0 or year % 400 == 0) else 365
+    if two_digits < 0 or not 1.0 <= day < days + 1:
+        raise InputError(
+            f"line 1's epoch {field.strip()!r} is not a year and day of the year (YYDDD.DDDDDDDD)",
+            path=str(path),
+            hint="copy the line again from its source",
+        )
+    return year, day
 
 
 def tle_epoch(line1: str, line2: str) -> Epoch:
@@ -43,7 +108,10 @@ def tle_epoch(line1: str, line2: str) -> Epoch:
     from sgp4.api import Satrec
     from sgp4.conveniences import sat_epoch_datetime
 
-    return Epoch.of(sat_epoch_datetime(Satrec.twoline2rv(line1, line2)))
+    try:
+        return Epoch.of(sat_epoch_datetime(Satrec.twoline2rv(line1, line2)))
+    except (ValueError, IndexError) as error:
+        raise InputError(f"the TLE's epoch does not parse ({error})") from None
 
 
 def tle_trajectory(path: str | Path, epoch: Epoch, time_s: NDArray[np.float64]) -> Trajectory:

@@ -22,6 +22,8 @@ from sunwind.geometry.errors import InputError
 
 #: The Earth's second zonal harmonic (EGM 2008, unnormalised).
 EARTH_J2 = 1.08262668e-3
+#: Largest semi-major axis taken [m]: the radius of the Earth's sphere of influence about the Sun.
+MOST_SEMI_MAJOR_AXIS_M = 9.25e8
 #: Propagators of Keplerian elements.
 PROPAGATORS = ("kepler", "j2")
 
@@ -63,6 +65,10 @@ class Trajectory:
         return 2 * math.pi * math.sqrt((-EARTH_GM / (2 * energy)) ** 3 / EARTH_GM)
 
 
+class TrajectoryWarning(UserWarning):
+    """A trajectory that runs but may not be what was meant (stale elements)."""
+
+
 @dataclass(frozen=True)
 class Elements:
     """Keplerian elements: semi-major axis [m], eccentricity, inclination, right ascension of the
@@ -83,6 +89,19 @@ class Elements:
             raise InputError(
                 f"eccentricity {self.e:g} is not that of a closed orbit",
                 hint="give 0 <= e < 1 (a TLE or an ephemeris file for anything else)",
+                parameters=("elements",),
+            )
+        if not 0 <= self.i_deg <= 180:
+            raise InputError(
+                f"inclination {self.i_deg:g} deg is outside 0-180 deg",
+                hint="give the angle between the orbit plane and the equator (retrograde orbits above 90)",
+                parameters=("elements",),
+            )
+        if self.a_m > MOST_SEMI_MAJOR_AXIS_M:
+            raise InputError(
+                f"semi-major axis {self.a_m / 1e3:.3g} km is beyond the Earth's sphere of influence "
+                f"({MOST_SEMI_MAJOR_AXIS_M / 1e3:.3g} km), where two-body motion about the Earth fails",
+                hint="give the semi-major axis in km (e.g. 6878 for a 500 km circular orbit)",
                 parameters=("elements",),
             )
         perigee = self.a_m * (1 - self.e)

@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
+from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_ranges
 
 #: Gauss-Legendre points per ``theta`` piece and per azimuth arc of :meth:`Cap.side_integrals`.
@@ -44,6 +45,30 @@ AZIMUTH_POINTS = 12
 _SCAN_RINGS = 2048
 #: Sides per parallel block of the side integrals.
 _BLOCK_SIDES = 2048
+#: Most cells a cap is cut into (about 2 pi (1 - cos theta0) / step^2): a finer step is refused.
+MOST_CELLS = 20_000
+
+
+def check_cells(half_angle: float, step_deg: float) -> None:
+    """Refuse a cell size ``step_deg`` that cuts a cap of ``half_angle`` [rad] into more than
+    ``MOST_CELLS`` cells (about ``2 pi (1 - cos theta0) / step^2``), before any is made.
+
+    Raises
+    ------
+    InputError
+        Too fine a step, named as ``step_deg``.
+    """
+    theta0 = half_angle
+    solid = 2 * math.pi * (1 - math.cos(theta0))
+    cells = solid / math.radians(step_deg) ** 2  # about
+    if not cells <= MOST_CELLS:
+        least = math.degrees(math.sqrt(solid / MOST_CELLS))
+        raise InputError(
+            f"step_deg {step_deg:g} cuts the planet's disc ({math.degrees(theta0):.1f} deg half-angle) "
+            f"into about {cells:.3g} cells, more than {MOST_CELLS}: each is a batch of rays per side",
+            hint=f"give a step of at least {least:.2g} deg (10 by default; 2 resolves the terminator)",
+            parameters=("step_deg",),
+        )
 
 
 @dataclass(frozen=True)
@@ -165,6 +190,7 @@ class Cap:
         angle, so caps of one geometry share them) and the irradiance it sends on a surface normal to
         that direction, ``int L dw`` [W/m^2] (k,)."""
         theta0 = self.half_angle
+        check_cells(theta0, step_deg)
         rings = max(1, math.ceil(math.degrees(theta0) / step_deg))
         edges = np.linspace(0.0, theta0, rings + 1)
         v, wv = np.polynomial.legendre.leggauss(8)

@@ -66,6 +66,22 @@ def fingerprint(model: Model, jobs: list[Job], chunk: int) -> dict:
     return out
 
 
+def check_place(directory: Path) -> None:
+    """Refuse, before any work, a checkpoint directory whose place a file holds.
+
+    Raises
+    ------
+    InputError
+        ``directory`` is a file.
+    """
+    if directory.exists() and not directory.is_dir():
+        raise InputError(
+            "a file is where the run keeps its checkpoint directory",
+            path=str(directory),
+            hint="move or delete that file, or name the output otherwise",
+        )
+
+
 class Checkpoint:
     """Finished chunks of one sweep on disk: ``manifest.json`` and one ``.npz`` per chunk.
 
@@ -92,6 +108,7 @@ class Checkpoint:
             A checkpoint is there and ``resume`` is off; or it is of a different sweep, or unreadable.
         """
         found = directory / "manifest.json"
+        check_place(directory)
         if directory.exists() and not resume:
             raise InputError(
                 "a checkpoint of an unfinished sweep is there",

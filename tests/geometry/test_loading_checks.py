@@ -224,10 +224,30 @@ def test_centre_of_mass_of_the_materials_file_is_the_reference_point(tmp_path):
             load_materials(tmp_path / "bad.toml")
 
 
-@pytest.mark.parametrize(("scale", "noticed"), [(1.0, False), (1000.0, True), (0.005, True), (400.0, False)])
-def test_a_size_that_suggests_another_unit_gives_a_notice(scale, noticed):
+@pytest.mark.parametrize(
+    ("scale", "suggested"),
+    [(1.0, None), (100.0, None), (0.03, None), (1000.0, "mm"), (340.0, "mm"), (0.005, "another unit")],
+)
+def test_a_size_that_suggests_another_unit_gives_a_notice_naming_it(scale, suggested):
+    """Sizes of real spacecraft: the ISS is 109 m across, chip satellites 3.5 cm; a 340 mm CubeSat read
+    as metres is 340 m. The unit suggested gives a typical size (5 cm to 30 m); read in metres, a 5 mm
+    model is in no larger unit of a mesh file, so none is named."""
     craft = build_spacecraft(mesh(CUBE * scale, {"box": QUADS}), uniform=ABSORBER)
     notices = [n for n in craft.notices if "--unit" in n]
-    assert bool(notices) == noticed
-    if noticed:
-        assert f"{scale:g} m across" in notices[0] and "unit=" in notices[0]
+    assert bool(notices) == (suggested is not None)
+    if suggested:
+        assert f"{scale:g} m across" in notices[0] and "(Python: unit=" in notices[0]
+        named = (
+            f"in {suggested}, give --unit {suggested}"
+            if suggested != "another unit"
+            else "another unit, give it"
+        )
+        assert named in notices[0]
+
+
+def test_the_unit_suggested_is_never_the_one_the_model_was_read_in():
+    from sunwind.geometry.checks import size_notice
+
+    corners = np.array([[0.0, 0, 0], [0.34, 0.1, 0.34]])
+    assert "give --unit m " in size_notice(corners * 1e-3, "mm (--unit)")  # a metre file read as mm
+    assert "--unit mm" not in size_notice(corners * 1e-3, "mm (--unit)")

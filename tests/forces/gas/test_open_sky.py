@@ -197,6 +197,7 @@ def test_a_mirror_v_groove_in_a_hyperthermal_stream_is_the_mirror_law(angle_deg)
     assert result.reflected.chains.truncated < 1e-6
 
 
+@pytest.mark.filterwarnings("ignore:velocity_m_s gives a speed of:sunwind.geometry.errors.UnitWarning")
 def test_a_cavity_in_gas_at_rest_feels_nothing():
     """Diffuse walls at the gas's temperature: at small S the force is linear in S (the box's drag), and
     extrapolated to a gas at rest it vanishes (detailed balance) to the sampling of its sky, against the

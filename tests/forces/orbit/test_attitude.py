@@ -136,7 +136,8 @@ def test_hermite_and_slerp_agree_on_a_slow_rotation_and_differ_as_they_should_on
     [
         ("spin", "is not one of"),
         ("lvlh:1,2", "needs 3 numbers"),
-        ("inertial:0,0,0,0", "quaternion is zero"),
+        ("inertial:0,0,0,0", "is not of unit length"),
+        ("inertial:2,0,0,0", r"\|q\| = 2\)"),
         ("sun:+x,+x", "two different body axes"),
         ("sun:+q,+x", "is not a body axis"),
         ("nadir:3", "takes no values"),
