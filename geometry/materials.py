@@ -164,27 +164,36 @@ class MaterialTable:
             None if math.isnan(self.eps[index]) else float(self.eps[index]),
         )
 
-    def infrared(self, material: NDArray, path: str | None = None) -> NDArray[np.float64]:
+    def infrared(
+        self, material: NDArray, path: str | None = None, model_path: str | None = None
+    ) -> NDArray[np.float64]:
         """Infrared ``(rho, beta, sigma) = (1 - eps, 0, 0)`` of the materials ``material`` (indices),
         (len(material), 3): grey, opaque, reflecting diffusely what it does not absorb (Kirchhoff).
 
         Raises
         ------
         MaterialError
-            Naming every material of ``material`` without an emissivity, and ``path``, the file to fix.
+            Naming every material of ``material`` without an emissivity, and ``path``, the materials
+            file to fix; without one (None: a uniform material), ``model_path`` and the flag to give.
         """
         material = np.asarray(material, dtype=np.int64)
         missing = [self.names[i] for i in np.unique(material) if np.isnan(self.eps[i])]
         if missing:
             names = ", ".join(f"'{name}'" for name in missing)
             tables = ", ".join(f"[materials.{toml_key(name)}]" for name in missing)
+            fix = (
+                f'add emissivity = ... (infrared, 0 to 1) to {tables}, or finish = "NAME" from the finishes '
+                "library"
+                if path is not None
+                else "give the uniform material one: --emissivity E (infrared, 0 to 1; Python: "
+                "Material(..., emissivity=E)), or a materials file"
+            )
             raise MaterialError(
                 f"material {names} has no emissivity"
                 if len(missing) == 1
                 else f"materials {names} have no emissivity",
-                path=path,
-                hint=f'add emissivity = ... (infrared, 0 to 1) to {tables}, or finish = "NAME" from the '
-                "finishes library",
+                path=path if path is not None else model_path,
+                hint=fix,
             )
         optics = np.zeros((len(material), 3))
         optics[:, 0] = 1.0 - self.eps[material]

@@ -469,7 +469,7 @@ def _facet_groups(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None) 
 def infrared_optics(craft: Spacecraft) -> NDArray[np.float64]:
     """Infrared ``(rho, beta, sigma) = (1 - eps, 0, 0)`` of each side, (n_sides, 3) (Kirchhoff; grey,
     opaque, diffuse); :class:`MaterialError` naming the materials without an emissivity."""
-    return _frozen(craft.materials.infrared(craft.side_material, craft.materials_source or craft.source))
+    return _frozen(craft.materials.infrared(craft.side_material, craft.materials_source, craft.source))
 
 
 def load_spacecraft(

@@ -56,7 +56,8 @@ def main(argv: list[str] | None = None) -> None:
     warnings.showwarning = one_line
     try:
         with reporting(StepLines()):
-            app.main(args=argv, prog_name="sunwind", standalone_mode=False)
+            args = sys.argv[1:] if argv is None else list(argv)
+            app.main(args=args, prog_name="sunwind", standalone_mode=False, obj={"argv": args})
     except SunwindError as error:
         print(f"sunwind: error: {error.renamed(FLAGS)}", file=sys.stderr)
         sys.exit(1)

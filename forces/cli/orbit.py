@@ -25,7 +25,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
 )
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
-from sunwind.forces.cli.runs import check_run, run_options, sweep_run
+from sunwind.forces.cli.runs import check_run, run_options, say_interrupted, sweep_run
 from sunwind.forces.cli.tables import check_distinct, check_image, check_writable
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
@@ -452,16 +452,21 @@ def orbit(
         task = bar.add_task("orbit", total=len(trajectory.time_s))
         run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
         loads = Loads(srp, drag, environment.air, output["hinge_step"], planet)
-        result = fly(
-            model,
-            trajectory,
-            attitude,
-            loads,
-            sun_eci=environment.sun_eci,
-            eclipse=environment.eclipse,
-            moon=environment.moon,
-            run=run,
-        )
+        try:
+            result = fly(
+                model,
+                trajectory,
+                attitude,
+                loads,
+                sun_eci=environment.sun_eci,
+                eclipse=environment.eclipse,
+                moon=environment.moon,
+                run=run,
+            )
+        except KeyboardInterrupt:
+            bar.stop()
+            say_interrupted(checkpoint)
+            raise
     seconds = time.perf_counter() - start
     steps = len(trajectory.time_s)
     print(

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import shlex
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -10,6 +11,7 @@ from pathlib import Path
 import click
 
 from sunwind.forces.tables import DEFAULT_CHUNK, SweepRun
+from sunwind.forces.tables.checkpoint import Checkpoint
 from sunwind.forces.tables.cluster import require_dask
 
 
@@ -58,3 +60,18 @@ def sweep_run(values: dict, checkpoint: Path | None, progress: Callable[[int], N
         progress,
         notice=lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
     )
+
+
+def say_interrupted(checkpoint: Path | None) -> None:
+    """On Ctrl-C in a run of many entries, say what its checkpoint kept and the command that resumes it
+    (the command line as given, with ``--resume``)."""
+    if checkpoint is None:
+        said = "nothing was kept: a run keeps its finished entries only with -o (a checkpoint beside it)"
+    elif not (kept := Checkpoint.kept_chunks(checkpoint)):
+        said = "no chunk had finished: nothing was kept"
+    else:
+        root = click.get_current_context().find_root()
+        argv = list((root.obj or {}).get("argv") or sys.argv[1:])
+        command = shlex.join(["sunwind", *argv, *([] if "--resume" in argv else ["--resume"])])
+        said = f"{kept} finished chunks are kept in {checkpoint}; resume with: {command}"
+    print(f"sunwind: notice: {said}", file=sys.stderr)

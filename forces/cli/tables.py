@@ -39,7 +39,7 @@ from sunwind.forces.cli.options import (
     sun_options,
 )
 from sunwind.forces.cli.report import warn_beyond
-from sunwind.forces.cli.runs import check_run, run_options, sweep_run
+from sunwind.forces.cli.runs import check_run, run_options, say_interrupted, sweep_run
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.reflection import ReflectionSettings
@@ -275,6 +275,8 @@ def sweep_command(
 ) -> None:
     """Force and torque over a grid or list of attitudes, written as a table simulators read; with
     --earth-radiation, the Earth's albedo and infrared over Earth directions, the Sun fixed (--earth-sun)."""
+    inputs = (source.source.mesh, source.source.materials, table.attitudes)
+    check_distinct(table.output, *(Path(p) for p in inputs if p is not None))
     stream = flow("drag" in table.kinds)
     setups = {"reflections": reflections, **sampling, "reference_point_m": references["reference_point_m"]}
     srp = SrpSetup(flux_W_m2=sun.flux_W_m2, **setups) if "srp" in table.kinds else None
@@ -322,16 +324,21 @@ def sweep_command(
     with Progress(*columns, transient=True, console=None) as bar:
         task = bar.add_task(f"sweep ({', '.join(table.kinds)})", total=total)
         progress = lambda done: bar.update(task, completed=done)  # noqa: E731
-        result = sweep(
-            model,
-            srp=srp,
-            drag=drag,
-            earth=earth,
-            step_deg=table.step_deg,
-            attitudes=attitudes,
-            hinge_angles=hinge_angles,
-            run=sweep_run(run, checkpoint, progress),
-        )
+        try:
+            result = sweep(
+                model,
+                srp=srp,
+                drag=drag,
+                earth=earth,
+                step_deg=table.step_deg,
+                attitudes=attitudes,
+                hinge_angles=hinge_angles,
+                run=sweep_run(run, checkpoint, progress),
+            )
+        except KeyboardInterrupt:
+            bar.stop()
+            say_interrupted(checkpoint)
+            raise
     seconds = time.perf_counter() - start
     written = write(result, table.output, table.format)
     kinds = ", ".join(table.kinds)

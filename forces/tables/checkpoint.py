@@ -140,6 +140,11 @@ class Checkpoint:
         write_atomic(found, json.dumps(manifest, indent=1).encode())
         return cls(directory, manifest, created)
 
+    @staticmethod
+    def kept_chunks(directory: Path) -> int:
+        """Finished chunks a checkpoint directory holds (0 where there is none)."""
+        return len(list(directory.glob("*.npz"))) if directory.is_dir() else 0
+
     def _path(self, kind: str, lo: int) -> Path:
         return self.directory / f"{kind}-{lo:08d}.npz"
 

@@ -56,6 +56,7 @@ def files(tmp_path_factory):
     (d / "truncated.tle").write_text(f"{one[:40]}\n{two}\n")
     (d / "epoch.tle").write_text(f"{_with_checksum(one[:18] + 'ABCDE.FGHIJKLM' + one[32:])}\n{two}\n")
     (d / "two_satellites.tle").write_text(f"{one}\n{_with_checksum(two[:2] + '99999' + two[7:])}\n")
+    (d / "list.csv").write_text("azimuth_deg,elevation_deg\n0,0\n90,0\n")
     header = "time,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s\n"
     rows = "2025-03-20T00:00:00Z,{},0,0,0,{},0\n2025-03-20T00:01:00Z,{},{},0,{},{},0\n"
     (d / "km.csv").write_text(header + rows.format(6878.137, 7.6127, 6874.0, 456.7, -0.5, 7.6))
@@ -171,6 +172,30 @@ CASES = {
         1,
         ["--earth-step 0.01 cuts"],
     ),
+    "no emissivity names --emissivity": (
+        [
+            "earth",
+            "{d}/box.obj",
+            *BOX,
+            "--altitude",
+            "500",
+            "--sun",
+            "1",
+            "0",
+            "0",
+            "--earth",
+            "0",
+            "0",
+            "-1",
+        ],
+        1,
+        ["material 'uniform' has no emissivity", "--emissivity E"],
+    ),
+    "sweep list written over itself": (
+        ["sweep", "{d}/box.obj", *BOX, "--srp", "--attitudes", "{d}/list.csv", "-o", "{d}/list.csv"],
+        1,
+        ["also another file of this run"],
+    ),
     "velocity in km/s": (
         ["drag", "{d}/box.obj", "--velocity", "7.6", "0", "0", *AIR],
         0,
@@ -214,3 +239,38 @@ def test_a_fixed_sun_of_1e308_is_a_direction_at_one_au(run_cli, files):
         assert code == 0, err
         forces.append(np.array(json.loads(out)["srp_force_body_N"]))
     assert np.array_equal(forces[0], forces[1]) and np.abs(forces[0]).max() < 1e-5
+
+
+def test_ctrl_c_on_a_sweep_says_what_was_kept_and_how_to_resume(run_cli, files, tmp_path, monkeypatch):
+    """Interrupted after its first chunk, a sweep keeps it and prints the command that resumes it; the
+    resumed table is the uninterrupted one."""
+    import sunwind.forces.tables.engine as engine
+
+    output = tmp_path / "t.nc"
+    args = ["sweep", files / "box.obj", *BOX, "--srp", "--step", "45", "--chunk", "8", "-o", output]
+    finished = engine._Finished.__call__
+
+    def interrupt_after_one(self, job, lo, hi, values):
+        finished(self, job, lo, hi, values)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(engine._Finished, "__call__", interrupt_after_one)
+    code, _, err = run_cli(*args)
+    assert code == 130 and "Traceback" not in err
+    resume = f"resume with: sunwind sweep {files / 'box.obj'} "
+    assert "sunwind: notice: 1 finished chunks are kept in " in err and resume in err and "--resume" in err
+    assert err.rstrip().endswith("sunwind: aborted")  # click turns Ctrl-C into its Abort
+    monkeypatch.undo()
+    code, _, err = run_cli(*args, "--resume")
+    assert code == 0 and "kept 1 chunks" in err, err
+
+
+def test_ctrl_c_without_an_output_says_nothing_was_kept(run_cli, files, monkeypatch):
+    import sunwind.forces.cli.orbit as orbit_cli
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(orbit_cli, "fly", interrupt)
+    code, _, err = run_cli("orbit", files / "box.obj", *BOX, *LEO, *SHORT)
+    assert code == 130 and "nothing was kept: a run keeps its finished entries only with -o" in err
