@@ -10,6 +10,7 @@ turned into GCRF (the inertial momentum the loads build).
 from __future__ import annotations
 
 import csv
+import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,6 +27,7 @@ from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.steps import FLUX, SUN, VELOCITY, OrbitSetup, StepInputs
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
+from sunwind.forces.tables.dataset import model_provenance
 from sunwind.geometry.rays.certificate import LoadsError
 
 #: Time series of the output, in order, with their units.
@@ -157,6 +159,7 @@ class OrbitResult:
             "reference_point_m": [float(x) for x in point],
             "reference_point": name,
             "settings": setup.describe(),
+            **{k: v for k, v in model_provenance(model).items() if v is not None},
         }
         flux = setup.srp.flux_W_m2 if setup.srp is not None else float("nan")
         parts = tuple(model.craft.part_names) if setup.earth is not None else ()
@@ -273,7 +276,18 @@ class OrbitResult:
             variables[f"hinge_angle_deg[{pattern}]"] = xr.Variable(("time",), angles, {"units": "deg"})
         summary = {f"summary_{k}": _attribute(v) for k, v in self.summary(mass_kg).items()}
         attrs = {k: (str(v) if isinstance(v, dict) else v) for k, v in self.attributes.items()}
-        coords = {"xyz": ["x", "y", "z"]} | ({"part": list(self.part_names)} if self.part_names else {})
+        time = xr.Variable(
+            ("time",),
+            self.series["time_s"],
+            {
+                "units": f"seconds since {self.attributes['epoch_utc']}",
+                "calendar": "standard",
+                "long_name": "UTC",
+            },
+        )
+        coords = {"time": time, "xyz": ["x", "y", "z"]} | (
+            {"part": list(self.part_names)} if self.part_names else {}
+        )
         return xr.Dataset(variables, coords=coords, attrs=attrs | summary)
 
     def write_csv(self, path: Path) -> None:
@@ -295,9 +309,21 @@ class OrbitResult:
             columns.append(angles)
             header.append(f"hinge_angle_deg[{pattern}]")
         with Path(path).open("w", newline="") as handle:
+            handle.writelines(
+                f"# {key}: {_attribute_text(value)}\n" for key, value in self.attributes.items()
+            )
             writer = csv.writer(handle)
             writer.writerow(header)
             writer.writerows(np.stack(columns, axis=1).tolist())
+
+
+def _attribute_text(value: object) -> str:
+    """An attribute on one line of a CSV header: settings as JSON, vectors as numbers."""
+    if isinstance(value, dict):
+        return json.dumps(value)
+    if isinstance(value, list | tuple):
+        return " ".join(f"{v:.17g}" if isinstance(v, float) else str(v) for v in value)
+    return str(value)
 
 
 def _attribute(value: object) -> object:

@@ -242,9 +242,9 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
     """A table's global attributes: frame, reference point, sampling, environment, provenance."""
     first = setups[0]
     point, name = model.reference(first.reference_point_m)
-    source = model.source.attributes() if model.source else {"mesh": model.craft.source}
+    provenance = model_provenance(model)
     attrs: dict = {
-        "title": f"sunwind attitude table of {Path(str(source['mesh'])).name}",
+        "title": f"sunwind attitude table of {Path(str(provenance['mesh'])).name}",
         "frame": FRAME,
         "reference_point_m": point,
         "reference_point": name,
@@ -252,6 +252,18 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
         "samples": "shadow edges located" if first.samples is None else first.samples,
         "tolerance": first.tolerance,
         "reflections_requested": first.settings.mode,  # what each quantity used: srp_/drag_reflections
+        **provenance,
+    }
+    for setup in setups:
+        attrs |= setup.attributes(model)
+    return attrs
+
+
+def model_provenance(model: Model) -> dict:
+    """Where a result's model came from: mesh and materials files, their unit and two-sided parts, the
+    SHA-256 of each, the sunwind version, and any uniform material or gas overrides."""
+    source = model.source.attributes() if model.source else {"mesh": model.craft.source}
+    return {
         "mesh": source.pop("mesh"),
         "materials": source.pop("materials", None),
         "unit": source.pop("unit", None),
@@ -261,9 +273,6 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
         "sunwind_version": version("sunwind"),
         **source,  # the uniform material and gas overrides, where given
     }
-    for setup in setups:
-        attrs |= setup.attributes(model)
-    return attrs
 
 
 def one_pose(table: xr.Dataset, what: str, hint: str = "write the table as netCDF (.nc)") -> xr.Dataset:

@@ -274,3 +274,19 @@ def test_ctrl_c_without_an_output_says_nothing_was_kept(run_cli, files, monkeypa
     monkeypatch.setattr(orbit_cli, "fly", interrupt)
     code, _, err = run_cli("orbit", files / "box.obj", *BOX, *LEO, *SHORT)
     assert code == 130 and "nothing was kept: a run keeps its finished entries only with -o" in err
+
+
+def test_orbit_files_carry_their_provenance_and_a_cf_time(run_cli, files, tmp_path):
+    """The CSV starts with the same '#' lines as a sweep's (epoch, frame, reference point, the model's
+    digest); the netCDF's time is a coordinate in seconds since the epoch, decoded as UTC times."""
+    import xarray as xr
+
+    for suffix in ("csv", "nc"):
+        code, _, err = run_cli("orbit", files / "box.obj", *BOX, *LEO, *SHORT, "-o", tmp_path / f"o.{suffix}")
+        assert code == 0, err
+    header = [line for line in (tmp_path / "o.csv").read_text().splitlines() if line.startswith("#")]
+    keys = {line[2:].split(":")[0] for line in header}
+    assert {"epoch_utc", "frame", "reference_point_m", "reference_point", "mesh", "mesh_sha256"} <= keys
+    with xr.open_dataset(tmp_path / "o.nc") as series:
+        assert str(series["time"].values[1]) == "2025-03-20T00:01:00.000000000"
+        assert series.attrs["mesh_sha256"] in "\n".join(header)

@@ -96,7 +96,7 @@ def test_summary_and_files_carry_the_parts(run, tmp_path):
     assert xr.open_dataset(tmp_path / "run.nc")["albedo_force_body_N"].attrs["units"] == "N"
     result.write_csv(tmp_path / "run.csv")
     with (tmp_path / "run.csv").open() as handle:
-        header = next(csv.reader(handle))
+        header = next(csv.reader(line for line in handle if not line.startswith("#")))
     assert f"part_temperature_K[{result.part_names[0]}]" in header and "thermal_force_body_N_z" in header
 
 
