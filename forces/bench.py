@@ -18,11 +18,9 @@ from __future__ import annotations
 import os
 import platform
 import resource
-import tempfile
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, replace
-from pathlib import Path
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -30,18 +28,13 @@ from sunwind.forces.drag import drag
 from sunwind.forces.gas import circular_speed, nrlmsis
 from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.gas.visible import model_sky
-from sunwind.forces.model import load
 from sunwind.forces.reflection import ReflectionSettings, model_view_factors
 from sunwind.forces.reflection.diffuse import diffuse_exchange
 from sunwind.forces.srp import srp
-from sunwind.forces.tables import DragSetup, Job, SrpSetup, SweepRun, direction_grid, run_jobs
-from sunwind.forces.tables.cluster import timed_on_local_cluster
-from sunwind.forces.tables.engine import precompute
 from sunwind.geometry import memory
 from sunwind.geometry.parallel import thread_count
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
-from sunwind.meshes.samples import write_sample_files
 
 #: Shadow tolerance of the references the timed settings are measured against: ten times the default's.
 REFERENCE_TOLERANCE = DEFAULT_TOLERANCE / 10
@@ -254,7 +247,7 @@ def _drag_figures(
         "sky_rays_per_side": sky.rays_per_side,
         "sky_MB": sky.nbytes / 1e6,
     }
-    reference_gas = _reference_gas(GasSampling(sky.rays_per_side))
+    finer = reference_gas(GasSampling(sky.rays_per_side))
     for mode, srp_reference, key in (("none", srp_times, "drag"), ("full", srp_full, "drag_full")):
         settings = ReflectionSettings(mode, cache_dir=False)
 
@@ -269,7 +262,7 @@ def _drag_figures(
                 air,
                 tolerance=REFERENCE_TOLERANCE,
                 reflections=settings,
-                gas_sampling=reference_gas,
+                gas_sampling=finer,
             ),
             directions,
             f"reference, drag ({mode})",
@@ -388,131 +381,7 @@ def benchmark(
     )
 
 
-@dataclass(frozen=True)
-class SweepReport:
-    """Sweep benchmark figures; times in seconds."""
-
-    triangles: int
-    step_deg: float
-    grid_nodes: int
-    distinct_directions: int
-    samples_per_side: int | None
-    reflections: str
-    precompute_s: float
-    sweep_s: float
-    srp_per_attitude_ms: float
-    drag_per_attitude_ms: float
-    projected_1_deg_s: float
-    checked_directions: int
-    srp_error: LoadError
-    drag_error: LoadError
-    dask_attitudes: int
-    dask_1_worker_s: float
-    dask_2_workers_s: float
-    dask_speedup: float
-    dask_identical: bool
-    machine: str
-
-    def to_json(self) -> dict:
-        return asdict(self)
-
-
-#: Grid directions, spread over the grid, at which a sweep's entries are checked against the reference.
-CHECKED_DIRECTIONS = 24
-
-
-def _reference_gas(gas: GasSampling) -> GasSampling:
+def reference_gas(gas: GasSampling) -> GasSampling:
     """``gas`` sampled :data:`REFERENCE_GAS_FACTORS` times more finely (``gas.sky_rays`` must be set)."""
     sky, core, chains = REFERENCE_GAS_FACTORS
     return GasSampling(gas.sky_rays * sky, gas.core_rays * core, gas.chain_molecules * chains)
-
-
-def _setup_error(model, setup: SrpSetup | DragSetup, directions: np.ndarray) -> LoadError:
-    """Error of the entries ``setup`` gives at ``directions`` against the same setup with the default
-    shadow pass at :data:`REFERENCE_TOLERANCE` (and, for drag, the gas sampled more finely)."""
-    reference = replace(setup, samples=None, tolerance=REFERENCE_TOLERANCE)
-    if isinstance(setup, DragSetup):
-        sky = model_sky(model.craft, setup.sky_rays, setup.settings.cache_dir).rays_per_side
-        gas = _reference_gas(GasSampling(sky, setup.core_rays, setup.chain_molecules))
-        reference = replace(reference, sky_rays=gas.sky_rays, core_rays=gas.core_rays)
-        reference = replace(reference, chain_molecules=gas.chain_molecules)
-    got, exact = (
-        list(zip(records["force_N"], records["torque_Nm"], strict=True))
-        for records in (setup.evaluate(model, directions), reference.evaluate(model, directions))
-    )
-    return LoadError.of(got, exact, model.craft.diagonal_m)
-
-
-def sweep_benchmark(
-    triangles: int = 100_000,
-    step_deg: float = 5.0,
-    dask_attitudes: int = 64,
-    samples: int | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> SweepReport:
-    """A whole grid sweep of SRP and drag with full reflections on the generated sample, then the
-    speed-up of a local Dask cluster of 2 one-thread workers over 1 on ``dask_attitudes`` of its
-    directions (timed once every worker has the model; results checked identical)."""
-    grid = direction_grid(step_deg)
-    directions = grid.distinct[0]
-    with tempfile.TemporaryDirectory(prefix="sunwind-bench-") as directory:
-        files = write_sample_files(Path(directory), triangles)
-        model = load(files["obj"], files["toml"])
-        craft = model.craft
-        full = ReflectionSettings("full")
-        jobs = [
-            Job(SrpSetup(flux_W_m2=1361.0, samples=samples, reflections=full), directions),
-            Job(
-                DragSetup(
-                    speed_m_s=circular_speed(400.0),
-                    atmosphere=nrlmsis(400.0),
-                    samples=samples,
-                    reflections=full,
-                ),
-                directions,
-            ),
-        ]
-        start = time.perf_counter()
-        precompute(model, jobs)
-        for job in jobs:
-            job.setup.evaluate(model, directions[:1])  # compiles what the first attitude compiles
-        precompute_s = time.perf_counter() - start
-        total = 2 * len(directions)
-        timings: dict[str, float] = {}
-        start = time.perf_counter()
-        for job in jobs:
-            began = time.perf_counter()
-            offset = len(directions) if job.kind == "drag" else 0
-            counted = progress and (lambda done, offset=offset: progress(done + offset, total))
-            run_jobs(model, [job], SweepRun(progress=counted))
-            timings[job.kind] = time.perf_counter() - began
-        sweep_s = time.perf_counter() - start
-        checked = directions[:: max(1, len(directions) // CHECKED_DIRECTIONS)][:CHECKED_DIRECTIONS]
-        errors = {f"{job.kind}_error": _setup_error(model, job.setup, checked) for job in jobs}
-        subset = [Job(job.setup, directions[:dask_attitudes]) for job in jobs]
-        pending = [(job, lo, hi) for job in subset for lo, hi in job.chunks(8)]
-        one, first = timed_on_local_cluster(model, pending, 1)
-        two, second = timed_on_local_cluster(model, pending, 2)
-    return SweepReport(
-        triangles=craft.n_facets,
-        step_deg=grid.step_deg,
-        grid_nodes=grid.vectors.shape[0] * grid.vectors.shape[1],
-        distinct_directions=len(directions),
-        samples_per_side=None if samples is None else level_for_samples(samples) ** 2,
-        reflections="full",
-        precompute_s=precompute_s,
-        sweep_s=sweep_s,
-        srp_per_attitude_ms=1e3 * timings["srp"] / len(directions),
-        drag_per_attitude_ms=1e3 * timings["drag"] / len(directions),
-        projected_1_deg_s=sweep_s * len(direction_grid(1.0).distinct[0]) / len(directions),
-        checked_directions=len(checked),
-        **errors,
-        dask_attitudes=2 * min(dask_attitudes, len(directions)),
-        dask_1_worker_s=one,
-        dask_2_workers_s=two,
-        dask_speedup=one / two,
-        dask_identical=all(
-            np.array_equal(a[name], b[name]) for a, b in zip(first, second, strict=True) for name in a
-        ),
-        machine=f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
-    )

@@ -130,6 +130,7 @@ LAYERS = {
     "sunwind.forces.export": ("sunwind.geometry", "sunwind.forces"),
     "sunwind.forces.cli": ("sunwind.geometry", "sunwind.meshes", "sunwind.forces"),
     "sunwind.forces.bench": ("sunwind.geometry", "sunwind.meshes", "sunwind.forces"),
+    "sunwind.forces.sweep_bench": ("sunwind.geometry", "sunwind.meshes", "sunwind.forces"),
     "sunwind.forces": ("sunwind.geometry", "sunwind.forces"),
 }
 #: The independent references: closed forms and brute-force tracers, which import nothing of the solver.

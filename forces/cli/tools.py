@@ -9,7 +9,8 @@ from pathlib import Path
 import click
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-from sunwind.forces.bench import REFERENCE_GAS_FACTORS, REFERENCE_TOLERANCE, benchmark, sweep_benchmark
+from sunwind.forces.bench import REFERENCE_GAS_FACTORS, REFERENCE_TOLERANCE, benchmark
+from sunwind.forces.sweep_bench import sweep_benchmark
 from sunwind.forces.tables import direction_grid
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import build_spacecraft, load_spacecraft
@@ -176,7 +177,7 @@ def _bench_orbit(craft, as_json: bool) -> None:
 
 
 def _bench_sweep(triangles: int, step: float, samples: int | None, as_json: bool) -> None:
-    """``sunwind bench --sweep``: run and print :func:`sunwind.forces.bench.sweep_benchmark`."""
+    """``sunwind bench --sweep``: run and print :func:`sunwind.forces.sweep_bench.sweep_benchmark`."""
     direction_grid(step)
     with _progress_bar(as_json) as bar:
         task = bar.add_task("sweeping", total=None)

@@ -45,7 +45,8 @@ def test_json_netcdf_and_csv_hold_the_same_series(run_cli, craft, tmp_path):
     assert table["torque_body_Nm"].attrs["units"] == "N m"
     code, _, err = run_cli(*args, "-o", tmp_path / "run.csv")
     assert code == 0, err
-    header = (tmp_path / "run.csv").read_text().splitlines()[0].split(",")
+    lines = (tmp_path / "run.csv").read_text().splitlines()
+    header = next(line for line in lines if not line.startswith("#")).split(",")  # after the provenance
     assert header[:4] == ["time_s", "position_eci_m_x", "position_eci_m_y", "position_eci_m_z"]
 
 
