@@ -36,7 +36,22 @@ def app() -> None:
     """
 
 
+#: Each command's job, one line of ``sunwind --help`` (click would cut the docstrings' first lines short).
+JOBS = {
+    "srp": "SRP force and torque at one Sun direction.",
+    "drag": "Free-molecular drag force and torque for one flow.",
+    "forces": "SRP and drag (and the Earth's radiation) at one attitude.",
+    "earth": "Albedo, infrared and thermal loads from the planet below.",
+    "sweep": "Tables over a grid or list of attitudes, for simulators.",
+    "orbit": "Loads and accumulated momentum along an orbit.",
+    "plot": "Pictures of a table: maps of every component, pressure views.",
+    "info": "What a mesh holds and what the shadow pass makes of it.",
+    "mesh": "Write a parametric mesh or the sample spacecraft.",
+    "bench": "Time every setting on a model, each with its error.",
+    "validate": "Run the validation cases against closed forms and tracers.",
+}
 for command in (srp, drag, forces, earth, sweep_command, orbit, plot, info, mesh, bench, validate):
+    command.short_help = JOBS[command.name]
     app.add_command(command)
 
 

@@ -205,7 +205,27 @@ def _parameter(kind: str, key: str, default: object, values: list[str], negated:
         ) from None
 
 
-@click.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True})
+def kind_parameters() -> str:
+    """Every kind's flags and their defaults, for ``sunwind mesh --help`` (from the builders' own
+    signatures: one place)."""
+    lines = ["\b", "Parameters of each kind (default):"]
+    for kind, builder in [*meshes.PRIMITIVES.items(), ("sample", meshes.sample_spacecraft)]:
+        flags = []
+        for name, parameter in inspect.signature(builder).parameters.items():
+            flag, default = "--" + name.replace("_", "-"), parameter.default
+            if isinstance(default, bool):
+                flags.append(f"--[no-]{flag[2:]} ({'on' if default else 'off'})")
+            elif isinstance(default, tuple | list):
+                flags.append(f"{flag} {' '.join(f'{v:g}' for v in default)}")
+            else:
+                flags.append(f"{flag} {'(from the others)' if default is None else default}")
+        lines.append(f"  {kind:<9} {', '.join(flags)}")
+    return "\n".join(lines)
+
+
+@click.command(
+    context_settings={"ignore_unknown_options": True, "allow_extra_args": True}, epilog=kind_parameters()
+)
 @click.argument("kind")
 @click.option(
     "--output",

@@ -13,7 +13,7 @@ import numpy as np
 
 from sunwind.forces.orbit import Elements, Epoch, Trajectory, propagate
 from sunwind.forces.orbit.ephemeris_csv import ephemeris_trajectory, read_ephemeris
-from sunwind.forces.orbit.tle import read_tle, tle_epoch, tle_trajectory
+from sunwind.forces.orbit.tle import read_tle, tle_epoch, tle_period_s, tle_trajectory
 from sunwind.forces.orbit.trajectory import PROPAGATORS, TrajectoryWarning
 from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
@@ -98,14 +98,12 @@ class PathRequest:
         elif self.elements is not None:
             default = self.elements.period_s
         else:
-            default = None
+            default = tle_period_s(*read_tle(self.tle))
         if epoch is None:
             raise InputError(
                 "give --epoch: the UTC start of the run", hint="e.g. --epoch 2024-03-20T00:00:00Z"
             )
         duration = self.duration_s if self.duration_s is not None else default
-        if duration is None:
-            raise InputError("give --duration [s]: a TLE has no natural length", parameters=())
         count = self.step_count(duration)
         memory.require(count * STEP_BYTES, f"{count:.3g} steps", "raise --step or shorten --duration")
         time_s = np.arange(count) * self.step_s

@@ -103,6 +103,24 @@ def _epoch_field(line1: str, path: Path) -> tuple[int, float]:
     return year, day
 
 
+def tle_period_s(line1: str, line2: str) -> float:
+    """The orbital period [s] of an element set: a day over its mean motion (revolutions per day,
+    columns 53-63 of line 2).
+
+    >>> round(tle_period_s("", "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537"), 1)
+    5495.7
+    """
+    try:
+        revolutions = float(line2[52:63])
+    except ValueError:
+        revolutions = 0.0
+    if not revolutions > 0:
+        raise InputError(
+            f"line 2's mean motion {line2[52:63].strip()!r} is not a number of revolutions a day"
+        )
+    return 86400.0 / revolutions
+
+
 def tle_epoch(line1: str, line2: str) -> Epoch:
     """The epoch of the element set (UTC)."""
     from sgp4.api import Satrec

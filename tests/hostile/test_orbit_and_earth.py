@@ -92,6 +92,11 @@ CASES = {
         0,
         ["warning: the run reaches 365 days from the TLE's epoch"],
     ),
+    "tle without --duration flies one period": (
+        ["orbit", "{d}/box.obj", *BOX, "--tle", "{d}/good.tle", "--step", "600", "--srp"],
+        0,
+        ["notice: 10 steps in "],  # 86400 / 15.4956 rev/day = 5576 s
+    ),
     "step 5e-324": (
         ["orbit", "{d}/box.obj", *BOX, *LEO, "--duration", "600", "--step", "5e-324"],
         1,
@@ -290,3 +295,25 @@ def test_orbit_files_carry_their_provenance_and_a_cf_time(run_cli, files, tmp_pa
     with xr.open_dataset(tmp_path / "o.nc") as series:
         assert str(series["time"].values[1]) == "2025-03-20T00:01:00.000000000"
         assert series.attrs["mesh_sha256"] in "\n".join(header)
+
+
+def test_the_top_level_help_names_every_commands_job_whole(run_cli):
+    from sunwind.forces.cli.app import JOBS, app
+
+    code, out, _ = run_cli("--help")
+    commands = out.split("Commands:")[1]
+    assert code == 0 and "..." not in commands
+    assert set(JOBS) == set(app.commands)
+    for name, job in JOBS.items():
+        assert f"  {name:<9} {job}" in commands.replace("\n            ", " ")
+
+
+def test_mesh_help_lists_every_kinds_parameters(run_cli):
+    import inspect
+
+    from sunwind import meshes
+
+    code, out, _ = run_cli("mesh", "cylinder", "--help")
+    assert code == 0 and "Parameters of each kind" in out
+    for name in inspect.signature(meshes.cylinder).parameters:
+        assert name.replace("_", "-") in out.split("cylinder ", 1)[1]
