@@ -110,7 +110,7 @@ def describe(
         "volume_m3": tri.signed_volume(corners) if closed else None,
         "closed": closed,
         "bounds_m": [check.vertices.min(axis=0).tolist(), check.vertices.max(axis=0).tolist()],
-        "reference_point": f"{reference_name} {np.round(reference, 6).tolist()} m",
+        "reference_point": f"{reference_name} [{' '.join(f'{x:+.6f}' for x in np.round(reference, 6) + 0.0)}] m",
         "checks": checks or ["all passed"],
         "parts": parts,
         "materials": [

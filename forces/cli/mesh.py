@@ -11,6 +11,7 @@ import numpy as np
 
 from sunwind import meshes
 from sunwind.forces.cli.options import json_option, model_options, view_factor_options
+from sunwind.forces.cli.report import vector
 from sunwind.forces.model import ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.reflection.views import view_factor_summary
@@ -39,7 +40,7 @@ def info(source: ModelSource, reflections: ReflectionSettings, no_k_is: bool, as
     print(f"sunwind info: {report['mesh']}")
     for key in ("unit", "triangles", "area_m2", "volume_m3", "closed", "reference_point", "k_is"):
         if key in report:
-            print(f"  {key:<17}{report[key]}")
+            print(f"  {key:<17}{_shown(report[key])}")
     if "view_factors" in report:
         view = report["view_factors"]
         print(
@@ -47,7 +48,8 @@ def info(source: ModelSource, reflections: ReflectionSettings, no_k_is: bool, as
             f"(area-weighted); view factors: {view['rays_per_side']} rays per side, {view['origin']}"
         )
     low, high = report["bounds_m"]
-    print(f"  {'bounds_m':<17}min {np.round(low, 6).tolist()}  max {np.round(high, 6).tolist()}")
+    low, high = (vector(np.array(corner), "{:+.6g}") for corner in (low, high))
+    print(f"  {'bounds_m':<17}min {low}  max {high}")
     print("  checks:")
     for line in report["checks"]:
         print(f"    {line}")
@@ -203,6 +205,15 @@ def _parameter(kind: str, key: str, default: object, values: list[str], negated:
             f"mesh {kind}: bad value for --{key.replace('_', '-')}: {' '.join(values)!r}",
             hint="give a number (or several for a size)",
         ) from None
+
+
+def _shown(value: object) -> str:
+    """A value of the info report as text for a person: yes/no, numbers to 6 digits, none as a dash."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if value is None:
+        return "-"
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
 
 
 def kind_parameters() -> str:
