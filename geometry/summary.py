@@ -102,6 +102,7 @@ def describe(
                 "materials": part_materials.get(name, ", ".join(file_keys) or "(none)"),
             }
         )
+    point = " ".join(f"{x:+.6f}" for x in np.round(reference, 6) + 0)  # + 0: no -0.000000
     return {
         "mesh": mesh.source,
         "unit": str(mesh.metadata.get("unit", "m")),
@@ -110,7 +111,7 @@ def describe(
         "volume_m3": tri.signed_volume(corners) if closed else None,
         "closed": closed,
         "bounds_m": [check.vertices.min(axis=0).tolist(), check.vertices.max(axis=0).tolist()],
-        "reference_point": f"{reference_name} [{' '.join(f'{x:+.6f}' for x in np.round(reference, 6) + 0.0)}] m",
+        "reference_point": f"{reference_name} [{point}] m",
         "checks": checks or ["all passed"],
         "parts": parts,
         "materials": [
