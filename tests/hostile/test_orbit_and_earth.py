@@ -246,6 +246,7 @@ def test_a_fixed_sun_of_1e308_is_a_direction_at_one_au(run_cli, files):
     assert np.array_equal(forces[0], forces[1]) and np.abs(forces[0]).max() < 1e-5
 
 
+@pytest.mark.slow
 def test_ctrl_c_on_a_sweep_says_what_was_kept_and_how_to_resume(run_cli, files, tmp_path, monkeypatch):
     """Interrupted after its first chunk, a sweep keeps it and prints the command that resumes it; the
     resumed table is the uninterrupted one."""

@@ -254,6 +254,7 @@ def test_mesh_command_writes_primitives_that_srp_reads(run_cli, tmp_path):
     assert code == 0 and "lateral" in out
 
 
+@pytest.mark.slow
 def test_mesh_sample_writes_its_materials_file_beside_an_obj(run_cli, tmp_path):
     path = tmp_path / "craft.obj"
     code, out, err = run_cli("mesh", "sample", "--triangles", "3000", "-o", path)

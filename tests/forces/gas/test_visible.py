@@ -114,6 +114,7 @@ def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, sa
     assert sum(batches) > 0
 
 
+@pytest.mark.slow
 def test_results_do_not_depend_on_the_thread_count(sample):
     results = [drag(sample, SPEED * u, AIR, samples=1, reflections="full") for u in FLOWS]
     for u, result in zip(FLOWS, results, strict=True):

@@ -109,7 +109,9 @@ def test_absorbing_sphere_against_its_closed_forms():
         )
 
 
-@pytest.mark.parametrize("step_deg, tolerance", [(10.0, 2e-2), (2.5, 3e-3)])
+@pytest.mark.parametrize(
+    "step_deg, tolerance", [(10.0, 2e-2), pytest.param(2.5, 3e-3, marks=pytest.mark.slow)]
+)
 def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
     """A 1 m plate facing the planet with a 0.4 m plate 0.3 m below it: the shadowed irradiance and force
     on the big plate against the ray brute force, falling with the cell size."""
@@ -155,6 +157,7 @@ def test_the_plate_mode_gives_every_side_the_closed_form_factors_of_a_plate_alon
     assert shadowed.infrared.incident_side_W[big].sum() < 0.9 * alone.infrared.incident_side_W[big].sum()
 
 
+@pytest.mark.slow
 def test_power_balances_in_a_cavity_with_every_reflection():
     """An open box with mixed finishes: incident = absorbed + escaped + cut off to round-off, per band;
     per-side absorbed power plus what no side absorbs is the band's absorbed power."""

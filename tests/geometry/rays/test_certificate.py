@@ -52,6 +52,7 @@ def test_a_sound_pass_is_certified_without_repairs_and_at_a_fifth_of_its_cost():
         assert check.rays <= max(0.2 * own, 1.5 * CHECK_ROUNDS * LEAST_CHECKED * CHECK_POINTS)
 
 
+@pytest.mark.slow
 def test_a_pass_blind_to_its_outline_is_resolved_by_rays_and_its_estimate_holds(monkeypatch):
     """With its outline taken away (every silhouette edge missed) the pass finds the blind's shadow on
     the floor from its centroid rays alone, by rays at nodes and chords. The certificate's estimate is

@@ -51,7 +51,7 @@ def sphere_over_plate(subdivisions: int) -> object:
 @pytest.mark.parametrize(
     "sun",
     [
-        (0.0, 0.0, 1.0),
+        pytest.param((0.0, 0.0, 1.0), marks=pytest.mark.slow),
         pytest.param((0.4, 0.3, 1.0), marks=pytest.mark.slow),
         pytest.param((-0.9, 0.2, 0.5), marks=pytest.mark.slow),
         (0.2, -1.5, 0.4),
