@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from sunwind.forces.error_estimate import ErrorEstimate, summed
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
-from sunwind.forces.planet.cap import Cap
+from sunwind.forces.planet.cap import Cap, check_cells
 from sunwind.forces.planet.loads import BandLoad, CellSampling, Source, band_loads
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
@@ -197,6 +197,13 @@ def check_step(step_deg: float) -> None:
     """Refuse a cell size of the planet's disc [deg] outside (0, 90]."""
     if not (math.isfinite(step_deg) and 0.0 < step_deg <= 90.0):
         raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
+
+
+def check_cells_at(altitude_km: float, step_deg: float) -> None:
+    """Refuse a cell size [deg] that cuts the Earth's disc seen from ``altitude_km`` into too many cells
+    (:func:`~sunwind.forces.planet.cap.check_cells`), before any work."""
+    radius = planet("earth").radius_m
+    check_cells(math.asin(radius / (radius + altitude_km * 1e3)), step_deg)
 
 
 @dataclass(frozen=True, eq=False)

@@ -25,18 +25,17 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.orbit_path import PATH_OPTIONS, PathRequest, path_request
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
-from sunwind.forces.cli.runs import check_run, run_options, say_interrupted, sweep_run
+from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
 from sunwind.forces.cli.tables import check_distinct, check_image, check_writable
+from sunwind.forces.earth import check_cells_at
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
-from sunwind.forces.gas.flow import EARTH_RADIUS
 from sunwind.forces.model import ModelSource
 from sunwind.forces.orbit import AttitudeLaw, Loads, SpaceWeather, fly
 from sunwind.forces.orbit.attitude import INTERPOLATIONS
 from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
 from sunwind.forces.orbit.flight import check_sun, geodetic
-from sunwind.forces.planet.cap import check_cells
 from sunwind.forces.radiation import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables.checkpoint import check_place
@@ -207,7 +206,7 @@ def orbit(
     inputs = (source.mesh, source.materials, path.tle, path.ephemeris, attitude.path)
     for written in (output["output"], output["plot"]):
         if written is not None:
-            check_distinct(written, *(Path(p) for p in inputs if p is not None))
+            check_distinct(written, *inputs)
     trajectory = path.trajectory()
     lowest = float(geodetic(trajectory)[:, 0].min())
     drag_on = environment.drag if environment.drag is not None else lowest < DRAG_DEFAULT_BELOW_KM
@@ -240,9 +239,8 @@ def orbit(
     if checkpoint is not None:
         check_place(checkpoint)
     if planet is not None:  # the largest cap, at the lowest altitude; --step is the time's here
-        radius = EARTH_RADIUS + max(lowest, 0.0) * 1e3
         try:
-            check_cells(math.asin(EARTH_RADIUS / radius), planet.step_deg)
+            check_cells_at(max(lowest, 0.0), planet.step_deg)
         except InputError as error:
             raise error.renamed({"step_deg": "--earth-step"}) from None
     begin = time.perf_counter()
@@ -255,7 +253,7 @@ def orbit(
         task = bar.add_task("orbit", total=len(trajectory.time_s))
         run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
         loads = Loads(srp, drag, environment.air, output["hinge_step"], planet)
-        try:
+        with interruptible(bar, checkpoint):
             result = fly(
                 model,
                 trajectory,
@@ -266,10 +264,6 @@ def orbit(
                 moon=environment.moon,
                 run=run,
             )
-        except KeyboardInterrupt:
-            bar.stop()
-            say_interrupted(checkpoint)
-            raise
     seconds = time.perf_counter() - start
     steps = len(trajectory.time_s)
     print(

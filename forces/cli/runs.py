@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import shlex
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import click
+from rich.progress import Progress
 
 from sunwind.forces.tables import DEFAULT_CHUNK, SweepRun
 from sunwind.forces.tables.checkpoint import Checkpoint
@@ -60,6 +62,18 @@ def sweep_run(values: dict, checkpoint: Path | None, progress: Callable[[int], N
         progress,
         notice=lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
     )
+
+
+@contextmanager
+def interruptible(bar: Progress, checkpoint: Path | None) -> Iterator[None]:
+    """Run the block; on Ctrl-C stop the progress ``bar`` and say what the run's checkpoint kept and
+    the command that resumes it (:func:`say_interrupted`), then let the interrupt go on."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        bar.stop()
+        say_interrupted(checkpoint)
+        raise
 
 
 def say_interrupted(checkpoint: Path | None) -> None:

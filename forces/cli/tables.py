@@ -39,7 +39,7 @@ from sunwind.forces.cli.options import (
     sun_options,
 )
 from sunwind.forces.cli.report import warn_beyond
-from sunwind.forces.cli.runs import check_run, run_options, say_interrupted, sweep_run
+from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.reflection import ReflectionSettings
@@ -70,7 +70,7 @@ class _RateColumn(ProgressColumn):
 IMAGE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp")
 
 
-def check_image(path: Path, *others: Path | None) -> None:
+def check_image(path: Path, *others: str | Path | None) -> None:
     """Fail now, before any work, when ``path`` is no picture name matplotlib writes, is one of the
     ``others`` (the run's other outputs and its inputs), or cannot be written."""
     if path.suffix.lower() not in IMAGE_SUFFIXES:
@@ -83,7 +83,7 @@ def check_image(path: Path, *others: Path | None) -> None:
     check_writable(path)
 
 
-def check_distinct(output: Path, *others: Path | None) -> None:
+def check_distinct(output: Path, *others: str | Path | None) -> None:
     """Fail when ``output`` is the same file as one of ``others`` (another output, or an input that
     writing it would destroy)."""
     for other in others:
@@ -275,8 +275,7 @@ def sweep_command(
 ) -> None:
     """Force and torque over a grid or list of attitudes, written as a table simulators read; with
     --earth-radiation, the Earth's albedo and infrared over Earth directions, the Sun fixed (--earth-sun)."""
-    inputs = (source.source.mesh, source.source.materials, table.attitudes)
-    check_distinct(table.output, *(Path(p) for p in inputs if p is not None))
+    check_distinct(table.output, source.source.mesh, source.source.materials, table.attitudes)
     stream = flow("drag" in table.kinds)
     setups = {"reflections": reflections, **sampling, "reference_point_m": references["reference_point_m"]}
     srp = SrpSetup(flux_W_m2=sun.flux_W_m2, **setups) if "srp" in table.kinds else None
@@ -324,7 +323,7 @@ def sweep_command(
     with Progress(*columns, transient=True, console=None) as bar:
         task = bar.add_task(f"sweep ({', '.join(table.kinds)})", total=total)
         progress = lambda done: bar.update(task, completed=done)  # noqa: E731
-        try:
+        with interruptible(bar, checkpoint):
             result = sweep(
                 model,
                 srp=srp,
@@ -335,10 +334,6 @@ def sweep_command(
                 hinge_angles=hinge_angles,
                 run=sweep_run(run, checkpoint, progress),
             )
-        except KeyboardInterrupt:
-            bar.stop()
-            say_interrupted(checkpoint)
-            raise
     seconds = time.perf_counter() - start
     written = write(result, table.output, table.format)
     kinds = ", ".join(table.kinds)

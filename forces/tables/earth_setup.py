@@ -19,11 +19,17 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_altitude, check_step, earth_radiation
+from sunwind.forces.earth import (
+    DEFAULT_STEP_DEG,
+    Place,
+    check_altitude,
+    check_cells_at,
+    check_step,
+    earth_radiation,
+)
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
-from sunwind.forces.planet.cap import check_cells
 from sunwind.forces.planet.shadow import sun_behind
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, solar_flux
 from sunwind.forces.reflection import reflection_plan
@@ -110,8 +116,7 @@ class EarthSetup(_Setup):
     def check(self, model: Model) -> None:
         """Refuse, before any work, a model whose materials lack an emissivity, and a cell step that cuts
         the planet's disc into too many cells."""
-        radius = planet("earth").radius_m
-        check_cells(math.asin(radius / (radius + self.altitude_km * 1e3)), self.step_deg)
+        check_cells_at(self.altitude_km, self.step_deg)
         infrared_optics(model.craft)
 
     def precompute(self, model: Model) -> None:

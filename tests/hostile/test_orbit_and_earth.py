@@ -12,22 +12,8 @@ LEO = ["--altitude", "500", "--inclination", "51.6", "--epoch", "2025-03-20T00:0
 SHORT = ["--duration", "600", "--step", "60", "--srp"]
 WARM = ["--emissivity", "0.8"]
 AIR = ["--density", "3e-12", "--temperature", "900", "--composition", "O:1"]
-EARTH = [
-    "earth",
-    "{d}/box.obj",
-    *BOX,
-    *WARM,
-    "--altitude",
-    "500",
-    "--sun",
-    "1",
-    "0",
-    "0",
-    "--earth",
-    "0",
-    "0",
-    "-1",
-]
+PLANET_BELOW = ["--altitude", "500", "--sun", "1", "0", "0", "--earth", "0", "0", "-1"]
+EARTH = ["earth", "{d}/box.obj", *BOX, *WARM, *PLANET_BELOW]
 EARTH_TABLE = ["sweep", "{d}/box.obj", *BOX, *WARM, "--step", "30", "--srp", "--earth-radiation"]
 EARTH_TABLE += ["--earth-altitude", "500", "--earth-sun", "1", "0", "0"]
 ISS_1 = "1 25544U 98067A   25079.50000000  .00016717  00000-0  10270-3 0  9005"
@@ -178,21 +164,7 @@ CASES = {
         ["--earth-step 0.01 cuts"],
     ),
     "no emissivity names --emissivity": (
-        [
-            "earth",
-            "{d}/box.obj",
-            *BOX,
-            "--altitude",
-            "500",
-            "--sun",
-            "1",
-            "0",
-            "0",
-            "--earth",
-            "0",
-            "0",
-            "-1",
-        ],
+        ["earth", "{d}/box.obj", *BOX, *PLANET_BELOW],
         1,
         ["material 'uniform' has no emissivity", "--emissivity E"],
     ),
