@@ -13,7 +13,7 @@ import numpy as np
 import xarray as xr
 
 from sunwind.forces.export.atomic import atomic_text
-from sunwind.forces.tables.dataset import DIRECTION, kinds_of
+from sunwind.forces.tables.dataset import DIRECTION, attribute_text, kinds_of
 
 #: File extension that chooses this format.
 EXTENSION = ".csv"
@@ -60,15 +60,9 @@ def _write_csv_part(table: xr.Dataset, attrs: Mapping[str, object], path: Path) 
             suffixes = "wxyz" if "quaternion_component" in variable.dims else "xyz"
             names += [f"{name}_{c}[{unit}]" for c in suffixes]
         columns.append(values)
-    lines = [f"# {key}: {_text(value)}" for key, value in attrs.items()]
+    lines = [f"# {key}: {attribute_text(value)}" for key, value in attrs.items()]
     body = np.hstack(columns)
     with atomic_text(path) as handle:
         handle.write("\n".join(lines) + "\n" + ",".join(names) + "\n")
         np.savetxt(handle, body, delimiter=",", fmt="%.17g")
     return path
-
-
-def _text(value: object) -> str:
-    if isinstance(value, np.ndarray):
-        return " ".join(f"{v:.17g}" for v in value)
-    return str(value)

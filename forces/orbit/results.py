@@ -10,7 +10,6 @@ turned into GCRF (the inertial momentum the loads build).
 from __future__ import annotations
 
 import csv
-import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,7 +26,7 @@ from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.steps import FLUX, SUN, VELOCITY, OrbitSetup, StepInputs
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
-from sunwind.forces.tables.dataset import model_provenance
+from sunwind.forces.tables.dataset import attribute_text, model_provenance
 from sunwind.geometry.rays.certificate import LoadsError
 
 #: Time series of the output, in order, with their units.
@@ -309,21 +308,10 @@ class OrbitResult:
             columns.append(angles)
             header.append(f"hinge_angle_deg[{pattern}]")
         with Path(path).open("w", newline="") as handle:
-            handle.writelines(
-                f"# {key}: {_attribute_text(value)}\n" for key, value in self.attributes.items()
-            )
+            handle.writelines(f"# {key}: {attribute_text(value)}\n" for key, value in self.attributes.items())
             writer = csv.writer(handle)
             writer.writerow(header)
             writer.writerows(np.stack(columns, axis=1).tolist())
-
-
-def _attribute_text(value: object) -> str:
-    """An attribute on one line of a CSV header: settings as JSON, vectors as numbers."""
-    if isinstance(value, dict):
-        return json.dumps(value)
-    if isinstance(value, list | tuple):
-        return " ".join(f"{v:.17g}" if isinstance(v, float) else str(v) for v in value)
-    return str(value)
 
 
 def _attribute(value: object) -> object:

@@ -217,6 +217,20 @@ def list_table(
     return xr.Dataset(variables, coords=coords, attrs=_attributes({**attrs, "attitudes": attitudes.source}))
 
 
+def attribute_text(value: object) -> str:
+    """An attribute on one line of a CSV header: settings (dicts) as JSON, vectors as numbers to 17
+    digits, anything else as its text.
+
+    >>> attribute_text([0.1, 2.0]), attribute_text({"mode": "full"})
+    ('0.10000000000000001 2', '{"mode": "full"}')
+    """
+    if isinstance(value, dict):
+        return json.dumps(value)
+    if isinstance(value, np.ndarray | list | tuple):
+        return " ".join(f"{v:.17g}" if isinstance(v, float) else str(v) for v in np.ravel(value).tolist())
+    return str(value)
+
+
 def _attributes(attrs: Mapping[str, object]) -> dict:
     """netCDF-safe global attributes (None dropped, dicts as JSON text, booleans as 0/1)."""
     out: dict = {"Conventions": CF_CONVENTIONS, "comment": CONVENTIONS}
