@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 import click
 
 from sunwind.forces.cli.earth import (
@@ -12,7 +14,7 @@ from sunwind.forces.cli.earth import (
     earth_term_options,
     print_earth,
 )
-from sunwind.forces.cli.free_stream import FreeStream, flow_options
+from sunwind.forces.cli.free_stream import FreeStream, flow_options, refuse_without_flow
 from sunwind.forces.cli.options import (
     Sun,
     drag_only,
@@ -96,7 +98,7 @@ def drag(
 @click.command()
 @model_options(gas=True)
 @sun_options()
-@flow_options(directed=True)
+@flow_options(directed=True, optional=True)
 @reference_options(sizes=True)
 @sampling_options
 @reflection_options("both")
@@ -113,13 +115,21 @@ def forces(
     as_json: bool,
 ) -> None:
     """Solar-radiation pressure and free-molecular drag together for one attitude, and their total
-    (with --earth-radiation, the Earth's albedo and infrared too, and --thermal the thermal recoil)."""
+    (with --earth-radiation, the Earth's albedo and infrared too, and --thermal the thermal recoil;
+    without a flow direction, no drag: SRP and the Earth's terms, as in GEO)."""
     model = posed(loaded(source, **references), sun.vector, "forces")
     if earth is not None:
         infrared_optics(model.craft)  # a missing emissivity refused before any work
     light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
-    gas = _drag(model, flow, reflections, sampling)
-    estimates = {"srp": light.error_estimate, "drag": gas.error_estimate}
+    if flow.velocity_m_s is None:
+        refuse_without_flow(["--" + key.replace("_", "-") for key, _ in source.gas])
+        print(
+            "sunwind: notice: no flow direction (--velocity or --flow-azel): no drag; the total is SRP"
+            " (and the Earth's terms with --earth-radiation)",
+            file=sys.stderr,
+        )
+    gas = None if flow.velocity_m_s is None else _drag(model, flow, reflections, sampling)
+    estimates = {"srp": light.error_estimate} | ({} if gas is None else {"drag": gas.error_estimate})
     if earth is None:
         if as_json:
             print_json(model.craft, forces_document(light, gas))

@@ -242,7 +242,7 @@ def earth_at(
     sampling: dict,
 ) -> tuple[EarthResult, ThermalState]:  # fmt: skip
     """:func:`radiation` for ``sunwind forces``: the Earth along ``--earth``, ``--altitude`` and
-    ``--time`` from the flow options, the Sun's share behind the Earth by the conical model."""
+    ``--epoch`` from the flow options, the Sun's share behind the Earth by the conical model."""
     if request.nadir is None or where.altitude_km is None:
         raise InputError(
             "--earth-radiation needs --earth X Y Z (body-frame direction to the Earth's centre) and "

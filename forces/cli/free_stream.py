@@ -4,18 +4,20 @@ Either ``--velocity X Y Z`` (``v_rel`` in the body frame, m/s) or ``--flow-azel 
 ``--speed V``, else the circular-orbit speed at ``--altitude``. With ``--corotating``, ``--flow-azel``
 is the direction of the orbit's inertial velocity, and ``v_rel`` is that velocity less the air turning
 with the Earth, for the ``--heading`` of the orbit at ``--lat``, its crosswind placed by ``--nadir``. Either
-NRLMSIS at ``--altitude`` (place, time and indices optional) or ``--density``, ``--temperature`` and
+NRLMSIS at ``--altitude`` (place, ``--epoch`` and indices optional) or ``--density``, ``--temperature`` and
 ``--composition`` together. A sweep takes the flow directions from its grid or list: it needs only the
 speed.
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import click
 import numpy as np
+from click.core import ParameterSource
 from numpy.typing import NDArray
 
 from sunwind.forces.cli.options import group
@@ -47,6 +49,10 @@ class FreeStream:
     #: where the spacecraft is, as given (for the Earth's radiation): ``--altitude`` [km], ``--time``
     altitude_km: float | None = None
     time: str | None = None
+
+
+#: The NRLMSIS date when none is given.
+DEFAULT_EPOCH = "2024-01-01T00:00:00Z"
 
 
 _FLOW = [
@@ -96,7 +102,14 @@ _AIR = [
     click.option("--altitude", type=float, help="Altitude [km] for NRLMSIS 2.1 (and the orbit speed)."),
     click.option("--lat", type=float, default=0.0, show_default=True, help="Geodetic latitude [deg]."),
     click.option("--lon", type=float, default=0.0, show_default=True, help="Longitude [deg]."),
-    click.option("--time", default="2024-01-01T00:00:00Z", show_default=True, help="UTC time, ISO 8601."),
+    click.option(
+        "--epoch",
+        "time",
+        default=DEFAULT_EPOCH,
+        show_default=True,
+        help="UTC date and time, ISO 8601 (NRLMSIS; with --earth-radiation, the albedo's season).",
+    ),
+    click.option("--time", "old_time", hidden=True, help="The former name of --epoch."),
     click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
     click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
     click.option("--ap", type=float, default=4.0, show_default=True, help="Daily Ap index."),
@@ -115,22 +128,70 @@ _AIR = [
 ]
 
 
-def flow_options(directed: bool) -> Callable:
+def flow_options(directed: bool, optional: bool = False) -> Callable:
     """The flow and atmosphere flags: keyword ``flow``.
 
     ``directed``: the command takes the flow's direction (``--velocity`` or ``--flow-azel``), and
     ``flow`` is a :class:`FreeStream`; else (a sweep) only its speed, and ``flow`` is a function
-    ``flow(drag_wanted) -> FreeStream``: a sweep of SRP alone needs no atmosphere.
+    ``flow(drag_wanted) -> FreeStream``: a sweep of SRP alone needs no atmosphere. ``optional``
+    (``forces``): without a flow direction there is no drag and the flow's other flags are refused;
+    ``flow`` then has no velocity, speed or atmosphere.
     """
 
     def build(values: dict):
+        _epoch(values)
         if directed:
+            if optional and values["velocity"] is None and values["flow_azel"] is None:
+                return _no_flow(values)
             return _free_stream(values, directed)
         return lambda drag_wanted: (
             _free_stream(values, directed) if drag_wanted else FreeStream(None, None, None)
         )
 
     return group("flow", _FLOW + _SPEED + _AIR, build)
+
+
+def _epoch(values: dict) -> None:
+    """Take ``--time``, the former name of ``--epoch``, into ``values["time"]``, with a warning."""
+    old = values.pop("old_time")
+    if old is None:
+        return
+    if _given("time"):
+        raise InputError("--time is the former name of --epoch: give the date once", hint="drop --time")
+    warnings.warn("--time is now called --epoch; it was taken as --epoch", FutureWarning, stacklevel=2)
+    values["time"] = old
+
+
+def _given(name: str) -> bool:
+    """Whether the option of keyword ``name`` was given on the command line (or in the environment)."""
+    source = click.get_current_context().get_parameter_source(name)
+    return source in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT)
+
+
+#: The flow flags that mean nothing without a flow direction, by keyword.
+_FLOW_ONLY = {
+    "speed": "--speed", "corotating": "--corotating", "heading": "--heading", "nadir": "--nadir",
+    "lat": "--lat", "lon": "--lon", "f107": "--f107", "f107a": "--f107a", "ap": "--ap",
+    "density": "--density", "temperature": "--temperature", "composition": "--composition",
+    "normalise_composition": "--normalise-composition", "sky_rays": "--sky-rays",
+}  # fmt: skip
+
+
+def refuse_without_flow(flags: list[str]) -> None:
+    """Refuse in one line the drag's ``flags`` given to ``forces`` without a flow direction."""
+    if flags:
+        raise InputError(
+            f"{', '.join(flags)} {'sets' if len(flags) == 1 else 'set'} the drag, which needs the flow's "
+            "direction",
+            hint="add --velocity X Y Z or --flow-azel AZ EL, or drop them for SRP alone",
+        )
+
+
+def _no_flow(values: dict) -> FreeStream:
+    """The flow of ``forces`` without ``--velocity`` or ``--flow-azel``: none, so no drag;
+    ``--altitude`` and ``--epoch`` still place the Earth's radiation."""
+    refuse_without_flow([flag for key, flag in _FLOW_ONLY.items() if _given(key)])
+    return FreeStream(None, None, None, altitude_km=values["altitude"], time=values["time"])
 
 
 def _free_stream(values: dict, directed: bool) -> FreeStream:

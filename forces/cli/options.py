@@ -46,7 +46,7 @@ FLAGS = {
     "altitude_km": "--altitude",
     "latitude_deg": "--lat",
     "longitude_deg": "--lon",
-    "time": "--time",
+    "time": "--epoch",
     "f107": "--f107",
     "f107a": "--f107a",
     "ap": "--ap",

@@ -181,19 +181,21 @@ def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
     print(f"  validity         {VALIDITY}")
 
 
-def _total(light: SrpResult, gas: DragResult, extra: Terms) -> tuple[np.ndarray, np.ndarray]:
-    """Force [N] and torque [N m] of SRP, drag and the ``extra`` terms together."""
-    force = light.force_N + gas.force_N + sum((f for _, f, _ in extra), np.zeros(3))
-    torque = light.torque_Nm + gas.torque_Nm + sum((t for _, _, t in extra), np.zeros(3))
+def _total(light: SrpResult, gas: DragResult | None, extra: Terms) -> tuple[np.ndarray, np.ndarray]:
+    """Force [N] and torque [N m] of SRP, drag (None: none) and the ``extra`` terms together."""
+    results = [light] if gas is None else [light, gas]
+    force = sum((r.force_N for r in results), np.zeros(3)) + sum((f for _, f, _ in extra), np.zeros(3))
+    torque = sum((r.torque_Nm for r in results), np.zeros(3)) + sum((t for _, _, t in extra), np.zeros(3))
     return force, torque
 
 
 def total_estimate(
-    light: SrpResult, gas: DragResult, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
+    light: SrpResult, gas: DragResult | None, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
 ) -> ErrorEstimate | None:
-    """The shadow passes' estimated error of the total of SRP, drag and the ``extra`` terms, relative:
-    the absolute errors of both results and ``errors`` (those of the extra terms that have one) added."""
-    error = summed([light.shadow_error, gas.shadow_error, *errors])
+    """The shadow passes' estimated error of the total of SRP, drag (None: none) and the ``extra``
+    terms, relative: the absolute errors of the results and ``errors`` (those of the extra terms that
+    have one) added."""
+    error = summed([light.shadow_error, None if gas is None else gas.shadow_error, *errors])
     if error is None:
         return None
     force, torque = _total(light, gas, extra)
@@ -201,11 +203,11 @@ def total_estimate(
 
 
 def forces_document(
-    light: SrpResult, gas: DragResult, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
+    light: SrpResult, gas: DragResult | None, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
 ) -> dict:
-    """The JSON document of ``sunwind forces``: both results, the ``extra`` terms' loads (name, force
-    [N], torque [N m]) and the total of all, with its :func:`total_estimate` (``errors``: the extra
-    terms' absolute shadow errors)."""
+    """The JSON document of ``sunwind forces``: both results (``drag`` null without a flow), the
+    ``extra`` terms' loads (name, force [N], torque [N m]) and the total of all, with its
+    :func:`total_estimate` (``errors``: the extra terms' absolute shadow errors)."""
     force, torque = _total(light, gas, extra)
     estimate = total_estimate(light, gas, extra, errors)
     total = {
@@ -216,14 +218,14 @@ def forces_document(
         "frame": FRAME,
         "error_estimate": None if estimate is None else estimate.to_json(),
     }
-    return {"srp": light.to_json(), "drag": gas.to_json(), "total": total}
+    return {"srp": light.to_json(), "drag": None if gas is None else gas.to_json(), "total": total}
 
 
 def print_forces(
-    light: SrpResult, gas: DragResult, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
+    light: SrpResult, gas: DragResult | None, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
 ) -> None:
-    """The human-readable report of ``sunwind forces`` (the total with the ``extra`` terms, whose
-    absolute shadow errors are ``errors``)."""
+    """The human-readable report of ``sunwind forces`` (the total with drag unless ``gas`` is None, and
+    the ``extra`` terms, whose absolute shadow errors are ``errors``)."""
     craft = light.craft
     force, torque = _total(light, gas, extra)
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
@@ -235,4 +237,7 @@ def print_forces(
     print(f"  srp force    [N]    {vector(light.force_N)}  (sun {vector(light.sun_vector, '{:+.4f}')})")
     print(f"  srp torque   [N m]  {vector(light.torque_Nm)}")
     print(f"  srp shadow error    {estimated(light.error_estimate)}")
-    print_drag(gas, "  drag:", hinges=False)
+    if gas is None:
+        print("  drag:            none (no flow direction: --velocity or --flow-azel)")
+    else:
+        print_drag(gas, "  drag:", hinges=False)

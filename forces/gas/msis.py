@@ -197,7 +197,7 @@ def parse_time(time: str | datetime | date | np.datetime64) -> datetime:
             when = datetime.fromisoformat(iso)
         except ValueError:
             raise InputError(
-                f"time '{text}' is not an ISO 8601 date or time",
+                f"time '{text}' is not an ISO 8601 date",
                 hint="e.g. 2024-01-01 or 2024-01-01T12:00:00Z (UTC unless an offset is given)",
                 parameters=("time",),
             ) from None

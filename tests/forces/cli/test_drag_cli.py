@@ -179,10 +179,10 @@ def bad_drag_inputs(tmp_path, mesh):
         (["drag", mesh, *velocity, "--altitude", "3000", *SPHERE_ARGS], ["--altitude", "2000"]),
         (["drag", mesh, *velocity, "--altitude", "-10", *SPHERE_ARGS], ["--altitude"]),
         (
-            ["drag", mesh, *velocity, "--altitude", "400", "--time", "1850-01-01", *SPHERE_ARGS],
-            ["--time", "1958"],
+            ["drag", mesh, *velocity, "--altitude", "400", "--epoch", "1850-01-01", *SPHERE_ARGS],
+            ["--epoch", "1958"],
         ),
-        (["drag", mesh, *velocity, "--altitude", "400", "--time", "yesterday", *SPHERE_ARGS], ["--time"]),
+        (["drag", mesh, *velocity, "--altitude", "400", "--epoch", "yesterday", *SPHERE_ARGS], ["--epoch"]),
         (["drag", mesh, "--velocity", "0", "0", "0", *EXPLICIT_AIR, *SPHERE_ARGS], ["velocity", "zero"]),
         (["drag", mesh, *EXPLICIT_AIR, *SPHERE_ARGS], ["--velocity", "--flow-azel"]),
         (["drag", mesh, "--flow-azel", "0", "0", *EXPLICIT_AIR, *SPHERE_ARGS], ["--speed"]),

@@ -158,3 +158,59 @@ def test_the_plate_mode_casts_no_ray_and_says_so(run_cli, sphere):
     assert code == 0, err
     doc = json.loads(out)
     assert doc["rays"] == 0 and doc["reflections"] == "plates"
+
+
+def _geo(folder, *extra):
+    """``forces`` in GEO: SRP and the Earth's terms, no flow."""
+    return [
+        "forces", folder / "sphere.obj", "-m", folder / "black.toml", "--sun", "0.6", "0", "-0.8",
+        "--altitude", "35786", "--earth-radiation", "--earth", "0", "0", "1", "--json", *extra,
+    ]  # fmt: skip
+
+
+def test_forces_without_a_flow_is_srp_and_the_earth_terms_with_a_notice(run_cli, sphere):
+    code, out, err = run_cli(*_geo(sphere))
+    assert code == 0, err
+    assert "notice: no flow direction" in err and "no drag" in err
+    doc = json.loads(out)
+    assert doc["drag"] is None
+    total = sum(np.array(doc[key]["force_N"]) for key in ("srp", "albedo", "infrared"))
+    assert np.allclose(doc["total"]["force_N"], total, rtol=1e-14, atol=0)
+    code, out, err = run_cli(*_geo(sphere)[:-1])
+    assert code == 0 and "drag:            none (no flow direction" in out, err
+
+
+def test_forces_takes_the_albedo_season_from_epoch_as_earth_does(run_cli, sphere):
+    knocke = ["--albedo-model", "knocke", "--pole", "0", "1", "0"]
+    albedo = {}
+    for epoch in ("2024-01-01", "2024-07-01"):
+        code, out, err = run_cli(*_geo(sphere, *knocke, "--epoch", epoch))
+        assert code == 0, err
+        albedo[epoch] = json.loads(out)["albedo"]["force_N"]
+        args = _args(sphere, "--altitude", "35786", "--sun", "0.6", "0", "-0.8", *knocke, "--json")
+        args[7] = "1"  # the Earth along +z, as in _geo
+        code, out, err = run_cli(*args, "--epoch", epoch)
+        assert code == 0, err
+        assert json.loads(out)["albedo"]["force_N"] == albedo[epoch]  # the same date, the same albedo
+    assert albedo["2024-01-01"] != albedo["2024-07-01"]  # the season enters
+
+
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--f107", "100"], "--f107 sets the drag, which needs the flow's direction"),
+        (["--density", "1e-12"], "--density sets the drag"),
+        (["--gsi", "cll", "--wall-temperature", "200"], "--gsi, --wall-temperature set the drag"),
+        (["--time", "2024-01-01", "--epoch", "2024-01-02"], "--time is the former name of --epoch"),
+    ],
+)
+def test_forces_without_a_flow_refuses_the_drag_flags(run_cli, sphere, extra, message):
+    code, out, err = run_cli(*_geo(sphere, *extra))
+    assert code == 1 and out == ""
+    assert err.startswith("sunwind: error:") and message in err and err.count("\n") == 1, err
+
+
+def test_time_is_taken_as_epoch_with_a_warning(run_cli, sphere):
+    code, out, err = run_cli(*_forces(sphere, "--time", "2020-06-01", "--json"))
+    assert code == 0 and "warning: --time is now called --epoch" in err, err
+    assert "2020-06-01" in json.loads(out)["drag"]["atmosphere"]["source"]

@@ -41,7 +41,7 @@ def test_an_error_renamed_writes_the_flags_of_its_parameters_only():
         (["srp", SAMPLE, "--sun", "1", "0", "0", "--view-rays", "0"], "--view-rays 0 must be at least 1"),
         (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "-5"], "--altitude -5.0 km is below 0"),
         (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "400", "--lat", "95"], "--lat 95.0 deg"),
-        (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "400", "--time", "soon"], "--time 'soon'"),
+        (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "400", "--epoch", "soon"], "--epoch 'soon'"),
         (["sweep", SAMPLE, "--srp", "--step", "7", "-o", "{tmp}/t.nc"], "--step 7 deg does not divide"),
         (["sweep", SAMPLE, "--srp", "--step", "90", "--chunk", "0", "-o", "{tmp}/t.nc"], "--chunk 0 must be"),
         (
