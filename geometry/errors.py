@@ -140,11 +140,20 @@ def renamed_parameters(text: str, parameters: Sequence[str], names: Mapping[str,
     return text
 
 
-class UnitWarning(UserWarning):
-    """A value whose size suggests a slip of unit (km/s typed for m/s, a model in mm read as metres):
-    the run goes on with the value as given. ``parameters`` are the Python parameters the message
-    names, which the command line writes as its flags."""
+class FlaggedWarning(UserWarning):
+    """A warning whose message names Python ``parameters``, which the command line writes as its
+    flags (:func:`renamed_parameters`)."""
 
     def __init__(self, message: str, parameters: tuple[str, ...] = ()) -> None:
         super().__init__(message)
         self.parameters = parameters
+
+
+class UnitWarning(FlaggedWarning):
+    """A value whose size suggests a slip of unit (km/s typed for m/s, a model in mm read as metres):
+    the run goes on with the value as given."""
+
+
+class ReferencePointWarning(FlaggedWarning):
+    """A table file whose moments are not about the table's reference point, or whose reading program
+    must be told the point: the file is written, the warning says what was done and what to set there."""

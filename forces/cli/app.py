@@ -19,7 +19,7 @@ from sunwind.forces.cli.earth import earth
 from sunwind.forces.cli.mesh import info, mesh
 from sunwind.forces.cli.options import FLAGS
 from sunwind.forces.cli.orbit import orbit
-from sunwind.forces.cli.progress import StepLines
+from sunwind.forces.cli.progress import StepLines, compile_notices
 from sunwind.forces.cli.tables import plot, sweep_command
 from sunwind.forces.cli.tools import bench, validate
 from sunwind.geometry.errors import SunwindError, renamed_parameters
@@ -70,7 +70,7 @@ def main(argv: list[str] | None = None) -> None:
     shown = warnings.showwarning
     warnings.showwarning = one_line
     try:
-        with reporting(StepLines()):
+        with reporting(StepLines()), compile_notices():
             args = sys.argv[1:] if argv is None else list(argv)
             app.main(args=args, prog_name="sunwind", standalone_mode=False, obj={"argv": args})
     except SunwindError as error:

@@ -5,9 +5,13 @@ the same in a log and pass above the sweep's progress bar."""
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import threading
 import time
+
+from numba.core import event
+from numba.core.dispatcher import Dispatcher
 
 #: Seconds a step runs before it is shown.
 DELAY = 1.0
@@ -60,4 +64,58 @@ class StepLines:
 
     @staticmethod
     def _print(text: str) -> None:
-        print(f"sunwind: {text}", file=sys.stderr, flush=True)
+        with _PRINTING:  # one write per line: steps shown from timer threads never share a line
+            sys.stderr.write(f"sunwind: {text}\n")
+            sys.stderr.flush()
+
+
+_PRINTING = threading.Lock()
+
+#: Seconds numba takes to compile one of sunwind's kernels, on average: the README's quick-start sweep
+#: compiled 92 in about 70 s on a 2-core machine (README "First run").
+COMPILE_S = 0.75
+
+
+class CompileNotice(event.Listener):
+    """A numba event listener saying, once, on the first compilation of a run (a kernel with no
+    compiled copy on disk: a first run, or a new version), that kernels are being compiled and about
+    how long it takes at most, so the wait is not taken for a hang."""
+
+    def __init__(self) -> None:
+        self._said = threading.Event()
+
+    def on_start(self, event: event.Event) -> None:
+        if self._said.is_set():
+            return
+        self._said.set()
+        missing = uncompiled_kernels()
+        print(
+            f"sunwind: notice: compiling numba kernels on first use ({missing} not on disk yet; about "
+            f"{max(1, round(missing * COMPILE_S))} s at most, once: later runs load them from disk)",
+            file=sys.stderr,
+            flush=True,
+        )
+
+    def on_end(self, event: event.Event) -> None:
+        pass
+
+
+def compile_notices() -> contextlib.AbstractContextManager:
+    """A context in which numba's first compilation prints the :class:`CompileNotice`."""
+    return event.install_listener("numba:compile", CompileNotice())
+
+
+def uncompiled_kernels() -> int:
+    """How many numba kernels of the imported sunwind modules have no valid compiled copy in numba's
+    on-disk cache (0 when numba's cache layout is not the one known here)."""
+    kernels = {
+        id(value): value
+        for name, module in list(sys.modules.items())
+        if name.startswith("sunwind.") and module is not None
+        for value in vars(module).values()
+        if isinstance(value, Dispatcher) and value.__module__ == name
+    }
+    try:
+        return sum(1 for kernel in kernels.values() if not kernel._cache._cache_file._load_index())
+    except AttributeError:  # numba internals of another version: say nothing rather than guess
+        return 0

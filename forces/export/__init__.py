@@ -4,6 +4,12 @@ Tudat's aerodynamic coefficient files (METHOD.md "Outputs and tables").
 
 :func:`write` writes any of them; the format is named or read from the file's extension (a name
 without one gets the format's; an extension of another format is refused).
+
+The table's torque reference point: netCDF and CSV keep it as an attribute; a SPAD file holds forces only,
+and its header says the point does not enter; Basilisk's format fixes the body-frame origin B, so the
+torques are moved there, and a point other than the origin gives a :class:`ReferencePointWarning`; Tudat's
+files keep the moments about the point, which Tudat is to be given as ``moment_reference_point`` (a
+default point gives the warning). Each file states the point.
 """
 
 from __future__ import annotations
@@ -18,7 +24,7 @@ import xarray as xr
 
 from sunwind.forces.export import basilisk, csv, netcdf, spad, tudat
 from sunwind.forces.tables.dataset import kinds_of, one_pose
-from sunwind.geometry.errors import InputError
+from sunwind.geometry.errors import InputError, ReferencePointWarning
 
 
 @dataclass(frozen=True)
@@ -126,6 +132,9 @@ def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None)
     -----
     UserWarning
         The table holds a quantity the format has no place for (it is not written).
+    ReferencePointWarning
+        Basilisk: the reference point is not the body-frame origin, to which the torques were moved;
+        Tudat: the reference point is a default, which Tudat is to be given (the formats' writers).
     """
     name, target = output_target(path, format)
     spec = FORMATS[name]
@@ -146,4 +155,12 @@ def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None)
     return spec.write(table, target)
 
 
-__all__ = ["FORMATS", "Format", "check_request", "format_of", "output_target", "write"]
+__all__ = [
+    "FORMATS",
+    "Format",
+    "ReferencePointWarning",
+    "check_request",
+    "format_of",
+    "output_target",
+    "write",
+]

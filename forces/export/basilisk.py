@@ -19,8 +19,13 @@ Conventions (``RadiationPressure::computeLookupModel``, radiationPressure.cpp):
 - ``force_B`` [N] and ``torque_B`` [N m] are at 1 au; Basilisk scales both by ``(1 au / r)^2`` and by the
   eclipse illumination factor. They are written here at ``SOLAR_FLUX_1AU`` = 1361 W/m^2 (the table's
   force times 1361 / ``flux_W_m2``); Basilisk's cannonball model uses its own 1 au flux constant instead;
-- ``torque_B`` is the torque about point B, the origin of the body frame: the table's torque about its
-  reference point ``r_ref`` is moved to the origin, ``M_B = M_ref + r_ref x F``.
+- ``torque_B`` is the torque about point B, the origin of the body frame: the format fixes the point, so
+  the table's torque about its reference point ``r_ref`` is moved to the origin, ``M_B = M_ref + r_ref x F``.
+  Basilisk applies it unchanged as ``torqueExternalPntB_B``; its spacecraft's equations of motion are
+  written about B and take the centre of mass from the hub's ``r_BcB_B`` (from B to the centre of mass).
+  The mesh origin must therefore be B, and ``r_BcB_B`` the centre of mass in mesh coordinates. A comment
+  in the file names the reference point the torques were moved from; one that is not the origin (to the
+  micrometre) also gives a :class:`ReferencePointWarning` at write time, saying so and what to set.
 
 Sampling: Basilisk picks the entry whose ``sHat_B`` has the largest dot product with the Sun direction (no
 interpolation), so the direction it uses is off by up to half a grid cell's diagonal: about ``h / sqrt(2)``
@@ -36,6 +41,7 @@ all entries at every step, so the lookup costs time in proportion to their numbe
 
 from __future__ import annotations
 
+import warnings
 from importlib.metadata import version
 from pathlib import Path
 
@@ -45,8 +51,9 @@ from numpy.typing import NDArray
 
 from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
+from sunwind.forces.tables.dataset import ReferencePoint
 from sunwind.forces.tables.interpolation import azel_directions, grid_axes
-from sunwind.geometry.errors import InputError
+from sunwind.geometry.errors import InputError, ReferencePointWarning
 
 #: File extension that chooses this format.
 EXTENSION = ".xml"
@@ -67,6 +74,9 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
     A grid table gives one entry per distinct direction: the duplicated azimuth +180 column is left out
     and each pole is written once (its row's mean over azimuth). A list table gives one entry per attitude.
 
+    The torques are written about the body-frame origin B, which the format fixes:
+    ``M_B = M_ref + r_ref x F`` for the table's reference point ``r_ref``, which a comment names.
+
     Returns
     -------
     Path
@@ -76,6 +86,12 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
     ------
     InputError
         The table has no SRP results, or no positive ``flux_W_m2``.
+
+    Warns
+    -----
+    ReferencePointWarning
+        The reference point is not the origin: the torques were moved to B, and Basilisk needs the
+        centre of mass relative to B in the hub's ``r_BcB_B``.
     """
     missing = [name for name in ("srp_force_N", "srp_torque_Nm") if name not in table.data_vars]
     if missing:
@@ -89,10 +105,10 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
             "the table's flux_W_m2 attribute is missing or not positive", hint="re-run the sweep"
         )
     sun, force, torque = _entries(table)
-    reference = np.asarray(table.attrs.get("reference_point_m", (0.0, 0.0, 0.0)), dtype=np.float64)
+    reference = ReferencePoint.of(table.attrs)
     scale = SOLAR_FLUX_1AU / flux
     force_1au = force * scale
-    torque_1au = (torque + np.cross(reference, force)) * scale
+    torque_1au = (torque + np.cross(reference.point_m, force)) * scale
     index = np.arange(len(sun), dtype=np.float64)[:, None]
     blocks = [
         f"   <{block}>\n"
@@ -108,12 +124,29 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
         f"sunwind {table.attrs.get('sunwind_version', version('sunwind'))}; mesh sha256 "
         f"{table.attrs.get('mesh_sha256', 'n/a')}; sHat_B unit spacecraft-to-Sun, body frame; force_B [N] "
         f"and torque_B [N m] about the body-frame origin B at 1 au ({SOLAR_FLUX_1AU:g} W/m^2), fully lit"
-    ).replace("--", "- -")
+    )
+    moved = (
+        f"reference point of the table's torques: {reference}; torque_B = M_ref + r_ref x F is about B, "
+        "the point the format fixes (B: the mesh origin; the hub's r_BcB_B: the centre of mass from B)"
+    )
     out = Path(path)
     with atomic_text(out) as stream:
         stream.write(
             '<?xml version="1.0" encoding="utf-8"?>\n'
-            f"<!-- {note} -->\n<srp_values>\n" + "".join(blocks) + "</srp_values>\n"
+            + "".join(f"<!-- {_comment(text)} -->\n" for text in (note, moved))
+            + "<srp_values>\n"
+            + "".join(blocks)
+            + "</srp_values>\n"
+        )
+    if not reference.at_origin:
+        warnings.warn(
+            f"Basilisk lookup {out.name}: torque_B is about the body-frame origin B, which the format "
+            f"fixes: the torques about the reference point {reference} were moved there "
+            "(M_ref + r_ref x F); in Basilisk make B the mesh origin and set the hub's r_BcB_B to the "
+            f"centre of mass relative to B ({reference.coordinates} if that is the reference point): the "
+            "lookup gives the torque about B, Basilisk's dynamics take the centre of mass from r_BcB_B",
+            ReferencePointWarning,
+            stacklevel=2,
         )
     return out
 
@@ -141,3 +174,8 @@ def _entries(table: xr.Dataset) -> tuple[NDArray, NDArray, NDArray]:
         return np.vstack([values[:, 1:-1].reshape(-1, 3), pole_values])
 
     return np.vstack([sun, poles]), distinct(force), distinct(torque)
+
+
+def _comment(text: str) -> str:
+    """``text`` as the body of an XML comment, which may hold no ``--``."""
+    return text.replace("--", "- -")

@@ -2,7 +2,9 @@
 
 Format, as GMAT R2020a's ``SPADFileReader`` (src/base/util/SPADFileReader.cpp) parses it:
 
-- header lines ``key : value`` (one colon each; GMAT reads only ``Analysis Type``, which must be ``Area``);
+- header lines ``key : value`` (one colon each; GMAT reads only ``Analysis Type``, which must be ``Area``,
+  skips lines starting ``Current`` and ignores every other key; a key must not start ``Motion`` or
+  ``Azimuth``, which end the header);
 - ``Motion : 1`` with ``Name : Azimuth`` and ``Motion : 2`` with ``Name : Elevation``, each with
   ``Method : Step``, ``Minimum``, ``Maximum`` (-180/180 and -90/90) and ``Step`` (a positive whole number of
   degrees: GMAT reads it as an integer and looks rows up at integer angles); then ``: END``;
@@ -23,6 +25,11 @@ in the body frame and applies ``a = -1/2 rho |v_rel|^2 A / m``. The row at (az, 
 grid must contain it (an azimuth step that divides 180). ``A`` is then about ``C_D x area`` along ``+u``.
 The area is exact for the table's density, speed, temperature and composition only: free-molecular
 coefficients depend on the speed ratio and the wall temperature.
+
+Torque: none. The rows are area vectors, from which GMAT computes forces only, so the table's torque
+reference point does not enter a SPAD file. The header says so (``Holds``), and states the frame
+(``Frame``), the reference point and what it is (``Reference Point``) and the provenance (``Version``,
+``System``, ``Mesh SHA256``, ``Materials SHA256``): keys GMAT's reader passes over.
 """
 
 from __future__ import annotations
@@ -37,7 +44,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure
-from sunwind.forces.tables.dataset import kinds_of
+from sunwind.forces.tables.dataset import ReferencePoint, kinds_of
 from sunwind.forces.tables.interpolation import check_step, grid_axes
 from sunwind.geometry.errors import InputError
 
@@ -229,6 +236,9 @@ def _header(table: xr.Dataset, kind: str, az_step: float, el_step: float, count:
         "Pressure": "1",
         "Table": quantity,
         "Direction": direction,
+        "Frame": attrs.get("frame", "body frame of the mesh"),
+        "Holds": "forces only (area vectors); GMAT computes no torque from a SPAD file",
+        "Reference Point": f"{ReferencePoint.of(attrs)}, of the table's torques; it does not enter the areas",
         "Mesh SHA256": attrs.get("mesh_sha256", "n/a"),
         "Materials SHA256": attrs.get("materials_sha256", "n/a"),
     }

@@ -26,6 +26,15 @@ C_D, C_S, C_L, does not apply), ``moment_coefficients_frame = body_fixed_frame_c
 area, length and moment reference point returned in :class:`TudatFiles`. Every file repeats these in its
 comments.
 
+Reference point: the format takes one, so the moments stay about the table's point ``r_ref``. Given it
+as ``moment_reference_point`` (``tabulated_from_files``, whose C++ reader
+``readTabulatedAerodynamicCoefficientsFromFiles`` then sets ``addForceContributionToMoments``), Tudat
+moves the moments to the body's centre of mass ``r_com`` as it flies, adding ``(r_ref - r_com) x C_F /
+L_ref`` (``AerodynamicMomentContributionInterface::getMomentCoefficientsCorrection``); left at its
+default, NaN, it takes them as about the centre of mass. The comments name the point and that setting; a
+default reference point (a centroid, not the centre of mass) also gives a
+:class:`~sunwind.geometry.errors.ReferencePointWarning` at write time, naming what to pass.
+
 Grid: the alpha/beta nodes are not the table's azimuth/elevation nodes, so every value is computed from the
 table by :class:`sunwind.forces.tables.interpolation.TableInterpolator` (bicubic by default) at the direction
 of each
@@ -35,6 +44,7 @@ table's atmosphere only (speed ratio, temperature, composition).
 
 from __future__ import annotations
 
+import warnings
 from importlib.metadata import version
 from pathlib import Path
 from typing import Literal, NamedTuple
@@ -44,8 +54,9 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from sunwind.forces.export.atomic import atomic_text
+from sunwind.forces.tables.dataset import ReferencePoint
 from sunwind.forces.tables.interpolation import TableInterpolator, check_step, grid_axes
-from sunwind.geometry.errors import InputError
+from sunwind.geometry.errors import InputError, ReferencePointWarning
 
 #: File extension that chooses this format: none (a prefix names six files).
 EXTENSION = None
@@ -61,7 +72,7 @@ class TudatFiles(NamedTuple):
     moment: dict[int, Path]  # 0, 1, 2 -> C_Mx, C_My, C_Mz files
     reference_area_m2: float
     reference_length_m: float
-    moment_reference_point_m: tuple[float, float, float]
+    moment_reference_point_m: tuple[float, float, float]  # the table's: Tudat's moment_reference_point
 
 
 def flow_vector(alpha_rad: NDArray, beta_rad: NDArray) -> NDArray[np.float64]:
@@ -112,6 +123,12 @@ def write_tudat(
     InputError
         A list table, no drag results, a step that does not divide its range, or missing or non-positive
         ``dynamic_pressure_Pa``, ``reference_area_m2`` or ``reference_length_m``.
+
+    Warns
+    -----
+    ReferencePointWarning
+        The table's reference point is a default (a centroid): Tudat, left without
+        ``moment_reference_point``, would take the moments as about the centre of mass.
     """
     missing = [name for name in ("drag_force_N", "drag_torque_Nm") if name not in table.data_vars]
     if missing:
@@ -139,7 +156,7 @@ def write_tudat(
         "F": loads.force_N / q_s,
         "M": loads.torque_Nm / (q_s * reference["reference_length_m"]),
     }
-    point = tuple(float(v) for v in table.attrs.get("reference_point_m", (0.0, 0.0, 0.0)))
+    point = ReferencePoint.of(table.attrs)
     comments = _comments(table, reference, point, method)
     base = Path(prefix)
     files: dict[str, dict[int, Path]] = {"F": {}, "M": {}}
@@ -154,8 +171,21 @@ def write_tudat(
                 np.savetxt(stream, beta[None, :], fmt="%.17g")
                 np.savetxt(stream, values[..., index], fmt="%.17g")
             files[kind][index] = path
+    if point.name.endswith("(default)"):
+        message = (
+            f"Tudat files {base.name}_C*.txt: the moment coefficients are about the {point.name} "
+            f"{point.coordinates} m, not the centre of mass: pass moment_reference_point="
+            f"{point.coordinates} to Tudat's tabulated_from_files, which then moves them to the body's "
+            "centre of mass (left NaN, Tudat takes them as about it), or sweep again with the centre of "
+            "mass as reference_point_m"
+        )
+        warnings.warn(ReferencePointWarning(message, ("reference_point_m",)), stacklevel=2)
     return TudatFiles(
-        files["F"], files["M"], reference["reference_area_m2"], reference["reference_length_m"], point
+        files["F"],
+        files["M"],
+        reference["reference_area_m2"],
+        reference["reference_length_m"],
+        tuple(float(v) for v in point.point_m),
     )
 
 
@@ -165,7 +195,9 @@ def write(table: xr.Dataset, path: str | Path) -> list[Path]:
     return [*files.force.values(), *files.moment.values()]
 
 
-def _comments(table: xr.Dataset, reference: dict[str, float], point: tuple, method: str) -> list[str]:
+def _comments(
+    table: xr.Dataset, reference: dict[str, float], point: ReferencePoint, method: str
+) -> list[str]:
     attrs = table.attrs
     release = attrs.get("sunwind_version", version("sunwind"))
     return [
@@ -176,7 +208,9 @@ def _comments(table: xr.Dataset, reference: dict[str, float], point: tuple, meth
         "frame: body_fixed_frame_coefficients (positive along +x, +y, +z body axes) for forces and moments",
         f"C_F = F / (q S_ref), C_M = M / (q S_ref L_ref), q = {reference['dynamic_pressure_Pa']:.9g} Pa, "
         f"S_ref = {reference['reference_area_m2']:.9g} m^2, L_ref = {reference['reference_length_m']:.9g} m",
-        "moment reference point [m]: " + " ".join(f"{v:.9g}" for v in point),
+        f"moment reference point: {point}; pass moment_reference_point={point.coordinates} to Tudat's "
+        "tabulated_from_files: Tudat then moves the moments to the body's centre of mass r_com, adding "
+        "(r_ref - r_com) x C_F / L_ref (left NaN, it takes them as about the centre of mass)",
         f"atmosphere: rho {attrs.get('density_kg_m3', 'n/a')} kg/m^3, "
         f"speed {attrs.get('speed_m_s', 'n/a')} m/s, T {attrs.get('temperature_K', 'n/a')} K; "
         f"values {method}-interpolated from the sweep table",

@@ -24,6 +24,7 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Mapping
+from dataclasses import dataclass
 from importlib.metadata import version
 from pathlib import Path
 
@@ -330,3 +331,40 @@ def open_table(path: str | os.PathLike) -> xr.Dataset:
             "not a sunwind table (no srp_force_N, drag_force_N or earth_force_N)", path=str(path)
         )
     return table
+
+
+@dataclass(frozen=True, eq=False)
+class ReferencePoint:
+    """The torque reference point of a table (attributes ``reference_point_m`` and ``reference_point``),
+    as the export formats state it: ``str()`` gives ``[0.1, 0, 0] m (user)``.
+
+    Parameters
+    ----------
+    point_m : ndarray, shape (3,)
+        The point [m], body frame; the origin when the table states none.
+    name : str
+        What the point is ("user", "centre of mass (materials file)", "area centroid (default)"); empty
+        when the table does not say.
+    """
+
+    point_m: NDArray[np.float64]
+    name: str = ""
+
+    @classmethod
+    def of(cls, attrs: Mapping) -> ReferencePoint:
+        """The reference point a table's attributes state."""
+        point = np.asarray(attrs.get("reference_point_m", (0.0, 0.0, 0.0)), dtype=np.float64).reshape(3)
+        return cls(point, str(attrs.get("reference_point", "")))
+
+    @property
+    def coordinates(self) -> str:
+        """The point [m] to the micrometre, as a list a Python script takes: ``[0.1, 0, 0]``."""
+        return "[" + ", ".join(f"{v:.9g}" for v in np.round(self.point_m, 6) + 0.0) + "]"  # + 0: no -0
+
+    @property
+    def at_origin(self) -> bool:
+        """Whether the point is the body-frame origin to the micrometre (a centroid's rounding is)."""
+        return not np.round(self.point_m, 6).any()
+
+    def __str__(self) -> str:
+        return f"{self.coordinates} m" + (f" ({self.name})" if self.name else "")

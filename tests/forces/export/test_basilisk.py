@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from helpers.tables import ATTRS, REFERENCE_POINT_M, field, grid_table, list_table
-from sunwind.forces.export.basilisk import write_basilisk
+from sunwind.forces.export.basilisk import ReferencePointWarning, write_basilisk
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.geometry.errors import InputError
 
@@ -35,6 +35,13 @@ def load_lookup(path) -> dict[str, np.ndarray]:
     return out
 
 
+def written(table, path):
+    """``write_basilisk(table, path)`` of a table about ``REFERENCE_POINT_M``, which it says it moved the
+    torques from (the warning's text: test_reference_point.py)."""
+    with pytest.warns(ReferencePointWarning, match="were moved there"):
+        return write_basilisk(table, path)
+
+
 def expected_at_1au(sun: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     force, torque = field(sun, 1e-6)
     scale = SOLAR_FLUX_1AU / ATTRS["flux_W_m2"]
@@ -42,7 +49,7 @@ def expected_at_1au(sun: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def test_grid_table_gives_one_entry_per_distinct_direction(tmp_path):
-    lookup = load_lookup(write_basilisk(grid_table(15.0), tmp_path / "srp.xml"))
+    lookup = load_lookup(written(grid_table(15.0), tmp_path / "srp.xml"))
     sun = lookup["sHat_B"]
     assert len(sun) == 24 * 11 + 2  # azimuths without +180, elevations without the poles, two poles
     np.testing.assert_allclose(np.linalg.norm(sun, axis=1), 1.0, rtol=1e-15)
@@ -55,7 +62,7 @@ def test_grid_table_gives_one_entry_per_distinct_direction(tmp_path):
 
 def test_nearest_entry_is_within_h_over_sqrt2(tmp_path):
     step = 15.0
-    lookup = load_lookup(write_basilisk(grid_table(step, kinds=("srp",)), tmp_path / "srp.xml"))
+    lookup = load_lookup(written(grid_table(step, kinds=("srp",)), tmp_path / "srp.xml"))
     queries = np.random.default_rng(2).normal(size=(3000, 3))
     queries /= np.linalg.norm(queries, axis=1, keepdims=True)
     nearest = np.argmax(queries @ lookup["sHat_B"].T, axis=1)  # RadiationPressure::computeLookupModel
@@ -65,7 +72,7 @@ def test_nearest_entry_is_within_h_over_sqrt2(tmp_path):
 
 def test_list_table_gives_one_entry_per_attitude(tmp_path):
     table = list_table(9)
-    lookup = load_lookup(write_basilisk(table, tmp_path / "srp.xml"))
+    lookup = load_lookup(written(table, tmp_path / "srp.xml"))
     np.testing.assert_allclose(lookup["sHat_B"], table["sun_vector"].values, rtol=1e-15)
     force, torque = expected_at_1au(table["sun_vector"].values)
     np.testing.assert_allclose(lookup["force_B"], force, rtol=1e-15)

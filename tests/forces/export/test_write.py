@@ -6,7 +6,14 @@ import pytest
 import xarray as xr
 
 from helpers.tables import grid_table, list_table
-from sunwind.forces.export import FORMATS, check_request, format_of, output_target, write
+from sunwind.forces.export import (
+    FORMATS,
+    ReferencePointWarning,
+    check_request,
+    format_of,
+    output_target,
+    write,
+)
 from sunwind.forces.tables import direction_grid, open_table
 from sunwind.forces.tables.attitudes import step_advice
 from sunwind.geometry.errors import InputError
@@ -50,7 +57,10 @@ def test_a_grid_table_is_written_whole_in_every_format(tmp_path, name, fmt, writ
 
 
 def test_a_quantity_the_format_cannot_hold_is_said_and_none_at_all_is_refused(tmp_path):
-    with pytest.warns(UserWarning, match="basilisk holds srp only: drag is not written"):
+    with (
+        pytest.warns(UserWarning, match="basilisk holds srp only: drag is not written"),
+        pytest.warns(ReferencePointWarning),  # and the torques were moved to the body origin
+    ):
         write(grid_table(15.0), tmp_path / "t.xml")
     with pytest.raises(InputError, match="format tudat holds drag only, not srp"):
         write(grid_table(15.0, kinds=("srp",)), tmp_path / "aero", "tudat")
