@@ -381,19 +381,30 @@ def _count(table: TableRequest, attitudes) -> int:
     help="Directory for the PNGs [default: TABLE's].",
 )
 @click.option(
-    "--view-azel",
+    "--at-azel",
     nargs=2,
     type=float,
     default=None,
     metavar="AZ EL",
     help="Sun / flow direction of the 3-D pressure views [default: where each force is largest].",
 )
+@click.option(
+    "--view-azel",
+    nargs=2,
+    type=float,
+    default=None,
+    metavar="AZ EL",
+    help="Camera azimuth and elevation [deg] of the 3-D views, body frame [default: from the Sun / "
+    "upstream, the loaded side facing you].",
+)
 @click.option("--no-view", is_flag=True, help="Maps only, no 3-D views (which reload the mesh).")
-def plot(table_path: Path, output: Path | None, view_azel, no_view: bool) -> None:
+def plot(table_path: Path, output: Path | None, at_azel, view_azel, no_view: bool) -> None:
     """PNG maps of every force and torque component of a table, and 3-D views of facet pressure."""
-    from sunwind.forces.tables.plots import plot_pressure_views, plot_table, view_model
+    from sunwind.forces.tables.plots import plot_table
+    from sunwind.forces.tables.pressure_views import plot_pressure_views, view_angles, view_model
 
-    direction = None if view_azel is None else azel_to_vector(*view_azel, "--view-azel")
+    direction = None if at_azel is None else azel_to_vector(*at_azel, "--at-azel")
+    camera = None if view_azel is None else view_angles(view_azel, "--view-azel")
     table = one_pose(
         open_table(table_path),
         "sunwind plot",
@@ -402,9 +413,9 @@ def plot(table_path: Path, output: Path | None, view_azel, no_view: bool) -> Non
     model = None if no_view else view_model(table)  # its checks before any file is drawn
     directory = output if output is not None else (table_path.parent if str(table_path.parent) else Path("."))
     directory.mkdir(parents=True, exist_ok=True)
-    written = list(plot_table(table, directory))
+    written = list(plot_table(table, directory, table_path.stem))
     if model is not None:
-        written += plot_pressure_views(table, directory, table_path.stem, direction, model)
+        written += plot_pressure_views(table, directory, table_path.stem, direction, model, camera)
     print(f"sunwind plot: {table_path}")
     for path in written:
         print(f"  wrote {path}")

@@ -190,9 +190,9 @@ def test_csv_interpolation_and_plots_take_the_earth_table_spad_leaves_it_out(
     at = table["earth_vector"].values[3, 2]
     interpolated = TableInterpolator(table).values(["earth_force_N"], at)
     np.testing.assert_allclose(interpolated, table["earth_force_N"].values[3, 2], rtol=1e-12, atol=1e-25)
-    assert [p.name for p in plot_table(table, tmp_path / "maps")] == [
-        "earth_force_N.png",
-        "earth_torque_Nm.png",
+    assert [p.name for p in plot_table(table, tmp_path / "maps", "t")] == [
+        "t.earth_force_N.png",
+        "t.earth_torque_Nm.png",
     ]
     with pytest.raises(InputError, match="format spad holds srp and drag only, not earth"):
         export.write(table, tmp_path / "t.spo")

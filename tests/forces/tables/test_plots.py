@@ -8,7 +8,8 @@ import trimesh
 
 from helpers import ABSORBER, mesh_from_trimesh
 from helpers.tables import grid_table, list_table
-from sunwind.forces.tables.plots import plot_facet_pressure, plot_table, view_box
+from sunwind.forces.tables.plots import plot_table
+from sunwind.forces.tables.pressure_views import plot_facet_pressure, view_box
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import build_spacecraft
 
@@ -28,8 +29,8 @@ def is_png(path) -> bool:
     ids=["grid", "list"],
 )
 def test_plot_table_writes_one_png_per_force_and_torque(tmp_path, table, names):
-    paths = plot_table(table, tmp_path / "figures")
-    assert [path.name for path in paths] == [f"{name}.png" for name in names]
+    paths = plot_table(table, tmp_path / "figures", "t")
+    assert [path.name for path in paths] == [f"t.{name}.png" for name in names]
     assert all(is_png(path) for path in paths)
     assert sorted((tmp_path / "figures").iterdir()) == sorted(paths)
 
@@ -52,14 +53,14 @@ def test_bad_input(tmp_path):
     with pytest.raises(InputError, match=r"direction .* has zero length"):
         plot_facet_pressure(craft, np.zeros(craft.n_facets), [0, 0, 0], tmp_path / "p.png")
     with pytest.raises(InputError, match=r"no srp_\* or drag_\* force or torque to plot"):
-        plot_table(grid_table(30.0)[["sun_vector"]], tmp_path)
+        plot_table(grid_table(30.0)[["sun_vector"]], tmp_path, "t")
     assert not list(tmp_path.iterdir())
 
 
-def test_the_3d_view_is_the_model_box_with_a_margin_at_equal_aspect():
-    """The view fills its axes: each side is the model's plus 30 % of its largest side (a loose cube of
-    twice the largest side around a 2 x 1 x 0.1 m plate put it in a quarter of each axis)."""
+def test_the_3d_view_is_the_model_box_at_equal_aspect():
+    """The view's limits are the model's box about its centre, each side at least 10 % of the largest (a
+    flat sheet still has a depth); the picture is zoomed to fill the frame (test_plot_views.py)."""
     plate = trimesh.creation.box(extents=(2.0, 1.0, 0.1))
     low, high = view_box(plate.triangles + np.array([5.0, 0.0, -1.0]))
-    np.testing.assert_allclose(high - low, [2.6, 1.6, 0.8])  # z: at least 10 % of 2 m, then the margin
+    np.testing.assert_allclose(high - low, [2.0, 1.0, 0.2])  # z: at least 10 % of 2 m
     np.testing.assert_allclose((low + high) / 2, [5.0, 0.0, -1.0], atol=1e-12)
