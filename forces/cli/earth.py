@@ -25,6 +25,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
+from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
 from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, EarthResult, Place, earth_radiation
 from sunwind.forces.model import Model, ModelSource
@@ -215,6 +216,9 @@ def earth(
     as_json: bool,
 ) -> None:
     """Albedo and infrared pressure from the planet below, per-part absorbed power and temperatures."""
+    if heat["sides_csv"] is not None:
+        check_distinct(heat["sides_csv"], source.mesh, source.materials)
+        check_writable(heat["sides_csv"])
     model = posed(loaded(source, **references), sun.vector, "earth")
     result, state = radiation(model, below, sun, reflections, sampling, thermal=heat["thermal"])
     if heat["sides_csv"] is not None:

@@ -213,6 +213,12 @@ def _flow(values: dict, directed: bool) -> FreeStream:
                 "a sweep takes its flow directions from the grid or the attitude list",
                 hint="drop --velocity/--flow-azel; give --speed or --altitude for the speed",
             )
+        if values["speed"] is None and values["altitude"] is None:
+            raise InputError(
+                "a drag table needs the flow's speed and the air: --altitude H [km] (NRLMSIS and the "
+                "circular-orbit speed), or --speed V with --density, --temperature and --composition",
+                hint="or tabulate SRP alone with --srp",
+            )
         if values["corotating"] and values["speed"] is not None:
             raise InputError(
                 "--corotating changes the circular-orbit speed at --altitude only", hint="drop --speed"

@@ -24,9 +24,9 @@ from sunwind.forces.cli.options import (
     sampling_options,
 )
 from sunwind.forces.cli.orbit_path import PATH_OPTIONS, PathRequest, path_request
+from sunwind.forces.cli.outputs import check_distinct, check_image, check_writable
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
 from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
-from sunwind.forces.cli.tables import check_distinct, check_image, check_writable
 from sunwind.forces.earth import check_cells_at
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit

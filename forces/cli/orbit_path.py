@@ -137,7 +137,7 @@ class PathRequest:
                 f"{many} steps ({duration_s:g} s every {self.step_s:g} s) are more than --max-steps "
                 f"{self.max_steps}: at 10-100 ms per step on a model of 10 000-100 000 triangles, {cost}",
                 hint="raise --step or shorten --duration"
-                + (f", or give --max-steps {math.ceil(steps)}" if math.isfinite(steps) else ""),
+                + (f", or give --max-steps {math.ceil(steps)}" if steps < 1e9 else ""),
             )
         return math.floor(steps - 1 + 1e-9) + 1
 
@@ -146,7 +146,9 @@ def _span(seconds: float) -> str:
     """A duration for a person: minutes, hours or days."""
     if seconds < 5400:
         return f"{seconds / 60:.0f} min"
-    return f"{seconds / 3600:.1f} h" if seconds < 172800 else f"{seconds / 86400:.1f} days"
+    if seconds < 172800:
+        return f"{seconds / 3600:.1f} h"
+    return f"{seconds / 86400:.1f} days" if seconds < 3.15576e8 else f"{seconds / 3.15576e7:.3g} years"
 
 
 def _warn_elements_age(elements_epoch: Epoch, start: Epoch, run_s: float) -> None:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 import sys
-import tempfile
 import time
 import warnings
 from dataclasses import dataclass, replace
@@ -38,6 +37,7 @@ from sunwind.forces.cli.options import (
     sampling_options,
     sun_options,
 )
+from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import warn_beyond
 from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
 from sunwind.forces.error_estimate import ErrorEstimate
@@ -64,49 +64,6 @@ class _RateColumn(ProgressColumn):
 
     def render(self, task) -> Text:
         return Text(f"{task.speed:.1f} att/s" if task.speed else "", style="progress.data.speed")
-
-
-#: Picture formats matplotlib writes (its file names' suffixes).
-IMAGE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp")
-
-
-def check_image(path: Path, *others: str | Path | None) -> None:
-    """Fail now, before any work, when ``path`` is no picture name matplotlib writes, is one of the
-    ``others`` (the run's other outputs and its inputs), or cannot be written."""
-    if path.suffix.lower() not in IMAGE_SUFFIXES:
-        raise InputError(
-            f"a plot is written as a picture, not {path.suffix or 'a file without a suffix'}",
-            path=str(path),
-            hint=f"name it with one of {', '.join(IMAGE_SUFFIXES)}",
-        )
-    check_distinct(path, *others)
-    check_writable(path)
-
-
-def check_distinct(output: Path, *others: str | Path | None) -> None:
-    """Fail when ``output`` is the same file as one of ``others`` (another output, or an input that
-    writing it would destroy)."""
-    for other in others:
-        if other is not None and Path(output).resolve() == Path(other).resolve():
-            raise InputError(
-                "the output is also another file of this run: writing it would overwrite that one",
-                path=str(output),
-                hint="give each output its own name",
-            )
-
-
-def check_writable(path: Path) -> None:
-    """Fail now, before any work, when ``path`` cannot be written."""
-    directory = path.parent if str(path.parent) else Path(".")
-    if path.is_dir():
-        raise InputError("the output is a directory", path=str(path), hint="give a file name")
-    if not directory.is_dir():
-        raise InputError("the output's directory does not exist", path=str(path), hint="create it first")
-    try:
-        with tempfile.NamedTemporaryFile(dir=directory, prefix=".sunwind-write-test-"):
-            pass
-    except OSError as error:
-        raise InputError(f"cannot write here: {error.strerror}", path=str(path)) from None
 
 
 def _kinds(srp_flag: bool, drag_flag: bool, earth_flag: bool, fmt: str) -> tuple[str, ...]:

@@ -68,7 +68,9 @@ class AttitudeLaw:
         if kind not in LAWS:
             raise InputError(
                 f"attitude law {kind!r} is not one of {', '.join(LAWS)}",
-                hint="e.g. nadir, lvlh:10,0,0, sun:+x,-y, inertial:1,0,0,0, thrust-sun:1,0,0, csv:FILE",
+                hint=f"to fly the attitudes in the file {text.strip()}, give csv:{text.strip()}"
+                if Path(text.strip()).is_file()
+                else "e.g. nadir, lvlh:10,0,0, sun:+x,-y, inertial:1,0,0,0, thrust-sun:1,0,0, csv:FILE",
                 parameters=("attitude",),
             )
         if kind == "csv":

@@ -128,7 +128,8 @@ class PlanetLight:
             )
         if knocke_julian_date is not None and body.name != "earth":
             raise InputError(
-                f"Knocke's albedo model is the Earth's, not the {body.name}'s",
+                f"Knocke's albedo model is the Earth's, not that of "
+                f"{'the Moon' if body.name == 'moon' else body.name.capitalize()}",
                 hint="drop the Knocke model or use the Earth",
                 parameters=("albedo_model",),
             )

@@ -1,0 +1,58 @@
+"""The second hostile sweep of issue 33 (every command): an output that is an input, hints that name the
+flag to give, messages a person can read, and unit slips of the reference point and sizes."""
+
+import pytest
+
+BOX = ["--reflectivity", "0.3", "--specular-fraction", "0.5", "--emissivity", "0.8"]
+LEO = ["--altitude", "500", "--inclination", "51.6", "--epoch", "2025-03-20T00:00:00Z", "--srp"]
+BELOW = ["--earth", "0", "0", "-1", "--altitude", "500", "--sun", "1", "0", "0"]
+
+
+@pytest.fixture(scope="module")
+def box(tmp_path_factory):
+    """A 1 m box (12 triangles) and a file that is not a law of attitude but an attitude list."""
+    from sunwind.geometry.io import save_mesh
+    from sunwind.meshes.primitives import box
+
+    d = tmp_path_factory.mktemp("second-sweep")
+    save_mesh(box(), d / "box.obj")
+    (d / "q.csv").write_text("time_s,qw,qx,qy,qz\n0,1,0,0,0\n")
+    return d
+
+
+CASES = {
+    "earth --sides over the mesh": (["earth", "{d}/box.obj", *BOX, *BELOW, "--sides", "{d}/box.obj"],
+                                    "the output is also another file of this run"),
+    "sweep with neither --srp nor a flow": (["sweep", "{d}/box.obj", *BOX, "-o", "{d}/t.nc"],
+                                            "or tabulate SRP alone with --srp"),
+    "orbit --attitude naming a file": (["orbit", "{d}/box.obj", *BOX, *LEO, "--attitude", "{d}/q.csv"],
+                                       "give csv:{d}/q.csv"),
+    "orbit of 1e308 s": (["orbit", "{d}/box.obj", *BOX, *LEO, "--duration", "1e308", "--step", "60"],
+                         "years to"),
+    "knocke on the Moon": (["earth", "{d}/box.obj", *BOX, *BELOW, "--planet", "moon", "--albedo-model",
+                            "knocke", "--epoch", "2024-01-01", "--pole", "0", "1", "0"],
+                           "not that of the Moon"),
+    "subnormal reference area": (["drag", "{d}/box.obj", "--flow-azel", "0", "0", "--altitude", "400",
+                                  "--ref-area", "1e-320"],
+                                 "--ref-area 1e-320 must be a positive number from"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("args, message", CASES.values(), ids=CASES.keys())
+def test_one_line_naming_the_fix(run_cli, box, args, message):
+    before = (box / "box.obj").read_bytes()
+    code, out, err = run_cli(*(str(a).format(d=box) for a in args))
+    assert code == 1 and out == "", err
+    assert err.startswith("sunwind: error:") and err.count("\n") == 1, err
+    assert message.format(d=box) in err and len(err) < 400, err
+    assert (box / "box.obj").read_bytes() == before  # no input overwritten
+
+
+def test_a_reference_point_a_thousand_sizes_away_is_said_and_kept(run_cli, box):
+    args = ["srp", box / "box.obj", *BOX, "--sun", "1", "0", "0", "--json"]
+    code, out, err = run_cli(*args, "--ref-point", "1000", "0", "0")
+    assert code == 0, err
+    assert "warning: --ref-point (1000, 0, 0) m lies 1e+03 m outside the model" in err
+    assert '"reference_point_m": [\n    1000.0' in out  # the torques are about the point as given
+    code, _, err = run_cli(*args, "--ref-point", "2", "0", "0")  # beside the model: nothing said
+    assert code == 0 and "warning" not in err, err
