@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sys
 import warnings
+from pathlib import Path
 
 import click
 
@@ -63,6 +64,11 @@ def main(argv: list[str] | None = None) -> None:
 
     def one_line(message, category, filename, lineno, file=None, line=None) -> None:
         text = renamed_parameters(str(message), getattr(message, "parameters", ()), FLAGS)
+        if issubclass(category, RuntimeWarning) and "encountered in" in text:  # numpy's, unchecked input
+            text = (
+                f"numerical {text} ({Path(filename).name}:{lineno}): a value outside what sunwind checks "
+                "reached the arithmetic; check the results for inf or NaN and report the command line"
+            )
         if text not in said:  # a check made for each of a batch's vectors says it once
             said.add(text)
             print(f"sunwind: warning: {text}", file=sys.stderr)

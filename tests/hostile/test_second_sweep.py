@@ -56,3 +56,20 @@ def test_a_reference_point_a_thousand_sizes_away_is_said_and_kept(run_cli, box):
     assert '"reference_point_m": [\n    1000.0' in out  # the torques are about the point as given
     code, _, err = run_cli(*args, "--ref-point", "2", "0", "0")  # beside the model: nothing said
     assert code == 0 and "warning" not in err, err
+
+
+def test_a_numpy_warning_is_said_as_a_numerical_problem_to_report(run_cli, box, monkeypatch):
+    import numpy as np
+
+    from sunwind.forces.cli import attitude
+    from sunwind.geometry.errors import InputError
+
+    def overflowing(*args, **kwargs):
+        np.array([1e308]) * 10.0  # what an unchecked input would do deep in a kernel
+        raise InputError("stopped after the overflow")
+
+    monkeypatch.setattr(attitude, "srp_of", overflowing)
+    code, _, err = run_cli("srp", box / "box.obj", *BOX, "--sun", "1", "0", "0")
+    assert code == 1 and "sunwind: error: stopped after the overflow" in err
+    assert "sunwind: warning: numerical overflow encountered in multiply (test_second_sweep.py:" in err
+    assert "check the results for inf or NaN and report the command line" in err
