@@ -18,6 +18,7 @@ import zipfile
 from dataclasses import asdict
 from importlib.metadata import version
 from pathlib import Path
+from typing import IO
 
 import numpy as np
 
@@ -91,8 +92,9 @@ class Checkpoint:
     :attr:`refused` count the chunks taken up and those found but not taken.
     """
 
-    def __init__(self, directory: Path, manifest: dict, created: bool) -> None:
+    def __init__(self, directory: Path, manifest: dict, created: bool, lock: IO | None = None) -> None:
         self.directory = directory
+        self._lock = lock  # held while this run writes here (see _lock)
         self.manifest = manifest
         self.created = created  # the directory was made by this run
         self.settings_sha256 = hashlib.sha256(json.dumps(manifest, sort_keys=True).encode()).hexdigest()
@@ -107,15 +109,27 @@ class Checkpoint:
         InputError
             A checkpoint is there and ``resume`` is off; or it is of a different sweep, or unreadable.
         """
-        found = directory / "manifest.json"
         check_place(directory)
-        if directory.exists() and not resume:
-            raise InputError(
-                "a checkpoint of an unfinished sweep is there",
-                path=str(directory),
-                hint="continue it with resume, or delete the directory to start over",
-                parameters=("resume",),
-            )
+        created = not directory.exists()
+        directory.mkdir(parents=True, exist_ok=True)
+        lock = _lock(directory)  # first: a checkpoint another run is writing is not "unfinished"
+        try:
+            if not (created or resume):
+                raise InputError(
+                    "a checkpoint of an unfinished sweep is there",
+                    path=str(directory),
+                    hint="continue it with resume, or delete the directory to start over",
+                    parameters=("resume",),
+                )
+            return cls._taken_up(directory, manifest, resume, created, lock)
+        except BaseException:
+            lock.close()
+            raise
+
+    @classmethod
+    def _taken_up(cls, directory: Path, manifest: dict, resume: bool, created: bool, lock: IO) -> Checkpoint:
+        """The checkpoint of :meth:`open` once its lock is held."""
+        found = directory / "manifest.json"
         if resume and found.exists():
             try:
                 previous = json.loads(found.read_text())
@@ -134,11 +148,9 @@ class Checkpoint:
                     path=str(directory),
                     hint="resume with the same mesh, materials, settings and attitudes, or delete it",
                 )
-            return cls(directory, manifest, created=False)
-        created = not directory.exists()
-        directory.mkdir(parents=True, exist_ok=True)
+            return cls(directory, manifest, created=False, lock=lock)
         write_atomic(found, json.dumps(manifest, indent=1).encode())
-        return cls(directory, manifest, created)
+        return cls(directory, manifest, created, lock=lock)
 
     @staticmethod
     def kept_chunks(directory: Path) -> int:
@@ -194,8 +206,44 @@ class Checkpoint:
         return f"checkpoint: kept {self.kept} chunks, recomputing {computed}{refused}"
 
     def remove(self) -> None:
-        """Delete the checkpoint (once the table is made, or after a start that saved nothing)."""
+        """Delete the checkpoint (once the table is made, or after a start that saved nothing) and
+        let it go."""
         shutil.rmtree(self.directory, ignore_errors=True)
+        self.release()
+
+    def release(self) -> None:
+        """Let the checkpoint go: another run may take it up (resume) from now on."""
+        if self._lock is not None:
+            self._lock.close()  # closing the file drops its lock
+            self._lock = None
+
+
+def _lock(directory: Path) -> IO:
+    """The checkpoint's lock file, open and exclusively locked (``flock``) for as long as this run writes
+    there; the system drops the lock when the file is closed or the process ends, killed or not, so a
+    lock is never left behind. Where ``fcntl`` is missing (Windows) the file is opened, not locked.
+
+    Raises
+    ------
+    InputError
+        Another run holds it: two sweeps writing one checkpoint would take each other's chunks and
+        delete the directory under each other.
+    """
+    handle = (directory / ".lock").open("a")
+    try:
+        import fcntl
+    except ImportError:  # Windows
+        return handle
+    try:
+        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        handle.close()
+        raise InputError(
+            "another sunwind run is writing this checkpoint now",
+            path=str(directory),
+            hint="wait for it to end, or give this run another output (-o)",
+        ) from None
+    return handle
 
 
 def data_digest(job: Job, lo: int, records: Records) -> str:

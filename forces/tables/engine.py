@@ -270,12 +270,15 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
     try:
         if pending:
             _evaluate(model, pending, run, finished)
+        if store is not None:
+            store.remove()
     except BaseException:
         if store is not None and store.created and not store.saved:
             store.remove()  # a failed start leaves nothing behind
         raise
-    if store is not None:
-        store.remove()
+    finally:
+        if store is not None:
+            store.release()  # kept for a resume, free to be taken up
     return records
 
 

@@ -244,6 +244,25 @@ def test_an_interrupted_sweep_resumes_to_the_same_table(model, air, tmp_path):
     xr.testing.assert_identical(xr.load_dataset(a), xr.load_dataset(b))
 
 
+def test_a_checkpoint_another_run_is_writing_is_refused_until_it_ends(model, air, tmp_path):
+    _, jobs = _jobs(air, reflections="none")
+    checkpoint = tmp_path / "t.nc.checkpoint"
+    refused = []
+
+    def second_run_meanwhile(done: int) -> None:
+        if done == 5:  # the first chunk is kept on disk: a second run tries to take it up
+            with pytest.raises(InputError, match="another sunwind run is writing this checkpoint now"):
+                run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
+            refused.append(done)
+            raise _Stop
+
+    with pytest.raises(_Stop):
+        run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, progress=second_run_meanwhile))
+    assert refused and len(list(checkpoint.glob("*.npz"))) == 1  # the second run deleted nothing
+    run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))  # free once it ended
+    assert not checkpoint.exists()
+
+
 def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
     _, jobs = _jobs(air, reflections="none")
     checkpoint = tmp_path / "c"
