@@ -142,11 +142,13 @@ def renamed_parameters(text: str, parameters: Sequence[str], names: Mapping[str,
 
 class FlaggedWarning(UserWarning):
     """A warning whose message names Python ``parameters``, which the command line writes as its
-    flags (:func:`renamed_parameters`)."""
+    flags (:func:`renamed_parameters`). ``key``: what it is about, where one value may be checked
+    under two names (a sweep's speed, then each of its velocities), so that it is said once."""
 
-    def __init__(self, message: str, parameters: tuple[str, ...] = ()) -> None:
+    def __init__(self, message: str, parameters: tuple[str, ...] = (), key: object = None) -> None:
         super().__init__(message)
         self.parameters = parameters
+        self.key = key
 
 
 class UnitWarning(FlaggedWarning):

@@ -69,8 +69,9 @@ def main(argv: list[str] | None = None) -> None:
                 f"numerical {text} ({Path(filename).name}:{lineno}): a value outside what sunwind checks "
                 "reached the arithmetic; check the results for inf or NaN and report the command line"
             )
-        if text not in said:  # a check made for each of a batch's vectors says it once
-            said.add(text)
+        key = getattr(message, "key", None) or text
+        if key not in said:  # a check made for each of a batch's vectors, or twice, says it once
+            said.add(key)
             print(f"sunwind: warning: {text}", file=sys.stderr)
 
     shown = warnings.showwarning

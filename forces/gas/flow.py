@@ -59,6 +59,7 @@ def flow_speed(speed_m_s: float, name: str = "speed_m_s") -> float:
                 f"v_rel is ~7 500 m/s); at {speed:.3g} m/s the flow is slower than the molecules' thermal "
                 "speed and the drag is mostly their random impacts",
                 (name,),
+                key=("flow speed", speed),
             ),
             stacklevel=3,
         )

@@ -73,3 +73,11 @@ def test_a_numpy_warning_is_said_as_a_numerical_problem_to_report(run_cli, box, 
     assert code == 1 and "sunwind: error: stopped after the overflow" in err
     assert "sunwind: warning: numerical overflow encountered in multiply (test_second_sweep.py:" in err
     assert "check the results for inf or NaN and report the command line" in err
+
+
+def test_a_slow_sweep_speed_is_said_once(run_cli, box, tmp_path):
+    air = ["--density", "1e-12", "--temperature", "900", "--composition", "O:1"]
+    code, _, err = run_cli("sweep", box / "box.obj", "--drag", "--speed", "7.6", *air, "--step", "45",
+                           "-o", tmp_path / "slow.nc")  # fmt: skip
+    assert code == 0, err
+    assert err.count("warning") == 1 and "--speed gives a speed of 7.6 m/s: that looks like km/s" in err
