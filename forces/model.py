@@ -12,10 +12,8 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 import os
 import threading
-import warnings
 from collections import OrderedDict
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
@@ -28,9 +26,10 @@ from numpy.typing import NDArray
 from sunwind.geometry.articulation import Hinge, checked_angle, fixed, schedule_angle, tracking_angle
 from sunwind.geometry.cache import ModelCache
 from sunwind.geometry.directions import finite_point, unit_vector
-from sunwind.geometry.errors import InputError, UnitWarning
+from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GAS_DEFAULTS, GasSurface, Material
 from sunwind.geometry.parallel import checked_threads
+from sunwind.geometry.references import check_reference_sizes, warn_far_reference
 from sunwind.geometry.spacecraft import Spacecraft, articulate, load_spacecraft, pose
 
 #: Where a materials-file gas key lands on :class:`~sunwind.geometry.materials.GasSurface`.
@@ -40,33 +39,6 @@ KEPT_POSES = 8
 #: Angles [deg] closer than this are one pose for :meth:`Model.posed`.
 POSE_RESOLUTION_DEG = 1e-9
 T = TypeVar("T")
-
-
-#: The range of each coefficient reference size: (least, largest, unit).
-REFERENCE_SIZES = {"reference_area_m2": (1e-12, 1e12, "m^2"), "reference_length_m": (1e-6, 1e6, "m")}
-#: A reference point farther than this many model sizes (box diagonals) from the model's box is
-#: said to look like a slip of unit.
-FAR_REFERENCE = 10.0
-
-
-def _warn_far(point: NDArray[np.float64], craft: Spacecraft) -> None:
-    """A :class:`UnitWarning` when the torque reference ``point`` [m] lies farther than
-    :data:`FAR_REFERENCE` model sizes from the model's box: a point in mm for a model in m, or the
-    reverse, gives torques a thousand times off without an error."""
-    low, high = craft.bounds
-    distance = float(np.linalg.norm(np.maximum(0.0, np.maximum(low - point, point - high))))
-    size = craft.diagonal_m
-    if distance > FAR_REFERENCE * size:
-        x, y, z = point
-        warnings.warn(
-            UnitWarning(
-                f"reference_point_m ({x:g}, {y:g}, {z:g}) m lies {distance:.3g} m outside the model, "
-                f"{distance / size:.0f} times its size ({size:.3g} m across, unit {craft.unit}): check "
-                "the point's unit; the torques are about it as given",
-                ("reference_point_m",),
-            ),
-            stacklevel=3,
-        )
 
 
 @dataclass(frozen=True)
@@ -253,24 +225,9 @@ class Model:
         if self.reference_point_m is not None:
             point = finite_point(self.reference_point_m, "reference_point_m")
             object.__setattr__(self, "reference_point_m", point)
-            _warn_far(point, self.craft)
-        self.check_sizes(self.reference_area_m2, self.reference_length_m)
+            warn_far_reference(point, self.craft)
+        check_reference_sizes(self.reference_area_m2, self.reference_length_m)
         checked_threads(self.threads)
-
-    @staticmethod
-    def check_sizes(area_m2: float | None, length_m: float | None) -> None:
-        """Refuse coefficient reference sizes that are given but not positive numbers within
-        :data:`REFERENCE_SIZES` (a square micrometre to a million square kilometres, a micrometre to a
-        thousand kilometres: a subnormal area would make every coefficient infinite)."""
-        for name, value in (("reference_area_m2", area_m2), ("reference_length_m", length_m)):
-            low, high, unit = REFERENCE_SIZES[name]
-            if value is not None and not (
-                isinstance(value, int | float) and math.isfinite(value) and low <= value <= high
-            ):
-                raise InputError(
-                    f"{name} {value} must be a positive number from {low:g} to {high:g} {unit}",
-                    parameters=(name,),
-                )
 
     @property
     def cache(self) -> ModelCache:

@@ -79,11 +79,18 @@ def azel_to_vector(azimuth_deg: float, elevation_deg: float, name: str = "direct
     Raises
     ------
     InputError
-        Non-finite angles, or elevation outside [-90, 90].
+        Non-finite angles, azimuth outside [-360, 360] or elevation outside [-90, 90].
     """
     if not (math.isfinite(azimuth_deg) and math.isfinite(elevation_deg)):
         raise InputError(
             f"{name} azimuth/elevation {azimuth_deg} {elevation_deg} must be finite numbers",
+            parameters=(name,),
+        )
+    if abs(azimuth_deg) > 360:
+        raise InputError(
+            f"{name} azimuth {azimuth_deg:g} deg is outside [-360, 360] (a turn either way of +x; far "
+            "beyond it a float keeps no fraction of a turn)",
+            hint="give the azimuth in degrees, e.g. -60 or 300",
             parameters=(name,),
         )
     if abs(elevation_deg) > 90:

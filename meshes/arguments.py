@@ -12,12 +12,23 @@ import numpy as np
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import count, require
 
-__all__ = ["HULL_TRIANGLE_BYTES", "check_count", "check_positive", "check_triangles", "per_axis"]
+__all__ = [
+    "HULL_TRIANGLE_BYTES",
+    "MAX_LENGTH_M",
+    "check_count",
+    "check_lengths",
+    "check_positive",
+    "check_triangles",
+    "per_axis",
+]
 
 #: Peak bytes per triangle of building a gridded or revolved mesh and writing it (measured 197 to 251).
 GRID_TRIANGLE_BYTES = 250
 #: The same for a mesh made by a convex hull or a Delaunay triangulation (measured 398 to 422).
 HULL_TRIANGLE_BYTES = 420
+#: Longest length a builder takes [m]: 10 km, a hundred times the largest structure flown (the
+#: International Space Station's truss, about 110 m); a longer one is a slip of unit or of typing.
+MAX_LENGTH_M = 1e4
 
 
 def check_positive(**values: float) -> None:
@@ -26,6 +37,25 @@ def check_positive(**values: float) -> None:
         real = isinstance(value, numbers.Real) and not isinstance(value, bool)
         if not (real and math.isfinite(value) and value > 0):
             raise InputError(f"{name} {value!r} must be a finite number > 0", parameters=(name,))
+
+
+def check_lengths(**values: float | Sequence[float]) -> None:
+    """Raise :class:`InputError` unless every value, or every entry of a sequence of lengths, is a
+    length [m]: a finite number > 0 (as :func:`check_positive`) and at most :data:`MAX_LENGTH_M`."""
+    for name, value in values.items():
+        many = isinstance(value, Sequence)
+        for k, length in enumerate(value if many else (value,)):
+            shown = f"{name}[{k}]" if many else name
+            real = isinstance(length, numbers.Real) and not isinstance(length, bool)
+            if not (real and math.isfinite(length) and length > 0):
+                raise InputError(f"{shown} {length!r} must be a finite number > 0", parameters=(name,))
+            if length > MAX_LENGTH_M:
+                raise InputError(
+                    f"{shown} {length:g} m is above {MAX_LENGTH_M:g} m (10 km, a hundred times the "
+                    "largest spacecraft structure, the ISS's ~110 m truss)",
+                    hint=f"give {name} in metres, at most {MAX_LENGTH_M:g}",
+                    parameters=(name,),
+                )
 
 
 def check_count(minimum: int, **values: Any) -> None:

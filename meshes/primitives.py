@@ -35,6 +35,7 @@ from sunwind.geometry.mesh_data import MeshData
 from sunwind.meshes.arguments import (
     HULL_TRIANGLE_BYTES,
     check_count,
+    check_lengths,
     check_positive,
     check_triangles,
     per_axis,
@@ -96,7 +97,7 @@ def plate(
     MeshData
         Part ``"plate"``; ``2 * nx * ny`` triangles, counter-clockwise seen from +z.
     """
-    check_positive(size_x=size_x, size_y=size_y)
+    check_lengths(size_x=size_x, size_y=size_y)
     nx, ny = per_axis("divisions", divisions, 2)
     check_triangles(2 * nx * ny, "lower divisions", ("divisions",))
     x, y = np.meshgrid(
@@ -139,7 +140,7 @@ def sphere(radius: float = 1.0, subdivisions: int = SPHERE_SUBDIVISIONS) -> Mesh
     MeshData
         Part ``"sphere"``.
     """
-    check_positive(radius=radius)
+    check_lengths(radius=radius)
     check_count(2, subdivisions=subdivisions)
     check_triangles(
         26 * int(subdivisions) ** 2 // 10, "lower subdivisions", ("subdivisions",), HULL_TRIANGLE_BYTES
@@ -190,7 +191,7 @@ def cylinder(
         Parts ``"lateral"`` and, with caps, ``"cap_bottom"`` (z = -length/2, normal -z) and
         ``"cap_top"`` (z = +length/2, normal +z). ``metadata["rings"]`` is the resolved value.
     """
-    check_positive(radius=radius, length=length)
+    check_lengths(radius=radius, length=length)
     check_count(3, segments=segments)
     facet = 2 * np.pi * radius / segments
     if rings is None:
@@ -254,7 +255,8 @@ def cone(
         Parts ``"base"`` (normal -z) when ``base`` and ``"lateral"``. ``metadata["rings"]`` is the
         resolved value.
     """
-    check_positive(radius=radius, half_angle_deg=half_angle_deg)
+    check_lengths(radius=radius)
+    check_positive(half_angle_deg=half_angle_deg)
     check_count(3, segments=segments)
     if not half_angle_deg < 90:
         raise InputError(f"half_angle_deg = {half_angle_deg!r} must be in (0, 90)")
@@ -307,7 +309,8 @@ def dish(diameter: float = 1.2, focal_ratio: float = 0.35, segments: int = DISH_
     MeshData
         Part ``"dish"``.
     """
-    check_positive(diameter=diameter, focal_ratio=focal_ratio)
+    check_lengths(diameter=diameter)
+    check_positive(focal_ratio=focal_ratio)
     check_count(3, segments=segments)
     focal = focal_ratio * diameter
     # Rings equally spaced in arc length along the parabola, from the vertex out.
@@ -348,7 +351,7 @@ def box(size: Sequence[float] = (1.0, 1.0, 1.0), divisions: int | Sequence[int] 
     size = tuple(float(s) for s in size)
     if len(size) != 3:
         raise InputError(f"size = {size!r} must be three edge lengths")
-    check_positive(**{f"size[{i}]": s for i, s in enumerate(size)})
+    check_lengths(size=size)
     cells = per_axis("divisions", divisions, 3)
     nx, ny, nz = cells
     check_triangles(4 * (nx * ny + ny * nz + nz * nx), "lower divisions", ("divisions",))
@@ -389,8 +392,9 @@ def box_wing(
     MeshData
         Parts ``"bus"``, ``"wing_left"`` (-y), ``"wing_right"`` (+y).
     """
-    check_positive(wing_span=wing_span, wing_width=wing_width, wing_gap=wing_gap, facet_size=facet_size)
+    check_lengths(wing_span=wing_span, wing_width=wing_width, wing_gap=wing_gap, facet_size=facet_size)
     bus_size = tuple(float(s) for s in bus_size)
+    check_lengths(bus_size=bus_size)
     cells = tuple(equal_pieces(s, facet_size) for s in bus_size)
     span, width = equal_pieces(wing_span, facet_size), equal_pieces(wing_width, facet_size)
     nx, ny, nz = cells

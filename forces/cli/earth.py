@@ -157,6 +157,7 @@ def earth_request(values: dict) -> EarthRequest | None:
     step = mine["step_deg"]
     if not (math.isfinite(step) and 0.0 < step <= 90.0):
         raise InputError(f"--earth-step {step:g} is not in (0, 90] deg", hint="e.g. --earth-step 10")
+    PlanetLight.of(planet("earth"), 1361.0, albedo=mine["albedo"], infrared_W_m2=mine["earth_ir"])  # checks
     return EarthRequest(**mine)
 
 

@@ -26,6 +26,7 @@ from sunwind.geometry.directions import azel_to_vector, finite_point, unit_vecto
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GAS_DEFAULTS, GSI_MODELS, GasSurface, Material
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.references import check_reference_sizes
 
 #: The flag of each Python parameter the library names in its messages.
 FLAGS = {
@@ -286,7 +287,7 @@ def _references(values: dict) -> dict:
     out = {"reference_point_m": None if point is None else finite_point(point, "--ref-point")}
     if "ref_area" in values:
         out |= {"reference_area_m2": values["ref_area"], "reference_length_m": values["ref_length"]}
-        Model.check_sizes(out["reference_area_m2"], out["reference_length_m"])
+        check_reference_sizes(out["reference_area_m2"], out["reference_length_m"])
     return out
 
 

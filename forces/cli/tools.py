@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import click
+from click.core import ParameterSource
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.bench import REFERENCE_GAS_FACTORS, REFERENCE_TOLERANCE, benchmark
+from sunwind.forces.cli.options import group
 from sunwind.forces.sweep_bench import sweep_benchmark
 from sunwind.forces.tables import direction_grid
 from sunwind.geometry.errors import InputError
@@ -39,28 +42,22 @@ from sunwind.meshes.samples import sample_spacecraft
     help="Fixed shadow-ray points per side timed beside the default pass [default: 1]; with --sweep, the "
     "sweep's sampling [default: the default pass].",
 )
-@click.option(
-    "--sweep",
-    "what",
-    flag_value="sweep",
-    help="Time a whole grid sweep (SRP and drag, full reflections) and Dask 2 workers over 1 instead.",
-)
-@click.option("--step", type=float, default=5.0, show_default=True, help="Grid step of --sweep [deg].")
-@click.option(
-    "--orbit",
-    "what",
-    flag_value="orbit",
-    help="Time orbit steps instead: LEO with SRP and drag, each alone, and GEO.",
-)
+@group("what", [
+    click.option("--sweep", "sweep_flag", is_flag=True,
+                 help="Time a whole grid sweep (SRP and drag, full reflections) and Dask 2 workers over 1 "
+                 "instead."),
+    click.option("--step", type=float, default=5.0, show_default=True, help="Grid step of --sweep [deg]."),
+    click.option("--orbit", "orbit_flag", is_flag=True,
+                 help="Time orbit steps instead: LEO with SRP and drag, each alone, and GEO."),
+], lambda values: _benchmark(**values))  # fmt: skip
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def bench(mesh_path, materials, triangles, attitudes, samples, what, step, as_json) -> None:
+def bench(mesh_path, materials, triangles, attitudes, samples, what: Benchmark, as_json) -> None:
     """Time SRP per attitude (direct against raw Embree on the same rays, then with full reflections)
     and free-molecular drag per attitude against SRP with the same reflection setting; or, with
     --sweep, a whole attitude sweep of the generated sample."""
-    if attitudes < 1:
-        raise InputError(f"--attitudes {attitudes} must be at least 1")
-    if what == "sweep":
-        _bench_sweep(triangles, step, samples, as_json)
+    _check_model(mesh_path, materials, attitudes, what)
+    if what.kind == "sweep":
+        _bench_sweep(triangles, what.step, samples, as_json)
         return
     start = time.perf_counter()
     if mesh_path is not None:
@@ -68,7 +65,7 @@ def bench(mesh_path, materials, triangles, attitudes, samples, what, step, as_js
     else:
         craft = build_spacecraft(sample_spacecraft(triangles))
     load_s = time.perf_counter() - start
-    if what == "orbit":
+    if what.kind == "orbit":
         _bench_orbit(craft, as_json)
         return
     with _progress_bar(as_json) as bar:
@@ -147,6 +144,42 @@ def bench(mesh_path, materials, triangles, attitudes, samples, what, step, as_js
     sky, core, chains = REFERENCE_GAS_FACTORS
     print(f"{'':26}drag: also {sky}x the sky rays, {core}x the core rays, {chains}x the chain molecules")
     print(f"  peak memory             {report.peak_memory_MB:.0f} MB")
+
+
+#: Most attitudes ``bench`` times (a minute or two on a large model).
+MOST_ATTITUDES = 10_000
+
+
+@dataclass(frozen=True)
+class Benchmark:
+    """What ``bench`` times: ``kind`` "attitudes", "sweep" or "orbit", and the sweep's grid step [deg]."""
+
+    kind: str
+    step: float
+
+
+def _benchmark(sweep_flag: bool, step: float, orbit_flag: bool) -> Benchmark:
+    """The :class:`Benchmark` of ``--sweep``, ``--step`` and ``--orbit``, checked together."""
+    if sweep_flag and orbit_flag:
+        raise InputError("--sweep and --orbit are two benchmarks", hint="give one of them")
+    given = click.get_current_context().get_parameter_source("step") == ParameterSource.COMMANDLINE
+    if given and not sweep_flag:
+        raise InputError("--step is the grid step of --sweep", hint="add --sweep, or drop --step")
+    return Benchmark("sweep" if sweep_flag else "orbit" if orbit_flag else "attitudes", step)
+
+
+def _check_model(mesh_path: Path | None, materials: Path | None, attitudes: int, what: Benchmark) -> None:
+    """Refuse a model or an attitude count ``bench`` would not use or could not time."""
+    if not 1 <= attitudes <= MOST_ATTITUDES:
+        raise InputError(f"--attitudes {attitudes} must be from 1 to {MOST_ATTITUDES}")
+    if what.kind == "sweep" and mesh_path is not None:
+        raise InputError(
+            "--sweep times the generated sample", hint="drop --mesh, or --sweep to time the mesh"
+        )
+    if (mesh_path is None) != (materials is None):
+        raise InputError(
+            "--mesh and its materials -m go together", hint="give both, or neither for the sample"
+        )
 
 
 def _progress_bar(as_json: bool) -> Progress:

@@ -26,6 +26,16 @@ MSIS_MAX_ALTITUDE_KM = 2000.0
 MSIS_FITTED_ALTITUDE_KM = 1000.0
 #: Below this altitude [km] a warning says free-molecular flow no longer holds for a metre-sized body.
 FREE_MOLECULAR_MIN_ALTITUDE_KM = 150.0
+#: Largest F10.7 and F10.7a [sfu] accepted: above the highest daily value on record (about 450 sfu).
+MAX_F107_SFU = 500.0
+#: Largest Ap accepted: the top of its scale (Ap 400, from ap 400 every three hours).
+MAX_AP = 400.0
+#: Longitudes [deg] accepted: one turn either way of the prime meridian.
+LONGITUDE_RANGE_DEG = (-360.0, 360.0)
+#: Temperatures [K] NRLMSIS gives for real conditions, with a margin: 111 K (the summer mesopause) to
+#: 2600 K (F10.7 500 sfu, Ap 400). Outside, its fit has run away (inf, 1e7 K or below 0 K where F10.7a
+#: is far above F10.7, or both near 0) and the indices are refused.
+MSIS_TEMPERATURE_RANGE_K = (50.0, 5000.0)
 #: Model versions ``pymsis.calculate`` accepts -> the model's name.
 _MSIS_VERSIONS = {"2.1": "NRLMSIS 2.1", "2.0": "NRLMSIS 2.0", "0": "NRLMSISE-00"}
 #: Member of ``pymsis.Variable`` (the output columns of ``pymsis.calculate``, pymsis >= 0.10) per species.
@@ -66,18 +76,21 @@ def nrlmsis(
         (free-molecular flow no longer holds for a metre-sized body) and above 1000 km (NRLMSIS is fitted
         to about 1000 km; above, its exosphere is extrapolated).
     latitude_deg, longitude_deg : float
-        Geodetic latitude [deg], -90 to 90, and longitude [deg] east. Default 0, 0.
+        Geodetic latitude [deg], -90 to 90, and longitude [deg] east, -360 to 360. Default 0, 0.
     time : str, datetime, date or numpy.datetime64
         UTC time. A string is ISO 8601 ("2024-01-01", "2024-01-01T12:00:00Z", "...+02:00"); a naive
         datetime is taken as UTC. Years 1958 to 2100. Default 2024-01-01T00:00:00Z, which is local
         midnight at longitude 0 (NRLMSIS uses the day of year and the time of day; the year itself is
         only checked).
     f107 : float
-        Daily F10.7 solar radio flux of the previous day [sfu = 1e-22 W m^-2 Hz^-1]. Default 150.
+        Daily F10.7 solar radio flux of the previous day [sfu = 1e-22 W m^-2 Hz^-1], 0 to 500 (the
+        highest on record is about 450). Default 150.
     f107a : float
-        81-day centred average of F10.7 [sfu]. Default 150.
+        81-day centred average of F10.7 [sfu], 0 to 500. Indices for which NRLMSIS's fit runs away (a
+        temperature outside :data:`MSIS_TEMPERATURE_RANGE_K`: F10.7a far above F10.7, or both near 0)
+        are refused. Default 150.
     ap : float
-        Daily geomagnetic Ap index. Default 4.
+        Daily geomagnetic Ap index, 0 to 400 (the top of its scale). Default 4.
     version : float or str
         NRLMSIS version: 2.1 (default), 2.0, or 0 for NRLMSISE-00.
 
@@ -106,11 +119,10 @@ def nrlmsis(
             parameters=("altitude_km",),
         )
     latitude = finite_number(latitude_deg, "latitude_deg", "deg", minimum=-90.0, maximum=90.0)
-    longitude = finite_number(longitude_deg, "longitude_deg", "deg")
+    low, high = LONGITUDE_RANGE_DEG
+    longitude = finite_number(longitude_deg, "longitude_deg", "deg", minimum=low, maximum=high)
     when = parse_time(time)
-    f107 = finite_number(f107, "f107", "sfu", minimum=0.0)
-    f107a = finite_number(f107a, "f107a", "sfu", minimum=0.0)
-    ap = finite_number(ap, "ap", "", minimum=0.0)
+    f107, f107a, ap = _indices(f107, f107a, ap)
     version_key = _msis_version(version)
 
     if altitude > MSIS_FITTED_ALTITUDE_KM:
@@ -134,6 +146,7 @@ def nrlmsis(
         version=version_key,
     ).reshape(-1)
     column = pymsis.Variable
+    _check_fit(float(row[column.TEMPERATURE]), f107, f107a, ap)
     densities = {k: float(row[column[member]]) for k, member in _MSIS_VARIABLES.items()}
     densities = {k: n for k, n in densities.items() if not math.isnan(n) and n > 0}
     model_name = _MSIS_VERSIONS[version_key]
@@ -167,6 +180,39 @@ def nrlmsis(
             stacklevel=2,
         )
     return atmosphere
+
+
+def _indices(f107: float, f107a: float, ap: float) -> tuple[float, float, float]:
+    """F10.7, F10.7a and Ap as finite floats, each from 0 to its largest physical value."""
+    record = "the highest daily F10.7 on record is about 450 sfu"
+    out = []
+    for name, value, unit, high, why, example in (
+        ("f107", f107, "sfu", MAX_F107_SFU, record, "150 (moderate activity)"),
+        ("f107a", f107a, "sfu", MAX_F107_SFU, record, "150 (moderate activity)"),
+        ("ap", ap, "", MAX_AP, "the top of the Ap scale", "4 (quiet) or 15 (mean)"),
+    ):
+        x = finite_number(value, name, unit, minimum=0.0)
+        if x > high:
+            units = f" {unit}" if unit else ""
+            raise InputError(
+                f"{name} {x:g}{units} is above {high:g}{units} ({why})",
+                hint=f"give {name} from 0 to {high:g}, e.g. {example}",
+                parameters=(name,),
+            )
+        out.append(x)
+    return out[0], out[1], out[2]
+
+
+def _check_fit(temperature_K: float, f107: float, f107a: float, ap: float) -> None:
+    """Refuse the indices when NRLMSIS's temperature for them is outside :data:`MSIS_TEMPERATURE_RANGE_K`."""
+    low, high = MSIS_TEMPERATURE_RANGE_K
+    if not low <= temperature_K <= high:  # NaN too
+        raise InputError(
+            f"NRLMSIS gives {temperature_K:.3g} K for f107 {f107:g}, f107a {f107a:g}, ap {ap:g}: indices "
+            "outside its fit (it runs away where F10.7a is far above F10.7, or both are near 0)",
+            hint="give the indices of real conditions, F10.7a near F10.7, e.g. f107 150 and f107a 150",
+            parameters=("f107", "f107a", "ap"),
+        )
 
 
 def parse_time(time: str | datetime | date | np.datetime64) -> datetime:

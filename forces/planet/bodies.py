@@ -20,6 +20,9 @@ from sunwind.geometry.errors import InputError
 
 #: Infrared laws of :class:`Planet`.
 INFRARED_LAWS = ("uniform", "insolation", "night-floor")
+#: Largest uniform infrared exitance accepted [W/m^2]: a black surface at about 1150 K, six times
+#: Venus's surface (737 K, 1.7e4 W/m^2), the hottest of the planets.
+MAX_INFRARED_W_M2 = 1e5
 
 
 @dataclass(frozen=True)
@@ -111,7 +114,8 @@ class PlanetLight:
         albedo : float, optional
             Bond albedo in [0, 1] instead of the planet's.
         infrared_W_m2 : float, optional
-            A uniform infrared exitance at the surface [W/m^2] instead of the planet's law.
+            A uniform infrared exitance at the surface [W/m^2], 0 to :data:`MAX_INFRARED_W_M2`,
+            instead of the planet's law.
         knocke_julian_date : float, optional
             Earth only: Knocke's latitude- and season-dependent albedo and emissivity at this TT
             Julian date (:mod:`~sunwind.forces.planet.knocke`); ``albedo`` and ``infrared_W_m2`` may
@@ -124,6 +128,13 @@ class PlanetLight:
             raise InputError(
                 f"infrared_W_m2 {infrared_W_m2} is not a finite non-negative number",
                 hint="e.g. 239 (the Earth's mean outgoing longwave flux)",
+                parameters=("infrared_W_m2",),
+            )
+        if infrared_W_m2 is not None and infrared_W_m2 > MAX_INFRARED_W_M2:
+            raise InputError(
+                f"infrared_W_m2 {infrared_W_m2:g} W/m^2 is above {MAX_INFRARED_W_M2:g} W/m^2, the exitance "
+                "of a black surface at about 1150 K (Venus's surface, the planets' hottest, emits 1.7e4)",
+                hint=f"give infrared_W_m2 of at most {MAX_INFRARED_W_M2:g}, e.g. 239 (the Earth's mean)",
                 parameters=("infrared_W_m2",),
             )
         if knocke_julian_date is not None and body.name != "earth":

@@ -28,6 +28,14 @@ from sunwind.geometry.errors import InputError
 SPEED_OF_LIGHT = 299_792_458.0
 #: Total solar irradiance at 1 au [W/m^2] (IAU 2015 Resolution B3 nominal value).
 SOLAR_FLUX_1AU = 1361.0
+#: The Sun's radius [au] (IAU 2015 nominal 695 700 km over the astronomical unit, 149 597 870.7 km):
+#: the closest distance from the Sun accepted.
+SUN_RADIUS_AU = 695_700.0 / 149_597_870.7
+#: Solar flux at the photosphere [W/m^2] (:data:`SOLAR_FLUX_1AU` at :data:`SUN_RADIUS_AU`, 6.29e7).
+PHOTOSPHERE_FLUX = SOLAR_FLUX_1AU / SUN_RADIUS_AU**2
+#: The largest flux accepted [W/m^2]: above the photosphere's, so that a flux of c (a pressure of
+#: 1 Pa on an absorber, the unit the closed forms use) is taken.
+MAX_FLUX = 1e9
 #: Lambertian momentum factor ``D(f)`` of the paper: (1/pi) * integral of cos^2 over the hemisphere.
 LAMBERT_FACTOR = 2.0 / 3.0
 
@@ -38,7 +46,8 @@ def solar_flux(flux_W_m2: float | None = None, distance_au: float | None = None)
     Raises
     ------
     InputError
-        Both given, or a value that is not a finite positive number.
+        Both given, a value that is not a finite positive number, a flux above :data:`MAX_FLUX` or a
+        distance inside the Sun (below :data:`SUN_RADIUS_AU`).
     """
     if flux_W_m2 is not None and distance_au is not None:
         raise InputError("give flux_W_m2 or distance_au, not both", parameters=("flux_W_m2", "distance_au"))
@@ -49,12 +58,25 @@ def solar_flux(flux_W_m2: float | None = None, distance_au: float | None = None)
                 hint="e.g. 1361 (1 au)",
                 parameters=("flux_W_m2",),
             )
+        if flux_W_m2 > MAX_FLUX:
+            raise InputError(
+                f"flux_W_m2 {flux_W_m2:g} W/m^2 is above {MAX_FLUX:g} W/m^2, 16 times the flux at the "
+                f"Sun's photosphere ({PHOTOSPHERE_FLUX:.3g})",
+                hint=f"give flux_W_m2 of at most {MAX_FLUX:g}, e.g. 1361 (1 au)",
+                parameters=("flux_W_m2",),
+            )
         return float(flux_W_m2)
     if distance_au is not None:
         if not math.isfinite(distance_au) or distance_au <= 0:
             raise InputError(
                 f"distance_au {distance_au} is not a finite positive number",
                 hint="e.g. 1.0",
+                parameters=("distance_au",),
+            )
+        if distance_au < SUN_RADIUS_AU:
+            raise InputError(
+                f"distance_au {distance_au:g} au is inside the Sun, whose radius is {SUN_RADIUS_AU:.3g} au",
+                hint="give distance_au beyond the Sun's radius, e.g. 1.0 (Parker Solar Probe comes to 0.046)",
                 parameters=("distance_au",),
             )
         return SOLAR_FLUX_1AU / distance_au**2

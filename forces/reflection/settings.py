@@ -12,6 +12,7 @@ import os
 from dataclasses import dataclass
 
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.views.view_factors import check_rays_per_side
 
 #: Modes of :attr:`ReflectionSettings.mode`.
 MODES = ("none", "specular", "full", "auto")
@@ -36,7 +37,8 @@ class ReflectionSettings:
     depth : int
         A chain is dropped after meeting this many surfaces beyond the side that sent it, >= 1.
     rays_per_side : int or None
-        Hemisphere rays per side for the view factors; None for the default rule.
+        Hemisphere rays per side for the view factors, 1 to
+        :data:`~sunwind.geometry.views.view_factors.MAX_RAYS_PER_SIDE`; None for the default rule.
     cache_dir : path, None or False
         Where view factors are kept on disk (None: ``SUNWIND_CACHE_DIR`` or the user cache; False:
         not kept).
@@ -67,12 +69,8 @@ class ReflectionSettings:
                 hint=f"default {DEFAULT_DEPTH}",
                 parameters=("depth",),
             )
-        if self.rays_per_side is not None and self.rays_per_side < 1:
-            raise InputError(
-                f"rays_per_side {self.rays_per_side} must be at least 1",
-                hint="e.g. 1024",
-                parameters=("rays_per_side",),
-            )
+        if self.rays_per_side is not None:
+            check_rays_per_side(self.rays_per_side)
 
     @property
     def view_key(self) -> tuple:

@@ -62,6 +62,9 @@ VIEW_SEED = STRATIFIED_SEED
 #: take ~3 s of CPU (made, cast by Embree and tallied); 256 rays (g = 16) keep the noise of one ``F_ij``
 #: below ``0.5 / sqrt(256) = 3 %`` absolute, and far less on sums over many sides.
 MIN_RAYS, MAX_RAYS, TOTAL_RAYS = 256, 16_384, 2**24
+#: Most rays per side that may be asked for: four times the default's most (its noise halved); the
+#: rays of 256 sides then take ~3 s, and more per side would take hours on a mesh of thousands of facets.
+MAX_RAYS_PER_SIDE = 65_536
 #: Version of the method; part of the cache key, so changing the method never reads old entries.
 METHOD_VERSION = 1
 
@@ -133,13 +136,25 @@ def default_rays_per_side(n_sides: int) -> int:
 
 
 def resolve_rays_per_side(rays_per_side: int | None, n_sides: int) -> int:
-    """Rays per side to cast: the default for None, else ``rays_per_side`` rounded up to a square."""
+    """Rays per side to cast: the default for None, else ``rays_per_side`` (a whole number from 1 to
+    :data:`MAX_RAYS_PER_SIDE`) rounded up to a square."""
     if rays_per_side is None:
         return default_rays_per_side(n_sides)
-    integer = isinstance(rays_per_side, (int, np.integer)) and not isinstance(rays_per_side, bool)
-    if not integer or rays_per_side < 1:
-        raise InputError(f"rays_per_side = {rays_per_side!r} must be a positive integer")
+    check_rays_per_side(rays_per_side)
     return (math.isqrt(int(rays_per_side) - 1) + 1) ** 2
+
+
+def check_rays_per_side(rays_per_side: int, name: str = "rays_per_side") -> None:
+    """Refuse anything but a whole number of rays per side from 1 to :data:`MAX_RAYS_PER_SIDE`;
+    ``name`` is the parameter that gave it."""
+    integer = isinstance(rays_per_side, (int, np.integer)) and not isinstance(rays_per_side, bool)
+    if not integer or not 1 <= rays_per_side <= MAX_RAYS_PER_SIDE:
+        raise InputError(
+            f"{name} {rays_per_side!r} must be a whole number from 1 to {MAX_RAYS_PER_SIDE} (four times "
+            "the default's most; more would take hours on a mesh of thousands of facets)",
+            hint=f"e.g. 4096, or leave it out for the default ({MIN_RAYS} to {MAX_RAYS} by mesh size)",
+            parameters=(name,),
+        )
 
 
 # ---------------------------------------------------------------------------------------- computation

@@ -81,3 +81,19 @@ def test_a_slow_sweep_speed_is_said_once(run_cli, box, tmp_path):
                            "-o", tmp_path / "slow.nc")  # fmt: skip
     assert code == 0, err
     assert err.count("warning") == 1 and "--speed gives a speed of 7.6 m/s: that looks like km/s" in err
+
+
+BENCH = {
+    "both benchmarks": (["bench", "--sweep", "--orbit"], "--sweep and --orbit are two benchmarks"),
+    "a hundred million attitudes": (["bench", "--attitudes", "100000000"], "must be from 1 to 10000"),
+    "a sweep of a mesh it does not time": (["bench", "--sweep", "--mesh", "{d}/box.obj", "-m", "{d}/q.csv"],
+                                           "--sweep times the generated sample"),
+    "a step without the sweep": (["bench", "--step", "10"], "--step is the grid step of --sweep"),
+    "a mesh without its materials": (["bench", "--mesh", "{d}/box.obj"], "--mesh and its materials -m"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("args, message", BENCH.values(), ids=BENCH.keys())
+def test_bench_flags_are_checked_together(run_cli, box, args, message):
+    code, out, err = run_cli(*(str(a).format(d=box) for a in args))
+    assert code == 1 and out == "" and err.count("\n") == 1 and message in err, err

@@ -38,7 +38,10 @@ def test_an_error_renamed_writes_the_flags_of_its_parameters_only():
             ["srp", SAMPLE, "--sun", "1", "0", "0", "--reflection-cutoff", "2"],
             "--reflection-cutoff 2.0 is not",
         ),
-        (["srp", SAMPLE, "--sun", "1", "0", "0", "--view-rays", "0"], "--view-rays 0 must be at least 1"),
+        (
+            ["srp", SAMPLE, "--sun", "1", "0", "0", "--view-rays", "0"],
+            "--view-rays 0 must be a whole number from 1 to 65536",
+        ),
         (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "-5"], "--altitude -5.0 km is below 0"),
         (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "400", "--lat", "95"], "--lat 95.0 deg"),
         (["drag", SAMPLE, "--flow-azel", "0", "0", "--altitude", "400", "--epoch", "soon"], "--epoch 'soon'"),
