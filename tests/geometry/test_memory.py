@@ -85,10 +85,10 @@ def test_shadow_sampling_is_sized_before_allocating(monkeypatch):
 
 
 def test_view_rays_are_sized_before_allocating(monkeypatch):
-    monkeypatch.setenv(memory.LIMIT_VARIABLE, "10M")
+    monkeypatch.setenv(memory.LIMIT_VARIABLE, "1M")
     craft = build_spacecraft(box(), uniform=MIXED)
     with pytest.raises(InputError, match="view-factor rays per side x 12 sides"):
-        compute_view_factors(craft, 10**8)
+        compute_view_factors(craft, 65536)  # the most rays accepted, past a limit of 1 MiB
 
 
 def test_grid_and_table_are_sized_before_allocating(monkeypatch):
