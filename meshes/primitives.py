@@ -34,6 +34,7 @@ from sunwind.geometry.errors import InputError
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.meshes.arguments import (
     HULL_TRIANGLE_BYTES,
+    MAX_LENGTH_M,
     check_count,
     check_lengths,
     check_positive,
@@ -261,6 +262,12 @@ def cone(
     if not half_angle_deg < 90:
         raise InputError(f"half_angle_deg = {half_angle_deg!r} must be in (0, 90)")
     height = radius / math.tan(math.radians(half_angle_deg))
+    if height > MAX_LENGTH_M:
+        raise InputError(
+            f"half_angle_deg {half_angle_deg:g} makes the cone {height:.3g} m tall, above {MAX_LENGTH_M:g} m",
+            hint=f"widen the half-angle to at least {math.degrees(math.atan(radius / MAX_LENGTH_M)):.3g} deg",
+            parameters=("half_angle_deg",),
+        )
     facet = 2 * np.pi * radius / segments
     if rings is None:
         rings = equal_pieces(math.hypot(radius, height), facet)

@@ -8,11 +8,12 @@ import click
 
 from sunwind.forces.cli.earth import (
     EarthRequest,
-    earth_at,
+    earth_below,
     earth_document,
     earth_request,
     earth_term_options,
     print_earth,
+    radiation,
 )
 from sunwind.forces.cli.free_stream import FreeStream, flow_options, refuse_without_flow
 from sunwind.forces.cli.options import (
@@ -118,9 +119,9 @@ def forces(
     (with --earth-radiation, the Earth's albedo and infrared too, and --thermal the thermal recoil;
     without a flow direction, no drag: SRP and the Earth's terms, as in GEO)."""
     model = posed(loaded(source, **references), sun.vector, "forces")
+    below = None if earth is None else earth_below(earth, flow)  # checked before any work
     if earth is not None:
         infrared_optics(model.craft)  # a missing emissivity refused before any work
-    light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     if flow.velocity_m_s is None:
         refuse_without_flow(["--" + key.replace("_", "-") for key, _ in source.gas])
         print(
@@ -128,6 +129,7 @@ def forces(
             " (and the Earth's terms with --earth-radiation)",
             file=sys.stderr,
         )
+    light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
     gas = None if flow.velocity_m_s is None else _drag(model, flow, reflections, sampling)
     estimates = {"srp": light.error_estimate} | ({} if gas is None else {"drag": gas.error_estimate})
     if earth is None:
@@ -137,7 +139,7 @@ def forces(
             print_forces(light, gas)
         warn_results(estimates, sampling["tolerance"])
         return
-    result, state = earth_at(model, earth, sun, flow, reflections, sampling)
+    result, state = radiation(model, below, sun, reflections, sampling, thermal=earth.thermal)
     terms = [(band.name, band.force_N, band.torque_Nm) for band in (result.albedo, result.infrared)]
     if state is not None:
         terms.append(("thermal", state.force_N, state.torque_Nm))

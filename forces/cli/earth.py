@@ -27,7 +27,7 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
-from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, EarthResult, Place, earth_radiation
+from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, EarthResult, Place, check_cells_at, earth_radiation
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
@@ -161,6 +161,14 @@ def earth_request(values: dict) -> EarthRequest | None:
     return EarthRequest(**mine)
 
 
+def check_earth_step(altitude_km: float, step_deg: float) -> None:
+    """:func:`~sunwind.forces.earth.check_cells_at` for the commands whose cell step is ``--earth-step``."""
+    try:
+        check_cells_at(altitude_km, step_deg)
+    except InputError as error:
+        raise error.renamed({"step_deg": "--earth-step"}) from None
+
+
 def refuse_without_earth(flags: Sequence[tuple[str, object]]) -> None:
     """Refuse in one line the ``(flag, value)`` pairs given (value not None) without ``--earth-radiation``."""
     given = [flag for flag, value in flags if value is not None]
@@ -242,23 +250,20 @@ def radiation(
     return result, result.equilibrium("none" if below.plates else reflections) if thermal else None
 
 
-def earth_at(
-    model: Model, request: EarthRequest, sun: Sun, where: FreeStream, reflections: ReflectionSettings,
-    sampling: dict,
-) -> tuple[EarthResult, ThermalState]:  # fmt: skip
-    """:func:`radiation` for ``sunwind forces``: the Earth along ``--earth``, ``--altitude`` and
-    ``--epoch`` from the flow options, the Sun's share behind the Earth by the conical model."""
+def earth_below(request: EarthRequest, where: FreeStream) -> Below:
+    """The planet of ``sunwind forces``, checked before any work: the Earth along ``--earth``, at
+    ``--altitude`` and ``--epoch`` from the flow options, the Sun's share behind it by the conical model."""
     if request.nadir is None or where.altitude_km is None:
         raise InputError(
             "--earth-radiation needs --earth X Y Z (body-frame direction to the Earth's centre) and "
             "--altitude H_KM",
             hint="e.g. --earth 0 0 1 --altitude 500",
         )
-    below = Below(
+    check_earth_step(where.altitude_km, request.step_deg)
+    return Below(
         request.nadir, where.altitude_km, "earth", request.albedo, request.albedo_model, where.time,
         request.pole, request.earth_ir, "conical", request.step_deg,
     )  # fmt: skip
-    return radiation(model, below, sun, reflections, sampling, thermal=request.thermal)
 
 
 def earth_document(result: EarthResult, state: ThermalState | None) -> dict:

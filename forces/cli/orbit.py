@@ -13,7 +13,7 @@ import numpy as np
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from sunwind.forces.cli.earth import EarthRequest, earth_request, earth_term_options
+from sunwind.forces.cli.earth import EarthRequest, check_earth_step, earth_request, earth_term_options
 from sunwind.forces.cli.options import (
     drag_only,
     group,
@@ -27,7 +27,6 @@ from sunwind.forces.cli.orbit_path import PATH_OPTIONS, PathRequest, path_reques
 from sunwind.forces.cli.outputs import check_distinct, check_image, check_writable
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
 from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
-from sunwind.forces.earth import check_cells_at
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
 from sunwind.forces.model import ModelSource
@@ -107,8 +106,12 @@ def _environment(values: dict) -> Environment:
     sun = values["sun_eci"]
     check_sun(sun, values["moon"])
     mass = values["mass"]
-    if mass is not None and not (math.isfinite(mass) and mass > 0):
-        raise InputError(f"--mass {mass:g} kg must be a positive number")
+    if mass is not None and not (math.isfinite(mass) and 1e-3 <= mass <= 1e7):
+        raise InputError(
+            f"--mass {mass:g} kg must be from 0.001 kg to 1e7 kg (a gram-sized chip satellite to "
+            "twenty International Space Stations)",
+            hint="give the spacecraft's mass in kg",
+        )
     asked = values["srp_flag"] or values["drag_flag"]
     return Environment(
         values["srp_flag"] or not asked,
@@ -239,10 +242,7 @@ def orbit(
     if checkpoint is not None:
         check_place(checkpoint)
     if planet is not None:  # the largest cap, at the lowest altitude; --step is the time's here
-        try:
-            check_cells_at(max(lowest, 0.0), planet.step_deg)
-        except InputError as error:
-            raise error.renamed({"step_deg": "--earth-step"}) from None
+        check_earth_step(max(lowest, 0.0), planet.step_deg)
     begin = time.perf_counter()
     for part in (srp, drag, planet):  # view factors, open skies: timed apart from the steps
         if part is not None:

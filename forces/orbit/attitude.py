@@ -93,6 +93,12 @@ class AttitudeLaw:
                 hint="give qw, qx, qy, qz of unit length, scalar first, body to GCRF (e.g. inertial:1,0,0,0)",
                 parameters=("attitude",),
             )
+        if kind == "lvlh" and max(abs(v) for v in values) > 360:
+            raise InputError(
+                f"lvlh angles {','.join(f'{v:g}' for v in values)} must lie within [-360, 360] deg",
+                hint="give pitch, yaw, roll in degrees, e.g. lvlh:10,0,0",
+                parameters=("attitude",),
+            )
         if kind == "thrust-sun":
             if math.hypot(*values) == 0:
                 raise InputError("the thrust direction is zero", parameters=("attitude",))

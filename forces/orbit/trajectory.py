@@ -91,6 +91,15 @@ class Elements:
                 hint="give 0 <= e < 1 (a TLE or an ephemeris file for anything else)",
                 parameters=("elements",),
             )
+        angles = {"RAAN": self.raan_deg, "argument of perigee": self.argp_deg, "true anomaly": self.nu_deg}
+        wide = [f"{name} {value:g}" for name, value in angles.items() if abs(value) > 360]
+        if wide:
+            raise InputError(
+                f"{', '.join(wide)} deg outside [-360, 360]: far beyond a turn a float keeps no fraction "
+                "of one",
+                hint="give the angles in degrees, e.g. 0 to 360",
+                parameters=("elements",),
+            )
         if not 0 <= self.i_deg <= 180:
             raise InputError(
                 f"inclination {self.i_deg:g} deg is outside 0-180 deg",

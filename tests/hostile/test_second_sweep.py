@@ -6,6 +6,8 @@ import pytest
 BOX = ["--reflectivity", "0.3", "--specular-fraction", "0.5", "--emissivity", "0.8"]
 LEO = ["--altitude", "500", "--inclination", "51.6", "--epoch", "2025-03-20T00:00:00Z", "--srp"]
 BELOW = ["--earth", "0", "0", "-1", "--altitude", "500", "--sun", "1", "0", "0"]
+ELEMENTS = ["7000", "0.001", "51.6", "1e308", "0", "0"]  # a RAAN of 1e308 deg
+GEO_EARTH = ["--earth-radiation", "--earth", "0", "0", "1", "--altitude", "35786"]
 
 
 @pytest.fixture(scope="module")
@@ -35,6 +37,16 @@ CASES = {
     "subnormal reference area": (["drag", "{d}/box.obj", "--flow-azel", "0", "0", "--altitude", "400",
                                   "--ref-area", "1e-320"],
                                  "--ref-area 1e-320 must be a positive number from"),
+    "an lvlh angle of 1e308": (["orbit", "{d}/box.obj", *BOX, *LEO, "--attitude", "lvlh:1e308,0,0"],
+                               "lvlh angles 1e+308,0,0 must lie within [-360, 360] deg"),
+    "a mass of 1e308 kg": (["orbit", "{d}/box.obj", *BOX, *LEO, "--mass", "1e308"],
+                           "--mass 1e+308 kg must be from 0.001 kg to 1e7 kg"),
+    "a RAAN of 1e308": (["orbit", "{d}/box.obj", *BOX, "--elements", *ELEMENTS, "--epoch", "2025-03-20",
+                         "--srp"], "RAAN 1e+308 deg outside [-360, 360]"),
+    "forces --earth-step 1e-9, first": (["forces", "{d}/box.obj", *BOX, "--sun", "1", "0", "0", *GEO_EARTH,
+                                         "--earth-step", "1e-9"], "--earth-step 1e-09 cuts"),
+    "a cone 57 million km tall": (["mesh", "cone", "--half-angle-deg", "1e-9", "--rings", "3", "-o",
+                                   "{d}/c.obj"], "makes the cone 5.73e+10 m tall"),
 }  # fmt: skip
 
 
