@@ -16,12 +16,28 @@ from sunwind.geometry.spacecraft import Spacecraft
 REFERENCE_SIZES = {"reference_area_m2": (1e-12, 1e12, "m^2"), "reference_length_m": (1e-6, 1e6, "m")}
 #: Model sizes (box diagonals) from the model's box beyond which a reference point looks like a slip.
 FAR_REFERENCE = 10.0
+#: The farthest coordinate [m] of a reference point accepted.
+FARTHEST_REFERENCE_M = 1e7
 
 
 def warn_far_reference(point: NDArray[np.float64], craft: Spacecraft) -> None:
     """A :class:`UnitWarning` when the torque reference ``point`` [m] lies farther than
     :data:`FAR_REFERENCE` model sizes from the model's box: a point in mm for a model in m, or the
-    reverse, gives torques a thousand times off without an error."""
+    reverse, gives torques a thousand times off without an error.
+
+    Raises
+    ------
+    InputError
+        A coordinate beyond :data:`FARTHEST_REFERENCE_M`, which no model's reference point reaches.
+    """
+    if np.abs(point).max() > FARTHEST_REFERENCE_M:
+        x, y, z = point
+        raise InputError(
+            f"reference_point_m ({x:g}, {y:g}, {z:g}) m has a coordinate beyond {FARTHEST_REFERENCE_M:g} m "
+            "(10 000 km): no spacecraft's reference point lies there",
+            hint="give the centre of mass in the mesh's frame, in metres",
+            parameters=("reference_point_m",),
+        )
     low, high = craft.bounds
     distance = float(np.linalg.norm(np.maximum(0.0, np.maximum(low - point, point - high))))
     size = craft.diagonal_m

@@ -45,6 +45,8 @@ CASES = {
                          "--srp"], "RAAN 1e+308 deg outside [-360, 360]"),
     "forces --earth-step 1e-9, first": (["forces", "{d}/box.obj", *BOX, "--sun", "1", "0", "0", *GEO_EARTH,
                                          "--earth-step", "1e-9"], "--earth-step 1e-09 cuts"),
+    "a reference point at 1e308 m": (["srp", "{d}/box.obj", *BOX, "--sun", "1", "0", "0",
+                                      "--ref-point", "1e308", "0", "0"], "has a coordinate beyond 1e+07 m"),
     "a cone 57 million km tall": (["mesh", "cone", "--half-angle-deg", "1e-9", "--rings", "3", "-o",
                                    "{d}/c.obj"], "makes the cone 5.73e+10 m tall"),
 }  # fmt: skip
