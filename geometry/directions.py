@@ -81,21 +81,37 @@ def azel_to_vector(azimuth_deg: float, elevation_deg: float, name: str = "direct
     InputError
         Non-finite angles, azimuth outside [-360, 360] or elevation outside [-90, 90].
     """
-    if not (math.isfinite(azimuth_deg) and math.isfinite(elevation_deg)):
+    azimuth, elevation = checked_azel(azimuth_deg, elevation_deg, name)
+    return azel_to_vectors(np.array([azimuth]), np.array([elevation]))[0]
+
+
+def checked_azel(azimuth_deg: float, elevation_deg: float, name: str = "direction") -> tuple[float, float]:
+    """An azimuth and elevation [deg] as floats, checked: finite, the azimuth within [-360, 360] and the
+    elevation within [-90, 90]; ``name`` is the parameter that gave them.
+
+    >>> checked_azel(-60, 45)
+    (-60.0, 45.0)
+
+    Raises
+    ------
+    InputError
+        Non-finite angles, azimuth outside [-360, 360] or elevation outside [-90, 90].
+    """
+    azimuth, elevation = float(azimuth_deg), float(elevation_deg)
+    if not (math.isfinite(azimuth) and math.isfinite(elevation)):
         raise InputError(
-            f"{name} azimuth/elevation {azimuth_deg} {elevation_deg} must be finite numbers",
-            parameters=(name,),
+            f"{name} azimuth/elevation {azimuth:g} {elevation:g} must be finite numbers", parameters=(name,)
         )
-    if abs(azimuth_deg) > 360:
+    if abs(azimuth) > 360:
         raise InputError(
-            f"{name} azimuth {azimuth_deg:g} deg is outside [-360, 360] (a turn either way of +x; far "
+            f"{name} azimuth {azimuth:g} deg is outside [-360, 360] (a turn either way of +x; far "
             "beyond it a float keeps no fraction of a turn)",
             hint="give the azimuth in degrees, e.g. -60 or 300",
             parameters=(name,),
         )
-    if abs(elevation_deg) > 90:
-        raise InputError(f"{name} elevation {elevation_deg} deg is outside [-90, 90]", parameters=(name,))
-    return azel_to_vectors(np.array([azimuth_deg]), np.array([elevation_deg]))[0]
+    if abs(elevation) > 90:
+        raise InputError(f"{name} elevation {elevation:g} deg is outside [-90, 90]", parameters=(name,))
+    return azimuth, elevation
 
 
 def _cos_sin_deg(angle_deg: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -55,7 +55,7 @@ from sunwind.forces.tables import (
 from sunwind.forces.tables.checkpoint import check_place
 from sunwind.forces.tables.dataset import GRID_DIMS, kinds_of, one_pose, open_table
 from sunwind.forces.tables.engine import check_table_memory
-from sunwind.geometry.directions import azel_to_vector
+from sunwind.geometry.directions import azel_to_vector, checked_azel
 from sunwind.geometry.errors import InputError
 
 
@@ -358,10 +358,10 @@ def _count(table: TableRequest, attitudes) -> int:
 def plot(table_path: Path, output: Path | None, at_azel, view_azel, no_view: bool) -> None:
     """PNG maps of every force and torque component of a table, and 3-D views of facet pressure."""
     from sunwind.forces.tables.plots import plot_table
-    from sunwind.forces.tables.pressure_views import plot_pressure_views, view_angles, view_model
+    from sunwind.forces.tables.pressure_views import plot_pressure_views, view_model
 
     direction = None if at_azel is None else azel_to_vector(*at_azel, "--at-azel")
-    camera = None if view_azel is None else view_angles(view_azel, "--view-azel")
+    camera = None if view_azel is None else checked_azel(*view_azel, "--view-azel")
     table = one_pose(
         open_table(table_path),
         "sunwind plot",

@@ -24,7 +24,7 @@ from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.srp import srp
 from sunwind.forces.tables.dataset import DIRECTION, kinds_of
-from sunwind.geometry.directions import azel_to_vector, unit_vector, vector_to_azel
+from sunwind.geometry.directions import azel_to_vector, checked_azel, unit_vector, vector_to_azel
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -118,7 +118,7 @@ def pressure_figure(
             f"pressure_Pa has shape {pressure.shape}, expected one finite value per facet ({len(triangles)},)"
         )
     d = unit_vector(direction, "direction")
-    azimuth, elevation = vector_to_azel(d) if view_azel is None else view_angles(view_azel)
+    azimuth, elevation = vector_to_azel(d) if view_azel is None else checked_azel(*view_azel, "view_azel")
     points = triangles.reshape(-1, 3)
     model_low, model_high = points.min(axis=0), points.max(axis=0)
     mappable = ScalarMappable(norm=Normalize(*_limits(pressure)), cmap="viridis")
@@ -153,39 +153,6 @@ def pressure_figure(
     )
     fig.colorbar(mappable, ax=ax, shrink=0.7, label="pressure [Pa]")
     return fig
-
-
-def view_angles(view_azel: tuple[float, float], name: str = "view_azel") -> tuple[float, float]:
-    """A camera's azimuth and elevation [deg], checked.
-
-    Parameters
-    ----------
-    view_azel : (float, float)
-        Azimuth and elevation [deg], body frame.
-    name : str
-        The parameter (or flag) that gave them, for the message.
-
-    Returns
-    -------
-    (float, float)
-        Azimuth and elevation [deg].
-
-    Raises
-    ------
-    InputError
-        An angle that is not finite, or the elevation outside [-90, 90].
-    """
-    azimuth, elevation = (float(angle) for angle in view_azel)
-    if not (math.isfinite(azimuth) and math.isfinite(elevation)):
-        raise InputError(
-            f"{name} azimuth/elevation {azimuth:g} {elevation:g} of the camera must be finite numbers",
-            parameters=(name,),
-        )
-    if abs(elevation) > 90:
-        raise InputError(
-            f"{name} elevation {elevation:g} deg of the camera is outside [-90, 90]", parameters=(name,)
-        )
-    return azimuth, elevation
 
 
 def view_box(triangles: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -298,7 +265,8 @@ def plot_pressure_views(
     Raises
     ------
     InputError
-        What :func:`view_model` refuses, or a ``view_azel`` that :func:`view_angles` refuses.
+        What :func:`view_model` refuses, or a ``view_azel`` that
+        :func:`~sunwind.geometry.directions.checked_azel` refuses.
     """
     model = view_model(table) if model is None else model
     return [
