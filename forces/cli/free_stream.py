@@ -17,10 +17,9 @@ from dataclasses import dataclass, field, replace
 
 import click
 import numpy as np
-from click.core import ParameterSource
 from numpy.typing import NDArray
 
-from sunwind.forces.cli.options import group
+from sunwind.forces.cli.options import given, group
 from sunwind.forces.drag import checked_velocities
 from sunwind.forces.gas import (
     Atmosphere,
@@ -156,16 +155,10 @@ def _epoch(values: dict) -> None:
     old = values.pop("old_time")
     if old is None:
         return
-    if _given("time"):
+    if given("time"):
         raise InputError("--time is the former name of --epoch: give the date once", hint="drop --time")
     warnings.warn("--time is now called --epoch; it was taken as --epoch", FutureWarning, stacklevel=2)
     values["time"] = old
-
-
-def _given(name: str) -> bool:
-    """Whether the option of keyword ``name`` was given on the command line (or in the environment)."""
-    source = click.get_current_context().get_parameter_source(name)
-    return source in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT)
 
 
 #: The flow flags that mean nothing without a flow direction, by keyword.
@@ -190,7 +183,7 @@ def refuse_without_flow(flags: list[str]) -> None:
 def _no_flow(values: dict) -> FreeStream:
     """The flow of ``forces`` without ``--velocity`` or ``--flow-azel``: none, so no drag;
     ``--altitude`` and ``--epoch`` still place the Earth's radiation."""
-    refuse_without_flow([flag for key, flag in _FLOW_ONLY.items() if _given(key)])
+    refuse_without_flow([flag for key, flag in _FLOW_ONLY.items() if given(key)])
     return FreeStream(None, None, None, altitude_km=values["altitude"], time=values["time"])
 
 

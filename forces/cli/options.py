@@ -16,6 +16,7 @@ from pathlib import Path
 
 import click
 import numpy as np
+from click.core import ParameterSource
 from numpy.typing import NDArray
 
 from sunwind.forces.model import Model, ModelSource
@@ -86,6 +87,13 @@ FLAGS = {
     "interpolation": "--interpolation",
     "eclipse": "--eclipse",
 }
+
+
+def given(name: str) -> bool:
+    """Whether the option of keyword ``name`` of the running command was given on the command line (or
+    in the environment), not left at its default."""
+    source = click.get_current_context().get_parameter_source(name)
+    return source in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT)
 
 
 def group(name: str, options: list[Callable], build: Callable[[dict], object] | None = None) -> Callable:

@@ -8,11 +8,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import click
-from click.core import ParameterSource
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.bench import REFERENCE_GAS_FACTORS, REFERENCE_TOLERANCE, benchmark
-from sunwind.forces.cli.options import group
+from sunwind.forces.cli.options import given, group
 from sunwind.forces.sweep_bench import sweep_benchmark
 from sunwind.forces.tables import direction_grid
 from sunwind.geometry.errors import InputError
@@ -162,8 +161,7 @@ def _benchmark(sweep_flag: bool, step: float, orbit_flag: bool) -> Benchmark:
     """The :class:`Benchmark` of ``--sweep``, ``--step`` and ``--orbit``, checked together."""
     if sweep_flag and orbit_flag:
         raise InputError("--sweep and --orbit are two benchmarks", hint="give one of them")
-    given = click.get_current_context().get_parameter_source("step") == ParameterSource.COMMANDLINE
-    if given and not sweep_flag:
+    if given("step") and not sweep_flag:
         raise InputError("--step is the grid step of --sweep", hint="add --sweep, or drop --step")
     return Benchmark("sweep" if sweep_flag else "orbit" if orbit_flag else "attitudes", step)
 
