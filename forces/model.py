@@ -29,7 +29,7 @@ from sunwind.geometry.directions import finite_point, unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GAS_DEFAULTS, GasSurface, Material
 from sunwind.geometry.parallel import checked_threads
-from sunwind.geometry.references import check_reference_sizes, warn_far_reference
+from sunwind.geometry.references import check_reference_point, check_reference_sizes
 from sunwind.geometry.spacecraft import Spacecraft, articulate, load_spacecraft, pose
 
 #: Where a materials-file gas key lands on :class:`~sunwind.geometry.materials.GasSurface`.
@@ -225,7 +225,7 @@ class Model:
         if self.reference_point_m is not None:
             point = finite_point(self.reference_point_m, "reference_point_m")
             object.__setattr__(self, "reference_point_m", point)
-            warn_far_reference(point, self.craft)
+            check_reference_point(point, self.craft)
         check_reference_sizes(self.reference_area_m2, self.reference_length_m)
         checked_threads(self.threads)
 

@@ -20,10 +20,10 @@ FAR_REFERENCE = 10.0
 FARTHEST_REFERENCE_M = 1e7
 
 
-def warn_far_reference(point: NDArray[np.float64], craft: Spacecraft) -> None:
-    """A :class:`UnitWarning` when the torque reference ``point`` [m] lies farther than
-    :data:`FAR_REFERENCE` model sizes from the model's box: a point in mm for a model in m, or the
-    reverse, gives torques a thousand times off without an error.
+def check_reference_point(point: NDArray[np.float64], craft: Spacecraft) -> None:
+    """Refuse a torque reference ``point`` [m] no model's reaches; a :class:`UnitWarning` when it lies
+    farther than :data:`FAR_REFERENCE` model sizes from the model's box: a point in mm for a model in m,
+    or the reverse, gives torques a thousand times off without an error.
 
     Raises
     ------

@@ -119,9 +119,10 @@ def forces(
     (with --earth-radiation, the Earth's albedo and infrared too, and --thermal the thermal recoil;
     without a flow direction, no drag: SRP and the Earth's terms, as in GEO)."""
     model = posed(loaded(source, **references), sun.vector, "forces")
-    below = None if earth is None else earth_below(earth, flow)  # checked before any work
-    if earth is not None:
-        infrared_optics(model.craft)  # a missing emissivity refused before any work
+    below = None
+    if earth is not None:  # the place, the cell step and a missing emissivity refused before any work
+        below = earth_below(earth, flow)
+        infrared_optics(model.craft)
     if flow.velocity_m_s is None:
         refuse_without_flow(["--" + key.replace("_", "-") for key, _ in source.gas])
         print(

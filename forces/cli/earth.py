@@ -33,6 +33,7 @@ from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.planet.bodies import PLANETS, PlanetLight, planet
 from sunwind.forces.planet.shadow import ECLIPSE_MODELS, sun_behind
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables.jobs import SrpSetup
 from sunwind.forces.thermal import ThermalState
@@ -157,7 +158,8 @@ def earth_request(values: dict) -> EarthRequest | None:
     step = mine["step_deg"]
     if not (math.isfinite(step) and 0.0 < step <= 90.0):
         raise InputError(f"--earth-step {step:g} is not in (0, 90] deg", hint="e.g. --earth-step 10")
-    PlanetLight.of(planet("earth"), 1361.0, albedo=mine["albedo"], infrared_W_m2=mine["earth_ir"])  # checks
+    light = {"albedo": mine["albedo"], "infrared_W_m2": mine["earth_ir"]}
+    PlanetLight.of(planet("earth"), SOLAR_FLUX_1AU, **light)  # their checks, before any work
     return EarthRequest(**mine)
 
 
