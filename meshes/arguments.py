@@ -34,9 +34,15 @@ MAX_LENGTH_M = 1e4
 def check_positive(**values: float) -> None:
     """Raise :class:`InputError` unless every value is a finite number > 0."""
     for name, value in values.items():
-        real = isinstance(value, numbers.Real) and not isinstance(value, bool)
-        if not (real and math.isfinite(value) and value > 0):
-            raise InputError(f"{name} {value!r} must be a finite number > 0", parameters=(name,))
+        _positive(value, name, name)
+
+
+def _positive(value: float, shown: str, name: str) -> None:
+    """Refuse ``value`` unless a finite number > 0; ``shown`` as the message names it (``size[0]``),
+    ``name`` the parameter that gave it."""
+    real = isinstance(value, numbers.Real) and not isinstance(value, bool)
+    if not (real and math.isfinite(value) and value > 0):
+        raise InputError(f"{shown} {value!r} must be a finite number > 0", parameters=(name,))
 
 
 def check_lengths(**values: float | Sequence[float]) -> None:
@@ -46,9 +52,7 @@ def check_lengths(**values: float | Sequence[float]) -> None:
         many = isinstance(value, Sequence)
         for k, length in enumerate(value if many else (value,)):
             shown = f"{name}[{k}]" if many else name
-            real = isinstance(length, numbers.Real) and not isinstance(length, bool)
-            if not (real and math.isfinite(length) and length > 0):
-                raise InputError(f"{shown} {length!r} must be a finite number > 0", parameters=(name,))
+            _positive(length, shown, name)
             if length > MAX_LENGTH_M:
                 raise InputError(
                     f"{shown} {length:g} m is above {MAX_LENGTH_M:g} m (10 km, a hundred times the "
