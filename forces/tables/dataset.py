@@ -357,14 +357,19 @@ class ReferencePoint:
         return cls(point, str(attrs.get("reference_point", "")))
 
     @property
+    def rounded_m(self) -> NDArray[np.float64]:
+        """The point [m] to the micrometre, as the files and figures state it (no -0)."""
+        return np.round(self.point_m, 6) + 0.0
+
+    @property
     def coordinates(self) -> str:
         """The point [m] to the micrometre, as a list a Python script takes: ``[0.1, 0, 0]``."""
-        return "[" + ", ".join(f"{v:.9g}" for v in np.round(self.point_m, 6) + 0.0) + "]"  # + 0: no -0
+        return "[" + ", ".join(f"{v:.9g}" for v in self.rounded_m) + "]"
 
     @property
     def at_origin(self) -> bool:
         """Whether the point is the body-frame origin to the micrometre (a centroid's rounding is)."""
-        return not np.round(self.point_m, 6).any()
+        return not self.rounded_m.any()
 
     def __str__(self) -> str:
         return f"{self.coordinates} m" + (f" ({self.name})" if self.name else "")

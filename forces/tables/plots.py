@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from numpy.typing import NDArray
 
 from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.tables.dataset import ReferencePoint
 from sunwind.forces.tables.interpolation import PREFIX
 from sunwind.geometry.errors import InputError
 
@@ -135,10 +136,10 @@ def map_title(table: xr.Dataset, name: str) -> str:
     frame = "" if "frame" in what else f", {table.attrs.get('frame', 'body frame')}"
     first = f"{what} [{variable.attrs.get('units', '')}]{frame}"
     if name.endswith("_torque_Nm") and "reference_point_m" in table.attrs:
-        point = np.round(np.asarray(table.attrs["reference_point_m"], dtype=np.float64), 6) + 0.0  # no -0
-        first += f"; reference point ({', '.join(f'{x:g}' for x in point)}) m"
-        if "reference_point" in table.attrs:
-            first += f": {table.attrs['reference_point']}"
+        point = ReferencePoint.of(table.attrs)
+        first += f"; reference point ({', '.join(f'{x:g}' for x in point.rounded_m)}) m"
+        if point.name:
+            first += f": {point.name}"
     conditions = _conditions(table.attrs, PREFIX[name.split("_", 1)[0]])
     return f"{first}\n{conditions}" if conditions else first
 
