@@ -124,7 +124,7 @@ def forces(
         below = earth_below(earth, flow)
         infrared_optics(model.craft)
     if flow.velocity_m_s is None:
-        refuse_without_flow(["--" + key.replace("_", "-") for key, _ in source.gas])
+        refuse_without_flow([key for key, _ in source.gas])
         print(
             "sunwind: notice: no flow direction (--velocity or --flow-azel): no drag; the total is SRP"
             " (and the Earth's terms with --earth-radiation)",

@@ -161,17 +161,17 @@ def _epoch(values: dict) -> None:
     values["time"] = old
 
 
-#: The flow flags that mean nothing without a flow direction, by keyword.
-_FLOW_ONLY = {
-    "speed": "--speed", "corotating": "--corotating", "heading": "--heading", "nadir": "--nadir",
-    "lat": "--lat", "lon": "--lon", "f107": "--f107", "f107a": "--f107a", "ap": "--ap",
-    "density": "--density", "temperature": "--temperature", "composition": "--composition",
-    "normalise_composition": "--normalise-composition", "sky_rays": "--sky-rays",
-}  # fmt: skip
+#: The keywords of the flow flags that mean nothing without a flow direction.
+_FLOW_ONLY = (
+    "speed", "corotating", "heading", "nadir", "lat", "lon", "f107", "f107a", "ap", "density",
+    "temperature", "composition", "normalise_composition", "sky_rays",
+)  # fmt: skip
 
 
-def refuse_without_flow(flags: list[str]) -> None:
-    """Refuse in one line the drag's ``flags`` given to ``forces`` without a flow direction."""
+def refuse_without_flow(keywords: list[str]) -> None:
+    """Refuse in one line the drag's flags (by ``keywords``, ``sky_rays`` for ``--sky-rays``) given to
+    ``forces`` without a flow direction."""
+    flags = ["--" + key.replace("_", "-") for key in keywords]
     if flags:
         raise InputError(
             f"{', '.join(flags)} {'sets' if len(flags) == 1 else 'set'} the drag, which needs the flow's "
@@ -183,7 +183,7 @@ def refuse_without_flow(flags: list[str]) -> None:
 def _no_flow(values: dict) -> FreeStream:
     """The flow of ``forces`` without ``--velocity`` or ``--flow-azel``: none, so no drag;
     ``--altitude`` and ``--epoch`` still place the Earth's radiation."""
-    refuse_without_flow([flag for key, flag in _FLOW_ONLY.items() if given(key)])
+    refuse_without_flow([key for key in _FLOW_ONLY if given(key)])
     return FreeStream(None, None, None, altitude_km=values["altitude"], time=values["time"])
 
 
