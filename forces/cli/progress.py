@@ -82,12 +82,15 @@ class CompileNotice(event.Listener):
     how long it takes at most, so the wait is not taken for a hang."""
 
     def __init__(self) -> None:
-        self._said = threading.Event()
+        self._lock = threading.Lock()
+        self._said = False
 
-    def on_start(self, event: event.Event) -> None:
-        if self._said.is_set():
-            return
-        self._said.set()
+    def on_start(self, happening: event.Event) -> None:
+        """A compilation starts (in any thread): the notice, the first time only."""
+        with self._lock:
+            if self._said:
+                return
+            self._said = True
         missing = uncompiled_kernels()
         print(
             f"sunwind: notice: compiling numba kernels on first use ({missing} not on disk yet; about "
@@ -96,8 +99,8 @@ class CompileNotice(event.Listener):
             flush=True,
         )
 
-    def on_end(self, event: event.Event) -> None:
-        pass
+    def on_end(self, happening: event.Event) -> None:
+        """A compilation ends: nothing to say."""
 
 
 def compile_notices() -> contextlib.AbstractContextManager:
