@@ -1,4 +1,11 @@
-"""sunwind: solar-radiation-pressure and free-molecular forces and torques on a spacecraft mesh.
+"""sunwind: solar-radiation pressure, free-molecular drag, planetary albedo and infrared and thermal
+recoil on a spacecraft mesh, with ray-cast self-shadowing and inter-reflection.
+
+``import sunwind as sw`` gives the user's vocabulary, and nothing else:
+
+>>> import sunwind as sw
+>>> model = sw.load(sw.meshes.box_wing(), threads=1)  # doctest: +SKIP
+>>> sw.srp(model, [0.3, -0.5, 0.8], reflections="none").force_N  # doctest: +SKIP
 
 Subpackages, each importing only those before it:
 
@@ -7,12 +14,82 @@ Subpackages, each importing only those before it:
 - :mod:`sunwind.forces`: the force laws and solvers, attitude tables, their file formats, the CLI.
 - :mod:`sunwind.validation`: closed forms, brute-force tracers and the validation runner.
 
-The method, frames and signs are in METHOD.md; ``python -m sunwind`` runs the command line.
+The names below are imported on first use, so ``import sunwind`` (and the ``sunwind`` command) stays
+quick. The method, frames and signs are in METHOD.md; ``python -m sunwind`` runs the command line.
 """
 
-from importlib.metadata import PackageNotFoundError, version
+from __future__ import annotations
+
+import importlib
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
+from typing import Any
 
 try:
-    __version__ = version("sunwind")
+    __version__ = _version("sunwind")
 except PackageNotFoundError:  # imported from a checkout that was never installed
     __version__ = "unknown"
+
+#: The public names, each ``module:attribute`` (a module alone for a namespace).
+_PUBLIC = {
+    # the model
+    "load": "sunwind.forces.model:load",
+    "Model": "sunwind.forces.model:Model",
+    "Material": "sunwind.geometry.materials:Material",
+    "meshes": "sunwind.meshes",
+    # one attitude or a batch
+    "srp": "sunwind.forces.srp:srp",
+    "drag": "sunwind.forces.drag:drag",
+    "planet_radiation": "sunwind.forces.earth:planet_radiation",
+    "Place": "sunwind.forces.earth:Place",
+    # the environment
+    "nrlmsis": "sunwind.forces.gas.msis:nrlmsis",
+    "explicit_atmosphere": "sunwind.forces.gas.atmosphere:explicit",
+    "Atmosphere": "sunwind.forces.gas.atmosphere:Atmosphere",
+    "circular_speed": "sunwind.forces.gas.flow:circular_speed",
+    "corotation_velocity": "sunwind.forces.gas.flow:corotation_velocity",
+    "PlanetLight": "sunwind.forces.planet.bodies:PlanetLight",
+    # settings, one per concern
+    "ShadowSampling": "sunwind.geometry.rays.sampling:ShadowSampling",
+    "ReflectionSettings": "sunwind.forces.reflection.settings:ReflectionSettings",
+    "GasSampling": "sunwind.forces.gas.sampling:GasSampling",
+    "SrpSetup": "sunwind.forces.tables.jobs:SrpSetup",
+    "DragSetup": "sunwind.forces.tables.jobs:DragSetup",
+    "EarthSetup": "sunwind.forces.tables.earth_setup:EarthSetup",
+    # tables and files
+    "sweep": "sunwind.forces.tables.engine:sweep",
+    "write": "sunwind.forces.export:write",
+    # orbits
+    "orbit": "sunwind.forces.orbit",
+    "fly": "sunwind.forces.orbit.flight:fly",
+    # results
+    "Result": "sunwind.forces.results:Result",
+    "SrpResult": "sunwind.forces.results:SrpResult",
+    "DragResult": "sunwind.forces.results:DragResult",
+    "PlanetResult": "sunwind.forces.earth:PlanetResult",
+    "ResultBatch": "sunwind.forces.batches:ResultBatch",
+    "SrpBatch": "sunwind.forces.batches:SrpBatch",
+    "DragBatch": "sunwind.forces.batches:DragBatch",
+    "OrbitResult": "sunwind.forces.orbit.results:OrbitResult",
+    "ErrorEstimate": "sunwind.forces.error_estimate:ErrorEstimate",
+    # errors and checks
+    "SunwindError": "sunwind.geometry.errors:SunwindError",
+    "validate": "sunwind.validation.runner:run",
+}
+
+__all__ = sorted(_PUBLIC)
+
+
+def __getattr__(name: str) -> Any:
+    target = _PUBLIC.get(name)
+    if target is None:
+        raise AttributeError(f"module 'sunwind' has no attribute {name!r}")
+    module_name, _, attribute = target.partition(":")
+    module = importlib.import_module(module_name)
+    value = getattr(module, attribute) if attribute else module
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*__all__, "__version__"])

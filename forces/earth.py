@@ -43,7 +43,7 @@ MAX_ALTITUDE_KM = 4.0e7
 
 
 @dataclass(frozen=True, eq=False)
-class EarthResult:
+class PlanetResult:
     """The planet's radiation on the spacecraft at one place and attitude; body frame, SI.
 
     Attributes
@@ -230,7 +230,7 @@ class Place:
             )
 
 
-def earth_radiation(
+def planet_radiation(
     model: Model | Spacecraft,
     place: Place,
     light: PlanetLight | None = None,
@@ -240,7 +240,7 @@ def earth_radiation(
     tolerance: float = DEFAULT_TOLERANCE,
     reflections: str | ReflectionSettings = "auto",
     step_deg: float = DEFAULT_STEP_DEG,
-) -> EarthResult:
+) -> PlanetResult:
     """Albedo and infrared force and torque from the planet below, and the power each side absorbs
     from them and from the Sun.
 
@@ -300,7 +300,7 @@ def earth_radiation(
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
         solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, sampling)
-    return EarthResult(
+    return PlanetResult(
         albedo=loads[0],
         infrared=loads[1],
         solar=solar[0],

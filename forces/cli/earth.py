@@ -27,7 +27,7 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
-from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, EarthResult, Place, check_cells_at, earth_radiation
+from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, PlanetResult, Place, check_cells_at, planet_radiation
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
@@ -243,12 +243,12 @@ def earth(
 
 def radiation(
     model: Model, below: Below, sun: Sun, reflections: ReflectionSettings, sampling: dict, *, thermal: bool
-) -> tuple[EarthResult, ThermalState | None]:
+) -> tuple[PlanetResult, ThermalState | None]:
     """The planet's radiation on ``model`` at the place of ``below`` with the command's reflections and
     shadow ``sampling``, and (``thermal``) the equilibrium temperatures and recoil."""
     place, light = place_and_light(below, sun)
     mode = PLATES if below.plates else reflections
-    result = earth_radiation(model, place, light, reflections=mode, step_deg=below.step_deg, **sampling)
+    result = planet_radiation(model, place, light, reflections=mode, step_deg=below.step_deg, **sampling)
     return result, result.equilibrium("none" if below.plates else reflections) if thermal else None
 
 
@@ -268,7 +268,7 @@ def earth_below(request: EarthRequest, where: FreeStream) -> Below:
     )  # fmt: skip
 
 
-def earth_document(result: EarthResult, state: ThermalState | None) -> dict:
+def earth_document(result: PlanetResult, state: ThermalState | None) -> dict:
     """The JSON document of ``sunwind earth``: the result's, with ``thermal`` and each part's
     ``temperature_K`` when there is a thermal state."""
     document = result.to_json()
@@ -278,18 +278,18 @@ def earth_document(result: EarthResult, state: ThermalState | None) -> dict:
     return document
 
 
-def _part_temperatures(result: EarthResult, state: ThermalState) -> dict[str, float]:
+def _part_temperatures(result: PlanetResult, state: ThermalState) -> dict[str, float]:
     """Area-weighted mean temperature of each part [K]."""
     mean = result.part_temperatures(state.temperature_K)
     return dict(zip(result.craft.part_names, mean.tolist(), strict=True))
 
 
-def _add_temperatures(parts: dict, result: EarthResult, state: ThermalState) -> None:
+def _add_temperatures(parts: dict, result: PlanetResult, state: ThermalState) -> None:
     for name, temperature in _part_temperatures(result, state).items():
         parts[name]["temperature_K"] = temperature
 
 
-def _write_sides(path: Path, result: EarthResult, state: ThermalState | None) -> None:
+def _write_sides(path: Path, result: PlanetResult, state: ThermalState | None) -> None:
     """One row per facet side: where it is, its area and the power it absorbs by source [W]."""
     craft = result.craft
     columns = result.absorbed_side_W()
@@ -313,7 +313,7 @@ def _write_sides(path: Path, result: EarthResult, state: ThermalState | None) ->
         raise InputError(f"cannot write the sides file ({error.strerror})", path=str(path)) from None
 
 
-def print_earth(result: EarthResult, state: ThermalState | None, title: str | None = None) -> None:
+def print_earth(result: PlanetResult, state: ThermalState | None, title: str | None = None) -> None:
     """The human-readable report, under ``title`` (default the command's header)."""
     craft, place = result.craft, result.place
     parts = f"({craft.n_facets} triangles, {len(craft.part_names)} parts)"

@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_step, earth_radiation
+from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_step, planet_radiation
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.tables.jobs import SrpSetup
@@ -83,7 +83,7 @@ class EarthTerms:
         self, model: Model, place: Place, sunlight_W_m2: float, julian_tt: float
     ) -> tuple[dict[str, NDArray[np.float64]], LoadsError | None]:
         """One step's records, and the shadow passes' estimated error of its albedo and infrared loads
-        (:attr:`~sunwind.forces.earth.EarthResult.shadow_error`): ``place`` (body frame; its solar
+        (:attr:`~sunwind.forces.earth.PlanetResult.shadow_error`): ``place`` (body frame; its solar
         fraction the eclipse), the solar flux at the spacecraft's distance without eclipse [W/m^2], the
         TT Julian date (Knocke's season)."""
         light = PlanetLight.of(
@@ -94,7 +94,7 @@ class EarthTerms:
             knocke_julian_date=julian_tt if self.knocke else None,
         )
         options = self.surface.options()
-        result = earth_radiation(model, place, light, step_deg=self.step_deg, **options)
+        result = planet_radiation(model, place, light, step_deg=self.step_deg, **options)
         out = {
             "albedo_force_body_N": result.albedo.force_N,
             "albedo_torque_body_Nm": result.albedo.torque_Nm,

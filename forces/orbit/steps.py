@@ -7,7 +7,7 @@ the solar flux at the spacecraft (eclipse and distance applied), ``v_rel`` in th
 geodetic place of the atmosphere, and for the Earth's radiation the body-frame directions to the Earth's
 centre and its pole, the height above the sphere, the flux without eclipse and the visible share of the
 Sun. Every step calls :func:`~sunwind.forces.srp.srp`, :func:`~sunwind.forces.drag.drag` and
-:func:`~sunwind.forces.earth.earth_radiation` as the single-attitude commands do.
+:func:`~sunwind.forces.earth.planet_radiation` as the single-attitude commands do.
 """
 
 from __future__ import annotations

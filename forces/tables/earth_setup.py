@@ -4,7 +4,7 @@ with the Sun fixed in the body frame (METHOD.md "Planet radiation", "Outputs and
 
 That slice of the Earth's radiation is what a spacecraft that holds the Sun fixed in its body (a
 Sun-pointing one, whatever it does about the Sun line) sees as the Earth goes round it: exact for any
-such attitude law at that altitude. Every entry is :func:`~sunwind.forces.earth.earth_radiation` called
+such attitude law at that altitude. Every entry is :func:`~sunwind.forces.earth.planet_radiation` called
 as ``sunwind earth`` calls it, the Sun's share behind the Earth from the conical shadow model: where
 the Earth hides the Sun the solar fraction is 0 (the albedo of the lit cap the spacecraft still sees
 counts).
@@ -25,7 +25,7 @@ from sunwind.forces.earth import (
     check_altitude,
     check_cells_at,
     check_step,
-    earth_radiation,
+    planet_radiation,
 )
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.model import Model
@@ -58,7 +58,7 @@ SLICE = (
 
 @dataclass(frozen=True)
 class EarthSetup(_Setup):
-    """Settings of every entry of an earth table (see :func:`~sunwind.forces.earth.earth_radiation`).
+    """Settings of every entry of an earth table (see :func:`~sunwind.forces.earth.planet_radiation`).
 
     Attributes
     ----------
@@ -143,7 +143,7 @@ class EarthSetup(_Setup):
         for i, u in enumerate(directions):
             fraction = self.solar_fraction(u)
             place = Place(u, self.altitude_km, sun, None, fraction)
-            result = earth_radiation(model, place, light, step_deg=self.step_deg, **options)
+            result = planet_radiation(model, place, light, step_deg=self.step_deg, **options)
             force, torque = result.force_N, result.torque_Nm
             if self.thermal:
                 state = result.equilibrium(options["reflections"])

@@ -10,7 +10,7 @@ import pytest
 
 from helpers import quad_sheet
 from helpers.shapes import open_box
-from sunwind.forces.earth import Place, earth_radiation
+from sunwind.forces.earth import Place, planet_radiation
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap
 from sunwind.geometry.materials import Material, MaterialSpec, PartRule
@@ -74,7 +74,7 @@ def test_plate_force_is_the_momentum_integral_not_flux_over_c(finish):
     sun = SUNS[3]
     for n in NORMALS[::5]:
         craft = _one_sided(quad_sheet(_square(n), "plate", 1), material)
-        result = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none")
+        result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none")
         albedo = ref.plate_force(NADIR, sun, n, body, (rho, beta, sigma), "albedo")
         infrared = ref.plate_force(NADIR, sun, n, body, (1.0 - material.emissivity, 0.0, 0.0), "infrared")
         assert np.abs(result.albedo.force_N - albedo).max() <= 1e-6 * max(np.abs(albedo).max(), 1e-12)
@@ -94,7 +94,7 @@ def test_absorbing_sphere_against_its_closed_forms():
     """Infrared and subsolar albedo force on an absorbing sphere of radius 1 m: faceting only (1e-4)."""
     craft = build_spacecraft(primitives.sphere(1.0), uniform=Material("black", 0.0, 0.0, 0.0, emissivity=1.0))
     for altitude_km in (400.0, 35786.0):
-        result = earth_radiation(
+        result = planet_radiation(
             craft, Place(NADIR, altitude_km, -NADIR), LIGHT, reflections="none"
         )  # convex
         h = altitude_km * 1e3
@@ -118,7 +118,7 @@ def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
     craft, big, small = _plate_over_plate()
     body = ref.Planet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
     sun = SUNS[1]
-    result = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", step_deg=step_deg)
+    result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", step_deg=step_deg)
     part = craft.facet_part[craft.side_facet]
     facing = (part == craft.part_names.index("big")) & (craft.side_normals[:, 2] < 0)
     blockers = np.array([small[[0, 1, 2]], small[[0, 2, 3]]])
@@ -143,7 +143,7 @@ def test_the_plate_mode_gives_every_side_the_closed_form_factors_of_a_plate_alon
     ray is cast. The default, which shadows, gives the big plate less."""
     craft, _, _ = _plate_over_plate()
     sun = SUNS[0]
-    alone = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="plates")
+    alone = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="plates")
     theta_0 = float(ref.theta_0_of(EARTH.radius_m, 500e3))
     normals, areas = craft.side_normals, craft.side_areas
     infrared = (1 - EARTH.albedo) * FLUX / 4 * np.asarray(ref.infrared_factor_closed(NADIR, normals, theta_0))
@@ -152,7 +152,7 @@ def test_the_plate_mode_gives_every_side_the_closed_form_factors_of_a_plate_alon
     assert np.allclose(alone.infrared.incident_side_W, infrared * areas, rtol=1e-9, atol=1e-12)
     assert np.allclose(alone.albedo.incident_side_W, albedo * areas, rtol=1e-9, atol=1e-12)
     assert alone.rays == 0 and alone.reflections == "plates"
-    shadowed = earth_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none")
+    shadowed = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none")
     big = craft.facet_part[craft.side_facet] == craft.part_names.index("big")
     assert shadowed.infrared.incident_side_W[big].sum() < 0.9 * alone.infrared.incident_side_W[big].sum()
 
@@ -162,7 +162,7 @@ def test_power_balances_in_a_cavity_with_every_reflection():
     """An open box with mixed finishes: incident = absorbed + escaped + cut off to round-off, per band;
     per-side absorbed power plus what no side absorbs is the band's absorbed power."""
     craft = open_box(Material("m", 0.7, 0.6, 0.1, emissivity=0.5), 3)
-    result = earth_radiation(
+    result = planet_radiation(
         craft, Place([0.3, 0.2, -1.0], 500.0, [0.5, 0.2, 0.4]), LIGHT, reflections="full"
     )
     for band in (result.albedo, result.infrared, result.solar):
@@ -174,4 +174,4 @@ def test_power_balances_in_a_cavity_with_every_reflection():
 def test_a_material_without_emissivity_is_named():
     craft = build_spacecraft(primitives.sphere(1.0), uniform=Material("bare", 0.5, 0.5, 0.0))
     with pytest.raises(Exception, match="'bare' has no emissivity"):
-        earth_radiation(craft, Place(NADIR, 500.0, -NADIR))
+        planet_radiation(craft, Place(NADIR, 500.0, -NADIR))
