@@ -27,7 +27,14 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
-from sunwind.forces.earth import DEFAULT_STEP_DEG, PLATES, PlanetResult, Place, check_cells_at, planet_radiation
+from sunwind.forces.earth import (
+    DEFAULT_STEP_DEG,
+    PLATES,
+    Place,
+    PlanetResult,
+    check_cells_at,
+    planet_radiation,
+)
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
