@@ -18,16 +18,13 @@ The names below are imported on first use, so ``import sunwind`` (and the ``sunw
 quick. The method, frames and signs are in METHOD.md; ``python -m sunwind`` runs the command line.
 """
 
-from __future__ import annotations
-
-import importlib
-from importlib.metadata import PackageNotFoundError
+import importlib as _importlib
+from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
 from importlib.metadata import version as _version
-from typing import Any
 
 try:
     __version__ = _version("sunwind")
-except PackageNotFoundError:  # imported from a checkout that was never installed
+except _PackageNotFoundError:  # imported from a checkout that was never installed
     __version__ = "unknown"
 
 #: The public names, each ``module:attribute`` (a module alone for a namespace).
@@ -80,12 +77,12 @@ _PUBLIC = {
 __all__ = sorted(_PUBLIC)
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:
     target = _PUBLIC.get(name)
     if target is None:
         raise AttributeError(f"module 'sunwind' has no attribute {name!r}")
     module_name, _, attribute = target.partition(":")
-    module = importlib.import_module(module_name)
+    module = _importlib.import_module(module_name)
     value = getattr(module, attribute) if attribute else module
     globals()[name] = value
     return value

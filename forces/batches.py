@@ -1,24 +1,50 @@
-"""Results of several attitudes: one result per attitude, every numeric field stacked by name
-(``batch.force_N`` is (n, 3), ``batch.rays`` (n,))."""
+"""Results of several attitudes: one result per attitude, and every per-attitude field stacked by name
+(``batch.force_N`` is (n, 3), ``batch.rays`` (n,), ``batch.CD`` (n,)), with the same ``to_json()`` and a
+``to_dataset()`` whose variables run along ``attitude``."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, is_dataclass
+from functools import cached_property
 from typing import Generic, TypeVar
 
 import numpy as np
+import xarray as xr
 from numpy.typing import NDArray
 
-from sunwind.forces.results import AttitudeResult, DragResult, SrpResult
+from sunwind.forces.result_base import Result, stacked_variable
+from sunwind.forces.results import DragResult, SrpResult
+from sunwind.forces.vocabulary import ATTITUDE, COMPONENT, COMPONENT_ATTRS, COMPONENTS
 
-R = TypeVar("R", bound=AttitudeResult)
+R = TypeVar("R", bound=Result)
 
 
 @dataclass(frozen=True, eq=False)
 class ResultBatch(Generic[R]):
-    """Results of several attitudes, in the order asked; a numeric field of every result stacked is
-    the same name on the batch: ``batch.force_N`` is (n, 3), ``batch.rays`` (n,)."""
+    """Results of several attitudes, in the order asked.
+
+    Any per-attitude field or property of the results, asked of the batch, is that field of every
+    result stacked: (n,) for numbers, (n, 3) for vectors (``batch.force_N``, ``batch.CD``,
+    ``batch.azel_deg`` (n, 2), ``batch.k_is`` with NaN where a result has None). ``batch[k]`` is the
+    k-th result itself, bit for bit the single call.
+
+    Attributes
+    ----------
+    results : tuple of Result
+        One result per attitude.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box((1.0, 1.0, 1.0)), uniform=black, threads=1)
+    >>> batch = sw.srp(cube, [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], reflections="none")
+    >>> batch.force_N.shape, batch.lit_area_m2.round(6).tolist()
+    ((2, 3), [1.0, 1.0])
+    >>> dict(batch.to_dataset().sizes)
+    {'attitude': 2, 'component': 3}
+    """
 
     results: tuple[R, ...]
 
@@ -31,79 +57,109 @@ class ResultBatch(Generic[R]):
     def __iter__(self) -> Iterator[R]:
         return iter(self.results)
 
+    def __getattr__(self, name: str) -> NDArray:
+        # called only for names the batch itself lacks: a per-attitude field of the results
+        if name.startswith("_") or name == "results" or not self._per_attitude(name):
+            raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
+        return self.stacked(name)
+
+    def __dir__(self) -> list[str]:
+        kind = type(self.results[0]) if self.results else Result
+        fields = [name for name in dir(kind) if not name.startswith("_") and self._per_attitude(name)]
+        return sorted({*super().__dir__(), *fields})
+
+    def _per_attitude(self, name: str) -> bool:
+        """Whether ``name`` is a per-attitude value of the results (not a method or class constant)."""
+        if not self.results:
+            return False
+        kind = type(self.results[0])
+        if isinstance(getattr(kind, name, None), property | cached_property):
+            return True
+        return is_dataclass(kind) and name in {field.name for field in fields(kind)}
+
     def stacked(self, name: str) -> NDArray:
-        """Field ``name`` of every result, stacked: (n,) for numbers, (n, 3) for vectors."""
-        return np.array([np.asarray(getattr(result, name)) for result in self.results])
+        """Field ``name`` of every result, stacked: (n,) for numbers, (n, 3) for vectors; a result's
+        None (a quantity its call did not compute) is NaN.
 
-    @property
-    def direction(self) -> NDArray[np.float64]:
-        return self.stacked("direction").reshape(-1, 3)
+        Parameters
+        ----------
+        name : str
+            A field or property of the results, e.g. ``"force_N"``.
 
-    @property
-    def azel_deg(self) -> NDArray[np.float64]:
-        """Azimuth and elevation of every attitude's direction [deg], (n, 2)."""
-        return self.stacked("azel_deg").reshape(-1, 2)
-
-    @property
-    def force_N(self) -> NDArray[np.float64]:
-        return self.stacked("force_N").reshape(-1, 3)
-
-    @property
-    def torque_Nm(self) -> NDArray[np.float64]:
-        return self.stacked("torque_Nm").reshape(-1, 3)
-
-    @property
-    def direct_force_N(self) -> NDArray[np.float64]:
-        return self.stacked("direct_force_N").reshape(-1, 3)
-
-    @property
-    def direct_torque_Nm(self) -> NDArray[np.float64]:
-        return self.stacked("direct_torque_Nm").reshape(-1, 3)
-
-    @property
-    def reflected_force_N(self) -> NDArray[np.float64]:
-        return self.stacked("reflected_force_N").reshape(-1, 3)
-
-    @property
-    def reflected_torque_Nm(self) -> NDArray[np.float64]:
-        return self.stacked("reflected_torque_Nm").reshape(-1, 3)
-
-    @property
-    def lit_area_m2(self) -> NDArray[np.float64]:
-        return self.stacked("lit_area_m2")
-
-    @property
-    def projected_area_m2(self) -> NDArray[np.float64]:
-        return self.stacked("projected_area_m2")
-
-    @property
-    def rays(self) -> NDArray[np.int64]:
-        return self.stacked("rays")
+        Returns
+        -------
+        numpy.ndarray
+        """
+        values = [getattr(result, name) for result in self.results]
+        if all(value is None for value in values):
+            return np.full(len(values), np.nan)
+        return np.array([np.nan if value is None else np.asarray(value) for value in values])
 
     def to_json(self) -> list[dict]:
-        """One JSON summary per attitude."""
+        """One JSON summary per attitude (:meth:`~sunwind.forces.result_base.Result.to_json`)."""
         return [result.to_json() for result in self.results]
+
+    def to_dataset(self) -> xr.Dataset:
+        """Every per-attitude field of :attr:`~sunwind.forces.result_base.Result.VARIABLES` along the
+        dimension ``attitude`` (vectors along ``component``), with the direction's azimuth and
+        elevation [deg] as coordinates, units and long names on every variable, and the frame and
+        reference point in the attributes (those of the first result).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        if not self.results:
+            return xr.Dataset()
+        first = self.results[0]
+        variables = {name: stacked_variable(name, self.stacked(name), ATTITUDE) for name in first.VARIABLES}
+        coords = {COMPONENT: (COMPONENT, list(COMPONENTS), COMPONENT_ATTRS)}
+        if hasattr(first, "azel_deg"):
+            azel = self.stacked("azel_deg").reshape(-1, 2)
+            coords["azimuth_deg"] = (ATTITUDE, azel[:, 0], {"units": "degree", "long_name": "azimuth"})
+            coords["elevation_deg"] = (ATTITUDE, azel[:, 1], {"units": "degree", "long_name": "elevation"})
+        attrs = {
+            key: value
+            for key, value in first.dataset_attrs().items()
+            if key not in ("azimuth_deg", "elevation_deg")
+        }
+        return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
 class SrpBatch(ResultBatch[SrpResult]):
-    """:class:`SrpResult` of several Sun directions."""
+    """:class:`~sunwind.forces.results.SrpResult` of several Sun directions.
 
-    @property
-    def sun_vector(self) -> NDArray[np.float64]:
-        return self.direction
+    Attributes
+    ----------
+    results : tuple of SrpResult
+        One result per Sun direction, in the order asked.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> batch = sw.srp(cube, [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]], reflections="none")
+    >>> type(batch).__name__, batch.projected_area_m2.round(6).tolist()
+    ('SrpBatch', [1.0, 1.414214])
+    """
 
 
 class DragBatch(ResultBatch[DragResult]):
-    """:class:`DragResult` of several flow velocities."""
+    """:class:`~sunwind.forces.results.DragResult` of several flow velocities.
 
-    @property
-    def velocity_m_s(self) -> NDArray[np.float64]:
-        return self.stacked("velocity_m_s").reshape(-1, 3)
+    Attributes
+    ----------
+    results : tuple of DragResult
+        One result per velocity, in the order asked.
 
-    @property
-    def force_coefficients(self) -> NDArray[np.float64]:
-        return self.stacked("force_coefficients").reshape(-1, 3)
-
-    @property
-    def moment_coefficients(self) -> NDArray[np.float64]:
-        return self.stacked("moment_coefficients").reshape(-1, 3)
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> batch = sw.drag(cube, [[7500.0, 0.0, 0.0], [0.0, 7500.0, 0.0]], air, reflections="none")
+    >>> batch.CD.round(2).tolist()  # the same face-on drag either way
+    [1.64, 1.64]
+    """

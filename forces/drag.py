@@ -4,9 +4,10 @@ side's open sky, and the molecules re-emitted from side to side (METHOD.md "Free
 Per side, the gas-surface law (:mod:`sunwind.forces.gas.laws`) acts on the drifting Maxwellian that
 reaches it (:mod:`sunwind.forces.gas.visible`): its closed form where the side sees open sky all round
 (on a convex body, every side, at every speed ratio), else the integral over the directions from which
-it does, at any speed ratio. With ``full``, molecules a side sends on unaccommodated (mirrored, CLL's
-lobe) are followed surface to surface (:mod:`sunwind.forces.gas.chains`), and those re-emitted
-diffusely are exchanged between sides (:mod:`sunwind.forces.gas.exchange`).
+it does, at any speed ratio. With ``specular``, molecules a side sends on unaccommodated (mirrored,
+CLL's lobe) are followed surface to surface (:mod:`sunwind.forces.gas.chains`); with ``full`` those
+re-emitted diffusely are exchanged between sides too (:mod:`sunwind.forces.gas.exchange`). With
+``plates`` every side takes the closed form of an unobstructed side and casts no ray.
 """
 
 from __future__ import annotations
@@ -20,23 +21,21 @@ from numpy.typing import NDArray
 from sunwind.forces.batches import DragBatch
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.chains import ChainLaws, molecular_chains
-from sunwind.forces.gas.exchange import gas_interference_criterion, molecular_exchange
+from sunwind.forces.gas.exchange import molecular_exchange, open_plate_recoil
 from sunwind.forces.gas.flow import flow_speed
-from sunwind.forces.gas.panel import closed_loads, gas_groups, species_streams, summed_laws
+from sunwind.forces.gas.panel import GasGroups, closed_loads, gas_groups, species_streams, summed_laws
 from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.gas.visible import arrival, model_sky, stream_tables
 from sunwind.forces.model import Model, as_model
-from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors
+from sunwind.forces.reflection import ReflectionSettings, interference, model_view_factors, resolved_mode
 from sunwind.forces.results import DragResult, GasReflected
 from sunwind.geometry.directions import unit_vector, unit_vectors
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_items, using_threads
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling, side_sampler
+from sunwind.geometry.rays.sampling import ShadowSampling
+from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
-
-#: Inter-reflection modes of molecules: none, or chains and exchange (``full``), or ``full`` when the
-#: molecular ``K_IS`` >= the threshold (``auto``).
-DRAG_MODES = ("none", "full", "auto")
+from sunwind.geometry.views.sky import OpenSky
 
 
 def drag(
@@ -45,8 +44,7 @@ def drag(
     atmosphere: Atmosphere,
     *,
     reference_point_m: Sequence[float] | NDArray | None = None,
-    samples: int | None = None,
-    tolerance: float = DEFAULT_TOLERANCE,
+    sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
     gas_sampling: GasSampling | None = None,
 ) -> DragResult | DragBatch:
@@ -64,11 +62,15 @@ def drag(
         Number density of every species and the temperature (:mod:`sunwind.forces.gas.atmosphere`).
     reference_point_m : (3,) array_like, optional
         Torque reference point [m]; default as :func:`sunwind.forces.srp.srp`.
-    samples, tolerance
-        Shadow-ray sampling along the flow, as for sunlight: the core of the open-sky integral. The
-        default pass's estimate of the error it left is the result's ``error_estimate``.
+    sampling : ShadowSampling, optional
+        Shadow-ray sampling along the flow, as for sunlight: the core of the open-sky integral
+        (:class:`~sunwind.geometry.rays.sampling.ShadowSampling`; default its defaults). The default
+        pass's estimate of the error it left is the result's ``error_estimate``.
     reflections : str or ReflectionSettings
-        ``"none"``, ``"full"`` or ``"auto"`` (full when the molecular ``K_IS >= 0.1``).
+        One of :data:`~sunwind.forces.reflection.settings.MODES`, read for molecules: ``"none"``,
+        ``"specular"`` (unaccommodated molecules followed, no diffuse exchange), ``"full"``, ``"auto"``
+        (full when the molecular ``K_IS >= 0.1``) or ``"plates"`` (every side in the whole stream, no
+        shadowing, no ray cast); or settings with the view factors' sampling.
     gas_sampling : GasSampling, optional
         Sampling of the open-sky integral and the chains (:class:`~sunwind.forces.gas.sampling.
         GasSampling`): rays per side of each side's sky, sampled once per model; core rays and chain
@@ -78,26 +80,35 @@ def drag(
     -------
     DragResult, or DragBatch for a batch of velocities
 
+    Raises
+    ------
+    InputError
+        A velocity that is not three finite numbers of a flow speed, an atmosphere, sampling or
+        reflections of the wrong kind or out of range.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.box_wing(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O")
+    >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
+    >>> result = sw.drag(model, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
+    >>> bool(result.force_N[0] < 0)  # drag acts against v_rel
+    True
     """
     model = as_model(model)
     settings = ReflectionSettings.of(reflections)
-    if settings.mode not in DRAG_MODES:
-        raise InputError(
-            f"reflections {settings.mode} is for light only",
-            hint=f"for molecules use one of {', '.join(DRAG_MODES)}",
-            parameters=("reflections",),
-        )
     velocities = checked_velocities(velocity_m_s)
     if not isinstance(atmosphere, Atmosphere):
         raise InputError("atmosphere must be an Atmosphere (nrlmsis or explicit)", parameters=("atmosphere",))
     reference = model.reference(reference_point_m)
-    check_sampling(samples, tolerance)
+    shadows = ShadowSampling.of(sampling)
     gas = GasSampling() if gas_sampling is None else gas_sampling
     if not isinstance(gas, GasSampling):
         raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
     with using_threads(model.threads):
         results = map_items(
-            lambda v: _one(model, v, atmosphere, reference, (samples, tolerance), gas, settings),
+            lambda v: _one(model, v, atmosphere, reference, shadows, gas, settings),
             velocities.reshape(-1, 3),
         )
     return results[0] if velocities.ndim == 1 else DragBatch(tuple(results))
@@ -105,7 +116,18 @@ def drag(
 
 def checked_velocities(velocity_m_s: Sequence[float] | NDArray) -> NDArray[np.float64]:
     """``v_rel`` as (3,) or (n, 3) float64, each three finite numbers of a flow speed
-    (:func:`~sunwind.forces.gas.flow.flow_speed`)."""
+    (:func:`~sunwind.forces.gas.flow.flow_speed`).
+
+    Raises
+    ------
+    InputError
+        Not of shape (3,) or (n, 3), not finite, zero, or a speed out of range.
+
+    Examples
+    --------
+    >>> checked_velocities([7600, 0, 0])
+    array([7600.,    0.,    0.])
+    """
     velocity = np.asarray(velocity_m_s, dtype=np.float64)
     unit_vectors(velocity, "velocity_m_s")  # shape, finite, not zero
     for v in velocity.reshape(-1, 3):
@@ -118,38 +140,42 @@ def _one(
     velocity: NDArray[np.float64],
     atmosphere: Atmosphere,
     reference: tuple[NDArray[np.float64], str],
-    sampling: tuple[int | None, float],
+    sampling: ShadowSampling,
     gas: GasSampling,
     settings: ReflectionSettings,
 ) -> DragResult:
-    """One attitude, its arguments checked; ``sampling`` is ``(samples, tolerance)``."""
+    """One attitude, its arguments checked."""
     craft = model.craft
     speed = math.hypot(*velocity.tolist())
     u = unit_vector(velocity, "velocity_m_s")
     ref, ref_name = reference
-    mode, view, k_is = settings.mode, None, None
-    if mode in ("full", "auto"):
+    view, k_is = None, None
+    if settings.uses_view_factors:
         view = model_view_factors(craft, settings)
-        k_is = gas_interference_criterion(craft, view)
-        if mode == "auto":
-            mode = "full" if k_is >= AUTO_THRESHOLD else "none"
+        k_is = interference(craft, settings, molecules=True)
+    mode = resolved_mode(settings.mode, k_is)
     groups = gas_groups(craft)
     gamma = np.einsum("ij,j->i", groups.normals, u)  # per group; einsum: BLAS threads cost more here
     stream = stream_tables(craft, groups.surfaces, atmosphere, speed)
     laws = stream.laws
     closed = closed_loads(groups, gamma, summed_laws(groups, gamma, laws, atmosphere.temperature_K), u)
+    if mode == "plates":
+        return _plate_result(model, velocity, atmosphere, reference, groups, closed, settings)
     sky = model_sky(craft, gas.sky_rays, settings.cache_dir)
-    flow = side_sampler(craft).illuminate(u, *sampling)
+    flow = side_sampler(craft).illuminate(u, sampling.samples, sampling.tolerance)
     panel = arrival(craft, groups, (closed, stream), flow, ref, sky, gas.core_rays)
-    if mode == "full":
+    if mode in ("specular", "full"):
         masses, densities = species_streams(atmosphere)
         chains = molecular_chains(
             craft, groups, laws, (masses, densities, speed), u, ref, gas.chain_molecules
         )
-        mirrored = ChainLaws.of(groups.surfaces).mirrored[groups.law[groups.side]]
-        exchange = molecular_exchange(craft, settings, mirrored).totals(
-            panel.emitted[0], panel.emitted[1], ref, chains.deposit
-        )
+        if mode == "full":
+            mirrored = ChainLaws.of(groups.surfaces).mirrored[groups.law[groups.side]]
+            exchange = molecular_exchange(craft, settings, mirrored).totals(
+                panel.emitted[0], panel.emitted[1], ref, chains.deposit
+            )
+        else:  # what the chains land leaves as from an open plate, as the first re-emission does
+            exchange = open_plate_recoil(craft, chains.deposit[0], ref)
         force, torque = exchange.force_N + chains.force_N, exchange.torque_Nm + chains.torque_Nm
         reflected = GasReflected(mode, force, torque, view, k_is, chains)
     else:
@@ -185,4 +211,55 @@ def _one(
         open_sky=sky,
         core_half_angle_rad=panel.core_half_angle,
         shadow_error=shadow_error,
+    )
+
+
+def _plate_result(
+    model: Model,
+    velocity: NDArray[np.float64],
+    atmosphere: Atmosphere,
+    reference: tuple[NDArray[np.float64], str],
+    groups: GasGroups,
+    closed: NDArray[np.float64],
+    settings: ReflectionSettings,
+) -> DragResult:
+    """The result of ``plates``: every side takes the whole stream as an unobstructed side does, its
+    group's ``closed`` loads (the flat-plate model); no ray is cast and no molecule goes from side to
+    side."""
+    craft = model.craft
+    ref, ref_name = reference
+    side_force = closed[groups.side, :3] * craft.side_areas[:, None]
+    side_torque = np.cross(craft.side_centroids - ref, side_force)
+    gamma = craft.side_normals @ unit_vector(velocity, "velocity_m_s")
+    facing = gamma > 0.0
+    force, torque = side_force.sum(axis=0), side_torque.sum(axis=0)
+    area, length = model.reference_sizes
+    n = craft.n_sides
+    sky = OpenSky(
+        np.zeros(n), np.ones(n, bool), np.zeros(n + 1, np.int64), np.zeros((0, 3), np.float32),
+        np.zeros((0, 3), np.float32), 0, 0, 0.0, "plates: every side sees the whole sky",
+    )  # fmt: skip
+    return DragResult(
+        force_N=force,
+        torque_Nm=torque,
+        direct_force_N=force,
+        direct_torque_Nm=torque,
+        reflected=GasReflected("plates", np.zeros(3), np.zeros(3), None, None, None),
+        settings=settings,
+        reference_point_m=ref,
+        reference_point=ref_name,
+        lit_area_m2=float(craft.side_areas[facing].sum()),
+        projected_area_m2=float(craft.side_areas[facing] @ gamma[facing]),
+        rays=0,
+        sampling="plates: no shadowing",
+        craft=craft,
+        velocity_m_s=velocity,
+        atmosphere=atmosphere,
+        reference_area_m2=area,
+        reference_length_m=length,
+        side_force_N=side_force,
+        side_torque_Nm=side_torque,
+        open_sky=sky,
+        core_half_angle_rad=0.0,
+        shadow_error=None,
     )

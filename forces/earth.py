@@ -5,7 +5,7 @@ inter-reflection, and the power every side absorbs from the Sun, the albedo and 
 The spacecraft sits ``altitude`` above a spherical planet whose centre lies along ``nadir`` (body
 frame). Each band's force is its radiance integrated over each side's share of the visible cap
 (:class:`~sunwind.forces.planet.cap.Cap`), shadowing and reflections added by cells of the cap about
-``step_deg`` across (:mod:`~sunwind.forces.planet.loads`); sunlight (for the heat budget) is one cell.
+``cell_deg`` across (:mod:`~sunwind.forces.planet.loads`); sunlight (for the heat budget) is one cell.
 """
 
 from __future__ import annotations
@@ -13,11 +13,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.error_estimate import ErrorEstimate, summed
+from sunwind.forces.error_estimate import summed
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap, check_cells
@@ -25,26 +26,31 @@ from sunwind.forces.planet.loads import BandLoad, CellSampling, Source, band_loa
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
-from sunwind.forces.results import FRAME
+from sunwind.forces.result_base import Result
 from sunwind.forces.thermal import ThermalState, infrared_exchange, thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import using_threads
 from sunwind.geometry.rays.certificate import LoadsError
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import Spacecraft, infrared_optics
 
 #: Default size of the cap's cells for shadowing and reflections [deg].
-DEFAULT_STEP_DEG = 10.0
-#: The ``reflections`` of the plate mode: every side alone, no shadowing or inter-reflection.
+DEFAULT_CELL_DEG = 10.0
+#: The ``reflections`` of the plate mode: every side alone, no shadowing or inter-reflection (one of
+#: :data:`~sunwind.forces.reflection.settings.MODES`).
 PLATES = "plates"
+#: The modes whose reflected beams are followed.
+BEAM_MODES = ("specular", "full")
 #: Altitudes accepted [km]: above the surface, and below 100 times the Moon's distance.
 MAX_ALTITUDE_KM = 4.0e7
 
 
 @dataclass(frozen=True, eq=False)
-class PlanetResult:
-    """The planet's radiation on the spacecraft at one place and attitude; body frame, SI.
+class PlanetResult(Result):
+    """The planet's radiation on the spacecraft at one place and attitude; body frame, SI (a
+    :class:`~sunwind.forces.result_base.Result`: ``force_N``, ``torque_Nm``, ``to_json()``,
+    ``to_dataset()``).
 
     Attributes
     ----------
@@ -82,6 +88,45 @@ class PlanetResult:
     reference_point: str
     craft: Spacecraft = field(repr=False)
 
+    KIND: ClassVar[str] = "planet radiation"
+    VARIABLES: ClassVar[tuple[str, ...]] = (
+        "force_N",
+        "torque_Nm",
+        "albedo_force_N",
+        "albedo_torque_Nm",
+        "infrared_force_N",
+        "infrared_torque_Nm",
+        "solar_fraction",
+        "half_angle_deg",
+        "cells",
+        "rays",
+    )
+
+    @property
+    def albedo_force_N(self) -> NDArray[np.float64]:
+        """Force of the sunlight the planet reflects [N], (3,)."""
+        return self.albedo.force_N
+
+    @property
+    def albedo_torque_Nm(self) -> NDArray[np.float64]:
+        """Torque of the albedo about the reference point [N m], (3,)."""
+        return self.albedo.torque_Nm
+
+    @property
+    def infrared_force_N(self) -> NDArray[np.float64]:
+        """Force of the planet's infrared [N], (3,)."""
+        return self.infrared.force_N
+
+    @property
+    def infrared_torque_Nm(self) -> NDArray[np.float64]:
+        """Torque of the infrared about the reference point [N m], (3,)."""
+        return self.infrared.torque_Nm
+
+    @property
+    def solar_fraction(self) -> float:
+        """Share of the solar disc in view at the place (0: the planet hides the Sun)."""
+        return self.place.solar_fraction
+
     @property
     def force_N(self) -> NDArray[np.float64]:
         """Albedo plus infrared force [N], (3,)."""
@@ -98,14 +143,6 @@ class PlanetResult:
         [N m]: the albedo's and the infrared's added (:attr:`BandLoad.shadow_error`); None with fixed
         sampling or plates."""
         return summed([self.albedo.shadow_error, self.infrared.shadow_error])
-
-    @property
-    def error_estimate(self) -> ErrorEstimate | None:
-        """:attr:`shadow_error` relative to the albedo plus infrared force and torque."""
-        error = self.shadow_error
-        if error is None:
-            return None
-        return ErrorEstimate.of(error, self.force_N, self.torque_Nm, self.craft.diagonal_m)
 
     def absorbed_side_W(self) -> dict[str, NDArray[np.float64]]:
         """Power each side absorbs [W], (n_sides,) per source: ``solar``, ``albedo``, ``infrared`` as
@@ -155,9 +192,8 @@ class PlanetResult:
 
     def to_json(self) -> dict:
         """Plain-JSON summary; keys carry their units."""
-        estimate = self.error_estimate
         return {
-            "frame": FRAME,
+            **super().to_json(),
             "planet": self.light.planet.name,
             "model": self.light.description,
             "nadir": self.place.nadir.tolist(),
@@ -166,12 +202,9 @@ class PlanetResult:
             "half_angle_deg": self.half_angle_deg,
             "flux_W_m2": self.light.solar_flux_W_m2,
             "solar_fraction": self.place.solar_fraction,
-            "reference_point_m": self.reference_point_m.tolist(),
-            "reference_point": self.reference_point,
             "reflections": self.reflections,
             "cells": self.cells,
             "rays": self.rays,
-            "error_estimate": None if estimate is None else estimate.to_json(),
             "albedo": self.albedo.to_json(),
             "infrared": self.infrared.to_json(),
             "solar": self.solar.to_json(),
@@ -193,17 +226,43 @@ def check_altitude(altitude_km: float) -> None:
         )
 
 
-def check_step(step_deg: float) -> None:
-    """Refuse a cell size of the planet's disc [deg] outside (0, 90]."""
-    if not (math.isfinite(step_deg) and 0.0 < step_deg <= 90.0):
-        raise InputError(f"step_deg {step_deg} is not in (0, 90]", hint="e.g. 10", parameters=("step_deg",))
+def check_cell_size(cell_deg: float) -> None:
+    """Refuse a cell size of the planet's disc [deg] outside (0, 90].
+
+    Raises
+    ------
+    InputError
+        ``cell_deg`` is not a number in (0, 90].
+
+    Examples
+    --------
+    >>> check_cell_size(10.0)
+    >>> check_cell_size(0.0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: cell_deg 0.0 is not in (0, 90]; e.g. 10
+    """
+    number = not isinstance(cell_deg, bool) and isinstance(cell_deg, int | float | np.floating | np.integer)
+    if not (number and math.isfinite(cell_deg) and 0.0 < cell_deg <= 90.0):
+        raise InputError(f"cell_deg {cell_deg} is not in (0, 90]", hint="e.g. 10", parameters=("cell_deg",))
 
 
-def check_cells_at(altitude_km: float, step_deg: float) -> None:
+def check_cells_at(altitude_km: float, cell_deg: float) -> None:
     """Refuse a cell size [deg] that cuts the Earth's disc seen from ``altitude_km`` into too many cells
-    (:func:`~sunwind.forces.planet.cap.check_cells`), before any work."""
+    (:func:`~sunwind.forces.planet.cap.check_cells`), before any work.
+
+    Raises
+    ------
+    InputError
+        Too many cells, naming ``cell_deg``.
+    """
     radius = planet("earth").radius_m
-    check_cells(math.asin(radius / (radius + altitude_km * 1e3)), step_deg)
+    try:
+        check_cells(math.asin(radius / (radius + altitude_km * 1e3)), cell_deg)
+    except InputError as error:  # the cap names its cell size step_deg
+        raise InputError(
+            error.message.replace("step_deg", "cell_deg"), hint=error.hint, parameters=("cell_deg",)
+        ) from None
 
 
 @dataclass(frozen=True, eq=False)
@@ -236,10 +295,9 @@ def planet_radiation(
     light: PlanetLight | None = None,
     *,
     reference_point_m: Sequence[float] | NDArray | None = None,
-    samples: int | None = None,
-    tolerance: float = DEFAULT_TOLERANCE,
+    sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
-    step_deg: float = DEFAULT_STEP_DEG,
+    cell_deg: float = DEFAULT_CELL_DEG,
 ) -> PlanetResult:
     """Albedo and infrared force and torque from the planet below, and the power each side absorbs
     from them and from the Sun.
@@ -254,52 +312,76 @@ def planet_radiation(
         infrared exitance, Knocke's model, the solar flux); default the Earth at 1 au.
     reference_point_m : (3,) array_like, optional
         Torque reference point [m]; default the model's.
-    samples, tolerance
-        Shadow sampling, as for :func:`~sunwind.forces.srp.srp`; the result's ``error_estimate`` is the
-        error the cells' passes estimate they left (None with ``samples``).
+    sampling : ShadowSampling, optional
+        Shadow sampling of every cell, as for :func:`~sunwind.forces.srp.srp`; the result's
+        ``error_estimate`` is the error the cells' passes estimate they left (None with fixed
+        ``samples``).
     reflections : str or ReflectionSettings
-        As for :func:`~sunwind.forces.srp.srp`; ``auto`` decides by the model's ``K_IS``. ``"plates"``:
-        the fast mode of plate models, every side an independent plate that sees the whole planet (its
-        exact integrals, the dissertation's closed-form view factors), no self-shadowing and no
-        inter-reflection; no ray is cast.
-    step_deg : float
+        As for :func:`~sunwind.forces.srp.srp` (:data:`~sunwind.forces.reflection.settings.MODES`);
+        ``auto`` decides by the model's ``K_IS``. ``"plates"``: the fast mode of plate models, every
+        side an independent plate that sees the whole planet (its exact integrals, the dissertation's
+        closed-form view factors), no self-shadowing and no inter-reflection; no ray is cast.
+    cell_deg : float
         Size of the cap's cells [deg] in (0, 90]: one shadow pass each. Sides no other side can shadow
-        are exact at any step.
+        are exact at any size.
+
+    Returns
+    -------
+    PlanetResult
+
+    Raises
+    ------
+    InputError
+        A cell size, sampling or reflections out of range.
+    MaterialError
+        A side's material has no emissivity.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> white = sw.Material("white", reflectivity=0.5, specular_fraction=0.5, emissivity=0.8)
+    >>> model = sw.load(sw.meshes.box_wing(), uniform=white, threads=1)
+    >>> place = sw.Place([0.0, 0.0, -1.0], 500.0, [1.0, 0.0, 0.0])
+    >>> result = sw.planet_radiation(model, place, reflections="plates", cell_deg=30.0)
+    >>> result.reflections, result.rays, bool(result.force_N[2] > 0)  # pushed away from the planet
+    ('plates', 0, True)
     """
     model = as_model(model)
     craft = model.craft
     band_optics = (craft.side_optics, infrared_optics(craft))  # no emissivity: an error before any work
     light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
-    check_step(step_deg)
-    check_sampling(samples, tolerance)
+    check_cell_size(cell_deg)
+    shadows = ShadowSampling.of(sampling)
     reference, reference_name = model.reference(reference_point_m)
-    plates = isinstance(reflections, str) and reflections == PLATES
-    settings = ReflectionSettings.of("none" if plates else reflections)
+    settings = ReflectionSettings.of(reflections)
+    plates = settings.mode == PLATES
     body = light.planet
     distance = body.radius_m + place.altitude_km * 1e3
     caps = [
         Cap(place.nadir, place.sun_vector, place.pole, distance, body.radius_m, law)
         for law in (light.albedo, light.infrared)
     ]
-    sampling = CellSampling(samples, tolerance, settings.cutoff, settings.depth, shadows=not plates)
+    cell_sampling = CellSampling(
+        shadows.samples, shadows.tolerance, settings.cutoff, settings.depth, shadows=not plates
+    )
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
-        cells = [cap.patches(step_deg) for cap in caps]  # one geometry: the same directions
+        cells = [cap.patches(cell_deg) for cap in caps]  # one geometry: the same directions
         directions = cells[0][0]
         sources = [
             Source(
                 name, cap.side_integrals(craft.side_normals), weights, optics,
-                beams=name == "albedo" and plan.mode != "none",
+                beams=name == "albedo" and plan.mode in BEAM_MODES,
                 exchange=_exchange(craft, plan, settings, name),
             )
             for name, cap, (_, weights), optics in zip(
                 ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
         ]  # fmt: skip
-        loads, rays = band_loads(craft, sources, directions, reference, sampling)
+        loads, rays = band_loads(craft, sources, directions, reference, cell_sampling)
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
-        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, sampling)
+        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, cell_sampling)
     return PlanetResult(
         albedo=loads[0],
         infrared=loads[1],
@@ -309,7 +391,7 @@ def planet_radiation(
         light=light,
         cells=len(directions),
         rays=rays + solar_rays,
-        reflections=PLATES if plates else plan.mode,
+        reflections=plan.mode,
         reference_point_m=reference,
         reference_point=reference_name,
         craft=craft,
@@ -338,5 +420,5 @@ def _sunlight(
     i0 = flux * cos
     return Source(
         "solar", (i0, i0[:, None] * u_sun, i0 * cos), np.array([flux]), craft.side_optics,
-        beams=plan.mode != "none" and flux > 0, exchange=_exchange(craft, plan, settings, "solar"),
+        beams=plan.mode in BEAM_MODES and flux > 0, exchange=_exchange(craft, plan, settings, "solar"),
     )  # fmt: skip

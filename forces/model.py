@@ -28,9 +28,10 @@ from sunwind.geometry.cache import ModelCache
 from sunwind.geometry.directions import finite_point, unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GAS_DEFAULTS, GasSurface, Material
+from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.parallel import checked_threads
 from sunwind.geometry.references import check_reference_point, check_reference_sizes
-from sunwind.geometry.spacecraft import Spacecraft, articulate, load_spacecraft, pose
+from sunwind.geometry.spacecraft import Spacecraft, articulate, build_spacecraft, load_spacecraft, pose
 
 #: Where a materials-file gas key lands on :class:`~sunwind.geometry.materials.GasSurface`.
 _GAS_FIELDS = {"gsi": "model", "wall_temperature": "wall_temperature_K"}
@@ -64,6 +65,14 @@ class ModelSource:
     articulate : tuple of (str, float)
         Hinges (``[articulation]`` globs of the materials file) held at these angles [deg], whatever
         their law in the file.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> source = ModelSource(str(sw.meshes.sample_path()), str(sw.meshes.sample_materials_path()))
+    >>> model = sw.Model(source.spacecraft(), source)
+    >>> model.source.resolved() == source.resolved()
+    True
     """
 
     mesh: str
@@ -83,11 +92,52 @@ class ModelSource:
         )
         object.__setattr__(self, "articulate", angles)
 
-    def load(self) -> Spacecraft:
-        """The spacecraft, with the gas overrides applied and its hinges at their angles."""
+    def spacecraft(self) -> Spacecraft:
+        """Read the files into the spacecraft, with the gas overrides applied and its hinges at their
+        angles.
+
+        Returns
+        -------
+        Spacecraft
+
+        Raises
+        ------
+        SunwindError
+            A file that cannot be read, a part without a material, a value out of range.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> source = ModelSource(str(sw.meshes.sample_path()), str(sw.meshes.sample_materials_path()))
+        >>> source.spacecraft().n_facets == sw.load(source.mesh, source.materials).craft.n_facets
+        True
+        """
         craft = load_spacecraft(
             self.mesh, self.materials, unit=self.unit, uniform=self.uniform, two_sided=self.two_sided
         )
+        return self.applied(craft)
+
+    def applied(self, craft: Spacecraft) -> Spacecraft:
+        """``craft`` with this source's held hinges (:attr:`articulate`) and gas overrides (:attr:`gas`).
+
+        Parameters
+        ----------
+        craft : Spacecraft
+            The spacecraft as read from the files.
+
+        Returns
+        -------
+        Spacecraft
+            ``craft`` itself when there is nothing to apply.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> source = ModelSource(str(sw.meshes.sample_path()), str(sw.meshes.sample_materials_path()))
+        >>> craft = source.spacecraft()
+        >>> source.applied(craft) is craft
+        True
+        """
         if self.articulate:
             craft = articulate(
                 craft, fixed(craft.hinges, dict(self.articulate), self.materials), self.materials
@@ -101,20 +151,56 @@ class ModelSource:
         return replace(craft, materials=craft.materials.with_gas(**changes))
 
     def digests(self) -> dict[str, str | None]:
-        """SHA-256 of the mesh file and of the materials file."""
+        """SHA-256 of the mesh file and of the materials file.
+
+        Returns
+        -------
+        dict
+            ``mesh_sha256`` (:func:`mesh_digest`) and ``materials_sha256`` (None without one), hex.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> sorted(ModelSource(str(sw.meshes.sample_path())).digests())
+        ['materials_sha256', 'mesh_sha256']
+        """
         return {
             "mesh_sha256": mesh_digest(self.mesh),
             "materials_sha256": None if self.materials is None else file_digest(self.materials),
         }
 
     def resolved(self) -> ModelSource:
-        """The same source with absolute file paths (for other processes and for provenance)."""
+        """The same source with absolute file paths (for other processes and for provenance).
+
+        Returns
+        -------
+        ModelSource
+
+        Examples
+        --------
+        >>> import os
+        >>> os.path.isabs(ModelSource("craft.obj").resolved().mesh)
+        True
+        """
         materials = None if self.materials is None else os.path.abspath(self.materials)
         return replace(self, mesh=os.path.abspath(self.mesh), materials=materials)
 
     def attributes(self) -> dict[str, object]:
         """The source as table attributes (None dropped by the writers), read back by
-        :meth:`from_attributes`."""
+        :meth:`from_attributes`.
+
+        Returns
+        -------
+        dict
+            ``mesh``, ``materials``, ``unit``, ``two_sided`` and, when set, ``uniform_material``,
+            ``gas_override`` and ``articulate``.
+
+        Examples
+        --------
+        >>> source = ModelSource("craft.obj", "craft.toml", articulate=(("wing_*", 30.0),))
+        >>> ModelSource.from_attributes(source.attributes()) == source
+        True
+        """
         attrs: dict[str, object] = {
             "mesh": self.mesh,
             "materials": self.materials,
@@ -137,7 +223,22 @@ class ModelSource:
 
     @classmethod
     def from_attributes(cls, attrs: Mapping[str, object]) -> ModelSource:
-        """The source a table's attributes record (dicts may come back as JSON text)."""
+        """The source a table's attributes record (dicts may come back as JSON text).
+
+        Parameters
+        ----------
+        attrs : mapping
+            A table's global attributes, as :meth:`attributes` wrote them.
+
+        Returns
+        -------
+        ModelSource
+
+        Examples
+        --------
+        >>> ModelSource.from_attributes({"mesh": "craft.obj", "unit": "mm"}).unit
+        'mm'
+        """
         import json
 
         def mapping(value: object) -> dict:
@@ -163,7 +264,24 @@ class ModelSource:
 
 
 def file_digest(path: str | os.PathLike) -> str:
-    """SHA-256 of a file's bytes, hex."""
+    """SHA-256 of a file's bytes, hex.
+
+    Parameters
+    ----------
+    path : path
+        Any file.
+
+    Returns
+    -------
+    str
+        64 hex digits.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> len(file_digest(sw.meshes.sample_materials_path()))
+    64
+    """
     digest = hashlib.sha256()
     with open(path, "rb") as handle:
         for block in iter(lambda: handle.read(1 << 20), b""):
@@ -174,7 +292,24 @@ def file_digest(path: str | os.PathLike) -> str:
 def mesh_digest(path: str | os.PathLike) -> str:
     """SHA-256 of a mesh file, hex; for a USD stage that composes other files (references, payloads,
     sub-layers), of every file it reads, each named relative to the stage, so that editing any of them
-    changes it."""
+    changes it.
+
+    Parameters
+    ----------
+    path : path
+        The mesh file.
+
+    Returns
+    -------
+    str
+        64 hex digits.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> mesh_digest(sw.meshes.sample_path()) == file_digest(sw.meshes.sample_path())  # one file
+    True
+    """
     from sunwind.geometry.io.registry import mesh_files  # the readers, loaded when a mesh is
 
     path = Path(path)
@@ -212,6 +347,13 @@ class Model:
     references or threads. A model with hinges (materials file ``[articulation]``) is loaded with its
     fixed hinges at their angles and its tracking and scheduled ones at 0; :meth:`angles_at` gives every
     hinge's angle for a Sun and a time, :meth:`posed` the model at those angles.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.sample_path(), sw.meshes.sample_materials_path(), threads=1)
+    >>> model.reference()[1], model.craft.unit
+    ('area centroid (default)', 'm (default)')
     """
 
     craft: Spacecraft
@@ -231,13 +373,41 @@ class Model:
 
     @property
     def cache(self) -> ModelCache:
-        """What is built once for this model and kept: ``cache.entries()``, ``cache.clear()``."""
+        """What is built once for this model and kept: ``cache.entries()``, ``cache.clear()``.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> sw.load(sw.meshes.box(), uniform=black).cache.entries()
+        []
+        """
         return self.craft.cache
 
     def reference(self, point_m: Sequence[float] | NDArray | None = None) -> tuple[NDArray[np.float64], str]:
         """The torque reference point [m] and where it came from: ``point_m``, else the model's own
         point ("user"), else the materials file's centre of mass ("centre of mass (materials file)"),
-        else a default ("volume centroid (default)" or "area centroid (default)")."""
+        else a default ("volume centroid (default)" or "area centroid (default)").
+
+        Parameters
+        ----------
+        point_m : (3,) float, optional
+            A point asked for by a call [m], body frame.
+
+        Returns
+        -------
+        point : (3,) float64
+        origin : str
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black)
+        >>> point, origin = cube.reference()
+        >>> point.round(12).tolist(), origin
+        ([0.0, 0.0, 0.0], 'volume centroid (default)')
+        """
         point = self.reference_point_m if point_m is None else point_m
         if point is None:
             return self.craft.default_reference
@@ -245,7 +415,21 @@ class Model:
 
     def digests(self) -> dict[str, str | None]:
         """SHA-256 of the mesh and materials files, or of the model's arrays when built in memory; with
-        hinges, ``articulation_deg``: their angles as JSON text."""
+        hinges, ``articulation_deg``: their angles as JSON text.
+
+        Returns
+        -------
+        dict
+            ``mesh_sha256``, ``materials_sha256`` (None in memory) and, with hinges,
+            ``articulation_deg``.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> sw.load(sw.meshes.box(), uniform=black).digests()["materials_sha256"] is None
+        True
+        """
         craft = self.craft
         if self.source is not None:
             out = self.source.digests()
@@ -259,12 +443,31 @@ class Model:
 
     @property
     def hinges(self) -> tuple[Hinge, ...]:
-        """The hinges that turn parts of the model (materials file, with ``articulate`` overrides)."""
+        """The hinges that turn parts of the model (materials file, with ``articulate`` overrides).
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> model = sw.load(sw.meshes.sample_path(), sw.meshes.sample_materials_path())
+        >>> [(hinge.pattern, hinge.law) for hinge in model.hinges]  # doctest: +ELLIPSIS
+        [...]
+        """
         return self.craft.hinges
 
     def angles_at(self, sun_body: NDArray | None = None, time_s: float | None = None) -> dict[str, float]:
         """Every hinge's angle [deg] by glob: a fixed one's own, a tracking one's that turns its front
         closest to ``sun_body`` (body frame, toward the Sun), a scheduled one's at ``time_s`` [s].
+
+        Parameters
+        ----------
+        sun_body : (3,) float, optional
+            Direction toward the Sun, body frame (for tracking hinges).
+        time_s : float, optional
+            Time [s] (for scheduled hinges).
+
+        Returns
+        -------
+        dict of str to float
 
         Raises
         ------
@@ -291,6 +494,15 @@ class Model:
         angle (a process that loads it again gets this pose). The last :data:`KEPT_POSES` poses are
         kept, so angles within :data:`POSE_RESOLUTION_DEG` of one of them give its model again, with
         what its cache holds. Without hinges, or at this model's own pose, the model itself.
+
+        Parameters
+        ----------
+        angles : mapping of str to float
+            Hinge globs (as in the materials file) and their angles [deg].
+
+        Returns
+        -------
+        Model
 
         Raises
         ------
@@ -325,6 +537,15 @@ class Model:
         tracking or scheduled, become fixed, as ``--articulate`` makes them; the source records them.
         Kept per model (a sweep over hinge angles asks for each pose once per chunk).
 
+        Parameters
+        ----------
+        angles : mapping of str to float
+            Hinge globs and the angles [deg] to hold them at.
+
+        Returns
+        -------
+        Model
+
         Raises
         ------
         InputError
@@ -345,10 +566,56 @@ class Model:
 
         return self.craft.cache.get(key, build)
 
+    def check_turnable(self, where: str, *, sun: bool, time: bool = False) -> None:
+        """Refuse the hinges ``where`` cannot turn: a scheduled one without a time, a Sun-tracking one
+        without a Sun direction (fixed ones always turn).
+
+        Parameters
+        ----------
+        where : str
+            What has no Sun or no time, for the message: ``"sunwind drag"``, ``"a drag table"``.
+        sun, time : bool
+            Whether ``where`` has a Sun direction and a time for the hinges' laws.
+
+        Raises
+        ------
+        InputError
+            The first hinge that cannot turn, with how to hold it at an angle (``articulate``).
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> model = sw.load(sw.meshes.sample_path(), sw.meshes.sample_materials_path(), threads=1)
+        >>> model.check_turnable("sunwind srp", sun=True)  # the sample's hinges are fixed or track
+        """
+        for hinge in self.hinges:
+            if hinge.law == "schedule" and not time:
+                what, lacks, elsewhere = "follows a schedule", "time", "sunwind orbit flies schedules"
+            elif hinge.law == "track" and not sun:
+                what, lacks = "tracks the Sun", "Sun" if where.endswith("table") else "Sun direction"
+                elsewhere = (
+                    "or tabulate SRP alone" if where.endswith("table") else "srp and forces turn it to --sun"
+                )
+            else:
+                continue
+            raise InputError(
+                f'[articulation] "{hinge.pattern}" {what}: {where} has no {lacks} for it',
+                hint=f'hold it at an angle with articulate "{hinge.pattern}=DEG" ({elsewhere})',
+                parameters=("articulate",),
+            )
+
     @property
     def reference_sizes(self) -> tuple[float, float]:
         """Coefficient reference area [m^2] and length [m] (:attr:`reference_area_m2`,
-        :attr:`reference_length_m`, or their defaults)."""
+        :attr:`reference_length_m`, or their defaults).
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> [round(size, 12) for size in sw.load(sw.meshes.box(), uniform=black).reference_sizes]
+        [1.5, 1.0]
+        """
         craft = self.craft
         area = craft.total_area / 4 if self.reference_area_m2 is None else float(self.reference_area_m2)
         length = self.reference_length_m
@@ -386,7 +653,29 @@ class _Poses:
 
 
 def as_model(model: Model | Spacecraft) -> Model:
-    """``model`` itself, or a :class:`Model` of a bare spacecraft (sharing its cache)."""
+    """``model`` itself, or a :class:`Model` of a bare spacecraft (sharing its cache).
+
+    Parameters
+    ----------
+    model : Model or Spacecraft
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    InputError
+        Anything else.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> model = sw.load(sw.meshes.box(), uniform=black)
+    >>> as_model(model) is model, as_model(model.craft).craft is model.craft
+    (True, True)
+    """
     if isinstance(model, Model):
         return model
     if isinstance(model, Spacecraft):
@@ -398,7 +687,7 @@ def as_model(model: Model | Spacecraft) -> Model:
 
 
 def load(
-    mesh: str | os.PathLike,
+    mesh: str | os.PathLike | MeshData,
     materials: str | os.PathLike | None = None,
     *,
     unit: str | None = None,
@@ -408,12 +697,13 @@ def load(
     articulate: Mapping[str, float] | None = None,
     **model: object,
 ) -> Model:
-    """Load a mesh file and its materials as a :class:`Model`.
+    """Load a mesh file (or a mesh built in memory) and its materials as a :class:`Model`.
 
     Parameters
     ----------
-    mesh : path
-        STL, OBJ, PLY, glTF/GLB or USD file.
+    mesh : path or MeshData
+        STL, OBJ, PLY, glTF/GLB or USD file; or a mesh of :mod:`sunwind.meshes` (in metres), whose
+        model then has no ``source`` (it cannot go to Dask workers).
     materials : path, optional
         Materials TOML file (parts, materials, sheets).
     unit : str, optional
@@ -435,10 +725,25 @@ def load(
         :class:`Model`); ``threads`` each attitude uses (default every core); ``reference_area_m2``
         and ``reference_length_m``.
 
+    Returns
+    -------
+    Model
+
     Raises
     ------
     SunwindError
         The file cannot be read, a part has no material, or a value is out of range.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.sample_path(), sw.meshes.sample_materials_path(), threads=1)
+    >>> model.craft.n_facets > 10000
+    True
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box((1.0, 1.0, 1.0)), uniform=black, threads=1)
+    >>> cube.craft.n_facets, cube.source is None
+    (12, True)
     """
     unknown = sorted(set(gas or {}) - set(GAS_DEFAULTS))
     if unknown:
@@ -447,8 +752,11 @@ def load(
             hint=f"the keys are {', '.join(GAS_DEFAULTS)}",
             parameters=("gas",),
         )
+    in_memory = isinstance(mesh, MeshData)
+    if in_memory and unit is not None:
+        raise InputError("unit is the length unit of a mesh file", hint="drop unit", parameters=("unit",))
     source = ModelSource(
-        str(mesh),
+        "<mesh in memory>" if in_memory else str(mesh),
         None if materials is None else str(materials),
         unit,
         uniform,
@@ -456,4 +764,7 @@ def load(
         tuple((gas or {}).items()),
         tuple((articulate or {}).items()),
     )
-    return Model(source.load(), source, **model)  # type: ignore[arg-type]
+    if in_memory:
+        craft = build_spacecraft(mesh, source.materials, uniform, source.two_sided)
+        return Model(source.applied(craft), None, **model)  # type: ignore[arg-type]
+    return Model(source.spacecraft(), source, **model)  # type: ignore[arg-type]

@@ -1,10 +1,13 @@
-"""Results of one attitude and of a batch of attitudes: force, torque, their direct and reflected parts,
-areas and how they were obtained; body frame, SI units (METHOD.md "Outputs and tables").
+"""Results of one attitude: force, torque, their direct and reflected parts, areas and how they were
+obtained; body frame, SI units (METHOD.md "Outputs and tables").
 
-:class:`SrpResult` and :class:`DragResult` share :class:`AttitudeResult`: the same field names for
-what both have (``force_N``, ``rays``, ``facet_force_N``, ``azel_deg``, ...), and the same JSON keys.
-A batch (:class:`SrpBatch`, :class:`DragBatch`) holds one result per attitude and gives every numeric
-field stacked over them, ``(n,)`` or ``(n, 3)``.
+:class:`SrpResult` and :class:`DragResult` share :class:`AttitudeResult` (itself a
+:class:`~sunwind.forces.result_base.Result`): the same field names for what both have (``force_N``,
+``rays``, ``facet_force_N``, ``azel_deg``, ...), the same JSON keys and the same ``to_dataset()``.
+A batch (:class:`~sunwind.forces.batches.SrpBatch`, :class:`~sunwind.forces.batches.DragBatch`) holds
+one result per attitude and gives every per-attitude field stacked over them, ``(n,)`` or ``(n, 3)``.
+Nothing is computed on attribute access that the call did not ask for: ``k_is`` is None when the
+reflections asked for needed no view factors.
 """
 
 from __future__ import annotations
@@ -12,15 +15,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas.atmosphere import Atmosphere
-from sunwind.forces.gas.chains import ChainTotals
+from sunwind.forces.gas.chains import MoleculeChainTotals
 from sunwind.forces.radiation.law import surface_forces
-from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings, interference
+from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings
+from sunwind.forces.result_base import FRAME, Result
 from sunwind.geometry.directions import vector_to_azel
 from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import Illumination
@@ -28,8 +32,8 @@ from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.sky import OpenSky
 from sunwind.geometry.views.view_factors import ViewFactors
 
-#: The frame every vector is given in.
-FRAME = "body frame of the mesh"
+__all__ = ["AXES", "FRAME", "NORMALISATION", "VALIDITY", "AttitudeResult", "DragResult", "SrpResult"]
+
 #: How every aerodynamic coefficient is normalised (METHOD.md "Outputs and tables").
 NORMALISATION = "C = F / (q A_ref), C_M = M / (q A_ref L_ref), q = rho V^2 / 2 (total density)"
 #: The aerodynamic axes the force coefficients are taken along.
@@ -48,18 +52,41 @@ VALIDITY = (
 @dataclass(frozen=True)
 class GasReflected:
     """What the molecules re-emitted from side to side add to the panel law: the diffuse exchange and
-    the chains of unaccommodated molecules (``chains`` None without them)."""
+    the chains of unaccommodated molecules (``chains`` None without them).
+
+    Attributes
+    ----------
+    mode : str
+        The re-emission mode applied ("auto" resolved).
+    force_N, torque_Nm : (3,) float64
+        What the exchange adds to the panel law's force [N] and torque [N m].
+    view : ViewFactors or None
+        The view factors the exchange used (None without exchange).
+    k_is : float or None
+        The molecular interference criterion, None when not computed.
+    chains : MoleculeChainTotals or None
+        The chains of unaccommodated molecules.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> sw.drag(cube, [7500.0, 0.0, 0.0], air, reflections="none").reflected.mode
+    'none'
+    """
 
     mode: str
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
     view: ViewFactors | None
     k_is: float | None
-    chains: ChainTotals | None = None
+    chains: MoleculeChainTotals | None = None
 
 
 @dataclass(frozen=True, eq=False)
-class AttitudeResult:
+class AttitudeResult(Result):
     """What a solar-pressure and a free-molecular result of one attitude share; body frame, SI.
 
     Attributes
@@ -98,6 +125,18 @@ class AttitudeResult:
     Both kinds give ``side_force_N`` and ``side_torque_Nm`` (n_sides, 3): the direct force on each side
     and its torque about the reference point, which :attr:`facet_force_N` and :attr:`facet_torque_Nm`
     sum onto the facets.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> result = sw.srp(cube, [1.0, 1.0, 0.0], reflections="none")
+    >>> np.allclose(result.facet_force_N.sum(axis=0), result.direct_force_N)
+    True
+    >>> [round(angle, 6) for angle in result.azel_deg]
+    [45.0, 0.0]
     """
 
     force_N: NDArray[np.float64]
@@ -115,17 +154,22 @@ class AttitudeResult:
     craft: Spacecraft = field(repr=False)
     shadow_error: LoadsError | None = field(kw_only=True)
 
+    VARIABLES: ClassVar[tuple[str, ...]] = (
+        "force_N",
+        "torque_Nm",
+        "direct_force_N",
+        "direct_torque_Nm",
+        "reflected_force_N",
+        "reflected_torque_Nm",
+        "lit_area_m2",
+        "projected_area_m2",
+        "rays",
+    )
+
     @property
     def direction(self) -> NDArray[np.float64]:
         """Unit vector of the attitude, body frame: toward the Sun, or along ``v_rel``."""
         raise NotImplementedError
-
-    @property
-    def error_estimate(self) -> ErrorEstimate | None:
-        """:attr:`shadow_error` relative to the total force and torque (None with fixed sampling)."""
-        if self.shadow_error is None:
-            return None
-        return ErrorEstimate.of(self.shadow_error, self.force_N, self.torque_Nm, self.craft.diagonal_m)
 
     @property
     def azel_deg(self) -> tuple[float, float]:
@@ -158,14 +202,13 @@ class AttitudeResult:
         return _per_facet(self.craft.side_facet, self.side_torque_Nm, self.craft.n_facets)
 
     def to_json(self) -> dict:
-        """Plain-JSON summary; keys carry their units."""
-        estimate = self.error_estimate
+        """Plain-JSON summary; keys carry their units (the direction's ``azimuth_deg`` and
+        ``elevation_deg`` alike for every kind)."""
+        az, el = self.azel_deg
         return {
-            "frame": FRAME,
-            "force_N": self.force_N.tolist(),
-            "torque_Nm": self.torque_Nm.tolist(),
-            "reference_point_m": self.reference_point_m.tolist(),
-            "reference_point": self.reference_point,
+            **super().to_json(),
+            "azimuth_deg": az,
+            "elevation_deg": el,
             "direct": {"force_N": self.direct_force_N.tolist(), "torque_Nm": self.direct_torque_Nm.tolist()},
             "reflected": {
                 "force_N": self.reflected_force_N.tolist(),
@@ -177,7 +220,17 @@ class AttitudeResult:
             "projected_area_m2": self.projected_area_m2,
             "rays": self.rays,
             "sampling": self.sampling,
-            "error_estimate": None if estimate is None else estimate.to_json(),
+        }
+
+    def dataset_attrs(self) -> dict[str, object]:
+        """Global attributes of :meth:`to_dataset`: those of every result, the reflections used and
+        the direction's azimuth and elevation [deg]."""
+        az, el = self.azel_deg
+        return {
+            **super().dataset_attrs(),
+            "reflections": self.reflections,
+            "azimuth_deg": az,
+            "elevation_deg": el,
         }
 
 
@@ -198,6 +251,17 @@ class SrpResult(AttitudeResult):
         Lit share and lit centroid of every side.
 
     Per-side and per-facet forces and torques (of the direct law) are computed on first access.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> result = sw.srp(cube, [0.0, 0.0, 1.0], flux_W_m2=1361.0, reflections="none")
+    >>> f"{result.pressure_Pa:.4e} Pa, {result.force_N[2]:.4e} N"  # a black square face: F = -P A
+    '4.5398e-06 Pa, -4.5398e-06 N'
+    >>> result.k_is is None  # no view factors were asked for
+    True
     """
 
     sun_vector: NDArray[np.float64] = field(kw_only=True)
@@ -205,26 +269,30 @@ class SrpResult(AttitudeResult):
     pressure_Pa: float = field(kw_only=True)
     illumination: Illumination = field(kw_only=True, repr=False)
 
-    @property
-    def direction(self) -> NDArray[np.float64]:
-        return self.sun_vector
+    KIND: ClassVar[str] = "srp"
+    VARIABLES: ClassVar[tuple[str, ...]] = (
+        *AttitudeResult.VARIABLES,
+        "sun_vector",
+        "flux_W_m2",
+        "pressure_Pa",
+        "k_is",
+    )
 
     @property
-    def sun_azel_deg(self) -> tuple[float, float]:
-        """Azimuth and elevation of the Sun vector [deg] (:attr:`azel_deg`)."""
-        return self.azel_deg
+    def direction(self) -> NDArray[np.float64]:
+        """The Sun vector (:attr:`sun_vector`)."""
+        return self.sun_vector
 
     @property
     def power(self) -> PowerBalance:
         """Incident, absorbed and escaped power [W]."""
         return self.reflected.power
 
-    @cached_property
-    def k_is(self) -> float:
-        """Interference criterion ``K_IS`` of eq. (7) (computes the view factors if not yet done)."""
-        if self.reflected.k_is is not None:
-            return self.reflected.k_is
-        return interference(self.craft, self.settings)
+    @property
+    def k_is(self) -> float | None:
+        """Interference criterion ``K_IS`` of eq. (7) when the call computed it (reflections ``auto``
+        or ``full``), else None: ask :func:`~sunwind.forces.reflection.interference` for it."""
+        return self.reflected.k_is
 
     @property
     def side_lit_fraction(self) -> NDArray[np.float64]:
@@ -256,14 +324,11 @@ class SrpResult(AttitudeResult):
         return np.cross(self.illumination.lit_centroid - self.reference_point_m, self.side_force_N)
 
     def to_json(self) -> dict:
-        """Plain-JSON summary; keys carry their units. ``k_is`` computes the view factors when the
-        reflections asked for did not (``none``, ``specular``)."""
-        az, el = self.azel_deg
+        """Plain-JSON summary; keys carry their units; ``k_is`` null when the reflections asked for
+        (``none``, ``specular``) needed no view factors."""
         out = {
             **super().to_json(),
             "sun_vector": self.sun_vector.tolist(),
-            "sun_azimuth_deg": az,
-            "sun_elevation_deg": el,
             "flux_W_m2": self.flux_W_m2,
             "pressure_Pa": self.pressure_Pa,
             "k_is": self.k_is,
@@ -285,7 +350,25 @@ class SrpResult(AttitudeResult):
 
 
 def aerodynamic_axes(flow_direction: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Unit drag, side and lift directions (rows) for ``u = v_rel / |v_rel|``; see :data:`AXES`."""
+    """Unit drag, side and lift directions (rows) for ``u = v_rel / |v_rel|``; see :data:`AXES`.
+
+    Parameters
+    ----------
+    flow_direction : (3,) float64
+        ``u``, the unit flow direction, body frame.
+
+    Returns
+    -------
+    (3, 3) float64
+        Rows: the drag axis ``-u``, the side axis ``lift x drag``, the lift axis (body +z made normal
+        to ``u``; body +x when ``u`` is along z).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> aerodynamic_axes(np.array([1.0, 0.0, 0.0])).tolist()
+    [[-1.0, -0.0, -0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]]
+    """
     drag_axis = -flow_direction
     up = np.array([0.0, 0.0, 1.0])
     if abs(up @ flow_direction) > 1 - 1e-9:
@@ -313,6 +396,16 @@ class DragResult(AttitudeResult):
         The model's sampled open sky the incident stream was integrated over.
     core_half_angle_rad : float
         Half-angle of the core cone about the flow followed by rays per attitude [rad].
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> result = sw.drag(cube, [7500.0, 0.0, 0.0], air, reflections="none")
+    >>> round(result.CD, 2), round(result.speed_ratio, 2)  # a cube face-on, C_D on A_ref = area / 4 = 1.5 m²
+    (1.64, 7.36)
     """
 
     velocity_m_s: NDArray[np.float64] = field(kw_only=True)
@@ -324,17 +417,27 @@ class DragResult(AttitudeResult):
     open_sky: OpenSky = field(kw_only=True, repr=False)
     core_half_angle_rad: float = field(kw_only=True)
 
+    KIND: ClassVar[str] = "drag"
+    VARIABLES: ClassVar[tuple[str, ...]] = (
+        *AttitudeResult.VARIABLES,
+        "velocity_m_s",
+        "speed_ratio",
+        "dynamic_pressure_Pa",
+        "CD",
+        "CS",
+        "CL",
+        "CM",
+        "k_is",
+    )
+
     @property
     def direction(self) -> NDArray[np.float64]:
+        """The flow direction (:attr:`flow_direction`)."""
         return self.flow_direction
 
     @property
-    def flow_azel_deg(self) -> tuple[float, float]:
-        """Azimuth and elevation of ``v_rel`` [deg] (:attr:`azel_deg`)."""
-        return self.azel_deg
-
-    @property
     def speed_m_s(self) -> float:
+        """``|v_rel|`` [m/s]."""
         return float(np.linalg.norm(self.velocity_m_s))
 
     @property
@@ -364,12 +467,6 @@ class DragResult(AttitudeResult):
         return axes @ self.force_N / (self.dynamic_pressure_Pa * self.reference_area_m2)
 
     @property
-    def moment_coefficients(self) -> NDArray[np.float64]:
-        """``C_M`` about the reference point along the body axes x, y, z."""
-        scale = self.dynamic_pressure_Pa * self.reference_area_m2 * self.reference_length_m
-        return self.torque_Nm / scale
-
-    @property
     def CD(self) -> float:
         """Drag coefficient (:attr:`force_coefficients`)."""
         return float(self.force_coefficients[0])
@@ -386,17 +483,17 @@ class DragResult(AttitudeResult):
 
     @property
     def CM(self) -> NDArray[np.float64]:
-        """Moment coefficients along the body axes (:attr:`moment_coefficients`)."""
-        return self.moment_coefficients
+        """Moment coefficients ``C_M`` about the reference point along the body axes x, y, z, (3,),
+        normalised as :data:`NORMALISATION`."""
+        scale = self.dynamic_pressure_Pa * self.reference_area_m2 * self.reference_length_m
+        return self.torque_Nm / scale
 
     def to_json(self) -> dict:
         """The result as plain JSON types; keys say units, frame and reference point."""
-        az, el = self.azel_deg
         cd, cs, cl = self.force_coefficients
         return {
             **super().to_json(),
             "velocity_m_s": self.velocity_m_s.tolist(),
-            "flow_azel_deg": [az, el],
             "speed_m_s": self.speed_m_s,
             "density_kg_m3": self.atmosphere.density_kg_m3,
             "temperature_K": self.atmosphere.temperature_K,
@@ -407,7 +504,7 @@ class DragResult(AttitudeResult):
             "CD": cd,
             "CL": cl,
             "CS": cs,
-            "CM": self.moment_coefficients.tolist(),
+            "CM": self.CM.tolist(),
             "reference_area_m2": self.reference_area_m2,
             "reference_length_m": self.reference_length_m,
             "coefficients": {"normalisation": NORMALISATION, "axes": AXES},

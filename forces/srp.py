@@ -1,5 +1,7 @@
 """Solar-radiation pressure at one attitude or a batch: shadow rays, the force law on every lit side,
-inter-reflection, totals about a reference point (METHOD.md "Direct solar pressure", "Inter-reflection")."""
+inter-reflection, totals about a reference point (METHOD.md "Direct solar pressure", "Inter-reflection").
+With ``reflections="plates"`` every side facing the Sun is wholly lit and alone (the flat-plate model):
+no ray is cast."""
 
 from __future__ import annotations
 
@@ -10,13 +12,14 @@ from numpy.typing import NDArray
 
 from sunwind.forces.batches import SrpBatch
 from sunwind.forces.model import Model, as_model
-from sunwind.forces.radiation.direct import direct_pass, lit_area_loads
-from sunwind.forces.radiation.law import radiation_pressure, solar_flux
+from sunwind.forces.radiation.direct import DirectTotals, direct_pass, lit_area_loads
+from sunwind.forces.radiation.law import radiation_pressure, solar_flux, surface_forces
 from sunwind.forces.reflection import ReflectionSettings, reflected_part, reflection_plan
 from sunwind.forces.results import SrpResult
 from sunwind.geometry.directions import unit_vectors
 from sunwind.geometry.parallel import map_items, using_threads
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.rays.sampling import ShadowSampling
+from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
 
 
@@ -27,8 +30,7 @@ def srp(
     flux_W_m2: float | None = None,
     distance_au: float | None = None,
     reference_point_m: Sequence[float] | NDArray | None = None,
-    samples: int | None = None,
-    tolerance: float = DEFAULT_TOLERANCE,
+    sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
 ) -> SrpResult | SrpBatch:
     """Solar-radiation force and torque with self-shadowing and inter-reflection.
@@ -45,31 +47,46 @@ def srp(
     reference_point_m : (3,) array_like, optional
         Torque reference point [m] (the centre of mass); default the model's, else the volume
         centroid of a closed model, else the area centroid.
-    samples : int, optional
-        Fixed shadow-ray points per side, rounded up to a square; default: shadow edges located and
-        cut along the outline (:mod:`sunwind.geometry.rays.shadow_edges`).
-    tolerance : float
-        The default pass's tolerance: the share of a refined side's area its lit part is found to, in
-        [1e-6, 1). The pass checks itself: the result's ``error_estimate`` is the error it estimates it
-        left, relative to the force and torque (None with ``samples``).
+    sampling : ShadowSampling, optional
+        How the shadow pass samples each side (:class:`~sunwind.geometry.rays.sampling.ShadowSampling`):
+        by default shadow edges located and cut along the outline to its ``tolerance``, the pass
+        checking itself (the result's ``error_estimate`` is the error it estimates it left, relative
+        to the force and torque); or a fixed count of ``samples`` per side (no estimate).
     reflections : str or ReflectionSettings
-        ``"none"``, ``"specular"``, ``"full"`` or ``"auto"`` (full when ``K_IS >= 0.1``), or settings
-        with chain cutoff, depth and view-factor sampling
-        (:class:`~sunwind.forces.reflection.ReflectionSettings`).
+        One of :data:`~sunwind.forces.reflection.settings.MODES`, read for light: ``"none"``,
+        ``"specular"``, ``"full"``, ``"auto"`` (full when ``K_IS >= 0.1``) or ``"plates"`` (every side
+        facing the Sun wholly lit, no ray cast); or settings with chain cutoff, depth and view-factor
+        sampling (:class:`~sunwind.forces.reflection.ReflectionSettings`).
 
     Returns
     -------
     SrpResult, or SrpBatch for a batch of Sun vectors
+
+    Raises
+    ------
+    InputError
+        A Sun vector that is not three finite numbers (or rows of them), a flux, reference point,
+        sampling or reflections out of range.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.box_wing(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1)
+    >>> result = sw.srp(model, [0.0, 0.0, 1.0], reflections="none")
+    >>> bool(result.force_N[2] < 0)  # pushed away from the Sun
+    True
+    >>> sw.srp(model, [[0, 0, 1], [1, 0, 0]], reflections="plates").force_N.shape
+    (2, 3)
     """
     model = as_model(model)
     settings = ReflectionSettings.of(reflections)
     suns = unit_vectors(sun_vector, "sun_vector")
     flux = solar_flux(flux_W_m2, distance_au)
     reference = model.reference(reference_point_m)
-    check_sampling(samples, tolerance)
+    shadows = ShadowSampling.of(sampling)
     with using_threads(model.threads):
         results = map_items(
-            lambda u: _one(model.craft, u, flux, reference, samples, tolerance, settings), suns.reshape(-1, 3)
+            lambda u: _one(model.craft, u, flux, reference, shadows, settings), suns.reshape(-1, 3)
         )
     return results[0] if suns.ndim == 1 else SrpBatch(tuple(results))
 
@@ -79,15 +96,17 @@ def _one(
     u_sun: NDArray[np.float64],
     flux: float,
     reference: tuple[NDArray[np.float64], str],
-    samples: int | None,
-    tolerance: float,
+    sampling: ShadowSampling,
     settings: ReflectionSettings,
 ) -> SrpResult:
     """One attitude, its arguments checked."""
     pressure = radiation_pressure(flux)
     ref, ref_name = reference
     plan = reflection_plan(craft, settings)
-    direct = direct_pass(craft, u_sun, ref, samples, tolerance, plan.weights)
+    if plan.mode == "plates":
+        direct = _plate_pass(craft, u_sun, ref)
+    else:
+        direct = direct_pass(craft, u_sun, ref, sampling.samples, sampling.tolerance, plan.weights)
     light = direct.illumination
     reflected = reflected_part(craft, direct, flux, ref, settings, plan)
     force, torque = pressure * direct.force, pressure * direct.torque
@@ -114,4 +133,30 @@ def _one(
         lit_area_m2=direct.lit_area_m2,
         illumination=light,
         shadow_error=shadow_error,
+    )
+
+
+def _plate_pass(
+    craft: Spacecraft, u_sun: NDArray[np.float64], reference_m: NDArray[np.float64]
+) -> DirectTotals:
+    """The direct pass of ``plates``: eq. (4) on every side facing ``u_sun``, wholly lit, with ``P = 1``;
+    no ray is cast."""
+    cos = craft.side_normals @ u_sun
+    facing = np.flatnonzero(cos > 0.0)
+    light = Illumination(
+        u_sun, craft.side_normals, (facing,), (np.ones(len(facing)),), craft.side_centroids, 0,
+        "plates: every side facing the Sun wholly lit",
+    )  # fmt: skip
+    rho, beta, sigma = craft.side_optics[facing].T
+    areas, cos = craft.side_areas[facing], cos[facing]
+    forces = surface_forces(craft.side_normals[facing], areas, cos, rho, beta, sigma, u_sun, 1.0)
+    projected = areas * cos
+    return DirectTotals(
+        illumination=light,
+        force=forces.sum(axis=0),
+        torque=np.cross(craft.side_centroids[facing] - reference_m, forces).sum(axis=0),
+        lit_area_m2=float(areas.sum()),
+        projected_area_m2=float(projected.sum()),
+        absorbed_area_m2=float(projected @ (1.0 - rho - sigma)),
+        channels_m2=np.zeros(0),
     )

@@ -55,6 +55,12 @@ class Hinge:
     front : (3,) tuple of float or None
         Unit front normal of the turned parts as drawn (angle 0), for ``track``: given in the file, else
         the area-weighted mean front normal of their sheets, found when the hinge is bound to a model.
+
+    Examples
+    --------
+    >>> hinge = Hinge.checked("wing*", {"axis": [0, 2, 0], "origin_m": [0, 0, 0], "angle_deg": 30})
+    >>> hinge.axis, hinge.law
+    ((0.0, 1.0, 0.0), 'fixed')
     """
 
     pattern: str
@@ -67,22 +73,77 @@ class Hinge:
 
     @property
     def law(self) -> str:
-        """``"fixed"``, ``"track"`` or ``"schedule"``."""
+        """Name of the angle law this hinge follows.
+
+        Returns
+        -------
+        str
+            ``"fixed"``, ``"track"`` or ``"schedule"``.
+
+        Examples
+        --------
+        >>> Hinge("wing*", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), track="sun").law
+        'track'
+        """
         return "fixed" if self.angle_deg is not None else "track" if self.track else "schedule"
 
     def fixed_at(self, angle_deg: float) -> Hinge:
-        """This hinge held at ``angle_deg`` [deg] (a tracking or scheduled hinge stops following)."""
+        """Hold this hinge at a fixed angle; a tracking or scheduled hinge stops following its law.
+
+        Parameters
+        ----------
+        angle_deg : float
+            The angle to hold [deg].
+
+        Returns
+        -------
+        Hinge
+            A copy with ``angle_deg`` set and ``track`` and ``schedule`` cleared.
+
+        Examples
+        --------
+        >>> hinge = Hinge("wing*", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), track="sun")
+        >>> held = hinge.fixed_at(45)
+        >>> held.law, held.angle_deg
+        ('fixed', 45.0)
+        """
         return replace(self, angle_deg=float(angle_deg), track=None, schedule=())
 
     @classmethod
     def checked(cls, pattern: str, values: object, source: str | None = None) -> Hinge:
-        """A hinge from its ``[articulation."GLOB"]`` table, every key checked.
+        """Build a hinge from its ``[articulation."GLOB"]`` table, checking every key.
+
+        Parameters
+        ----------
+        pattern : str
+            The part-name glob the table is keyed by.
+        values : object
+            The parsed table: ``axis``, ``origin_m`` and exactly one of ``angle_deg``, ``track`` and
+            ``schedule``; ``front`` beside ``track`` only.
+        source : str or None, optional
+            Path of the materials file, for error messages.
+
+        Returns
+        -------
+        Hinge
+            The hinge, its axis (and front, if given) made unit.
 
         Raises
         ------
         MaterialError
             Unknown or missing keys, not exactly one angle law, an axis that is zero or not three finite
             numbers, a schedule that is not ``[time_s, angle_deg]`` pairs at increasing times.
+
+        Examples
+        --------
+        >>> hinge = Hinge.checked("panel", {"axis": [1, 0, 0], "origin_m": [0, 0, 1],
+        ...     "schedule": [[0, 0], [60, 90]]})
+        >>> hinge.law, hinge.schedule
+        ('schedule', ((0.0, 0.0), (60.0, 90.0)))
+        >>> Hinge.checked("panel", {"axis": [0, 0, 0], "origin_m": [0, 0, 0], "angle_deg": 5})
+        Traceback (most recent call last):
+        ...
+        sunwind.geometry.errors.MaterialError: [articulation] "panel" axis = [0, 0, 0] is not a direction...
         """
         where = f'[articulation] "{pattern}"'
         if not isinstance(values, Mapping):
@@ -136,7 +197,31 @@ class Hinge:
 
 
 def parse_articulation(table: object, source: str | None = None) -> tuple[Hinge, ...]:
-    """The hinges of a materials file's ``[articulation]`` table, every problem reported at once."""
+    """Read the hinges of a materials file's ``[articulation]`` table, reporting every problem at once.
+
+    Parameters
+    ----------
+    table : object
+        The parsed ``[articulation]`` table: one sub-table per hinge, keyed by its part glob.
+    source : str or None, optional
+        Path of the materials file, for error messages.
+
+    Returns
+    -------
+    tuple of Hinge
+        The hinges, in table order.
+
+    Raises
+    ------
+    MaterialError
+        When the table is not a mapping or any hinge is bad (all problems combined into one error).
+
+    Examples
+    --------
+    >>> hinges = parse_articulation({"wing_*": {"axis": [0, 1, 0], "origin_m": [0, 0, 0], "track": "sun"}})
+    >>> [(h.pattern, h.law) for h in hinges]
+    [('wing_*', 'track')]
+    """
     if not isinstance(table, Mapping):
         raise MaterialError(
             "[articulation] must hold one table per hinge",
@@ -155,12 +240,32 @@ def parse_articulation(table: object, source: str | None = None) -> tuple[Hinge,
 
 
 def fixed(hinges: Sequence[Hinge], angles: Mapping[str, float], path: str | None = None) -> tuple[Hinge, ...]:
-    """``hinges``, each that ``angles`` names (by its glob, as written) held at that angle [deg].
+    """Hold the hinges that ``angles`` names at the given angles.
+
+    Parameters
+    ----------
+    hinges : sequence of Hinge
+        The model's hinges.
+    angles : mapping of str to float
+        Angle [deg] for each hinge to hold, keyed by its glob as written in the materials file.
+    path : str or None, optional
+        Path of the materials file, for error messages.
+
+    Returns
+    -------
+    tuple of Hinge
+        ``hinges`` in order, each that ``angles`` names held at its angle (:meth:`Hinge.fixed_at`).
 
     Raises
     ------
     InputError
         A name that is no hinge's glob (declare it in the materials file), or an angle not finite.
+
+    Examples
+    --------
+    >>> hinge = Hinge("wing*", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), track="sun")
+    >>> fixed([hinge], {"wing*": 10.0})[0].angle_deg
+    10.0
     """
     known = {hinge.pattern for hinge in hinges}
     for name, angle in angles.items():
@@ -180,8 +285,36 @@ def fixed(hinges: Sequence[Hinge], angles: Mapping[str, float], path: str | None
 
 
 def checked_angle(angle: object, name: str, parameter: str) -> float:
-    """``angle`` [deg] as a float, refused unless a finite number (``name`` says whose, naming the
-    Python ``parameter``)."""
+    """Check that an angle is a finite number and return it as a float.
+
+    Parameters
+    ----------
+    angle : object
+        The angle [deg] as given.
+    name : str
+        Whose angle it is, for the error message.
+    parameter : str
+        The Python parameter that gave it, named by the error.
+
+    Returns
+    -------
+    float
+        ``angle`` [deg].
+
+    Raises
+    ------
+    InputError
+        When ``angle`` is a bool, not a number, or not finite.
+
+    Examples
+    --------
+    >>> checked_angle(15, "hinge", "angle_deg")
+    15.0
+    >>> checked_angle(float("nan"), "hinge", "angle_deg")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: hinge angle nan must be a finite number [deg]...
+    """
     if isinstance(angle, bool) or not isinstance(angle, int | float) or not math.isfinite(angle):
         raise InputError(f"{name} angle {angle!r} must be a finite number [deg]", parameters=(parameter,))
     return float(angle)
@@ -191,12 +324,31 @@ def checked_angle(angle: object, name: str, parameter: str) -> float:
 def tracking_angle(
     axis: Sequence[float] | NDArray, front: Sequence[float] | NDArray, sun_body: Sequence[float] | NDArray
 ) -> float:
-    """The angle [deg] about ``axis`` that turns ``front`` (its direction at angle 0) closest to ``sun_body``.
+    """Find the angle [deg] about ``axis`` that turns ``front`` closest to the Sun.
 
     With ``a`` the unit axis and ``v_perp = v - (a . v) a``, ``n(theta) . s`` is largest at
     ``theta = atan2(a . (n_perp x s_perp), n_perp . s_perp)``. A Sun along the axis (``|s_perp|`` below
     :data:`ALONG_AXIS` of ``|s|``) leaves every angle as good: the angle is kept at 0, with a warning
     (shown once).
+
+    Parameters
+    ----------
+    axis : (3,) array_like of float
+        Hinge axis, body frame; need not be unit.
+    front : (3,) array_like of float
+        Front normal of the turned parts at angle 0, body frame.
+    sun_body : (3,) array_like of float
+        Direction to the Sun, body frame.
+
+    Returns
+    -------
+    float
+        The best angle [deg], in (-180, 180].
+
+    Examples
+    --------
+    >>> round(tracking_angle([0, 0, 1], [1, 0, 0], [0, 1, 0]), 6)
+    90.0
     """
     a = np.asarray(axis, dtype=np.float64) / np.linalg.norm(axis)
     n, s = np.asarray(front, dtype=np.float64), np.asarray(sun_body, dtype=np.float64)
@@ -212,7 +364,31 @@ def tracking_angle(
 
 
 def schedule_angle(hinge: Hinge, time_s: float) -> float:
-    """The angle [deg] of a scheduled hinge at ``time_s`` [s]: linear between its points, held outside."""
+    """Interpolate the angle [deg] of a scheduled hinge at a time: linear between points, held outside.
+
+    Parameters
+    ----------
+    hinge : Hinge
+        A hinge with a ``schedule``.
+    time_s : float
+        Time from the start [s].
+
+    Returns
+    -------
+    float
+        The angle [deg].
+
+    Raises
+    ------
+    InputError
+        When ``time_s`` is not a finite number.
+
+    Examples
+    --------
+    >>> hinge = Hinge("p", (1.0, 0.0, 0.0), (0.0, 0.0, 0.0), schedule=((0.0, 0.0), (10.0, 90.0)))
+    >>> schedule_angle(hinge, 5.0), schedule_angle(hinge, 20.0)
+    (45.0, 90.0)
+    """
     if isinstance(time_s, bool) or not isinstance(time_s, int | float) or not math.isfinite(time_s):
         raise InputError(f"time_s {time_s!r} must be a finite number [s]", parameters=("time_s",))
     times, angles = np.array(hinge.schedule, dtype=np.float64).T
@@ -221,7 +397,25 @@ def schedule_angle(hinge: Hinge, time_s: float) -> float:
 
 # ------------------------------------------------------------------------------------------- turning
 def rotation(axis: Sequence[float], angle_deg: float) -> NDArray[np.float64]:
-    """Right-handed rotation matrix (3, 3) by ``angle_deg`` [deg] about the unit ``axis`` (Rodrigues)."""
+    """Build the right-handed rotation matrix about a unit axis (Rodrigues' formula).
+
+    Parameters
+    ----------
+    axis : (3,) sequence of float
+        Unit rotation axis.
+    angle_deg : float
+        Rotation angle [deg].
+
+    Returns
+    -------
+    (3, 3) ndarray of float64
+        The rotation matrix ``R``; ``R @ v`` turns ``v``.
+
+    Examples
+    --------
+    >>> rotation((0.0, 0.0, 1.0), 90.0).round(6) @ [1.0, 0.0, 0.0]
+    array([0., 1., 0.])
+    """
     a = np.asarray(axis, dtype=np.float64)
     theta = math.radians(angle_deg)
     skew = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
@@ -231,8 +425,34 @@ def rotation(axis: Sequence[float], angle_deg: float) -> NDArray[np.float64]:
 def turned(
     vertices: NDArray[np.float64], vertex_hinge: NDArray, hinges: Sequence[Hinge], angles_deg: Sequence[float]
 ) -> NDArray[np.float64]:
-    """``vertices`` [m] with those of hinge ``k`` (``vertex_hinge == k``) turned by ``angles_deg[k]`` about
-    its line; a whole number of turns (0, 360, ...) moves nothing, to the bit."""
+    """Turn the vertices of each hinge's parts about its line.
+
+    A whole number of turns (0, 360, ...) moves nothing, to the bit.
+
+    Parameters
+    ----------
+    vertices : (n_vertices, 3) ndarray of float64
+        Vertex positions [m], body frame.
+    vertex_hinge : (n_vertices,) ndarray of int
+        Index of the hinge that turns each vertex, -1 for none.
+    hinges : sequence of Hinge
+        The hinges.
+    angles_deg : sequence of float
+        Angle [deg] of each hinge, same length as ``hinges``.
+
+    Returns
+    -------
+    (n_vertices, 3) ndarray of float64
+        A new array: vertex ``i`` of hinge ``k`` turned by ``angles_deg[k]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hinge = Hinge("p", (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), angle_deg=90.0)
+    >>> turned(np.array([[2.0, 0, 0], [5.0, 0, 0]]), np.array([0, -1]), [hinge], [90.0]).round(6)
+    array([[1., 1., 0.],
+           [5., 0., 0.]])
+    """
     out = np.array(vertices, dtype=np.float64)
     for k, (hinge, angle) in enumerate(zip(hinges, angles_deg, strict=True)):
         turn = math.remainder(angle, 360.0)
@@ -247,8 +467,36 @@ def turned(
 def detached(
     vertices: NDArray[np.float64], faces: NDArray[np.int64], facet_group: NDArray
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """Vertices and faces with a copy of each vertex for every further group (``facet_group``: a hinge's
-    index, -1 for unturned facets) whose facets use it, so that no vertex is shared across groups."""
+    """Split the vertices that facets of different hinge groups share.
+
+    Each vertex gets a copy for every further group whose facets use it, so that turning one group does
+    not drag the other's facets along.
+
+    Parameters
+    ----------
+    vertices : (n_vertices, 3) ndarray of float64
+        Vertex positions.
+    faces : (n_faces, 3) ndarray of int64
+        Vertex indices of each triangle.
+    facet_group : (n_faces,) ndarray of int
+        Group of each facet: a hinge's index, -1 for unturned facets.
+
+    Returns
+    -------
+    vertices : (n_vertices_out, 3) ndarray of float64
+        The vertices, the copies appended; ``vertices`` itself when nothing is shared.
+    faces : (n_faces, 3) ndarray of int64
+        The faces, re-indexed onto the copies.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    >>> f = np.array([[0, 1, 2], [1, 3, 2]])
+    >>> v2, f2 = detached(v, f, np.array([-1, 0]))
+    >>> len(v2), f2.tolist()
+    (6, [[0, 1, 2], [4, 3, 5]])
+    """
     span = int(facet_group.max(initial=-1)) + 2
     keys = faces.reshape(-1) * span + np.repeat(np.asarray(facet_group, dtype=np.int64) + 1, 3)
     pairs, inverse = np.unique(keys, return_inverse=True)
@@ -261,8 +509,28 @@ def detached(
 
 
 def front_normal(triangles: NDArray[np.float64]) -> NDArray[np.float64] | None:
-    """Area-weighted mean front normal (counter-clockwise winding) of ``triangles`` (n, 3, 3), unit; None
-    when they have none (no triangles, or fronts that cancel as a closed body's do)."""
+    """Compute the area-weighted mean front normal of a set of triangles.
+
+    The front is the counter-clockwise side.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) ndarray of float64
+        Corner coordinates of each triangle.
+
+    Returns
+    -------
+    (3,) ndarray of float64 or None
+        The unit mean normal; None with no triangles or with fronts that cancel (as a closed body's do).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> front_normal(np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]]))
+    array([0., 0., 1.])
+    >>> front_normal(np.zeros((0, 3, 3))) is None
+    True
+    """
     doubled = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
     total, area = doubled.sum(axis=0), np.linalg.norm(doubled, axis=1).sum()
     if area == 0.0 or np.linalg.norm(total) <= FRONT_ACROSS * area:
@@ -274,12 +542,37 @@ def front_normal(triangles: NDArray[np.float64]) -> NDArray[np.float64] | None:
 def part_groups(
     hits: NDArray[np.bool_], part_names: Sequence[str], hinges: Sequence[Hinge], mesh: str, path: str | None
 ) -> NDArray[np.int64]:
-    """The hinge that turns each part (-1: none), from ``hits[k, p]``: hinge ``k``'s glob matches part ``p``.
+    """Find the hinge that turns each part from a glob-by-part match table.
+
+    Parameters
+    ----------
+    hits : (n_hinges, n_parts) ndarray of bool
+        ``hits[k, p]``: hinge ``k``'s glob matches part ``p``.
+    part_names : sequence of str
+        Name of each part.
+    hinges : sequence of Hinge
+        The hinges.
+    mesh : str
+        Name of the mesh, for messages.
+    path : str or None
+        Path of the materials file, for messages.
+
+    Returns
+    -------
+    (n_parts,) ndarray of int64
+        Index of the hinge turning each part, -1 for none.
 
     Raises
     ------
     MaterialError
         A glob that matches no part of ``mesh``, or a part that two globs match.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hinge = Hinge("wing", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), angle_deg=0.0)
+    >>> part_groups(np.array([[False, True]]), ["bus", "wing"], [hinge], "sat.obj", None).tolist()
+    [-1, 0]
     """
     problems = []
     listed = ", ".join(part_names[:20]) + (f", ... ({len(part_names)} parts)" if len(part_names) > 20 else "")
@@ -313,13 +606,41 @@ def check_bodies(
     hinges: Sequence[Hinge],
     path: str | None,
 ) -> None:
-    """Refuse a closed body (``solid`` facets, closed across parts) whose facets two groups turn apart:
-    turning one of them would open it. ``facet_names`` names each facet's part.
+    """Refuse a closed body whose facets two hinge groups would turn apart.
+
+    A closed body here is the ``solid`` facets, closed across parts; turning part of it would open it.
+
+    Parameters
+    ----------
+    faces : (n_faces, 3) ndarray of int64
+        Vertex indices of each triangle.
+    solid : (n_faces,) ndarray of bool
+        Facets that belong to closed bodies.
+    facet_group : (n_faces,) ndarray of int64
+        Hinge index of each facet, -1 for unturned.
+    facet_names : sequence of str
+        Part name of each facet.
+    hinges : sequence of Hinge
+        The hinges.
+    path : str or None
+        Path of the materials file, for messages.
 
     Raises
     ------
     MaterialError
         Naming the hinge, the part it turns and a part of the same body it does not.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> faces = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> hinge = Hinge("lid", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), angle_deg=0.0)
+    >>> solid = np.ones(4, bool)
+    >>> check_bodies(faces, solid, np.array([-1, -1, -1, -1]), ["a"] * 4, [hinge], None)
+    >>> check_bodies(faces, solid, np.array([-1, -1, -1, 0]), ["a", "a", "a", "lid"], [hinge], None)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.MaterialError: [articulation] "lid" turns part 'lid', which closes a body ...
     """
     index = np.flatnonzero(solid)
     edges = np.sort(faces[index][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
@@ -353,14 +674,39 @@ def with_fronts(
     sheet: NDArray[np.bool_],
     path: str | None,
 ) -> tuple[Hinge, ...]:
-    """``hinges`` with the front of each tracking hinge that gives none: the area-weighted mean front
-    normal of the sheets (``sheet`` facets of ``triangles``, the mesh as drawn) it turns.
+    """Give each tracking hinge without a front the mean front normal of the sheets it turns.
+
+    Parameters
+    ----------
+    hinges : sequence of Hinge
+        The hinges.
+    triangles : (n_faces, 3, 3) ndarray of float64
+        The mesh's triangles as drawn.
+    facet_group : (n_faces,) ndarray of int64
+        Hinge index of each facet, -1 for unturned.
+    sheet : (n_faces,) ndarray of bool
+        Facets that are sheets (open surfaces with a front).
+    path : str or None
+        Path of the materials file, for messages.
+
+    Returns
+    -------
+    tuple of Hinge
+        ``hinges``, each tracking one with a unit ``front``.
 
     Raises
     ------
     MaterialError
         A tracking hinge whose parts have no front (closed bodies only: their normals cancel), or whose
         front lies along its axis.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> tri = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
+    >>> hinge = Hinge("wing", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), track="sun")
+    >>> with_fronts([hinge], tri, np.array([0]), np.array([True]), None)[0].front
+    (0.0, 0.0, 1.0)
     """
     out = list(hinges)
     for k, hinge in enumerate(hinges):

@@ -23,7 +23,25 @@ T = TypeVar("T")
 
 @dataclass(frozen=True)
 class CacheEntry:
-    """One kept precompute: its key (a name, then the settings it was made with) and its size."""
+    """Describe one kept precompute: its key, the type of its value and its size.
+
+    Attributes
+    ----------
+    key : hashable
+        The key it is kept under: a name, then the settings it was made with.
+    kind : str
+        Type name of the value kept.
+    nbytes : int
+        Bytes of the arrays it holds (an estimate: arrays reached through attributes, each once).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cache = ModelCache()
+    >>> _ = cache.get(("plan", 4), lambda: np.zeros(10))
+    >>> cache.entries()
+    [CacheEntry(key=('plan', 4), kind='ndarray', nbytes=80)]
+    """
 
     key: Hashable
     kind: str  # the type of the value kept
@@ -31,7 +49,23 @@ class CacheEntry:
 
 
 def step_name(key: Hashable) -> str:
-    """The name a key gives its build's progress step: the key, or its first item (its name)."""
+    """Name the progress step that builds the value kept under a key.
+
+    Parameters
+    ----------
+    key : hashable
+        A cache key: a name, or a tuple whose first item is the name.
+
+    Returns
+    -------
+    str
+        The key, or its first item, as a string.
+
+    Examples
+    --------
+    >>> step_name(("view factors", 128)), step_name("scene")
+    ('view factors', 'scene')
+    """
     return str(key[0] if isinstance(key, tuple) and key else key)
 
 
@@ -41,6 +75,14 @@ class ModelCache:
     ``get(key, build)`` returns the value kept under ``key``, building it first if it is not there.
     Builds run one at a time (a build may ask for another, e.g. a reflection plan for the view factors
     it needs), so threads asking for the same value build it once.
+
+    Examples
+    --------
+    >>> cache = ModelCache()
+    >>> cache.get("answer", lambda: 42), cache.get("answer", lambda: 0)
+    (42, 42)
+    >>> "answer" in cache, len(cache)
+    (True, 1)
     """
 
     def __init__(self) -> None:
@@ -48,7 +90,26 @@ class ModelCache:
         self._lock = threading.RLock()
 
     def get(self, key: Hashable, build: Callable[[], T]) -> T:
-        """The value kept under ``key``; ``build()`` makes and keeps it when it is not there."""
+        """Return the value kept under ``key``, building and keeping it first when it is not there.
+
+        Parameters
+        ----------
+        key : hashable
+            The key: a name, or a tuple of a name and the settings the value depends on.
+        build : callable
+            Called without arguments to make the value when it is missing; reported as a progress step.
+
+        Returns
+        -------
+        object
+            The kept value.
+
+        Examples
+        --------
+        >>> cache = ModelCache()
+        >>> cache.get(("sum", 3), lambda: sum(range(3)))
+        3
+        """
         try:
             return self._values[key]  # type: ignore[return-value]
         except KeyError:
@@ -69,7 +130,20 @@ class ModelCache:
         return iter(list(self._values))
 
     def entries(self) -> list[CacheEntry]:
-        """Every kept value with its key, type and size."""
+        """List every kept value with its key, type and size.
+
+        Returns
+        -------
+        list of CacheEntry
+            One entry per kept value, in the order they were built.
+
+        Examples
+        --------
+        >>> cache = ModelCache()
+        >>> _ = cache.get("names", lambda: ["a", "b"])
+        >>> [(e.key, e.kind, e.nbytes) for e in cache.entries()]
+        [('names', 'list', 0)]
+        """
         return [
             CacheEntry(key, type(value).__name__, _nbytes(value, set()))
             for key, value in self._values.items()
@@ -77,11 +151,40 @@ class ModelCache:
 
     @property
     def nbytes(self) -> int:
-        """Bytes of all kept arrays."""
+        """Bytes of all the arrays kept.
+
+        Returns
+        -------
+        int
+            The sum of :attr:`CacheEntry.nbytes` over the entries.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> cache = ModelCache()
+        >>> _ = cache.get("a", lambda: np.zeros(4)), cache.get("b", lambda: np.zeros((2, 2), np.float32))
+        >>> cache.nbytes
+        48
+        """
         return sum(entry.nbytes for entry in self.entries())
 
     def clear(self, name: str | None = None) -> None:
-        """Drop every kept value, or those whose key is ``name`` or starts with it."""
+        """Drop every kept value, or only those whose key is ``name`` or starts with it.
+
+        Parameters
+        ----------
+        name : str or None, optional
+            The name to drop; None drops everything.
+
+        Examples
+        --------
+        >>> cache = ModelCache()
+        >>> for key in [("plan", 1), ("plan", 2), "scene"]:
+        ...     _ = cache.get(key, lambda: 0)
+        >>> cache.clear("plan")
+        >>> list(cache)
+        ['scene']
+        """
         with self._lock:
             if name is None:
                 self._values.clear()

@@ -57,6 +57,15 @@ class MeshCheck:
         the number of those edges and the parts that close them.
     notices : tuple of str
         One line per repair made (faces dropped, winding fixed).
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> mesh = box()
+    >>> solid = np.full(mesh.n_faces, SOLID, dtype=np.int8)
+    >>> check = check_mesh(mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, solid, "box")
+    >>> check.closed, check.dropped_degenerate, len(check.kept)
+    (True, 0, 12)
     """
 
     vertices: NDArray[np.float64]
@@ -91,10 +100,42 @@ def check_mesh(
     raised: the caller decides); inconsistent winding is made consistent and a body wound inward
     (negative signed volume) is flipped, each with a notice.
 
+    Parameters
+    ----------
+    vertices : (n_vertices, 3) float64
+        Vertex positions [m].
+    faces : (n_faces, 3) int64
+        Vertex indices of the triangles.
+    face_part : (n_faces,) int32
+        Index into ``part_names`` of each face.
+    part_names : tuple of str
+        Part names, for the notices.
+    face_kind : (n_faces,) int8
+        ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` of each face.
+    source : str
+        The mesh file, named in errors.
+
+    Returns
+    -------
+    MeshCheck
+        The findings and the cleaned mesh.
+
     Raises
     ------
     MeshError
         Non-finite vertex coordinates, or no triangle left.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> mesh = box()
+    >>> inward = mesh.faces[:, ::-1]
+    >>> solid = np.full(mesh.n_faces, SOLID, dtype=np.int8)
+    >>> check = check_mesh(mesh.vertices, inward, mesh.face_part, mesh.part_names, solid, "box")
+    >>> check.notices  # doctest: +ELLIPSIS
+    ('...',)
+    >>> bool(np.array_equal(check.faces, mesh.faces))
+    True
     """
     used = np.unique(faces)
     bad = used[~np.isfinite(vertices[used]).all(axis=1)]
@@ -144,12 +185,27 @@ def check_mesh(
 
 
 def size_notice(vertices: NDArray[np.float64], unit: str) -> str | None:
-    """A notice when the model's largest extent [m] suggests that its file is in another unit than
-    ``unit`` (the one it was read in, first word: ``"mm (--unit)"`` is mm), naming the unit that would
-    give it a typical spacecraft's size, never the one it was read in.
+    """Warn when a model's size suggests its file is in another unit than the one it was read in.
 
+    Parameters
+    ----------
+    vertices : (n_vertices, 3) float64
+        Vertex positions [m].
+    unit : str
+        The unit it was read in; the first word counts (``"mm (--unit)"`` is mm).
+
+    Returns
+    -------
+    str or None
+        A notice naming the unit that would give the model a typical spacecraft's size (never the one it
+        was read in), or None when its largest extent is plausible.
+
+    Examples
+    --------
     >>> print(size_notice(np.array([[0, 0, 0], [340.0, 100, 340]]), "m"))  # doctest: +ELLIPSIS
     the model is 340 m across (...unit m), outside 0.02-120 m: if the file is in mm, give --unit mm...
+    >>> size_notice(np.array([[0, 0, 0], [2.0, 1, 1]]), "m") is None
+    True
     """
     extent = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
     low, high = PLAUSIBLE_SIZE_M
@@ -175,8 +231,29 @@ def _typical(extent_m: float) -> bool:
 
 
 def undeclared_sheets(check: MeshCheck, source: str) -> MeshError:
-    """One error for every part with open or non-manifold edges that is not declared a sheet, with the
-    choices and what each means for the physics."""
+    """Gather one error for every part with open or non-manifold edges that is not declared a sheet.
+
+    Parameters
+    ----------
+    check : MeshCheck
+        The findings of :func:`check_mesh`, with at least one open or non-manifold part.
+    source : str
+        The mesh file, named in the errors.
+
+    Returns
+    -------
+    MeshError
+        The combined error, whose hint gives the choices and what each means for the physics.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import plate
+    >>> mesh = plate(divisions=1)
+    >>> solid = np.full(mesh.n_faces, SOLID, dtype=np.int8)
+    >>> check = check_mesh(mesh.vertices, mesh.faces, mesh.face_part, mesh.part_names, solid, "plate.obj")
+    >>> undeclared_sheets(check, "plate.obj").message
+    'is an open surface (4 boundary edges)'
+    """
     problems = [
         MeshError(f"is an open surface ({count} boundary edges)", path=source, part=part)
         for part, count in check.open_edges.items()

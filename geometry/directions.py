@@ -17,12 +17,29 @@ from sunwind.geometry.errors import InputError
 
 
 def unit_vector(vector: Sequence[float] | NDArray, name: str = "vector") -> NDArray[np.float64]:
-    """``vector`` normalised to unit length.
+    """Normalise a vector to unit length.
+
+    Parameters
+    ----------
+    vector : (3,) array_like of float
+        Any non-zero vector.
+    name : str
+        The parameter that gave it, named in the error.
+
+    Returns
+    -------
+    (3,) float64
+        ``vector / |vector|``.
 
     Raises
     ------
     InputError
         Not three finite numbers, or zero length.
+
+    Examples
+    --------
+    >>> unit_vector([3, 0, 4])
+    array([0.6, 0. , 0.8])
     """
     v = np.asarray(vector, dtype=np.float64).reshape(-1)
     if v.shape != (3,) or not all(map(math.isfinite, v.tolist())):
@@ -38,12 +55,30 @@ def unit_vector(vector: Sequence[float] | NDArray, name: str = "vector") -> NDAr
 
 
 def unit_vectors(vectors: Sequence[Sequence[float]] | NDArray, name: str = "vector") -> NDArray[np.float64]:
-    """One vector (3,) or a batch (n, 3), each row normalised by :func:`unit_vector`: (3,) or (n, 3).
+    """Normalise one vector or a batch of vectors, row by row as :func:`unit_vector` does.
+
+    Parameters
+    ----------
+    vectors : (3,) or (n, 3) array_like of float
+        The vectors.
+    name : str
+        The parameter that gave them, named in the error.
+
+    Returns
+    -------
+    (3,) or (n, 3) float64
+        Unit vectors, in the shape given.
 
     Raises
     ------
     InputError
         Not of shape (3,) or (n, 3), or a row that :func:`unit_vector` refuses (named by its index).
+
+    Examples
+    --------
+    >>> unit_vectors([[2, 0, 0], [0, 0, -5]])
+    array([[ 1.,  0.,  0.],
+           [ 0.,  0., -1.]])
     """
     array = np.asarray(vectors, dtype=np.float64)
     if array.ndim == 1:
@@ -56,12 +91,29 @@ def unit_vectors(vectors: Sequence[Sequence[float]] | NDArray, name: str = "vect
 
 
 def finite_point(point: Sequence[float] | NDArray, name: str) -> NDArray[np.float64]:
-    """A point as three finite float64 coordinates [m].
+    """Check a point: three finite float64 coordinates [m].
+
+    Parameters
+    ----------
+    point : (3,) array_like of float
+        The point [m].
+    name : str
+        The parameter that gave it, named in the error.
+
+    Returns
+    -------
+    (3,) float64
+        The point.
 
     Raises
     ------
     InputError
         Not three finite numbers.
+
+    Examples
+    --------
+    >>> finite_point((0, 0, 0.1), "reference")
+    array([0. , 0. , 0.1])
     """
     p = np.asarray(point, dtype=np.float64).reshape(-1)
     if p.shape != (3,) or not np.isfinite(p).all():
@@ -74,28 +126,64 @@ def finite_point(point: Sequence[float] | NDArray, name: str) -> NDArray[np.floa
 
 
 def azel_to_vector(azimuth_deg: float, elevation_deg: float, name: str = "direction") -> NDArray[np.float64]:
-    """Unit vector of an azimuth and elevation [deg], body frame.
+    """Turn an azimuth and elevation [deg] into a unit vector, body frame.
+
+    Parameters
+    ----------
+    azimuth_deg : float
+        Azimuth [deg] from +x toward +y, in [-360, 360].
+    elevation_deg : float
+        Elevation [deg] toward +z, in [-90, 90].
+    name : str
+        The parameter that gave them, named in the error.
+
+    Returns
+    -------
+    (3,) float64
+        The unit vector.
 
     Raises
     ------
     InputError
         Non-finite angles, azimuth outside [-360, 360] or elevation outside [-90, 90].
+
+    Examples
+    --------
+    >>> azel_to_vector(90, 0)
+    array([0., 1., 0.])
+    >>> np.round(azel_to_vector(45, 30), 4)
+    array([0.6124, 0.6124, 0.5   ])
     """
     azimuth, elevation = checked_azel(azimuth_deg, elevation_deg, name)
     return azel_to_vectors(np.array([azimuth]), np.array([elevation]))[0]
 
 
 def checked_azel(azimuth_deg: float, elevation_deg: float, name: str = "direction") -> tuple[float, float]:
-    """An azimuth and elevation [deg] as floats, checked: finite, the azimuth within [-360, 360] and the
-    elevation within [-90, 90]; ``name`` is the parameter that gave them.
+    """Check an azimuth and elevation [deg] and return them as floats.
 
-    >>> checked_azel(-60, 45)
-    (-60.0, 45.0)
+    Parameters
+    ----------
+    azimuth_deg : float
+        Azimuth [deg], finite and within [-360, 360].
+    elevation_deg : float
+        Elevation [deg], finite and within [-90, 90].
+    name : str
+        The parameter that gave them, named in the error.
+
+    Returns
+    -------
+    azimuth, elevation : float
+        The angles [deg].
 
     Raises
     ------
     InputError
         Non-finite angles, azimuth outside [-360, 360] or elevation outside [-90, 90].
+
+    Examples
+    --------
+    >>> checked_azel(-60, 45)
+    (-60.0, 45.0)
     """
     azimuth, elevation = float(azimuth_deg), float(elevation_deg)
     if not (math.isfinite(azimuth) and math.isfinite(elevation)):
@@ -127,11 +215,30 @@ def _cos_sin_deg(angle_deg: NDArray[np.float64]) -> tuple[NDArray[np.float64], N
 
 
 def azel_to_vectors(azimuth_deg: NDArray, elevation_deg: NDArray) -> NDArray[np.float64]:
-    """Unit vectors (..., 3) of azimuths and elevations [deg] (broadcast), body frame.
+    """Turn azimuths and elevations [deg] (broadcast together) into unit vectors, body frame.
 
     Whole multiples of 90 deg are exact, so every azimuth at elevation +-90 gives the pole
     ``(0, 0, +-1)`` and azimuths -180 and 180 give the same vector: grid rows that are one direction
     give one answer. Angles are not checked here (see :func:`azel_to_vector`).
+
+    Parameters
+    ----------
+    azimuth_deg : array_like of float
+        Azimuths [deg] from +x toward +y.
+    elevation_deg : array_like of float
+        Elevations [deg] toward +z, broadcastable against ``azimuth_deg``.
+
+    Returns
+    -------
+    (..., 3) float64
+        Unit vectors, in the broadcast shape.
+
+    Examples
+    --------
+    >>> azel_to_vectors(np.array([0.0, 180.0, -180.0]), np.array([0.0, 0.0, 0.0]))
+    array([[ 1.,  0.,  0.],
+           [-1.,  0.,  0.],
+           [-1.,  0.,  0.]])
     """
     cos_az, sin_az = _cos_sin_deg(np.asarray(azimuth_deg, dtype=np.float64))
     cos_el, sin_el = _cos_sin_deg(np.asarray(elevation_deg, dtype=np.float64))
@@ -140,7 +247,23 @@ def azel_to_vectors(azimuth_deg: NDArray, elevation_deg: NDArray) -> NDArray[np.
 
 
 def vector_to_azel(direction: Sequence[float] | NDArray) -> tuple[float, float]:
-    """Azimuth and elevation [deg] of a unit vector."""
+    """Find the azimuth and elevation [deg] of a unit vector.
+
+    Parameters
+    ----------
+    direction : (3,) array_like of float
+        A unit vector, body frame.
+
+    Returns
+    -------
+    azimuth, elevation : float
+        Azimuth in (-180, 180] and elevation in [-90, 90] [deg].
+
+    Examples
+    --------
+    >>> vector_to_azel([0.0, -1.0, 0.0])
+    (-90.0, 0.0)
+    """
     x, y, z = np.asarray(direction, dtype=np.float64)
     return math.degrees(math.atan2(y, x)), math.degrees(math.asin(max(-1.0, min(1.0, z))))
 

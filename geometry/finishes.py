@@ -64,6 +64,12 @@ class GasSurface:
         ``sigma_t`` [-] of ``schaaf-chambre`` and ``cll``.
     wall_temperature_K : float
         ``T_w`` [K], > 0.
+
+    Examples
+    --------
+    >>> gas = GasSurface.checked("material 'foil'", {"gsi": "cll", "normal_accommodation": 0.5})
+    >>> gas.model, gas.normal_accommodation, gas.wall_temperature_K, gas.code == GSI_MODELS.index("cll")
+    ('cll', 0.5, 300.0, True)
     """
 
     model: str = GAS_DEFAULTS["gsi"]
@@ -112,8 +118,44 @@ class GasSurface:
 def checked_number(
     where: str, key: str, value: object, source: str | None, low: float, high: float | None, unit: str = ""
 ) -> float:
-    """``value`` as a float in ``[low, high]``, or above ``low`` when ``high`` is None, else a
-    :class:`MaterialError` naming ``where`` and ``key``; ``unit`` (" K") follows the numbers of the latter."""
+    """Check that a value read from a file is a number in range.
+
+    Parameters
+    ----------
+    where : str
+        Owner of the value, for the message, e.g. "material 'white_paint'".
+    key : str
+        Name of the value, for the message.
+    value : object
+        The value read.
+    source : str or None
+        The file it was read from, named in the error.
+    low : float
+        Lower bound; inclusive when ``high`` is given, else exclusive.
+    high : float or None
+        Inclusive upper bound; None for none.
+    unit : str
+        Unit that follows the numbers of a lower-bound-only message, e.g. " K".
+
+    Returns
+    -------
+    float
+        ``value`` as a float.
+
+    Raises
+    ------
+    MaterialError
+        ``value`` is not a number (a bool is not), not finite, or out of range.
+
+    Examples
+    --------
+    >>> checked_number("material 'm'", "reflectivity", 1, None, 0.0, 1.0)
+    1.0
+    >>> checked_number("material 'm'", "reflectivity", 1.5, None, 0.0, 1.0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.MaterialError: material 'm': reflectivity = 1.5 is outside [0, 1]...
+    """
     hint = f"use a number in [{low:g}, {high:g}]" if high is not None else f"use a number above {low:g}{unit}"
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise MaterialError(f"{where}: {key} = {value!r} is not a number", path=source, hint=hint)
@@ -135,6 +177,7 @@ class Finish:
     Attributes
     ----------
     name : str
+        Its name in :data:`FINISHES`.
     absorptance : float
         Solar absorptance ``alpha_s`` [-], in [0, 1].
     emissivity : float
@@ -145,6 +188,14 @@ class Finish:
         Where ``absorptance`` and ``emissivity`` come from, and which numbers are estimates.
     transmissivity : float
         Solar ``sigma`` [-]; 0 (opaque).
+
+    Examples
+    --------
+    >>> paint = Finish("paint", absorptance=0.285, emissivity=0.9, specular_fraction=0.1, source="made up")
+    >>> paint.reflectivity
+    0.715
+    >>> sorted(paint.keys)
+    ['emissivity', 'reflectivity', 'specular_fraction', 'transmissivity']
     """
 
     name: str
@@ -325,7 +376,7 @@ FINISHES: Mapping[str, Finish] = MappingProxyType(
 
 
 def finish(name: object, where: str = "", source: str | None = None) -> Finish:
-    """The finish called ``name`` in :data:`FINISHES`.
+    """Look up a finish of the library :data:`FINISHES` by name.
 
     Parameters
     ----------
@@ -336,10 +387,21 @@ def finish(name: object, where: str = "", source: str | None = None) -> Finish:
     source : str, optional
         The file that names it.
 
+    Returns
+    -------
+    Finish
+        The finish.
+
     Raises
     ------
     MaterialError
         ``name`` is not a finish of the library; the message lists the closest names.
+
+    Examples
+    --------
+    >>> white = finish("az-93")
+    >>> white.absorptance, white.emissivity, white.reflectivity
+    (0.15, 0.91, 0.85)
     """
     if isinstance(name, str) and name in FINISHES:
         return FINISHES[name]

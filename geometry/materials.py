@@ -42,7 +42,23 @@ MAX_TOML_DEPTH = 64
 
 
 def toml_key(name: str) -> str:
-    """``name`` as a TOML key: bare when it may be (``white_paint``), else quoted (``"foil_silver.014"``)."""
+    """Write a name as a TOML key: bare when it may be, else quoted.
+
+    Parameters
+    ----------
+    name : str
+        A material or part name.
+
+    Returns
+    -------
+    str
+        ``name`` itself when it is a valid bare key, else a JSON-quoted string.
+
+    Examples
+    --------
+    >>> toml_key("white_paint"), toml_key("foil_silver.014")
+    ('white_paint', '"foil_silver.014"')
+    """
     return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else json.dumps(name, ensure_ascii=False)
 
 
@@ -53,6 +69,7 @@ class Material:
     Attributes
     ----------
     name : str
+        Name of the material, as in the materials file.
     reflectivity : float
         ``rho`` [-], share of incident power reflected, in [0, 1].
     specular_fraction : float
@@ -64,6 +81,14 @@ class Material:
     emissivity : float or None
         ``eps`` [-], hemispherical infrared emissivity in [0, 1], grey; by Kirchhoff also the infrared
         absorptance, the rest of the infrared reflected diffusely (none transmitted). None: not given.
+
+    Examples
+    --------
+    >>> white = Material("white", reflectivity=0.8, specular_fraction=0.1, emissivity=0.9)
+    >>> round(1 - white.reflectivity - white.transmissivity, 3)
+    0.2
+    >>> Material.checked("foil", {"reflectivity": 0.9, "specular_fraction": 0.95}).transmissivity
+    0.0
     """
 
     name: str
@@ -117,8 +142,29 @@ class Material:
 
 @dataclass(frozen=True, eq=False)
 class MaterialTable:
-    """Materials as columns, so a kernel gathers ``rho[side_material]`` in one step; ``eps`` is NaN for a
-    material without an emissivity."""
+    """Materials as columns, so a kernel gathers ``rho[side_material]`` in one step.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Material names, in index order.
+    rho, beta, sigma : (n_materials,) float64
+        Reflectivity, specular fraction and transmissivity [-] of each material.
+    eps : (n_materials,) float64
+        Infrared emissivity [-]; NaN for a material without one.
+    gas : tuple of GasSurface
+        Gas-surface parameters of each material.
+
+    Examples
+    --------
+    >>> table = MaterialTable.from_materials([Material("a", 0.3, 0.1),
+    ...     Material("b", 0.6, 0.9, emissivity=0.5)])
+    >>> len(table), table.rho, table.eps
+    (2, array([0.3, 0.6]), array([nan, 0.5]))
+    >>> table.infrared([1, 1])
+    array([[0.5, 0. , 0. ],
+           [0.5, 0. , 0. ]])
+    """
 
     names: tuple[str, ...]
     rho: NDArray[np.float64]
@@ -204,7 +250,25 @@ class MaterialTable:
 
 
 def part_matches(part: str, pattern: str) -> bool:
-    """Match a glob against the full part name or, for a path such as a USD prim path, its leaf."""
+    """Match a glob against the full part name or, for a path such as a USD prim path, its leaf.
+
+    Parameters
+    ----------
+    part : str
+        Part name, possibly a ``/``-separated path.
+    pattern : str
+        Case-sensitive :mod:`fnmatch` glob.
+
+    Returns
+    -------
+    bool
+        Whether ``pattern`` matches ``part`` or its last path element.
+
+    Examples
+    --------
+    >>> part_matches("/World/bus/panel_1", "panel_*"), part_matches("bus", "wing*")
+    (True, False)
+    """
     leaf = part.rstrip("/").rsplit("/", 1)[-1]
     return fnmatch.fnmatchcase(part, pattern) or fnmatch.fnmatchcase(leaf, pattern)
 
@@ -216,6 +280,23 @@ class PartRule:
     ``"pat" = "m"`` gives material ``m`` (a closed body, or both sides of a sheet the mesh file declares
     two-sided); ``{ front = "a", back = "b" }`` makes a two-sided sheet; ``{ front = "a" }`` makes a
     one-sided sheet whose back is inert (an open surface that light reaches from the front only).
+
+    Attributes
+    ----------
+    pattern : str
+        Part-name glob (see :func:`part_matches`).
+    front : str
+        Material of the front side, or of the whole part.
+    back : str or None
+        Material of a two-sided sheet's back; None for a one-sided part.
+    sheet : bool
+        Whether the entry declares the parts sheets (a ``{ front = ... }`` table).
+
+    Examples
+    --------
+    >>> rule = PartRule("wing*", front="cells", back="kapton", sheet=True)
+    >>> rule.matches("wing_left"), rule.matches("bus")
+    (True, False)
     """
 
     pattern: str
@@ -230,12 +311,14 @@ class PartRule:
 
 @dataclass(frozen=True)
 class ThermalRule:
-    """One ``[thermal."GLOB"]`` table: how the parts its glob matches (as :class:`PartRule` globs do; the
-    first matching rule applies to a part) hold heat.
+    """One ``[thermal."GLOB"]`` table: how the parts its glob matches hold heat.
+
+    Globs match as :class:`PartRule` globs do; the first matching rule applies to a part.
 
     Attributes
     ----------
     pattern : str
+        Part-name glob (see :func:`part_matches`).
     isothermal : bool
         All sides of each matched part are one node, at one temperature; False: each facet side is its
         own node.
@@ -245,6 +328,12 @@ class ThermalRule:
     heat_capacity_J_K : float or None
         Heat capacity of the matched parts together [J/K], > 0, for the transient (of isothermal parts);
         None: not given.
+
+    Examples
+    --------
+    >>> rule = ThermalRule.checked("bus", {"isothermal": True, "heat_capacity_J_K": 900.0})
+    >>> rule.isothermal, rule.conductance_W_m2K, rule.matches("bus")
+    (True, inf, True)
     """
 
     pattern: str
@@ -292,7 +381,31 @@ class ThermalRule:
 
 
 def parse_thermal(table: object, source: str | None = None) -> tuple[ThermalRule, ...]:
-    """The rules of a materials file's ``[thermal]`` table, in order, every problem reported at once."""
+    """Read the rules of a materials file's ``[thermal]`` table, in order.
+
+    Parameters
+    ----------
+    table : mapping
+        The ``[thermal]`` table, glob -> table of :data:`THERMAL_KEYS`.
+    source : str, optional
+        The materials file, named in errors.
+
+    Returns
+    -------
+    tuple of ThermalRule
+        One rule per glob, in file order.
+
+    Raises
+    ------
+    MaterialError
+        Every problem of every rule, reported at once.
+
+    Examples
+    --------
+    >>> rules = parse_thermal({"wing*": {"conductance_W_m2K": 50.0}, "bus": {"isothermal": True}})
+    >>> [(rule.pattern, rule.conductance_W_m2K) for rule in rules]
+    [('wing*', 50.0), ('bus', inf)]
+    """
     if not isinstance(table, Mapping):
         raise MaterialError(
             "[thermal] must hold one table per glob", path=source, hint='write [thermal."bus"] and its keys'
@@ -311,8 +424,30 @@ def parse_thermal(table: object, source: str | None = None) -> tuple[ThermalRule
 def unmatched_thermal(
     rules: Sequence[ThermalRule], parts: Sequence[str], mesh: str, path: str | None
 ) -> list[MaterialError]:
-    """A :class:`MaterialError` (naming ``path``, the materials file) for each rule whose glob matches no
-    part of ``mesh``, as for a hinge's glob."""
+    """List an error for each ``[thermal]`` rule whose glob matches no part of the mesh.
+
+    Parameters
+    ----------
+    rules : sequence of ThermalRule
+        The rules to check.
+    parts : sequence of str
+        Part names of the mesh.
+    mesh : str
+        The mesh file, named in the messages.
+    path : str or None
+        The materials file, named in the errors.
+
+    Returns
+    -------
+    list of MaterialError
+        One error per unmatched rule; empty when every rule matches a part.
+
+    Examples
+    --------
+    >>> errors = unmatched_thermal([ThermalRule("wing*"), ThermalRule("bus")], ["bus"], "craft.obj", None)
+    >>> [e.message for e in errors]
+    ['[thermal] "wing*" matches no part of craft.obj']
+    """
     listed = ", ".join(parts[:20]) + (f", ... ({len(parts)} parts)" if len(parts) > 20 else "")
     return [
         MaterialError(
@@ -327,9 +462,30 @@ def unmatched_thermal(
 
 @dataclass(frozen=True)
 class MaterialSpec:
-    """A parsed materials file: named materials, the ordered part rules, from its ``[model]`` table the
-    centre of mass [m] in the body frame (the torque reference point; None when not given), the
-    hinges of its ``[articulation]`` tables and the rules of its ``[thermal]`` tables, in order."""
+    """A parsed materials file.
+
+    Attributes
+    ----------
+    materials : mapping of str to Material
+        The ``[materials.NAME]`` tables by name.
+    rules : tuple of PartRule
+        The ``[parts]`` entries, in order (the first matching a part applies).
+    source : str or None
+        The file it was read from.
+    centre_of_mass_m : (3,) tuple of float or None
+        ``[model] centre_of_mass_m`` [m], body frame: the torque reference point; None when not given.
+    hinges : tuple of Hinge
+        The ``[articulation]`` tables.
+    thermal : tuple of ThermalRule
+        The ``[thermal]`` tables, in order.
+
+    Examples
+    --------
+    >>> spec = parse_materials({"materials": {"white": {"reflectivity": 0.8, "specular_fraction": 0.1}},
+    ...                         "parts": {"*": "white"}})
+    >>> spec.rule_for("bus").front, spec.centre_of_mass_m
+    ('white', None)
+    """
 
     materials: Mapping[str, Material]
     rules: tuple[PartRule, ...]
@@ -346,11 +502,28 @@ class MaterialSpec:
 def load_materials(path: str | os.PathLike) -> MaterialSpec:
     """Read a materials TOML file (format in README "Materials"), checking every value.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The materials file.
+
+    Returns
+    -------
+    MaterialSpec
+        Its materials, part rules, centre of mass, hinges and thermal rules.
+
     Raises
     ------
     MaterialError
         Missing or unparsable file, unknown keys, values outside [0, 1], ``rho + sigma > 1``,
         or a part rule naming a material that is not defined.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import sample_materials_path
+    >>> spec = load_materials(sample_materials_path())
+    >>> len(spec.materials) > 0, spec.source.endswith(".toml")
+    (True, True)
     """
     source = str(path)
     try:
@@ -386,7 +559,33 @@ def _nesting(text: str) -> int:
 
 
 def parse_materials(document: Mapping[str, object], source: str | None = None) -> MaterialSpec:
-    """Check and convert a materials document already parsed from TOML."""
+    """Check and convert a materials document already parsed from TOML.
+
+    Parameters
+    ----------
+    document : mapping
+        The parsed document: ``materials``, ``parts``, ``model``, ``articulation`` and ``thermal`` tables.
+    source : str, optional
+        The file it came from, named in errors.
+
+    Returns
+    -------
+    MaterialSpec
+        The checked contents.
+
+    Raises
+    ------
+    MaterialError
+        An unknown table or key, a value out of range, or a part rule naming an undefined material.
+
+    Examples
+    --------
+    >>> doc = {"materials": {"foil": {"reflectivity": 0.9, "specular_fraction": 0.95, "emissivity": 0.05}},
+    ...        "parts": {"wing*": {"front": "foil"}}, "model": {"centre_of_mass_m": [0.0, 0.0, 0.5]}}
+    >>> spec = parse_materials(doc)
+    >>> spec.materials["foil"].emissivity, spec.rules[0].sheet, spec.centre_of_mass_m
+    (0.05, True, (0.0, 0.0, 0.5))
+    """
     unknown = sorted(set(document) - {"materials", "parts", "model", "articulation", "thermal"})
     if unknown:
         raise MaterialError(

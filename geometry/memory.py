@@ -23,12 +23,27 @@ _SETTING = re.compile(r"\s*(\d+(?:\.\d*)?|\.\d+)(?:e([+-]?\d+))?\s*([KMGTP]?)(?:
 
 
 def parse_size(text: str) -> int:
-    """Bytes of a size written as ``123``, ``500M``, ``4G``, ``1.5GiB`` (suffixes are powers of 1024).
+    """Read a memory size written as ``123``, ``500M``, ``4G`` or ``1.5GiB``; suffixes are powers of 1024.
+
+    Parameters
+    ----------
+    text : str
+        The size, as :data:`LIMIT_VARIABLE` would hold it.
+
+    Returns
+    -------
+    int
+        The size [bytes].
 
     Raises
     ------
     InputError
         Not a size of at least one byte.
+
+    Examples
+    --------
+    >>> parse_size("500M"), parse_size("1.5GiB"), parse_size("2e3")
+    (524288000, 1610612736, 2000)
     """
     match = _SETTING.fullmatch(text)
     if match is not None:
@@ -51,8 +66,21 @@ CGROUP_FILES = (
 
 
 def available_memory() -> int:
-    """Memory the system can give without swapping [bytes]: ``MemAvailable`` (else free pages), and no
-    more than what is left under the memory limit of the container (cgroup) the process runs in."""
+    """Measure the memory the system can give without swapping [bytes].
+
+    This is ``MemAvailable`` (else the free pages), and no more than what is left under the memory limit
+    of the container (cgroup) the process runs in.
+
+    Returns
+    -------
+    int
+        Available memory [bytes], at least 0.
+
+    Examples
+    --------
+    >>> available_memory() > 0
+    True
+    """
     free = _system_available()
     for limit_file, usage_file in CGROUP_FILES:
         limit, usage = _read_number(limit_file), _read_number(usage_file)
@@ -85,7 +113,28 @@ def _read_number(path: str) -> int | None:
 
 
 def memory_limit() -> tuple[int, str]:
-    """The memory a request may use [bytes], and where the limit comes from, in words."""
+    """Find the memory a request may use [bytes], and where the limit comes from.
+
+    Returns
+    -------
+    limit : int
+        The limit [bytes]: :data:`LIMIT_VARIABLE` when set, else :func:`available_memory`.
+    source : str
+        Where it comes from, in words, for messages.
+
+    Raises
+    ------
+    InputError
+        When :data:`LIMIT_VARIABLE` is set but malformed.
+
+    Examples
+    --------
+    >>> import os
+    >>> os.environ[LIMIT_VARIABLE] = "4G"
+    >>> memory_limit()
+    (4294967296, 'SUNWIND_MAX_MEMORY=4G')
+    >>> del os.environ[LIMIT_VARIABLE]
+    """
     setting = os.environ.get(LIMIT_VARIABLE)
     if setting is not None and setting.strip():
         return parse_size(setting), f"{LIMIT_VARIABLE}={setting.strip()}"
@@ -93,7 +142,23 @@ def memory_limit() -> tuple[int, str]:
 
 
 def human(nbytes: float) -> str:
-    """A byte count in binary units, three significant digits: ``22.4 GiB``."""
+    """Write a byte count in binary units, to three significant digits.
+
+    Parameters
+    ----------
+    nbytes : float
+        A number of bytes.
+
+    Returns
+    -------
+    str
+        E.g. ``"22.4 GiB"``.
+
+    Examples
+    --------
+    >>> human(512), human(3 * 2**20), human(2.4e10)
+    ('512 B', '3 MiB', '22.4 GiB')
+    """
     for unit in ("B", "KiB", "MiB", "GiB", "TiB", "PiB"):
         if nbytes < 1000 or unit == "PiB":
             break
@@ -102,7 +167,23 @@ def human(nbytes: float) -> str:
 
 
 def count(n: float) -> str:
-    """A count in three significant digits, ``1e+09``; a Python int past the largest float too."""
+    """Write a count to three significant digits, also a Python int past the largest float.
+
+    Parameters
+    ----------
+    n : float or int
+        The count.
+
+    Returns
+    -------
+    str
+        E.g. ``"1e+09"``.
+
+    Examples
+    --------
+    >>> count(123456), count(10**400)
+    ('1.23e+05', '~1e+400')
+    """
     try:
         return f"{n:.3g}"
     except OverflowError:
@@ -128,6 +209,17 @@ def require(nbytes: float, what: str, fix: str, parameters: tuple[str, ...] = ()
     ------
     InputError
         ``nbytes`` is above the limit, or ``SUNWIND_MAX_MEMORY`` is malformed.
+
+    Examples
+    --------
+    >>> import os
+    >>> os.environ[LIMIT_VARIABLE] = "1M"
+    >>> require(1000, "a small array", "lower samples")
+    >>> require(2**30, "1e+08 points", "lower samples", ("samples",))
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: not enough memory: needs ~1 GiB for 1e+08 points; limit 1 MiB ...
+    >>> del os.environ[LIMIT_VARIABLE]
     """
     limit, source = memory_limit()
     if nbytes <= limit:

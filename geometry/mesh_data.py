@@ -50,6 +50,19 @@ class MeshData:
         The file the data came from, named in every message about it.
     metadata : mapping
         Free-form provenance, e.g. a builder's parameters ``{"shape": "cylinder", "radius": 1.0}``.
+
+    Raises
+    ------
+    ValueError
+        When ``face_part`` or ``face_material`` has not one entry per face.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> mesh = MeshData(vertices=np.eye(3), faces=[[0, 1, 2]], face_part=[0], part_names=["tri"],
+    ...                 face_material=[-1])
+    >>> mesh.n_faces, mesh.faces.dtype, mesh.part_names
+    (1, dtype('int64'), ('tri',))
     """
 
     vertices: NDArray[np.float64]
@@ -80,11 +93,40 @@ class MeshData:
 
     @property
     def n_faces(self) -> int:
-        """Number of triangles."""
+        """Number of triangles.
+
+        Returns
+        -------
+        int
+            ``len(faces)``.
+
+        Examples
+        --------
+        >>> from sunwind.meshes import box
+        >>> box().n_faces
+        12
+        """
         return len(self.faces)
 
     def scaled(self, factor: float) -> MeshData:
-        """The same mesh with vertex coordinates multiplied by ``factor`` (unit conversion)."""
+        """Return the same mesh with its vertex coordinates multiplied by a factor (unit conversion).
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor, e.g. 1e-3 for a mesh drawn in millimetres.
+
+        Returns
+        -------
+        MeshData
+            A new mesh; everything but the vertices is shared.
+
+        Examples
+        --------
+        >>> from sunwind.meshes import box
+        >>> float(box().scaled(1e-3).vertices.max())
+        0.0005
+        """
         return MeshData(
             vertices=self.vertices * factor,
             faces=self.faces,
@@ -101,7 +143,27 @@ class MeshData:
 
     @staticmethod
     def concatenate(pieces: list[MeshData], source: str = "<memory>") -> MeshData:
-        """Join meshes into one, merging part and material names; metadata of the first is kept."""
+        """Join meshes into one, merging part and material names; the metadata of the first is kept.
+
+        Parameters
+        ----------
+        pieces : list of MeshData
+            The meshes to join, in order.
+        source : str, optional
+            What to name the joined mesh's source.
+
+        Returns
+        -------
+        MeshData
+            One mesh with all the pieces' faces; parts and material keys of the same name are merged.
+
+        Examples
+        --------
+        >>> from sunwind.meshes import box, plate
+        >>> joined = MeshData.concatenate([box(), plate(divisions=1), box()])
+        >>> joined.n_faces, joined.part_names
+        (26, ('box', 'plate'))
+        """
         part_names: list[str] = []
         material_names: list[str] = []
         vertices, faces, face_part, face_material = [], [], [], []

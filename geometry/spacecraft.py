@@ -54,13 +54,13 @@ def _frozen(array: NDArray) -> NDArray:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class Spacecraft:
-    """Triangulated spacecraft in its body frame, SI units (METHOD.md "Frames, units and signs",
-    "Surfaces and sides").
+    """Triangulated spacecraft in its body frame, SI units (METHOD.md "Frames, units and signs").
 
-    A facet has one or two *sides*. A facet of a closed body, or of a one-sided sheet, has one side
-    facing along its outward normal; a two-sided sheet (a solar-array wing of zero thickness) has a
-    front side along the facet normal and a back side opposite, each with its own material. Physics
-    works on sides; ray casting on facets.
+    A facet has one or two *sides* (METHOD.md "Surfaces and sides"). A facet of a closed body, or of a
+    one-sided sheet, has one side facing along its outward normal; a two-sided sheet (a solar-array wing of
+    zero thickness) has a front side along the facet normal and a back side opposite, each with its own
+    material. Physics works on sides; ray casting on facets. Build one with :func:`build_spacecraft` or
+    :func:`load_spacecraft`.
 
     Attributes
     ----------
@@ -71,6 +71,7 @@ class Spacecraft:
     facet_part : (n_facets,) int32
         Index into ``part_names``.
     part_names : tuple of str
+        Names of the mesh parts.
     facet_kind : (n_facets,) int8
         ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` (see :mod:`sunwind.geometry.sides`).
     side_facet : (n_sides,) int64
@@ -80,6 +81,7 @@ class Spacecraft:
     side_material : (n_sides,) int32
         Index into ``materials``.
     materials : MaterialTable
+        The materials the sides use.
     part_materials : dict of str -> str
         Part name -> its material assignment, in words (for ``sunwind info``).
     source : str
@@ -87,26 +89,32 @@ class Spacecraft:
     unit : str
         Length unit of the file and how it was chosen, e.g. "mm (--unit)".
     notices : tuple of str
-        Repairs made on loading (degenerate triangles dropped, winding fixed, cracks closed) and
-        remarks (a size that suggests another unit).
+        Repairs made on loading (degenerate triangles dropped, winding fixed, cracks closed) and remarks.
     centre_of_mass_m : (3,) float64 or None
-        Centre of mass [m] the materials file gives (``[model] centre_of_mass_m``): the default torque
-        reference point. It stays where it is when hinges turn parts.
+        Centre of mass [m] from the materials file: the default torque reference; hinges do not move it.
     hinges : tuple of Hinge
         Articulations of parts (materials file ``[articulation]``), bound by :func:`articulate`.
     pose_deg : tuple of float
         Angle [deg] of each hinge in this geometry; empty when the model has no hinges.
     drawn_vertices : (n_vertices, 3) float64 or None
-        Vertex positions [m] with every hinge at 0 (the mesh as drawn), from which every pose is
-        turned; None when the model has no hinges.
+        Vertex positions [m] with every hinge at 0, from which every pose is turned; None without hinges.
     materials_source : str or None
         The materials file the model was built with; None without one.
     thermal : tuple of ThermalRule
         The materials file's ``[thermal."GLOB"]`` rules, in order (the first matching a part applies).
     cache : ModelCache
-        What is built once for this model and kept (ray scene, shadow-ray origins, view factors,
-        ...): list it with ``cache.entries()``, free it with ``cache.clear()``. A model made from this
-        one (``dataclasses.replace``) starts with an empty cache; a pickled model travels without it.
+        What is built once for this model and kept (ray scene, view factors, ...): ``cache.entries()``
+        lists it, ``cache.clear()`` frees it. A ``dataclasses.replace`` copy or a pickle starts empty.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material
+    >>> from sunwind.meshes import box
+    >>> craft = build_spacecraft(box(), uniform=Material("paint", 0.3, 0.1))
+    >>> craft
+    <Spacecraft '<box>': 12 facets, 12 sides, 1 parts, 1 materials>
+    >>> craft.total_area, craft.volume, craft.is_closed
+    (6.0, 1.0, True)
     """
 
     vertices: NDArray[np.float64]
@@ -361,6 +369,11 @@ def build_spacecraft(
     two_sided : sequence of str
         Part-name globs to treat as two-sided sheets, both sides with the part's material.
 
+    Returns
+    -------
+    Spacecraft
+        The checked model; posed at the fixed hinge angles when the materials file has hinges.
+
     Raises
     ------
     MaterialError
@@ -368,6 +381,13 @@ def build_spacecraft(
     MeshError
         Non-finite coordinates; open or non-manifold surfaces that are not declared sheets. Parts
         without material and such surfaces are reported together, in one error.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material
+    >>> from sunwind.meshes import plate
+    >>> build_spacecraft(plate(divisions=1), uniform=Material("kapton", 0.4, 0.5), two_sided=["*"])
+    <Spacecraft '<plate>': 2 facets, 4 sides, 1 parts, 1 materials>
     """
     spec = load_materials(materials) if isinstance(materials, (str, os.PathLike)) else materials
     problems: list[SunwindError] = []
@@ -414,10 +434,40 @@ def build_spacecraft(
 
 
 def articulate(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None = None) -> Spacecraft:
-    """``craft`` with ``hinges`` bound to its parts, fixed hinges at their angles (tracking and scheduled
-    ones at 0). Vertices shared across hinges are split; a tracking hinge without ``front`` gets its
-    sheets'. Raises :class:`MaterialError` (naming ``path``, the materials file) for a glob that matches
-    no part, a part two globs match, a closed body turning would open, a tracking hinge without a front.
+    """Bind hinges to the parts of a model and turn the fixed ones to their angles.
+
+    Vertices shared across hinges are split; a tracking hinge without ``front`` gets its sheets'. Tracking
+    and scheduled hinges start at 0.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    hinges : sequence of Hinge
+        The articulations, e.g. from :func:`sunwind.geometry.articulation.parse_articulation`.
+    path : str, optional
+        The materials file the hinges come from, named in errors.
+
+    Returns
+    -------
+    Spacecraft
+        A new model carrying ``hinges``.
+
+    Raises
+    ------
+    MaterialError
+        A glob that matches no part, a part two globs match, a closed body turning would open, or a
+        tracking hinge without a front.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material
+    >>> from sunwind.geometry.articulation import Hinge
+    >>> from sunwind.meshes import plate
+    >>> craft = build_spacecraft(plate(divisions=1), uniform=Material("m", 0.3, 0.1), two_sided=["*"])
+    >>> hinge = Hinge("plate", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), angle_deg=90.0)
+    >>> articulate(craft, [hinge]).pose_deg
+    (90.0,)
     """
     hinges = tuple(hinges)
     group = _facet_groups(craft, hinges, path)
@@ -431,11 +481,40 @@ def articulate(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None = No
 
 
 def pose(craft: Spacecraft, hinges: Sequence[Hinge], angles: Mapping[str, float]) -> Spacecraft:
-    """A new model with the parts of each hinge turned to its angle in ``angles`` [deg] (by glob; a hinge
-    not named is at 0, as drawn), everything else as in ``craft``: materials, sides, centre of mass.
-    Every pose is turned from the mesh as drawn: the same angles give the same bits whatever pose
-    ``craft`` is in. ``hinges`` other than ``craft.hinges`` are bound first (:func:`articulate`); an
-    angle of no hinge or not finite is an :class:`InputError`.
+    """Turn the parts of each hinge to an angle, from the mesh as drawn.
+
+    Everything else stays as in ``craft``: materials, sides, centre of mass. The same angles give the same
+    bits whatever pose ``craft`` is in.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    hinges : sequence of Hinge
+        The hinges; ones other than ``craft.hinges`` are bound first (:func:`articulate`).
+    angles : mapping of str to float
+        Angle [deg] of each hinge by its glob; a hinge not named stays at 0 (as drawn).
+
+    Returns
+    -------
+    Spacecraft
+        A new model in the pose.
+
+    Raises
+    ------
+    InputError
+        An angle of no hinge, or one that is not finite.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material
+    >>> from sunwind.geometry.articulation import Hinge
+    >>> from sunwind.meshes import plate
+    >>> craft = build_spacecraft(plate(divisions=1), uniform=Material("m", 0.3, 0.1), two_sided=["*"])
+    >>> hinge = Hinge("plate", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0))
+    >>> turned = pose(craft, [hinge], {"plate": 90.0})
+    >>> turned.articulation, np.round(turned.facet_normals[0], 6) + 0.0
+    ({'plate': 90.0}, array([1., 0., 0.]))
     """
     hinges = tuple(hinges)
     if hinges != craft.hinges:
@@ -467,8 +546,31 @@ def _facet_groups(craft: Spacecraft, hinges: Sequence[Hinge], path: str | None) 
 
 
 def infrared_optics(craft: Spacecraft) -> NDArray[np.float64]:
-    """Infrared ``(rho, beta, sigma) = (1 - eps, 0, 0)`` of each side, (n_sides, 3) (Kirchhoff; grey,
-    opaque, diffuse); :class:`MaterialError` naming the materials without an emissivity."""
+    """Infrared ``(rho, beta, sigma) = (1 - eps, 0, 0)`` of each side (Kirchhoff: grey, opaque, diffuse).
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model; every material its sides use needs an emissivity.
+
+    Returns
+    -------
+    (n_sides, 3) float64
+        Read-only ``(rho, beta, sigma)`` [-] of each side in the infrared.
+
+    Raises
+    ------
+    MaterialError
+        Naming the materials without an emissivity.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material
+    >>> from sunwind.meshes import box
+    >>> craft = build_spacecraft(box(), uniform=Material("paint", 0.3, 0.1, emissivity=0.8))
+    >>> np.round(infrared_optics(craft)[0], 6)
+    array([0.2, 0. , 0. ])
+    """
     return _frozen(craft.materials.infrared(craft.side_material, craft.materials_source, craft.source))
 
 
@@ -480,9 +582,38 @@ def load_spacecraft(
     uniform: Material | None = None,
     two_sided: Sequence[str] = (),
 ) -> Spacecraft:
-    """Load a mesh file (STL, OBJ, PLY, glTF/GLB, USD) and build the model; see :func:`build_spacecraft`.
+    """Load a mesh file (STL, OBJ, PLY, glTF/GLB, USD) and build the model.
 
-    ``unit`` is the file's length unit (m, mm, cm, in); by default the unit the file declares, else m.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The mesh file.
+    materials : MaterialSpec or path, optional
+        Materials file (see :func:`sunwind.geometry.materials.load_materials`).
+    unit : str, optional
+        Length unit of the file (m, mm, cm, in); by default the one the file declares, else m.
+    uniform : Material, optional
+        Material for every part left without one.
+    two_sided : sequence of str
+        Part-name globs to treat as two-sided sheets.
+
+    Returns
+    -------
+    Spacecraft
+        The checked model, see :func:`build_spacecraft`.
+
+    Raises
+    ------
+    MeshError
+        An unreadable or invalid mesh file.
+    MaterialError
+        Parts without a material or an invalid materials file.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import sample_materials_path, sample_path
+    >>> load_spacecraft(sample_path(), sample_materials_path())  # doctest: +ELLIPSIS
+    <Spacecraft '...': ... facets, ... sides, ... parts, ... materials>
     """
     from sunwind.geometry.io import load_mesh
 

@@ -9,17 +9,68 @@ from numpy.typing import NDArray
 
 
 def cross(triangles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Edge cross products ``(v1 - v0) x (v2 - v0)``, (n, 3); twice the area along the normal."""
+    """Compute the edge cross products ``(v1 - v0) x (v2 - v0)``: twice the area along the normal.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners ``(v0, v1, v2)`` of each triangle [m].
+
+    Returns
+    -------
+    (n, 3) float64
+        The cross products [m^2].
+
+    Examples
+    --------
+    >>> tri = np.array([[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    >>> cross(tri)
+    array([[0., 0., 2.]])
+    """
     return np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
 
 
 def areas(triangles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Triangle areas [m^2], (n,)."""
+    """Compute triangle areas.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of each triangle [m].
+
+    Returns
+    -------
+    (n,) float64
+        Areas [m^2].
+
+    Examples
+    --------
+    >>> tri = np.array([[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    >>> areas(tri)
+    array([1.])
+    """
     return 0.5 * np.linalg.norm(cross(triangles), axis=1)
 
 
 def normals(triangles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Unit normals by the right-hand rule on (v0, v1, v2), (n, 3); zero for a degenerate triangle."""
+    """Compute unit normals by the right-hand rule on ``(v0, v1, v2)``; zero for a degenerate triangle.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of each triangle [m].
+
+    Returns
+    -------
+    (n, 3) float64
+        Unit normals.
+
+    Examples
+    --------
+    >>> tri = np.array([[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    >>> normals(tri)
+    array([[0., 0., 1.]])
+    """
     c = cross(triangles)
     length = np.linalg.norm(c, axis=1)
     out = np.zeros_like(c)
@@ -28,17 +79,70 @@ def normals(triangles: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def centroids(triangles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Triangle centroids [m], (n, 3)."""
+    """Compute triangle centroids.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of each triangle [m].
+
+    Returns
+    -------
+    (n, 3) float64
+        Centroids [m].
+
+    Examples
+    --------
+    >>> tri = np.array([[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    >>> np.round(centroids(tri), 4)
+    array([[0.6667, 0.3333, 0.    ]])
+    """
     return triangles.mean(axis=1)
 
 
 def signed_volume(triangles: NDArray[np.float64]) -> float:
-    """Volume enclosed by a closed triangle set [m^3]; positive when the winding is outward."""
+    """Compute the volume enclosed by a closed triangle set; positive when the winding is outward.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of the triangles of a closed surface [m].
+
+    Returns
+    -------
+    float
+        Signed volume [m^3].
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> cube = box((1.0, 2.0, 3.0))
+    >>> signed_volume(cube.vertices[cube.faces])
+    6.0
+    """
     return float(np.einsum("ij,ij->", triangles[:, 0], np.cross(triangles[:, 1], triangles[:, 2])) / 6)
 
 
 def volume_centroid(triangles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Centroid of the solid enclosed by a closed, outward-wound triangle set [m], (3,)."""
+    """Compute the centroid of the solid enclosed by a closed, outward-wound triangle set.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of the triangles of a closed surface [m].
+
+    Returns
+    -------
+    (3,) float64
+        The centroid [m].
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box, transform
+    >>> cube = transform(box(), translation=(1.0, 0.0, -2.0))
+    >>> np.round(volume_centroid(cube.vertices[cube.faces]), 12) + 0.0
+    array([ 1.,  0., -2.])
+    """
     tet_volume = np.einsum("ij,ij->i", triangles[:, 0], np.cross(triangles[:, 1], triangles[:, 2]))
     tet_centroid = triangles.sum(axis=1) / 4  # tetrahedra with the origin as fourth vertex
     return (tet_volume[:, None] * tet_centroid).sum(axis=0) / tet_volume.sum()
@@ -75,6 +179,24 @@ def subdivision_barycentric(level: int) -> NDArray[np.float64]:
     -------
     (level**2, 3) float64, read-only
         Weights ``(w0, w1, w2)`` on the vertices ``(v0, v1, v2)``; each row sums to 1.
+
+    Parameters
+    ----------
+    level : int
+        Edge divisions, >= 1.
+
+    Raises
+    ------
+    ValueError
+        ``level`` below 1.
+
+    Examples
+    --------
+    >>> subdivision_barycentric(1)
+    array([[0.33333333, 0.33333333, 0.33333333]])
+    >>> bary = subdivision_barycentric(3)
+    >>> bary.shape, bool(np.allclose(bary.sum(axis=1), 1.0))
+    ((9, 3), True)
     """
     if level < 1:
         raise ValueError("level must be at least 1")
@@ -95,5 +217,24 @@ def subdivision_barycentric(level: int) -> NDArray[np.float64]:
 
 
 def sample_points(triangles: NDArray[np.float64], level: int) -> NDArray[np.float64]:
-    """Sample points of :func:`subdivision_barycentric` on every triangle [m], (n, level**2, 3)."""
+    """Place the sample points of :func:`subdivision_barycentric` on every triangle.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of each triangle [m].
+    level : int
+        Edge divisions, >= 1; ``level**2`` points per triangle.
+
+    Returns
+    -------
+    (n, level**2, 3) float64
+        The points [m].
+
+    Examples
+    --------
+    >>> tri = np.array([[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    >>> sample_points(tri, 2).shape
+    (1, 4, 3)
+    """
     return np.einsum("sk,nkd->nsd", subdivision_barycentric(level), triangles)

@@ -39,8 +39,20 @@ def assemble(
     face_part : (n_faces,) int
         Index into ``part_names``.
     part_names : sequence of str
+        Names of the parts.
     metadata : dict
         ``{"shape": ..., <parameters>}``.
+
+    Returns
+    -------
+    MeshData
+        The mesh, every face without a material key (-1); ``source`` is ``"<shape>"``.
+
+    Examples
+    --------
+    >>> mesh = assemble([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], [0], ["tri"], {"shape": "tri"})
+    >>> mesh.n_faces, mesh.source, mesh.face_material.tolist()
+    (1, '<tri>', [-1])
     """
     faces = np.asarray(faces, dtype=np.int64)
     return MeshData(
@@ -57,15 +69,28 @@ def assemble(
 def transform(
     mesh: MeshData, rotation: ArrayLike | None = None, translation: ArrayLike = (0.0, 0.0, 0.0)
 ) -> MeshData:
-    """The mesh rotated about the origin, then translated: ``x' = R x + t``.
+    """Rotate a mesh about the origin, then translate it: ``x' = R x + t``.
 
     Parameters
     ----------
     mesh : MeshData
+        The mesh [m].
     rotation : (3, 3) float, optional
         Proper rotation matrix (det +1, so windings stay outward); identity when omitted.
     translation : (3,) float
         Offset [m].
+
+    Returns
+    -------
+    MeshData
+        The moved mesh, parts and materials as in ``mesh``.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> moved = transform(box((2.0, 1.0, 1.0)), rotation_matrix("z", 90), (0.0, 0.0, 5.0))
+    >>> np.round(np.ptp(moved.vertices, axis=0), 6).tolist(), float(moved.vertices[:, 2].min())
+    ([1.0, 2.0, 1.0], 4.5)
     """
     vertices = mesh.vertices
     if rotation is not None:
@@ -77,15 +102,28 @@ def transform(
 
 
 def label(mesh: MeshData, part: str, material: str | None = None) -> MeshData:
-    """The mesh with all its faces in one part and, when given, one material key.
+    """Put all faces of a mesh in one part and, when given, one material key.
 
     Parameters
     ----------
     mesh : MeshData
+        The mesh.
     part : str
         New part name for every face.
     material : str, optional
         Material key of every face; without it faces keep no material (-1).
+
+    Returns
+    -------
+    MeshData
+        The relabelled mesh.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> bus = label(box(), "bus", "mli")
+    >>> bus.part_names, bus.material_names
+    (('bus',), ('mli',))
     """
     n = mesh.n_faces
     return replace(
@@ -98,11 +136,24 @@ def label(mesh: MeshData, part: str, material: str | None = None) -> MeshData:
 
 
 def rotation_matrix(axis: str, angle_deg: float) -> NDArray[np.float64]:
-    """Right-handed rotation by ``angle_deg`` [deg] about the body ``"x"``, ``"y"`` or ``"z"`` axis.
+    """Build a right-handed rotation by ``angle_deg`` [deg] about the body ``"x"``, ``"y"`` or ``"z"`` axis.
+
+    Parameters
+    ----------
+    axis : {"x", "y", "z"}
+        The axis.
+    angle_deg : float
+        The angle [deg].
 
     Returns
     -------
     (3, 3) float64
+        The rotation matrix.
+
+    Examples
+    --------
+    >>> np.round(rotation_matrix("z", 90) @ [1.0, 0.0, 0.0], 12) + 0.0
+    array([0., 1., 0.])
     """
     c, s = math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg))
     i, j = {"x": (1, 2), "y": (2, 0), "z": (0, 1)}[axis]

@@ -97,6 +97,17 @@ def plate(
     -------
     MeshData
         Part ``"plate"``; ``2 * nx * ny`` triangles, counter-clockwise seen from +z.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = plate(2.0, 1.0, divisions=(2, 1))
+    >>> mesh.n_faces, mesh.part_names, mesh.vertices.min(axis=0).tolist()
+    (4, ('plate',), [-1.0, -0.5, 0.0])
     """
     check_lengths(size_x=size_x, size_y=size_y)
     nx, ny = per_axis("divisions", divisions, 2)
@@ -140,6 +151,17 @@ def sphere(radius: float = 1.0, subdivisions: int = SPHERE_SUBDIVISIONS) -> Mesh
     -------
     MeshData
         Part ``"sphere"``.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = sphere(0.5, subdivisions=4)
+    >>> mesh.n_faces, bool(np.allclose(np.linalg.norm(mesh.vertices, axis=1), 0.5))
+    (40, True)
     """
     check_lengths(radius=radius)
     check_count(2, subdivisions=subdivisions)
@@ -191,6 +213,17 @@ def cylinder(
     MeshData
         Parts ``"lateral"`` and, with caps, ``"cap_bottom"`` (z = -length/2, normal -z) and
         ``"cap_top"`` (z = +length/2, normal +z). ``metadata["rings"]`` is the resolved value.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = cylinder(0.5, 1.0, segments=8)
+    >>> mesh.n_faces, mesh.part_names, mesh.metadata["rings"]
+    (80, ('cap_bottom', 'lateral', 'cap_top'), 3)
     """
     check_lengths(radius=radius, length=length)
     check_count(3, segments=segments)
@@ -255,6 +288,17 @@ def cone(
     MeshData
         Parts ``"base"`` (normal -z) when ``base`` and ``"lateral"``. ``metadata["rings"]`` is the
         resolved value.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = cone(1.0, half_angle_deg=45.0, segments=8)
+    >>> mesh.part_names, round(float(mesh.vertices[:, 2].max()), 6)
+    (('base', 'lateral'), 1.0)
     """
     check_lengths(radius=radius)
     check_positive(half_angle_deg=half_angle_deg)
@@ -315,6 +359,17 @@ def dish(diameter: float = 1.2, focal_ratio: float = 0.35, segments: int = DISH_
     -------
     MeshData
         Part ``"dish"``.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = dish(1.2, 0.35, segments=8)
+    >>> mesh.part_names, round(float(mesh.vertices[:, 2].max()), 4)
+    (('dish',), 0.2143)
     """
     check_lengths(diameter=diameter)
     check_positive(focal_ratio=focal_ratio)
@@ -354,6 +409,17 @@ def box(size: Sequence[float] = (1.0, 1.0, 1.0), divisions: int | Sequence[int] 
     -------
     MeshData
         Part ``"box"``.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = box((1.0, 2.0, 3.0), divisions=2)
+    >>> mesh.n_faces, np.ptp(mesh.vertices, axis=0).tolist()
+    (48, [1.0, 2.0, 3.0])
     """
     size = tuple(float(s) for s in size)
     if len(size) != 3:
@@ -398,6 +464,17 @@ def box_wing(
     -------
     MeshData
         Parts ``"bus"``, ``"wing_left"`` (-y), ``"wing_right"`` (+y).
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0, or a count out of range.
+
+    Examples
+    --------
+    >>> mesh = box_wing(facet_size=0.5)
+    >>> mesh.part_names, sorted(mesh.two_sided_parts)
+    (('bus', 'wing_left', 'wing_right'), ['wing_left', 'wing_right'])
     """
     check_lengths(wing_span=wing_span, wing_width=wing_width, wing_gap=wing_gap, facet_size=facet_size)
     bus_size = tuple(float(s) for s in bus_size)
@@ -442,15 +519,34 @@ PRIMITIVES: dict[str, Callable[..., MeshData]] = {
 
 
 def build(kind: str, **params: Any) -> MeshData:
-    """Build a primitive by name: ``build("cylinder", radius=0.5)``.
+    """Build a primitive by name, e.g. ``build("cylinder", radius=0.5)``.
 
     A mesh is rebuilt from its metadata by ``meta = dict(mesh.metadata); build(meta.pop("shape"),
     **meta)``.
+
+    Parameters
+    ----------
+    kind : str
+        A key of :data:`PRIMITIVES`: ``"plate"``, ``"sphere"``, ``"cylinder"``, ...
+    **params : Any
+        Keyword arguments of that builder.
+
+    Returns
+    -------
+    MeshData
+        The mesh.
 
     Raises
     ------
     InputError
         Unknown ``kind`` or parameter (the message lists the valid ones), or a bad value.
+
+    Examples
+    --------
+    >>> mesh = cylinder(0.5, 1.0, segments=6)
+    >>> meta = dict(mesh.metadata)
+    >>> bool(np.array_equal(build(meta.pop("shape"), **meta).vertices, mesh.vertices))
+    True
     """
     if kind not in PRIMITIVES:
         raise InputError(f"unknown primitive '{kind}'", hint=f"choose one of: {', '.join(PRIMITIVES)}")

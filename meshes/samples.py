@@ -106,7 +106,41 @@ SHEETS: dict[str, tuple[str, str]] = {
 
 @dataclass(frozen=True)
 class Dimensions:
-    """Sizes of the sample spacecraft [m] (angles [deg], ratios [-]); see :func:`sample_spacecraft`."""
+    """Sizes of the sample spacecraft (see :func:`sample_spacecraft`).
+
+    Attributes
+    ----------
+    bus_size : (3,) tuple of float
+        Bus box edges along x, y, z [m].
+    clearance : float
+        Gap between separately built parts [m]: none touches another.
+    yoke_radius, yoke_length : float
+        Solar-array yoke cylinders [m].
+    panel_span, panel_width, panel_gap : float
+        Solar panel length along y, width along z at array angle 0, and gap between panels [m].
+    panels_per_wing : int
+        Panels in each wing.
+    mast_radius, mast_length : float
+        Antenna mast cylinder [m].
+    dish_diameter : float
+        Antenna dish rim diameter [m].
+    dish_focal_ratio : float
+        Dish ``f / D`` [-].
+    boom_radius, boom_length : float
+        Magnetometer boom cylinder [m].
+    boom_tip_size : (3,) tuple of float
+        Magnetometer box edges [m].
+    nozzle_exit_radius : float
+        Apogee-engine nozzle exit radius [m].
+    nozzle_half_angle_deg : float
+        Nozzle cone half-angle [deg].
+
+    Examples
+    --------
+    >>> d = Dimensions()
+    >>> round(d.panels_per_wing * d.panel_span + (d.panels_per_wing - 1) * d.panel_gap, 6)
+    3.2
+    """
 
     bus_size: tuple[float, float, float] = (1.6, 1.4, 1.2)
     clearance: float = 0.002  # gap between separately built parts: none touches another
@@ -190,6 +224,17 @@ def sample_spacecraft(triangles: int = 20_000, array_angle_deg: float = 0.0) -> 
     MeshData
         ``metadata`` holds ``shape``, ``triangles``, ``array_angle_deg``, ``facet_size_m`` and
         ``dimensions_m`` (:data:`DIMENSIONS`).
+
+    Raises
+    ------
+    InputError
+        ``triangles`` below 2000 or ``array_angle_deg`` not finite.
+
+    Examples
+    --------
+    >>> mesh = sample_spacecraft(2_000)
+    >>> len(mesh.part_names), sorted(mesh.two_sided_parts)
+    (10, ['dish', 'wing_left', 'wing_right'])
     """
     if isinstance(triangles, bool) or not isinstance(triangles, (int, np.integer)):
         raise InputError(f"triangles = {triangles!r} must be an integer")
@@ -301,17 +346,30 @@ def _file_optics() -> dict[str, dict[str, float]]:
 
 
 def materials_toml(mesh: MeshData) -> str:
-    """The materials file (sunwind TOML schema) for ``mesh`` written without its optics, e.g. as OBJ.
+    """Write the materials file (sunwind TOML schema) for a sample mesh saved without its optics, e.g. as OBJ.
 
     Every material key of the mesh and every back material gets a ``[materials.NAME]`` table from
     :data:`SAMPLE_OPTICS` and :data:`SAMPLE_EMISSIVITY`, commented with their sources; each two-sided
     part gets a ``[parts]`` entry with its front and back. Closed parts are not listed: each face keeps
     the file's material key.
 
+    Parameters
+    ----------
+    mesh : MeshData
+        A mesh whose material keys are keys of :data:`SAMPLE_OPTICS`, e.g. :func:`sample_spacecraft`.
+
     Returns
     -------
     str
         TOML text.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import parse_materials
+    >>> import tomllib
+    >>> spec = parse_materials(tomllib.loads(materials_toml(sample_spacecraft(2_000))))
+    >>> spec.rule_for("wing_left").back
+    'cfrp'
     """
     names = list(dict.fromkeys([*mesh.material_names, *mesh.part_back_material.values()]))
     lines = [
@@ -361,8 +419,9 @@ track = "sun"
 
 
 def write_sample_files(directory: str | Path = DATA_DIR, triangles: int = 20_000) -> dict[str, Path]:
-    """Build the sample and write ``sample_spacecraft.obj``, ``.usda``, ``.toml`` and
-    ``_tracking.toml`` into ``directory``.
+    """Build the sample and write its ``.obj``, ``.usda``, ``.toml`` and ``_tracking.toml`` files.
+
+    The files go into ``directory``, named ``sample_spacecraft.*``.
 
     The OBJ carries geometry, parts (groups) and material keys (``usemtl``); the TOML beside it
     gives the optics and the two-sided sheets, and ``_tracking.toml`` the same with the arrays
@@ -373,6 +432,20 @@ def write_sample_files(directory: str | Path = DATA_DIR, triangles: int = 20_000
     -------
     dict
         ``{"obj": path, "usda": path, "toml": path, "tracking": path}``.
+
+    Parameters
+    ----------
+    directory : str or Path
+        Folder to write into; default the shipped ``meshes/data``.
+    triangles : int
+        Target triangle count, >= 2000 (see :func:`sample_spacecraft`).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     sorted(write_sample_files(folder, triangles=2_000))
+    ['obj', 'toml', 'tracking', 'usda']
     """
     from sunwind.geometry.io import save_mesh
 
@@ -389,12 +462,27 @@ def write_sample_files(directory: str | Path = DATA_DIR, triangles: int = 20_000
 
 
 def sample_path(name: str = f"{SAMPLE_NAME}.obj") -> Path:
-    """Path of a shipped sample file in ``meshes/data``.
+    """Find a shipped sample file in ``meshes/data``.
+
+    Parameters
+    ----------
+    name : str
+        The file name; default ``sample_spacecraft.obj``.
+
+    Returns
+    -------
+    Path
+        Its path.
 
     Raises
     ------
     InputError
         No such file; the message lists the shipped ones.
+
+    Examples
+    --------
+    >>> sample_path().name
+    'sample_spacecraft.obj'
     """
     path = DATA_DIR / name
     if not path.is_file():
@@ -404,12 +492,37 @@ def sample_path(name: str = f"{SAMPLE_NAME}.obj") -> Path:
 
 
 def sample_materials_path() -> Path:
-    """Path of the shipped materials file for ``sample_spacecraft.obj``."""
+    """Find the shipped materials file for ``sample_spacecraft.obj``.
+
+    Returns
+    -------
+    Path
+        The path of ``meshes/data/sample_spacecraft.toml``.
+
+    Examples
+    --------
+    >>> sample_materials_path().name
+    'sample_spacecraft.toml'
+    """
     return sample_path(f"{SAMPLE_NAME}.toml")
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Command line: ``python -m sunwind.meshes.samples [--triangles N] [-o DIR]``."""
+    """Run the command line ``python -m sunwind.meshes.samples [--triangles N] [-o DIR]``.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments; default ``sys.argv[1:]``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:  # doctest: +ELLIPSIS
+    ...     main(["--triangles", "2000", "-o", folder])
+    /...sample_spacecraft.obj
+    ...
+    """
     parser = argparse.ArgumentParser(
         prog="python -m sunwind.meshes.samples", description="Write the sample spacecraft files."
     )

@@ -42,11 +42,14 @@ def run_cli(capsys):
 
 
 def pytest_addoption(parser):
-    """``--update-readme``: tests/test_readme.py rewrites README's printed outputs from actual runs."""
-    parser.addoption("--update-readme", action="store_true", help="rewrite README's printed example outputs")
+    """``--update-docs``: tests/test_doc_outputs.py rewrites the printed outputs of README.md and the
+    site's guides from actual runs."""
+    parser.addoption(
+        "--update-docs", action="store_true", help="rewrite the printed example outputs of README and docs"
+    )
 
 
 def pytest_configure(config):
-    """``--update-readme`` rewrites one file from every test: refuse it on several workers (``-n 0``)."""
-    if config.getoption("--update-readme") and (getattr(config.option, "numprocesses", 0) or 0) > 0:
-        raise pytest.UsageError("--update-readme writes README.md from one process: add -n 0")
+    """``--update-docs`` rewrites files from every test: refuse it on several workers (``-n 0``)."""
+    if config.getoption("--update-docs") and (getattr(config.option, "numprocesses", 0) or 0) > 0:
+        raise pytest.UsageError("--update-docs writes README.md and docs/ from one process: add -n 0")

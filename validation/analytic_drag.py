@@ -12,7 +12,7 @@ Notes
 **Bodies**, placed as in :mod:`sunwind.meshes.primitives`: the plate centred at the origin in
 ``z = 0`` with front normal +z; the sphere centred at the origin; the cylinder on the z axis from
 ``z = -L/2`` to ``L/2``; the cone with its base disc in ``z = 0`` (normal -z) and apex at
-``(0, 0, R / tan(half_angle))``. The flow is a :class:`sunwind.validation.analytic_gas_law.FreeStream`.
+``(0, 0, R / tan(half_angle))``. The flow is a :class:`sunwind.validation.analytic_gas_law.AnalyticStream`.
 
 **Cylinder torque and lift** (METHOD.md "The paper's misprints"). Take ``u = sin(alpha) e1 + cos(alpha) e_z``.
 About its centre, the lateral surface's pressures have no moment (``r x n = z e_z x n`` integrates
@@ -50,7 +50,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from sunwind.validation.analytic_drag_pieces import Piece, flat_piece, frustum_piece, sphere_piece
-from sunwind.validation.analytic_gas_law import FreeStream, GasLaw, SurfaceLaw, surface_law
+from sunwind.validation.analytic_gas_law import AnalyticStream, GasLaw, SurfaceLaw, surface_law
 
 __all__ = ["FmfLoad", "cone_drag", "cylinder_drag", "plate_drag", "sphere_drag"]
 
@@ -113,7 +113,7 @@ class FmfLoad:
 def plate_drag(
     size_x_m: float,
     size_y_m: float,
-    flow: FreeStream,
+    flow: AnalyticStream,
     surface: GasLaw,
     *,
     one_sided: bool = True,
@@ -126,7 +126,7 @@ def plate_drag(
     ----------
     size_x_m, size_y_m : float
         Side lengths along x and y [m].
-    flow : FreeStream
+    flow : AnalyticStream
         Unit flow vector, speed ratio [-], temperature [K], dynamic pressure [Pa] and stream.
     surface : GasLaw
         Gas-surface interaction of both faces.
@@ -151,7 +151,7 @@ def plate_drag(
 
 def sphere_drag(
     radius_m: float,
-    flow: FreeStream,
+    flow: AnalyticStream,
     surface: GasLaw,
     *,
     ref_point_m: ArrayLike = (0.0, 0.0, 0.0),
@@ -174,7 +174,7 @@ def sphere_drag(
 def cylinder_drag(
     radius_m: float,
     length_m: float,
-    flow: FreeStream,
+    flow: AnalyticStream,
     surface: GasLaw,
     *,
     caps: bool = True,
@@ -218,7 +218,7 @@ def cylinder_drag(
 
 def cone_drag(
     radius_m: float,
-    flow: FreeStream,
+    flow: AnalyticStream,
     surface: GasLaw,
     *,
     half_angle_deg: float = 70.0,
@@ -271,7 +271,7 @@ def _unit_flow(flow_direction: ArrayLike) -> Vector:
     return u
 
 
-def _law(surface: GasLaw, flow: FreeStream) -> SurfaceLaw:
+def _law(surface: GasLaw, flow: AnalyticStream) -> SurfaceLaw:
     """The local law of ``surface`` in the species and stream of ``flow``."""
     return surface_law(surface, flow.speed_ratio, flow.temperature_K, flow.stream)
 

@@ -49,7 +49,7 @@ from scipy.special import erfc
 __all__ = [
     "DRAG_MODELS",
     "STREAMS",
-    "FreeStream",
+    "AnalyticStream",
     "GasLaw",
     "SurfaceLaw",
     "flow_vector_from_alpha",
@@ -89,7 +89,7 @@ class GasLaw:
 
 
 @dataclass(frozen=True, eq=False)
-class FreeStream:
+class AnalyticStream:
     """The free stream of one gas species as the body sees it, and which of its molecules count.
 
     Attributes
@@ -105,6 +105,12 @@ class FreeStream:
     stream : {"full", "directed", "thermal"}
         All molecules, the cold beam along ``-u`` (the hyperthermal law), or the difference
         (module Notes, "Streams").
+
+    Examples
+    --------
+    >>> flow = AnalyticStream(flow_vector_from_alpha(30.0), speed_ratio=7.0, temperature_K=900.0)
+    >>> flow.dynamic_pressure_Pa, flow.stream
+    (1.0, 'full')
     """
 
     flow_direction: ArrayLike

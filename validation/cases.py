@@ -50,7 +50,25 @@ PLATE = {"size_x": 2.0, "size_y": 1.0}
 
 
 def sun_vector(alpha_deg: float, azimuth_deg: float = AZIMUTH_DEG) -> NDArray[np.float64]:
-    """Unit Sun vector at ``alpha`` from +z and ``azimuth`` about it, body frame."""
+    """Make the unit Sun vector at an angle from +z and an azimuth about it, body frame.
+
+    Parameters
+    ----------
+    alpha_deg : float
+        Angle between +z (the body axis) and the Sun [deg].
+    azimuth_deg : float
+        Azimuth of the Sun about +z, from +x toward +y [deg]; default :data:`AZIMUTH_DEG`.
+
+    Returns
+    -------
+    (3,) float64
+        The unit vector toward the Sun.
+
+    Examples
+    --------
+    >>> np.round(sun_vector(90.0, 0.0), 12) + 0.0
+    array([1., 0., 0.])
+    """
     a, p = np.radians(alpha_deg), np.radians(azimuth_deg)
     return np.array([np.sin(a) * np.cos(p), np.sin(a) * np.sin(p), np.cos(a)])
 
@@ -76,11 +94,21 @@ class SrpCase:
     reference : callable
         ``reference(sun_vector)`` -> ForceTorque, torque about the origin, at 1361 W/m^2.
     reference_area_m2, reference_length_m : float
-        Scales of the error measures.
+        Scales of the error measures [m^2, m].
     alphas_deg : tuple of float
-        Angles between the axis and the Sun.
+        Angles between the axis and the Sun [deg].
     rel_tol : float
-        Largest error allowed, and ``reason`` for it.
+        Largest error allowed [-].
+    reason : str
+        Why ``rel_tol`` is what it is.
+
+    Examples
+    --------
+    >>> case = next(c for c in SRP_CASES if c.name == "plate one-sided/specular")
+    >>> case.spacecraft()
+    <Spacecraft '<plate>': 2048 facets, 2048 sides, 1 parts, 1 materials>
+    >>> print(f"{case.reference(sun_vector(0.0)).force_N[2]:.4e}")
+    -1.8159e-05
     """
 
     name: str
@@ -217,6 +245,32 @@ class ShadowCase:
     Geometry as :class:`sunwind.validation.analytic_shadow.PlatePair`. The error measures are relative
     to the reference magnitude of A's force and of A's torque about A's centre, which the shadow's
     first moment alone sets: the sharp test of where the lit area is.
+
+    Attributes
+    ----------
+    name : str
+        Name of the case.
+    side_a_m, side_b_m : float
+        Side lengths of the square plates A and B [m].
+    centre_b_m : (3,) tuple of float
+        Centre of B [m]; A is centred at the origin in z = 0.
+    gamma_deg : float
+        Turn of B about z [deg].
+    optics : Optics
+        Finish of both plates.
+    divisions : int
+        Cells along each side of A.
+    sun_vectors : tuple of (3,) tuple of float
+        Directions toward the Sun, not normalised.
+    rel_tol : float
+        Largest error allowed [-].
+    reason : str
+        Why ``rel_tol`` is what it is.
+
+    Examples
+    --------
+    >>> SHADOW_CASE.spacecraft().part_names
+    ('plate_a', 'plate_b')
     """
 
     name: str = "shadowed plates/mixed"
@@ -282,10 +336,31 @@ LOW_POLY_SUNS: tuple[tuple[float, float, float], ...] = (
 
 @dataclass(frozen=True)
 class LowPolyCase:
-    """A low-polygon model whose shadows fall across single large triangles: a 12-triangle 1 m box bus,
-    a 1 cm x 1 cm x 1.6 m strut 0.2 m off its +x face, and a 1 m x 2 m two-sided wing 5 cm off its +x
-    face beside its -y face, all absorbing; against exact clipping
-    (:func:`sunwind.validation.exact_shadow.exact_absorber_srp`)."""
+    """A low-polygon model whose shadows fall across single large triangles, against exact clipping.
+
+    The model: a 12-triangle 1 m box bus, a 1 cm x 1 cm x 1.6 m strut 0.2 m off its +x face, and a
+    1 m x 2 m two-sided wing 5 cm off its +x face beside its -y face, all absorbing; the reference is
+    :func:`sunwind.validation.exact_shadow.exact_absorber_srp`.
+
+    Attributes
+    ----------
+    name : str
+        Name of the case.
+    sun_vectors : tuple of (3,) tuple of float
+        Directions toward the Sun, not normalised (:data:`LOW_POLY_SUNS`).
+    quick_suns : int
+        How many of them a quick run checks.
+    rel_tol : float
+        Largest error allowed [-].
+    reason : str
+        Why ``rel_tol`` is what it is.
+
+    Examples
+    --------
+    >>> craft = LOW_POLY_CASE.spacecraft()
+    >>> craft.part_names, craft.n_sides
+    (('bus', 'strut', 'wing'), 28)
+    """
 
     name: str = "bus, wing, 1 cm strut"
     sun_vectors: tuple[tuple[float, float, float], ...] = LOW_POLY_SUNS

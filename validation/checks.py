@@ -14,7 +14,27 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Measure:
-    """One measured quantity and its limits: ``low <= value <= limit`` passes (both dimensionless)."""
+    """One measured quantity and its limits: ``low <= value <= limit`` passes (both dimensionless).
+
+    Attributes
+    ----------
+    name : str
+        What was measured, e.g. ``"force error"``.
+    value : float
+        The measured value [-]; NaN fails.
+    limit : float
+        Largest value that passes [-].
+    low : float
+        Smallest value that passes [-]; minus infinity by default.
+
+    Examples
+    --------
+    >>> error = Measure("force error", 2e-4, 1e-3)
+    >>> error.passed, round(error.share, 6)
+    (True, 0.2)
+    >>> Measure("force error", float("nan"), 1e-3).share
+    inf
+    """
 
     name: str
     value: float
@@ -35,7 +55,26 @@ class Measure:
 
 @dataclass(frozen=True)
 class Check:
-    """One case of a family at one condition, and what was measured there."""
+    """One case of a family at one condition, and what was measured there.
+
+    Attributes
+    ----------
+    family : str
+        Name of the :class:`Family`.
+    case : str
+        The case, e.g. ``"sphere/diffuse"``.
+    at : str
+        The condition, e.g. ``"alpha 45 deg"``.
+    measures : tuple of Measure
+        What was measured; the check passes when every one passes.
+
+    Examples
+    --------
+    >>> measures = (Measure("force", 1e-4, 1e-3), Measure("torque", 5e-4, 1e-3))
+    >>> check = Check("SRP", "plate/specular", "alpha 30", measures)
+    >>> check.passed, check.worst.name, check.to_json()["passed"]
+    (True, 'torque', True)
+    """
 
     family: str
     case: str
@@ -72,7 +111,23 @@ class Check:
 
 @dataclass(frozen=True)
 class Family:
-    """A kind of validation: its name, what it checks against, and ``checks(quick)`` yielding each check."""
+    """A kind of validation: its name, what it checks against, and the checks it yields.
+
+    Attributes
+    ----------
+    name : str
+        Short name, e.g. ``"SRP closed forms"``.
+    reference : str
+        What the family checks against, in words.
+    checks : callable
+        ``checks(quick)`` yields each :class:`Check`; ``quick`` asks for the subset.
+
+    Examples
+    --------
+    >>> family = Family("demo", "one made-up check", lambda quick: iter([Check("demo", "a", "b", ())]))
+    >>> [check.case for check in family.checks(True)]
+    ['a']
+    """
 
     name: str
     reference: str

@@ -23,7 +23,7 @@ from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
 from sunwind.meshes import primitives
 from sunwind.validation import drag_matrix
 from sunwind.validation.analytic_drag import FmfLoad, cone_drag, cylinder_drag, plate_drag, sphere_drag
-from sunwind.validation.analytic_gas_law import FreeStream, GasLaw, flow_vector_from_alpha
+from sunwind.validation.analytic_gas_law import AnalyticStream, GasLaw, flow_vector_from_alpha
 from sunwind.validation.checks import Check, Measure
 from sunwind.validation.concave_drag import (
     NUMBER_DENSITY_M3,
@@ -138,7 +138,7 @@ def drag_closed_form_checks(quick: bool) -> Iterator[Check]:
                 )
                 worst, at = 0.0, "all below scale"
                 for alpha, u, force in zip(ALPHAS_DEG, directions, batch.force_N, strict=True):
-                    ref = closed(u, surface, FreeStream(u, ratio, TEMPERATURE_K))
+                    ref = closed(u, surface, AnalyticStream(u, ratio, TEMPERATURE_K))
                     coefficients = force / (batch[0].dynamic_pressure_Pa * ref.reference_area_m2)
                     scale = max(abs(ref.drag_coefficient), abs(ref.lift_coefficient))
                     if scale < DRAG_MIN_SCALE:
@@ -240,7 +240,7 @@ def tpmc_plate_checks(molecules: int) -> Iterator[Check]:
                     Sampling(molecules, seed=seed),
                     reference_point_m=TPMC_REFERENCE,
                 )
-                flow = FreeStream(u, ratio, TEMPERATURE_K, dynamic_pressure_Pa=q)
+                flow = AnalyticStream(u, ratio, TEMPERATURE_K, dynamic_pressure_Pa=q)
                 exact = plate_drag(
                     2.0, 1.0, flow, _surface(diffuse), one_sided=False, ref_point_m=TPMC_REFERENCE
                 )
@@ -289,7 +289,7 @@ def tpmc_sphere_checks(molecules: int) -> Iterator[Check]:
             result = trace_molecules(
                 sphere, u, stream, _walls(diffuse), Sampling(molecules), reference_point_m=np.zeros(3)
             )
-            flow = FreeStream(u, ratio, TEMPERATURE_K, dynamic_pressure_Pa=q)
+            flow = AnalyticStream(u, ratio, TEMPERATURE_K, dynamic_pressure_Pa=q)
             exact = sphere_drag(1.0, flow, _surface(diffuse))
             yield Check(
                 "TPMC closed forms",

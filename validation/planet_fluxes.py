@@ -163,9 +163,28 @@ def albedo_closed_is_exact(nadir: ArrayLike, sun: ArrayLike, n: ArrayLike, theta
 
 # ------------------------------------------------------------------------ brute force over the cap
 @dataclass(frozen=True)
-class Planet:
-    """A spherical planet: radius ``R`` and spacecraft altitude ``H`` [m], solar flux ``S`` [W/m^2], Bond
-    albedo ``A`` [-] (Lambertian), infrared exitance ``M`` [W/m^2] (None: ``(1 - A) S / 4``)."""
+class SphericalPlanet:
+    """A spherical reference planet with a uniform Lambertian albedo, seen from a spacecraft at an altitude.
+
+    Attributes
+    ----------
+    radius_m : float
+        Planet radius ``R`` [m].
+    altitude_m : float
+        Spacecraft altitude ``H`` above the surface [m].
+    solar_flux_W_m2 : float
+        Solar flux ``S`` at the planet [W/m^2].
+    albedo : float
+        Bond albedo ``A`` [-], reflected Lambertian.
+    exitance_W_m2 : float or None
+        Infrared exitance ``M`` [W/m^2]; None: ``(1 - A) S / 4``.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> print(f"{np.degrees(earth.theta_0):.2f} deg, M = {earth.exitance:.1f} W/m^2")
+    70.21 deg, M = 238.2 W/m^2
+    """
 
     radius_m: float
     altitude_m: float
@@ -197,7 +216,7 @@ class CapNodes:
     normal: Array
     point_m: Array
 
-    def radiance(self, sun: ArrayLike, planet: Planet, source: str) -> Array:
+    def radiance(self, sun: ArrayLike, planet: SphericalPlanet, source: str) -> Array:
         """Radiance ``L`` [W/m^2/sr] of every element for ``source`` 'albedo' or 'infrared'."""
         if source == "infrared":
             return np.full(len(self.domega), planet.exitance / np.pi)
@@ -255,7 +274,7 @@ def _gauss01(order: int) -> tuple[Array, Array]:
 
 
 def cap_nodes(
-    nadir: ArrayLike, sun: ArrayLike | None, n: ArrayLike | None, planet: Planet, order: int = 32
+    nadir: ArrayLike, sun: ArrayLike | None, n: ArrayLike | None, planet: SphericalPlanet, order: int = 32
 ) -> CapNodes:
     """Quadrature nodes over the part of the planet visible from the spacecraft (module notes).
 
@@ -323,7 +342,12 @@ def _moments(nodes: CapNodes, radiance: Array, n: Array, seen: Array | float = 1
 
 
 def plate_moments(
-    nadir: ArrayLike, sun: ArrayLike, n: ArrayLike, planet: Planet, source: str = "albedo", order: int = 32
+    nadir: ArrayLike,
+    sun: ArrayLike,
+    n: ArrayLike,
+    planet: SphericalPlanet,
+    source: str = "albedo",
+    order: int = 32,
 ) -> PlateMoments:
     """Brute-force :class:`PlateMoments` of the planet's light on an unshadowed plate (module notes).
 
@@ -337,7 +361,12 @@ def plate_moments(
 
 
 def plate_irradiance(
-    nadir: ArrayLike, sun: ArrayLike, n: ArrayLike, planet: Planet, source: str = "albedo", order: int = 32
+    nadir: ArrayLike,
+    sun: ArrayLike,
+    n: ArrayLike,
+    planet: SphericalPlanet,
+    source: str = "albedo",
+    order: int = 32,
 ) -> float:
     """Irradiance ``E = int L (n . omega)+ dOmega`` [W/m^2] of a plate by the planet's albedo or infrared
     (arguments as :func:`plate_moments`)."""
@@ -348,7 +377,7 @@ def plate_force(
     nadir: ArrayLike,
     sun: ArrayLike,
     n: ArrayLike,
-    planet: Planet,
+    planet: SphericalPlanet,
     optics: tuple[float, float, float] = (0.0, 0.0, 0.0),
     source: str = "albedo",
     order: int = 32,
@@ -373,7 +402,7 @@ def sphere_force_albedo_subsolar(a: float, R: float, H: float, A: float, S: floa
     return float(np.pi * a**2 * A * S * f_2(theta_0_of(R, H)) / SPEED_OF_LIGHT_M_S)
 
 
-def sphere_force_albedo_lit_cap(a: float, nadir: ArrayLike, sun: ArrayLike, planet: Planet) -> Array:
+def sphere_force_albedo_lit_cap(a: float, nadir: ArrayLike, sun: ArrayLike, planet: SphericalPlanet) -> Array:
     """Albedo force [N] (3,) on an absorbing sphere of radius ``a`` [m], exact while the whole visible cap
     is lit (``gamma_s <= theta_0``): ``-(pi a^2 A S / c) [f_2 cos(gamma_s) nadir + f_3 sin(gamma_s)
     s_perp]``, ``s_perp`` the unit part of ``sun`` across ``nadir``."""
@@ -401,7 +430,7 @@ def sphere_force(
     a: float,
     nadir: ArrayLike,
     sun: ArrayLike,
-    planet: Planet,
+    planet: SphericalPlanet,
     optics: tuple[float, float, float] = (0.0, 0.0, 0.0),
     source: str = "albedo",
     order: int = 32,
@@ -459,7 +488,7 @@ def shadowed_plate_irradiance(
     n: ArrayLike,
     nadir: ArrayLike,
     sun: ArrayLike,
-    planet: Planet,
+    planet: SphericalPlanet,
     source: str = "albedo",
     resolution: tuple[int, int] = (32, 16),
 ) -> PlateMoments:

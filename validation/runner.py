@@ -55,8 +55,28 @@ Progress = Callable[[str], None]
 
 
 def run(quick: bool = False, progress: Progress | None = None) -> list[Check]:
-    """Every check of every family (``quick``: the subset); ``progress(line)`` hears each family's start
-    and end."""
+    """Run every check of every family in :data:`FAMILIES`.
+
+    A family that raises ends with one failed check naming the error, and the run goes on.
+
+    Parameters
+    ----------
+    quick : bool
+        Run the subset of the cases, the tracers at fewer particles.
+    progress : callable, optional
+        ``progress(line)`` hears each family's start and end.
+
+    Returns
+    -------
+    list of Check
+        Every check, family by family.
+
+    Examples
+    --------
+    >>> checks = run(quick=True)  # doctest: +SKIP
+    >>> summary(checks)  # doctest: +SKIP
+    '... passed, 0 failed'
+    """
     checks: list[Check] = []
     for k, family in enumerate(FAMILIES, start=1):
         start = time.perf_counter()
@@ -85,7 +105,25 @@ def _family_checks(family: Family, quick: bool) -> list[Check]:
 
 
 def cases(checks: Sequence[Check]) -> list[tuple[Check, int, int]]:
-    """One entry per (family, case), in order: its worst check, its check count and failures."""
+    """Group checks by (family, case), in order of first appearance.
+
+    Parameters
+    ----------
+    checks : sequence of Check
+        The checks, e.g. from :func:`run`.
+
+    Returns
+    -------
+    list of (Check, int, int)
+        Per case: its worst check (the one using most of a limit), its check count and its failures.
+
+    Examples
+    --------
+    >>> a = Check("F", "case", "x", (Measure("m", 0.1, 1.0),))
+    >>> b = Check("F", "case", "y", (Measure("m", 2.0, 1.0),))
+    >>> [(worst.at, count, failed) for worst, count, failed in cases([a, b])]
+    [('y', 2, 1)]
+    """
     grouped: dict[tuple[str, str], list[Check]] = {}
     for check in checks:
         grouped.setdefault((check.family, check.case), []).append(check)
@@ -96,13 +134,47 @@ def cases(checks: Sequence[Check]) -> list[tuple[Check, int, int]]:
 
 
 def summary(checks: Sequence[Check]) -> str:
-    """``N passed, M failed`` over ``checks``."""
+    """Count the passed and failed checks.
+
+    Parameters
+    ----------
+    checks : sequence of Check
+        The checks.
+
+    Returns
+    -------
+    str
+        ``"N passed, M failed"``.
+
+    Examples
+    --------
+    >>> ok, bad = Measure("m", 0.1, 1.0), Measure("m", 2.0, 1.0)
+    >>> summary([Check("F", "c", "x", (ok,)), Check("F", "c", "y", (bad,))])
+    '1 passed, 1 failed'
+    """
     failed = sum(not c.passed for c in checks)
     return f"{len(checks) - failed} passed, {failed} failed"
 
 
 def table(checks: Sequence[Check]) -> list[str]:
-    """The printed report: a header, one line per case (worst check), the summary line."""
+    """Lay out the printed report: a header, one line per case (its worst check), the summary line.
+
+    Parameters
+    ----------
+    checks : sequence of Check
+        The checks.
+
+    Returns
+    -------
+    list of str
+        The lines, without line breaks.
+
+    Examples
+    --------
+    >>> lines = table([Check("F", "c", "y", (Measure("m", 2.0, 1.0),))])
+    >>> lines[1].endswith("FAIL (1)"), lines[-1]
+    (True, '0 passed, 1 failed')
+    """
     head = f"{'family':<21} {'case':<34} {'checks':>6}  {'worst at':<36} {'measure':<22}"
     lines = [f"{head} {'value':>9} {'limit':>9}"]
     for worst, count, failed in cases(checks):
@@ -115,7 +187,23 @@ def table(checks: Sequence[Check]) -> list[str]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the validation, print the table (or ``--json``); 1 if any check failed, else 0."""
+    """Run the validation from the command line and print the table (or ``--json``).
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        ``[--quick] [--json]``; default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        The exit status: 1 if any check failed, else 0.
+
+    Examples
+    --------
+    >>> main(["--quick"])  # doctest: +SKIP
+    family                case ...
+    """
     parser = argparse.ArgumentParser(prog="python -m sunwind.validation.runner", description=__doc__)
     parser.add_argument(
         "--quick", action="store_true", help="a subset of the cases, the tracers at fewer particles"
@@ -126,7 +214,25 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def report(quick: bool, as_json: bool) -> int:
-    """Run (``quick``: the subset), print the table or a JSON object, progress on stderr; the exit status."""
+    """Run the validation and print the table or a JSON object, with progress on stderr.
+
+    Parameters
+    ----------
+    quick : bool
+        Run the subset of the cases.
+    as_json : bool
+        Print one JSON object instead of the table.
+
+    Returns
+    -------
+    int
+        The exit status: 1 if any check failed, else 0.
+
+    Examples
+    --------
+    >>> report(quick=True, as_json=False)  # doctest: +SKIP
+    family                case ...
+    """
     checks = run(quick, progress=lambda line: print(f"validate: {line}", file=sys.stderr, flush=True))
     if as_json:
         failed = sum(not c.passed for c in checks)

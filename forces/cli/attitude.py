@@ -42,6 +42,7 @@ from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.results import DragResult
 from sunwind.forces.srp import srp as srp_of
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import infrared_optics
 
 
@@ -56,18 +57,18 @@ def srp(
     source: ModelSource,
     sun: Sun,
     references: dict,
-    sampling: dict,
+    sampling: ShadowSampling,
     reflections: ReflectionSettings,
     as_json: bool,
 ) -> None:
     """Solar-radiation force and torque for one Sun direction, with self-shadowing and inter-reflection."""
     model = posed(loaded(source, **references), sun.vector, "srp")
-    result = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
+    result = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, sampling=sampling)
     if as_json:
         print_json(model.craft, result.to_json())
     else:
         print_srp(result)
-    warn_results({"srp": result.error_estimate}, sampling["tolerance"])
+    warn_results({"srp": result.error_estimate}, sampling.tolerance)
 
 
 @click.command()
@@ -81,7 +82,7 @@ def drag(
     source: ModelSource,
     flow: FreeStream,
     references: dict,
-    sampling: dict,
+    sampling: ShadowSampling,
     reflections: ReflectionSettings,
     as_json: bool,
 ) -> None:
@@ -93,7 +94,7 @@ def drag(
         print_json(craft, result.to_json())
     else:
         print_drag(result, f"sunwind drag: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
-    warn_results({"drag": result.error_estimate}, sampling["tolerance"])
+    warn_results({"drag": result.error_estimate}, sampling.tolerance)
 
 
 @click.command()
@@ -110,7 +111,7 @@ def forces(
     sun: Sun,
     flow: FreeStream,
     references: dict,
-    sampling: dict,
+    sampling: ShadowSampling,
     reflections: ReflectionSettings,
     earth: EarthRequest | None,
     as_json: bool,
@@ -130,7 +131,7 @@ def forces(
             " (and the Earth's terms with --earth-radiation)",
             file=sys.stderr,
         )
-    light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, **sampling)
+    light = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, sampling=sampling)
     gas = None if flow.velocity_m_s is None else _drag(model, flow, reflections, sampling)
     estimates = {"srp": light.error_estimate} | ({} if gas is None else {"drag": gas.error_estimate})
     if earth is None:
@@ -138,7 +139,7 @@ def forces(
             print_json(model.craft, forces_document(light, gas))
         else:
             print_forces(light, gas)
-        warn_results(estimates, sampling["tolerance"])
+        warn_results(estimates, sampling.tolerance)
         return
     result, state = radiation(model, below, sun, reflections, sampling, thermal=earth.thermal)
     terms = [(band.name, band.force_N, band.torque_Nm) for band in (result.albedo, result.infrared)]
@@ -156,10 +157,12 @@ def forces(
     else:
         print_forces(light, gas, terms, errors)
         print_earth(result, state, title="  planet:")
-    warn_results(estimates | {"planet": result.error_estimate}, sampling["tolerance"])
+    warn_results(estimates | {"planet": result.error_estimate}, sampling.tolerance)
 
 
-def _drag(model: Model, flow: FreeStream, reflections: ReflectionSettings, sampling: dict) -> DragResult:
+def _drag(
+    model: Model, flow: FreeStream, reflections: ReflectionSettings, sampling: ShadowSampling
+) -> DragResult:
     """Drag of ``model`` in the command's ``flow``, with its reflection and shadow sampling settings."""
     return drag_of(
         model,
@@ -167,5 +170,5 @@ def _drag(model: Model, flow: FreeStream, reflections: ReflectionSettings, sampl
         flow.atmosphere,
         reflections=reflections,
         gas_sampling=flow.sampling,
-        **sampling,
+        sampling=sampling,
     )

@@ -28,7 +28,7 @@ from sunwind.forces.cli.options import (
 from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
 from sunwind.forces.earth import (
-    DEFAULT_STEP_DEG,
+    DEFAULT_CELL_DEG,
     PLATES,
     Place,
     PlanetResult,
@@ -46,6 +46,7 @@ from sunwind.forces.tables.jobs import SrpSetup
 from sunwind.forces.thermal import ThermalState
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.rays.sampling import ShadowSampling
 
 
 @dataclass(frozen=True)
@@ -61,7 +62,7 @@ class Below:
     pole: tuple[float, float, float] | None
     earth_ir: float | None
     eclipse: str
-    step_deg: float
+    cell_deg: float
     plates: bool = False
 
 
@@ -100,11 +101,12 @@ def planet_options() -> click.decorators.FC:
         _POLE,
         click.option("--eclipse", type=click.Choice(ECLIPSE_MODELS), default="conical", show_default=True,
                      help="The planet's shadow on the Sun (sunlight in the heat budget)."),
-        click.option("--step", "step_deg", type=float, default=DEFAULT_STEP_DEG, show_default=True,
+        click.option("--step", "cell_deg", type=float, default=DEFAULT_CELL_DEG, show_default=True,
                      help="Cell size of the planet's disc for shadowing and reflections [deg]."),
         click.option("--plates", is_flag=True,
-                     help="Fast mode: every side an independent plate seeing the whole planet (exact "
-                     "plate factors), no self-shadowing or inter-reflection; no ray cast."),
+                     help="Fast mode (--reflections plates): every side an independent plate seeing the "
+                     "whole planet (exact plate factors), no self-shadowing or inter-reflection; no ray "
+                     "cast."),
     ]  # fmt: skip
     return group("below", options, lambda values: Below(**values))
 
@@ -116,7 +118,7 @@ class EarthRequest:
     albedo: float | None
     albedo_model: str
     earth_ir: float | None
-    step_deg: float
+    cell_deg: float
     thermal: bool
     nadir: tuple[float, float, float] | None = None
     pole: tuple[float, float, float] | None = None
@@ -124,7 +126,7 @@ class EarthRequest:
     def terms(self, surface: SrpSetup) -> EarthTerms:
         """The orbit's settings, with the sampling and reflections of ``surface``."""
         return EarthTerms(
-            surface, self.albedo, self.earth_ir, self.albedo_model == "knocke", self.step_deg, self.thermal
+            surface, self.albedo, self.earth_ir, self.albedo_model == "knocke", self.cell_deg, self.thermal
         )
 
 
@@ -135,7 +137,7 @@ def earth_term_options(*, place: bool) -> list:
         click.option("--earth-radiation", "earth_on", is_flag=True,
                      help="Add the Earth's albedo and infrared pressure (materials need an emissivity)."),
         *_light_options(),
-        click.option("--earth-step", "step_deg", type=float, default=DEFAULT_STEP_DEG, show_default=True,
+        click.option("--earth-step", "cell_deg", type=float, default=DEFAULT_CELL_DEG, show_default=True,
                      help="Cell size of the Earth's disc for shadowing and reflections [deg]."),
         click.option("--thermal", is_flag=True,
                      help="With --earth-radiation: each side's equilibrium temperature and the recoil of "
@@ -162,7 +164,7 @@ def earth_request(values: dict) -> EarthRequest | None:
             )
         )
         return None
-    step = mine["step_deg"]
+    step = mine["cell_deg"]
     if not (math.isfinite(step) and 0.0 < step <= 90.0):
         raise InputError(f"--earth-step {step:g} is not in (0, 90] deg", hint="e.g. --earth-step 10")
     light = {"albedo": mine["albedo"], "infrared_W_m2": mine["earth_ir"]}
@@ -170,12 +172,12 @@ def earth_request(values: dict) -> EarthRequest | None:
     return EarthRequest(**mine)
 
 
-def check_earth_step(altitude_km: float, step_deg: float) -> None:
+def check_earth_step(altitude_km: float, cell_deg: float) -> None:
     """:func:`~sunwind.forces.earth.check_cells_at` for the commands whose cell step is ``--earth-step``."""
     try:
-        check_cells_at(altitude_km, step_deg)
+        check_cells_at(altitude_km, cell_deg)
     except InputError as error:
-        raise error.renamed({"step_deg": "--earth-step"}) from None
+        raise error.renamed({"cell_deg": "--earth-step"}) from None
 
 
 def refuse_without_earth(flags: Sequence[tuple[str, object]]) -> None:
@@ -187,7 +189,7 @@ def refuse_without_earth(flags: Sequence[tuple[str, object]]) -> None:
 
 
 #: The keyword names of :func:`earth_term_options`.
-EARTH_KEYS = ("earth_on", "albedo", "albedo_model", "earth_ir", "step_deg", "thermal", "earth_nadir", "pole")
+EARTH_KEYS = ("earth_on", "albedo", "albedo_model", "earth_ir", "cell_deg", "thermal", "earth_nadir", "pole")
 
 
 def place_and_light(below: Below, sun: Sun) -> tuple[Place, PlanetLight]:
@@ -228,7 +230,7 @@ def earth(
     sun: Sun,
     below: Below,
     references: dict,
-    sampling: dict,
+    sampling: ShadowSampling,
     reflections: ReflectionSettings,
     heat: dict,
     as_json: bool,
@@ -245,18 +247,26 @@ def earth(
         print_json(model.craft, earth_document(result, state))
     else:
         print_earth(result, state)
-    warn_results({"earth": result.error_estimate}, sampling["tolerance"])
+    warn_results({"earth": result.error_estimate}, sampling.tolerance)
 
 
 def radiation(
-    model: Model, below: Below, sun: Sun, reflections: ReflectionSettings, sampling: dict, *, thermal: bool
+    model: Model,
+    below: Below,
+    sun: Sun,
+    reflections: ReflectionSettings,
+    sampling: ShadowSampling,
+    *,
+    thermal: bool,
 ) -> tuple[PlanetResult, ThermalState | None]:
     """The planet's radiation on ``model`` at the place of ``below`` with the command's reflections and
     shadow ``sampling``, and (``thermal``) the equilibrium temperatures and recoil."""
     place, light = place_and_light(below, sun)
-    mode = PLATES if below.plates else reflections
-    result = planet_radiation(model, place, light, reflections=mode, step_deg=below.step_deg, **sampling)
-    return result, result.equilibrium("none" if below.plates else reflections) if thermal else None
+    mode = replace(reflections, mode=PLATES) if below.plates else reflections
+    result = planet_radiation(
+        model, place, light, reflections=mode, sampling=sampling, cell_deg=below.cell_deg
+    )
+    return result, result.equilibrium("none" if mode.mode == PLATES else reflections) if thermal else None
 
 
 def earth_below(request: EarthRequest, where: FreeStream) -> Below:
@@ -268,10 +278,10 @@ def earth_below(request: EarthRequest, where: FreeStream) -> Below:
             "--altitude H_KM",
             hint="e.g. --earth 0 0 1 --altitude 500",
         )
-    check_earth_step(where.altitude_km, request.step_deg)
+    check_earth_step(where.altitude_km, request.cell_deg)
     return Below(
         request.nadir, where.altitude_km, "earth", request.albedo, request.albedo_model, where.time,
-        request.pole, request.earth_ir, "conical", request.step_deg,
+        request.pole, request.earth_ir, "conical", request.cell_deg,
     )  # fmt: skip
 
 

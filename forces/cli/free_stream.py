@@ -30,6 +30,7 @@ from sunwind.forces.gas import (
     nrlmsis,
 )
 from sunwind.forces.gas.flow import flow_speed
+from sunwind.forces.gas.msis import DEFAULT_AP, DEFAULT_F107_SFU, DEFAULT_F107A_SFU
 from sunwind.forces.gas.sampling import GasSampling
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
@@ -97,6 +98,16 @@ _SPEED = [
         "not needed heading east or west, or at a pole).",
     ),
 ]
+#: NRLMSIS's space weather (drag and orbit), its defaults from :mod:`sunwind.forces.gas.msis`.
+WEATHER_OPTIONS = [
+    click.option(
+        "--f107", type=float, default=DEFAULT_F107_SFU, show_default=True, help="Daily F10.7 [sfu]."
+    ),
+    click.option(
+        "--f107a", type=float, default=DEFAULT_F107A_SFU, show_default=True, help="81-day F10.7 [sfu]."
+    ),
+    click.option("--ap", type=float, default=DEFAULT_AP, show_default=True, help="Daily Ap index."),
+]
 _AIR = [
     click.option("--altitude", type=float, help="Altitude [km] for NRLMSIS 2.1 (and the orbit speed)."),
     click.option("--lat", type=float, default=0.0, show_default=True, help="Geodetic latitude [deg]."),
@@ -109,9 +120,7 @@ _AIR = [
         help="UTC date and time, ISO 8601 (NRLMSIS; with --earth-radiation, the albedo's season).",
     ),
     click.option("--time", "old_time", hidden=True, help="The former name of --epoch."),
-    click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
-    click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
-    click.option("--ap", type=float, default=4.0, show_default=True, help="Daily Ap index."),
+    *WEATHER_OPTIONS,
     click.option("--density", type=float, help="Explicit atmosphere: mass density [kg/m^3]."),
     click.option("--temperature", type=float, help="Explicit atmosphere: temperature [K]."),
     click.option("--composition", help='Explicit atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),

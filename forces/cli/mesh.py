@@ -29,7 +29,7 @@ def info(source: ModelSource, reflections: ReflectionSettings, no_k_is: bool, as
     report = describe(source.mesh, source.materials, source.unit, source.uniform, source.two_sided)
     if not no_k_is:
         try:
-            craft = source.load()
+            craft = source.spacecraft()
         except SunwindError:
             report["k_is"] = "not available until the checks pass"
         else:

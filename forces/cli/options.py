@@ -22,11 +22,12 @@ from numpy.typing import NDArray
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.radiation import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
-from sunwind.forces.reflection.settings import DEFAULT_CUTOFF, DEFAULT_DEPTH
+from sunwind.forces.reflection.settings import DEFAULT_CUTOFF, DEFAULT_DEPTH, MODES
 from sunwind.geometry.directions import azel_to_vector, finite_point, unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GAS_DEFAULTS, GSI_MODELS, GasSurface, Material
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.rays.sampling import ShadowSampling
+from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE
 from sunwind.geometry.references import check_reference_sizes
 
 #: The flag of each Python parameter the library names in its messages.
@@ -60,6 +61,7 @@ FLAGS = {
     "nadir": "--nadir",
     "velocity_direction": "--flow-azel",
     "step_deg": "--step",
+    "cell_deg": "--step",
     "albedo": "--albedo",
     "infrared_W_m2": "--earth-ir",
     "albedo_model": "--albedo-model",
@@ -263,7 +265,7 @@ def model_options(gas: bool = False, swept: bool = False) -> Callable:
 
 def loaded(source: ModelSource, **model: object) -> Model:
     """The model of ``source`` (with ``model``'s references), its repair notices printed on stderr."""
-    craft = source.load()
+    craft = source.spacecraft()
     for notice in craft.notices:
         print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
     return Model(craft, source, **model)
@@ -377,13 +379,13 @@ def sun_options(direction: bool = True) -> Callable:
 
 
 # ------------------------------------------------------------------------------------------- sampling
-def _sampling(values: dict) -> dict:
-    check_sampling(values["samples"], values["tolerance"])
-    return values
+def _sampling(values: dict) -> ShadowSampling:
+    return ShadowSampling(values["samples"], values["tolerance"])
 
 
 def sampling_options(command: Callable) -> Callable:
-    """Shadow-ray sampling: keyword ``sampling``, the ``samples`` and ``tolerance`` arguments."""
+    """Shadow-ray sampling (``--samples``, ``--tolerance``): keyword ``sampling``, a
+    :class:`~sunwind.geometry.rays.sampling.ShadowSampling`."""
     options = [
         click.option(
             "--samples",
@@ -404,9 +406,12 @@ def sampling_options(command: Callable) -> Callable:
 # ---------------------------------------------------------------------------------------- reflections
 _MODE_HELP = {
     "light": "Inter-reflection: none; specular beams only; full (beams and diffuse balance); "
-    "auto = full when K_IS >= 0.1, else none.",
-    "gas": "Re-emitted molecules striking other sides: none; full; auto = full when K_IS >= 0.1.",
-    "both": "Inter-reflection of light and of re-emitted molecules (auto: each by its own K_IS).",
+    "auto = full when K_IS >= 0.1, else none; plates = every side alone, no shadowing.",
+    "gas": "Re-emitted molecules striking other sides: none; specular = unaccommodated molecules "
+    "followed, no diffuse exchange; full; auto = full when K_IS >= 0.1; plates = every side alone, "
+    "no shadowing.",
+    "both": "Inter-reflection of light and of re-emitted molecules (auto: each by its own K_IS; plates: "
+    "every side alone, no shadowing).",
 }
 _VIEW_FACTOR_OPTIONS = [
     click.option(
@@ -433,10 +438,13 @@ def _settings(values: dict) -> ReflectionSettings:
 def reflection_options(of: str) -> Callable:
     """Inter-reflection of ``of`` ("light", "gas", "both") and view-factor sampling: keyword
     ``reflections``, a :class:`~sunwind.forces.reflection.ReflectionSettings`."""
-    modes = ["none", "specular", "full", "auto"] if of == "light" else ["none", "full", "auto"]
     options = [
         click.option(
-            "--reflections", type=click.Choice(modes), default="auto", show_default=True, help=_MODE_HELP[of]
+            "--reflections",
+            type=click.Choice(MODES),
+            default="auto",
+            show_default=True,
+            help=_MODE_HELP[of],
         )
     ]
     if of == "light":

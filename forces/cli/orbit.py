@@ -14,6 +14,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.cli.earth import EarthRequest, check_earth_step, earth_request, earth_term_options
+from sunwind.forces.cli.free_stream import WEATHER_OPTIONS
 from sunwind.forces.cli.options import (
     drag_only,
     group,
@@ -29,8 +30,9 @@ from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
 from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
+from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.model import ModelSource
-from sunwind.forces.orbit import AttitudeLaw, Loads, SpaceWeather, fly
+from sunwind.forces.orbit import AttitudeLaw, OrbitLoads, SpaceWeather, fly
 from sunwind.forces.orbit.attitude import INTERPOLATIONS
 from sunwind.forces.orbit.earth_terms import PART_SOURCES
 from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
@@ -40,6 +42,7 @@ from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables.checkpoint import check_place
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.rays.sampling import ShadowSampling
 
 #: Drag is computed by default when the orbit dips below this altitude [km] (NRLMSIS's fitted range).
 DRAG_DEFAULT_BELOW_KM = 1000.0
@@ -68,9 +71,7 @@ _ENVIRONMENT_OPTIONS = [
     ),
     click.option("--moon", is_flag=True, help="The Moon eclipses the Sun too (with the ephemeris Sun)."),
     click.option("--flux", type=float, help="Solar flux at 1 au [W/m^2] [default 1361]."),
-    click.option("--f107", type=float, default=150.0, show_default=True, help="Daily F10.7 [sfu]."),
-    click.option("--f107a", type=float, default=150.0, show_default=True, help="81-day F10.7 [sfu]."),
-    click.option("--ap", type=float, default=4.0, show_default=True, help="Daily Ap index."),
+    *WEATHER_OPTIONS,
     click.option("--density", type=float, help="Fixed atmosphere: mass density [kg/m^3]."),
     click.option("--temperature", type=float, help="Fixed atmosphere: temperature [K]."),
     click.option("--composition", help='Fixed atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),
@@ -81,14 +82,15 @@ _ENVIRONMENT_OPTIONS = [
 
 @dataclass(frozen=True)
 class Environment:
-    """The terms asked for, the Sun, the eclipse model, the air and the Earth's radiation."""
+    """The terms asked for, the Sun (its flux at 1 au), the eclipse model, the air and the Earth's
+    radiation."""
 
     srp: bool
     drag: bool | None
     sun_eci: np.ndarray | None
     eclipse: str
     moon: bool
-    flux_W_m2: float
+    flux_1au_W_m2: float
     air: object
     mass_kg: float | None
     earth: EarthRequest | None
@@ -201,7 +203,7 @@ def orbit(
     environment: Environment,
     attitude: AttitudeLaw,
     references: dict,
-    sampling: dict,
+    sampling: ShadowSampling,
     reflections: ReflectionSettings,
     output: dict,
 ) -> None:
@@ -220,17 +222,19 @@ def orbit(
             f"({'below' if drag_on else 'above'} {DRAG_DEFAULT_BELOW_KM:g} km; --srp/--drag choose)",
             file=sys.stderr,
         )
-    shared = {**sampling, "reference_point_m": references["reference_point_m"]}
+    shared = {"sampling": sampling, "reference_point_m": references["reference_point_m"]}
     srp = None
     if environment.srp:
-        srp = SrpSetup(flux_W_m2=environment.flux_W_m2, reflections=reflections, **shared)
+        srp = SrpSetup(reflections=reflections, **shared)
     drag = None
     if drag_on:
         molecules = replace(reflections, mode=output["gas_reflections"])
-        drag = GasOptions(sky_rays=output["sky_rays"], reflections=molecules, **shared)
+        drag = GasOptions(
+            gas_sampling=GasSampling(sky_rays=output["sky_rays"]), reflections=molecules, **shared
+        )
     planet = None
     if environment.earth is not None:
-        surface = SrpSetup(flux_W_m2=environment.flux_W_m2, reflections=reflections, **shared)
+        surface = SrpSetup(reflections=reflections, **shared)
         planet = environment.earth.terms(surface)
     light_needed = srp is not None or planet is not None
     model = loaded(source if light_needed else drag_only(source), **references)
@@ -242,17 +246,22 @@ def orbit(
     if checkpoint is not None:
         check_place(checkpoint)
     if planet is not None:  # the largest cap, at the lowest altitude; --step is the time's here
-        check_earth_step(max(lowest, 0.0), planet.step_deg)
+        check_earth_step(max(lowest, 0.0), planet.cell_deg)
     begin = time.perf_counter()
-    for part in (srp, drag, planet):  # view factors, open skies: timed apart from the steps
-        if part is not None:
-            part.precompute(model)
-    start = time.perf_counter()
+    started: list[float] = []  # when the steps start: the run's first progress, once precomputes are made
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
     with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
         task = bar.add_task("orbit", total=len(trajectory.time_s))
-        run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
-        loads = Loads(srp, drag, environment.air, output["hinge_step"], planet)
+
+        def progress(done: int) -> None:
+            if not started:
+                started.append(time.perf_counter())
+            bar.update(task, completed=done)
+
+        run = sweep_run(output, checkpoint, progress)
+        loads = OrbitLoads(
+            srp, drag, environment.air, output["hinge_step"], planet, flux_1au_W_m2=environment.flux_1au_W_m2
+        )
         with interruptible(bar, checkpoint):
             result = fly(
                 model,
@@ -264,6 +273,7 @@ def orbit(
                 moon=environment.moon,
                 run=run,
             )
+    start = started[0] if started else begin
     seconds = time.perf_counter() - start
     steps = len(trajectory.time_s)
     print(
@@ -292,7 +302,7 @@ def orbit(
             print(f"  wrote {target}")
     if "error_estimate_force" in result.series:
         series = (result.series["error_estimate_force"], result.series["error_estimate_torque"])
-        warn_beyond({"orbit": series}, sampling["tolerance"], "steps")
+        warn_beyond({"orbit": series}, sampling.tolerance, "steps")
 
 
 def _print_summary(name: str, result, mass_kg: float | None) -> None:

@@ -100,7 +100,7 @@ def print_json(craft: Spacecraft, document: dict) -> None:
 def print_srp(result: SrpResult) -> None:
     """The human-readable SRP report."""
     craft = result.craft
-    az, el = result.sun_azel_deg
+    az, el = result.azel_deg
     parts = f"{craft.n_facets} triangles, {len(craft.part_names)} parts, unit {craft.unit}"
     print(f"sunwind srp: {craft.source} ({parts})")
     print("  frame            body frame of the mesh; SI units")
@@ -120,7 +120,7 @@ def print_srp(result: SrpResult) -> None:
     print(f"  shadow error     {estimated(result.error_estimate)}")
     print(
         f"  reflections      {result.reflections} (asked: {result.settings.mode}); "
-        f"K_IS = {result.k_is:.4f} (eq. 7; inter-reflection matters from 0.1)"
+        f"K_IS = {_k_is(result.k_is)} (eq. 7; inter-reflection matters from 0.1)"
     )
     power = result.power
     print(
@@ -138,7 +138,7 @@ def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
     """The human-readable drag report under ``heading`` (with the hinges' angles when ``hinges``)."""
     air = result.atmosphere
     cd, cs, cl = result.force_coefficients
-    az, el = result.flow_azel_deg
+    az, el = result.azel_deg
     print(heading)
     print("  frame            body frame of the mesh; SI units")
     if hinges:
@@ -154,17 +154,17 @@ def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
     print(f"    re-emission    {vector(result.reflected_force_N)}")
     print(f"  torque  [N m]    {vector(result.torque_Nm)}  |M| = {np.linalg.norm(result.torque_Nm):.6e}")
     print(f"  about   [m]      {about(result.reference_point_m, result.reference_point)}")
-    print(
-        f"  coefficients     CD {cd:.6f}  CL {cl:+.6f}  CS {cs:+.6f}  CM {vector(result.moment_coefficients)}"
-    )
+    print(f"  coefficients     CD {cd:.6f}  CL {cl:+.6f}  CS {cs:+.6f}  CM {vector(result.CM)}")
     print(
         f"{'':19}A_ref {result.reference_area_m2:.6g} m^2, L_ref {result.reference_length_m:.6g} m; "
         "C = F/(q A_ref), C_M = M/(q A_ref L_ref)"
     )
     print(f"  lit area         {result.lit_area_m2:.6f} m^2 (facing the flow, not shadowed)")
     print(f"  projected area   {result.projected_area_m2:.6f} m^2 (normal to the flow)")
-    k_is = "n/a" if result.k_is is None else f"{result.k_is:.4f}"
-    print(f"  re-emission      {result.reflections} (asked: {result.settings.mode}); molecular K_IS = {k_is}")
+    print(
+        f"  re-emission      {result.reflections} (asked: {result.settings.mode}); "
+        f"molecular K_IS = {_k_is(result.k_is)}"
+    )
     chains = result.reflected.chains
     if chains is not None and chains.packets:
         print(
@@ -241,3 +241,11 @@ def print_forces(
         print("  drag:            none (no flow direction: --velocity or --flow-azel)")
     else:
         print_drag(gas, "  drag:", hinges=False)
+
+
+def _k_is(k_is: float | None) -> str:
+    """``K_IS`` to 4 decimals, or why it is not known: the reflections asked for needed no view factors
+    (``sunwind info`` computes it)."""
+    return (
+        "not computed (no view factors asked for; sunwind info gives it)" if k_is is None else f"{k_is:.4f}"
+    )

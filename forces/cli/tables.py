@@ -57,6 +57,7 @@ from sunwind.forces.tables.dataset import GRID_DIMS, kinds_of, one_pose, open_ta
 from sunwind.forces.tables.engine import check_table_memory
 from sunwind.geometry.directions import azel_to_vector, checked_azel
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.rays.sampling import ShadowSampling
 
 
 class _RateColumn(ProgressColumn):
@@ -134,7 +135,7 @@ _OUTPUT_OPTIONS = [
     ),
 ]
 #: The flags of the earth table's settings, by the names :class:`EarthSetup` gives them in its errors.
-_EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun", "step_deg": "--earth-step"}
+_EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun", "cell_deg": "--earth-step"}
 
 
 @dataclass(frozen=True)
@@ -204,7 +205,7 @@ def _earth_table(values: dict) -> EarthSetup | None:
             sun_vector=sun,
             albedo=request.albedo,
             infrared_W_m2=request.earth_ir,
-            step_deg=request.step_deg,
+            cell_deg=request.cell_deg,
             thermal=request.thermal,
         )
     except InputError as error:
@@ -225,7 +226,7 @@ def sweep_command(
     sun: Sun,
     flow,
     references: dict,
-    sampling: dict,
+    sampling: ShadowSampling,
     reflections: ReflectionSettings,
     table: TableRequest,
     run: dict,
@@ -234,12 +235,14 @@ def sweep_command(
     --earth-radiation, the Earth's albedo and infrared over Earth directions, the Sun fixed (--earth-sun)."""
     check_distinct(table.output, source.source.mesh, source.source.materials, table.attitudes)
     stream = flow("drag" in table.kinds)
-    setups = {"reflections": reflections, **sampling, "reference_point_m": references["reference_point_m"]}
+    point = references["reference_point_m"]
+    setups = {"reflections": reflections, "sampling": sampling, "reference_point_m": point}
     srp = SrpSetup(flux_W_m2=sun.flux_W_m2, **setups) if "srp" in table.kinds else None
     drag = None
     if "drag" in table.kinds:
-        gas = {"sky_rays": stream.sampling.sky_rays}
-        drag = DragSetup(speed_m_s=stream.speed_m_s, atmosphere=stream.atmosphere, **setups, **gas)
+        drag = DragSetup(
+            speed_m_s=stream.speed_m_s, atmosphere=stream.atmosphere, gas_sampling=stream.sampling, **setups
+        )
     earth = None if table.earth is None else replace(table.earth, flux_W_m2=sun.flux_W_m2, **setups)
     attitudes = None if table.attitudes is None else read_attitude_csv(table.attitudes)
     for kind in table.kinds if attitudes is not None else ():
@@ -300,7 +303,7 @@ def sweep_command(
         print(f"  shadow error     {kind} worst {ErrorEstimate(float(force.max()), float(torque.max()))}")
     for path in written:
         print(f"  wrote {path}")
-    warn_beyond(estimates, sampling["tolerance"], "attitudes")
+    warn_beyond(estimates, sampling.tolerance, "attitudes")
 
 
 def table_estimates(table: xr.Dataset, step_deg: float | None) -> dict[str, tuple[NDArray, NDArray]]:

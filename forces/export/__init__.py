@@ -29,9 +29,25 @@ from sunwind.geometry.errors import InputError, ReferencePointWarning
 
 @dataclass(frozen=True)
 class Format:
-    """One file format: the extension that chooses it (None: only by name), the quantities it holds,
-    its writer ``write(table, path) -> files written``, and ``check(step_deg)``, which refuses before a
-    sweep the attitudes it cannot hold (``step_deg`` None: a list of attitudes)."""
+    """One file format of the sweep table.
+
+    Parameters
+    ----------
+    extension : str or None
+        The extension that chooses it (None: chosen only by name).
+    kinds : tuple of str
+        The quantities it holds ("srp", "drag", ...).
+    write : callable
+        ``write(table, path) -> files written``.
+    check : callable or None
+        ``check(step_deg)``, which refuses before a sweep the attitudes it cannot hold (``step_deg``
+        None: a list of attitudes).
+
+    Examples
+    --------
+    >>> FORMATS["nc"].extension, FORMATS["tudat"].extension
+    ('.nc', None)
+    """
 
     extension: str | None
     kinds: tuple[str, ...]
@@ -55,10 +71,27 @@ FORMATS: dict[str, Format] = {
 def format_of(path: str | os.PathLike, given: str | None = None) -> str:
     """The format ``given`` names, else the one the extension of ``path`` says.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output path.
+    given : str, optional
+        A key of :data:`FORMATS`.
+
+    Returns
+    -------
+    str
+        The format's name.
+
     Raises
     ------
     InputError
         An unknown format name, or an extension that names none.
+
+    Examples
+    --------
+    >>> format_of("sweep.csv"), format_of("sweep", "spad")
+    ('csv', 'spad')
     """
     if given is not None:
         if given not in FORMATS:
@@ -82,13 +115,34 @@ def format_of(path: str | os.PathLike, given: str | None = None) -> str:
 
 
 def output_target(path: str | os.PathLike, given: str | None = None) -> tuple[str, Path]:
-    """The format of an output and the path it is written to: a path without an extension gets the
-    format's (``-o table --format nc`` writes ``table.nc``).
+    """The format of an output and the path it is written to.
+
+    A path without an extension gets the format's (``-o table --format nc`` writes ``table.nc``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output path.
+    given : str, optional
+        A key of :data:`FORMATS`; by default the extension of ``path`` says.
+
+    Returns
+    -------
+    name : str
+        The format.
+    target : Path
+        Where it is written.
 
     Raises
     ------
     InputError
         What :func:`format_of` refuses, or an extension that names a format other than ``given``.
+
+    Examples
+    --------
+    >>> name, target = output_target("table", "nc")
+    >>> name, target.name
+    ('nc', 'table.nc')
     """
     name, target = format_of(path, given), Path(path)
     suffix, extension = target.suffix.lower(), FORMATS[name].extension
@@ -107,12 +161,23 @@ def output_target(path: str | os.PathLike, given: str | None = None) -> tuple[st
 
 
 def check_request(name: str, step_deg: float | None) -> None:
-    """Refuse, before a sweep starts, attitudes format ``name`` cannot hold (``step_deg`` None: a list).
+    """Refuse, before a sweep starts, attitudes format ``name`` cannot hold.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`FORMATS`.
+    step_deg : float or None
+        The grid's step [deg]; None for a list of attitudes.
 
     Raises
     ------
     InputError
         A list for a grid format (SPAD, Tudat), a step SPAD files cannot hold.
+
+    Examples
+    --------
+    >>> check_request("nc", None)  # netCDF holds a list as well as a grid
     """
     check = FORMATS[name].check
     if check is not None:
@@ -120,7 +185,21 @@ def check_request(name: str, step_deg: float | None) -> None:
 
 
 def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None) -> list[Path]:
-    """Write a sweep table in ``format`` (default: from the extension of ``path``); the files written.
+    """Write a sweep table in ``format`` (default: from the extension of ``path``).
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        The sweep table (:mod:`sunwind.forces.tables.dataset`).
+    path : str or os.PathLike
+        Where to write; a path without an extension gets the format's.
+    format : str, optional
+        A key of :data:`FORMATS`.
+
+    Returns
+    -------
+    list of Path
+        The files written.
 
     Raises
     ------
@@ -135,6 +214,15 @@ def write(table: xr.Dataset, path: str | os.PathLike, format: str | None = None)
     ReferencePointWarning
         Basilisk: the reference point is not the body-frame origin, to which the torques were moved;
         Tudat: the reference point is a default, which Tudat is to be given (the formats' writers).
+
+    Examples
+    --------
+    The format is checked before anything is written:
+
+    >>> write(xr.Dataset(), "sweep.xyz")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: sweep.xyz: cannot tell the format from the extension '.xyz'...
     """
     name, target = output_target(path, format)
     spec = FORMATS[name]

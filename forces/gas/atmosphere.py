@@ -69,16 +69,37 @@ TEMPERATURE_RANGE_K = (1.0, 1e5)
 
 
 class AtmosphereWarning(UserWarning):
-    """The atmosphere asked for is usable but outside where its model or free-molecular flow is sound."""
+    """The atmosphere asked for is usable but outside where its model or free-molecular flow is sound.
+
+    Examples
+    --------
+    >>> issubclass(AtmosphereWarning, UserWarning)
+    True
+    """
 
 
 def species_name(name: str) -> str:
     """The canonical name of a species as a user may type it ("o2", "he", "anomalous_O", "O*").
 
+    Parameters
+    ----------
+    name : str
+        The name, in any case.
+
+    Returns
+    -------
+    str
+        A key of ``SPECIES_MASS_KG``.
+
     Raises
     ------
     InputError
         A name that is not one of the known species; the message lists them.
+
+    Examples
+    --------
+    >>> species_name("o2"), species_name("anomalous_O")
+    ('O2', 'O*')
     """
     canonical = _ALIASES.get(str(name).strip().lower())
     if canonical is None:
@@ -93,7 +114,7 @@ def species_name(name: str) -> str:
 class Atmosphere:
     """The free-stream gas: number density of each species and the kinetic temperature.
 
-    Attributes
+    Parameters
     ----------
     number_density_m3 : dict[str, float]
         Number density [m^-3] of each species present (only ``n > 0``), keyed by canonical name
@@ -109,6 +130,18 @@ class Atmosphere:
         The other inputs, kept for reports (latitude, longitude, time, solar and geomagnetic indices).
     model_density_kg_m3 : float, optional
         The source model's own total mass density [kg/m^3] (NRLMSIS's, computed with its own masses).
+
+    Raises
+    ------
+    InputError
+        An unknown or repeated species, a density that is not finite and positive, no species at all,
+        or a temperature out of range.
+
+    Examples
+    --------
+    >>> air = Atmosphere({"o": 2e13, "N2": 1e13}, 1000.0, "example")
+    >>> list(air.number_density_m3), f"{air.density_kg_m3:.4e}"
+    (['O', 'N2'], '9.9652e-13')
     """
 
     number_density_m3: dict[str, float]
@@ -185,6 +218,12 @@ class Atmosphere:
         -------
         dict[str, float]
             Dimensionless speed ratio per species present.
+
+        Examples
+        --------
+        >>> air = Atmosphere({"O": 1e14}, 1000.0, "example")
+        >>> round(air.speed_ratio(7500.0)["O"], 3)
+        7.357
         """
         speed = finite_number(speed_m_s, "speed", "m/s", minimum=0.0)
         return {
@@ -192,13 +231,41 @@ class Atmosphere:
         }
 
     def mean_speed_ratio(self, speed_m_s: float) -> float:
-        """Speed ratio of the mixture ``V / sqrt(2 k T / m_mean)`` with :attr:`mean_mass_kg`."""
+        """Speed ratio of the mixture ``V / sqrt(2 k T / m_mean)`` with :attr:`mean_mass_kg`.
+
+        Parameters
+        ----------
+        speed_m_s : float
+            Speed ``V`` [m/s], >= 0.
+
+        Returns
+        -------
+        float
+            The speed ratio [-].
+        """
         speed = finite_number(speed_m_s, "speed", "m/s", minimum=0.0)
         return speed / math.sqrt(2.0 * BOLTZMANN * self.temperature_K / self.mean_mass_kg)
 
     @classmethod
     def from_json(cls, document: dict) -> Atmosphere:
-        """The atmosphere :meth:`to_json` describes (numbers round-trip exactly through JSON)."""
+        """The atmosphere :meth:`to_json` describes (numbers round-trip exactly through JSON).
+
+        Parameters
+        ----------
+        document : dict
+            What :meth:`to_json` gave.
+
+        Returns
+        -------
+        Atmosphere
+            The same atmosphere.
+
+        Examples
+        --------
+        >>> air = Atmosphere({"O": 1e14}, 1000.0, "example")
+        >>> Atmosphere.from_json(air.to_json()).number_density_m3 == air.number_density_m3
+        True
+        """
         return cls(
             document["number_density_m3"],
             document["temperature_K"],
@@ -209,7 +276,13 @@ class Atmosphere:
         )
 
     def to_json(self) -> dict:
-        """A JSON-ready description: density [kg/m^3], temperature [K], per-species number density [m^-3]."""
+        """A JSON-ready description: density [kg/m^3], temperature [K], per-species number density [m^-3].
+
+        Returns
+        -------
+        dict
+            Keys carry their units; optional fields only where set.
+        """
         out: dict = {
             "source": self.source,
             "density_kg_m3": self.density_kg_m3,
@@ -260,6 +333,12 @@ def explicit(
     InputError
         Unknown species, a fraction that is negative or not finite, fractions that do not sum to 1, a
         density that is not finite and positive, or a temperature out of range.
+
+    Examples
+    --------
+    >>> air = explicit(1e-12, 1000.0, "O:0.7,N2:0.3")
+    >>> {k: f"{n:.3e}" for k, n in air.number_density_m3.items()}
+    {'O': '2.150e+13', 'N2': '9.216e+12'}
     """
     rho = finite_number(density_kg_m3, "density_kg_m3", "kg/m^3", positive=True)
     temperature = checked_temperature(temperature_K)
@@ -291,11 +370,27 @@ def explicit(
 def parse_composition(composition: str | Mapping[str, float]) -> dict[str, float]:
     """Mole fractions by canonical species name from ``"O:0.7,N2:0.3"`` or a mapping; not normalised.
 
+    Parameters
+    ----------
+    composition : str or Mapping[str, float]
+        ``SPECIES:FRACTION`` entries separated by ``,`` or ``;`` (``=`` may stand for ``:``), or a
+        mapping.
+
+    Returns
+    -------
+    dict[str, float]
+        Fraction of each species named, by canonical name.
+
     Raises
     ------
     InputError
         Unknown or repeated species, an entry that does not read as ``SPECIES:FRACTION``, or a fraction
         that is negative or not finite.
+
+    Examples
+    --------
+    >>> parse_composition("o:0.7, n2=0.3")
+    {'O': 0.7, 'N2': 0.3}
     """
     if isinstance(composition, str):
         pairs: list[tuple[str, object]] = []
@@ -336,10 +431,25 @@ def parse_composition(composition: str | Mapping[str, float]) -> dict[str, float
 def checked_temperature(temperature_K: float) -> float:
     """A free-stream temperature [K] as a float, finite and within :data:`TEMPERATURE_RANGE_K`.
 
+    Parameters
+    ----------
+    temperature_K : float
+        The temperature [K].
+
+    Returns
+    -------
+    float
+        The same, checked.
+
     Raises
     ------
     InputError
         Not a number, not finite, or out of range (naming ``temperature_K``).
+
+    Examples
+    --------
+    >>> checked_temperature(900)
+    900.0
     """
     low, high = TEMPERATURE_RANGE_K
     return finite_number(temperature_K, "temperature_K", "K", minimum=low, maximum=high)
@@ -354,12 +464,35 @@ def finite_number(
     maximum: float | None = None,
     positive: bool = False,
 ) -> float:
-    """``value`` as a float, checked finite and in range; ``name`` is the parameter that gave it.
+    """``value`` as a float, checked finite and in range.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    name : str
+        The parameter that gave it (named in the error).
+    unit : str
+        Its unit, for the message ("" for none).
+    minimum, maximum : float, optional
+        Bounds, inclusive.
+    positive : bool
+        Whether it must be > 0.
+
+    Returns
+    -------
+    float
+        ``value`` as a float.
 
     Raises
     ------
     InputError
         Not a number, not finite, or out of range; naming ``name``.
+
+    Examples
+    --------
+    >>> finite_number("7.5", "speed", "km/s", minimum=0.0)
+    7.5
     """
     shown = f"{name} {value}{' ' + unit if unit else ''}"
     named = (name,)

@@ -27,9 +27,6 @@ _MEAN_SPEED = 3.0 * _SQRT_PI / 4.0
 #: Random-number slots of one packet and bounce, and bounces of one packet: index = (packet *
 #: _BOUNCES + bounce) * _SLOTS + slot.
 _SLOTS, _BOUNCES = 64, 1024
-#: Re-emission temperature rules of :class:`sunwind.forces.gas.chains.ChainLaws`: at the wall; Sentman's
-#: ``alpha_E T_w + (1 - alpha_E) m v^2 / (3 k)``; DRIA's ``... m v^2 / (4 k)``.
-AT_WALL, SENTMAN, DRIA = 0, 1, 2
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -188,12 +185,7 @@ def starts(
 
 @numba.njit(cache=True, nogil=True)
 def bounce(
-    side: NDArray[np.int64],
-    species: NDArray[np.int64],
-    point: NDArray[np.float64],
-    velocity: NDArray[np.float64],
-    weight: NDArray[np.float64],
-    packet: NDArray[np.int64],
+    molecules: tuple,
     depth: int,
     side_law: NDArray[np.int64],
     normals: NDArray[np.float64],
@@ -204,17 +196,52 @@ def bounce(
     totals: NDArray[np.float64],
     book: bool,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    """What each molecule arriving with ``velocity`` on ``side`` at ``point`` sends on: the mirrored
-    share of its law (``v - 2 (v . n) n``, weight times the share) or, for CLL, one draw of Lord's
-    kernel (weight kept; random numbers keyed by ``packet``, each molecule's own number, and ``depth``).
-    With ``book``, each outgoing leg's momentum ``w m v'`` is taken as escaping: subtracted from
-    ``totals`` (force, then moment about ``reference``); without (the first bounce), the panel law has
-    taken it so already. Returns the outgoing velocities, weights,
-    and which molecules send anything on.
+    """What each arriving molecule sends on: the mirrored share of its law, or one draw of CLL.
 
-    ``laws`` = (mirrored share, CLL flag, CLL ``alpha_n``, CLL ``sigma_t``, wall temperature [K]) per law.
+    The mirrored share leaves along ``v - 2 (v . n) n`` with the molecule's weight times the share; a
+    CLL molecule leaves with one draw of Lord's kernel and its whole weight (random numbers keyed by
+    the molecule's ``packet`` number and ``depth``). With ``book``, each outgoing leg's momentum ``w m
+    v'`` is taken as escaping: subtracted from ``totals``; without (the first bounce), the panel law has
+    taken it so already.
+
+    Parameters
+    ----------
+    molecules : Molecules
+        :class:`~sunwind.forces.gas.chains.Molecules` arriving: ``side``, ``species``, ``point`` [m],
+        ``velocity`` [m/s] (into the side), ``weight`` [1/s] and ``packet``, (n,) or (n, 3) each.
+    depth : int
+        Bounces so far (keys the random numbers).
+    side_law : (n_sides,) int64
+        Law of each side, into ``laws``.
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    mass : (k,) float64
+        Mass of each species [kg].
+    laws : ChainLaws
+        :class:`~sunwind.forces.gas.chains.ChainLaws`: ``mirrored``, ``cll``, ``alpha_n``, ``sigma_t``
+        and ``wall_temperature_K`` per law are read.
+    seed : uint64
+        Seed of the random numbers.
+    reference : (3,) float64
+        Torque reference point [m].
+    totals : (6,) float64
+        Force [N] and torque [N m] so far; updated in place.
+    book : bool
+        Whether the outgoing momentum is booked as escaping.
+
+    Returns
+    -------
+    out_velocity : (n, 3) float64
+        Velocity of what each molecule sends on [m/s].
+    out_weight : (n,) float64
+        Its weight [1/s].
+    sends : (n,) bool
+        Which molecules send anything on.
     """
-    mirrored, is_cll, alpha_n, sigma_t, wall = laws[0], laws[1], laws[2], laws[3], laws[4]
+    side, species, point, velocity = molecules.side, molecules.species, molecules.point, molecules.velocity
+    weight, packet = molecules.weight, molecules.packet
+    mirrored, is_cll, alpha_n, sigma_t = laws.mirrored, laws.cll, laws.alpha_n, laws.sigma_t
+    wall = laws.wall_temperature_K
     n = side.shape[0]
     out_velocity = np.zeros((n, 3))
     out_weight = np.zeros(n)
@@ -293,16 +320,48 @@ def land(
     totals: NDArray[np.float64],
     deposit: NDArray[np.float64],
 ) -> NDArray[np.bool_]:
-    """Book each leg (leaving ``origin`` with ``velocity``, ``weight``) that meets a side: its momentum
-    ``w m v`` stays with the model (added to ``totals`` with its moment; any point of the leg's line
-    gives the same moment), and the diffuse share of the struck side's law is re-emitted there, its
-    momentum rate and sqrt(mass)-weighted rate added to ``deposit`` (2, n_sides) (at the temperature
-    of the law's rule for this molecule's energy). A leg meeting a side the model does not have
-    (``BLIND``) is absorbed. Returns which legs struck a side that can send them on.
+    """Book each leg that meets a side: its momentum stays, its diffuse share goes to the exchange.
 
-    ``laws`` = (diffuse share, temperature rule, ``alpha_E``, wall temperature [K]) per law.
+    A leg's momentum ``w m v`` stays with the model (added to ``totals`` with its moment; any point of
+    the leg's line gives the same moment), and the diffuse share of the struck side's law is re-emitted
+    there at ``T_r = wall_weight T_w + energy_weight m v^2 / (2 k)``, its momentum rate and
+    sqrt(mass)-weighted rate added to ``deposit``. A leg meeting a side the model does not have
+    (``BLIND``) is absorbed.
+
+    Parameters
+    ----------
+    struck : (n,) int64
+        Side each leg meets; negative where it escapes (``BLIND``: a side the model does not have).
+    origin : (n, 3) float64
+        Where each leg starts [m].
+    species : (n,) int64
+        Species of each molecule, into ``mass``.
+    velocity : (n, 3) float64
+        Velocity of each leg [m/s].
+    weight : (n,) float64
+        Molecules per second each leg stands for [1/s].
+    side_law : (n_sides,) int64
+        Law of each side, into ``laws``.
+    mass : (k,) float64
+        Mass of each species [kg].
+    laws : ChainLaws
+        :class:`~sunwind.forces.gas.chains.ChainLaws`: ``diffuse``, ``wall_weight``, ``energy_weight``
+        and ``wall_temperature_K`` per law are read.
+    reference : (3,) float64
+        Torque reference point [m].
+    totals : (6,) float64
+        Force [N] and torque [N m] so far; updated in place.
+    deposit : (2, n_sides) float64
+        Diffuse re-emission per side: momentum rate [N] and sqrt(mass)-weighted rate [sqrt(kg)/s];
+        updated in place.
+
+    Returns
+    -------
+    goes_on : (n,) bool
+        Which legs struck a side whose law sends some of them on.
     """
-    diffuse, rule, alpha_e, wall = laws[0], laws[1], laws[2], laws[3]
+    diffuse, wall_weight, energy_weight = laws.diffuse, laws.wall_weight, laws.energy_weight
+    wall = laws.wall_temperature_K
     n = struck.shape[0]
     goes_on = np.zeros(n, dtype=np.bool_)
     for i in range(n):
@@ -318,12 +377,10 @@ def land(
         law = side_law[s]
         share = diffuse[law]
         if share > 0.0:
-            temperature = wall[law]
-            energy = m * (velocity[i, 0] ** 2 + velocity[i, 1] ** 2 + velocity[i, 2] ** 2)
-            if rule[law] == SENTMAN:
-                temperature = alpha_e[law] * wall[law] + (1.0 - alpha_e[law]) * energy / (3.0 * _BOLTZMANN)
-            elif rule[law] == DRIA:
-                temperature = alpha_e[law] * wall[law] + (1.0 - alpha_e[law]) * energy / (4.0 * _BOLTZMANN)
+            speed_squared = velocity[i, 0] ** 2 + velocity[i, 1] ** 2 + velocity[i, 2] ** 2
+            temperature = wall_weight[law] * wall[law] + energy_weight[law] * m * speed_squared / (
+                2.0 * _BOLTZMANN
+            )
             rate = weight[i] * share
             deposit[0, s] += rate * m * _MEAN_SPEED * math.sqrt(2.0 * _BOLTZMANN * temperature / m)
             deposit[1, s] += rate * math.sqrt(m)

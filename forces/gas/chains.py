@@ -26,6 +26,7 @@ temperature arriving from every direction, which it returns as they came).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -33,7 +34,7 @@ from numpy.typing import NDArray
 from sunwind.forces.gas import chain_kernels as kernels
 from sunwind.forces.gas.angular import SpeciesLaws
 from sunwind.forces.gas.incident import incident
-from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+from sunwind.forces.gas.laws import GasSurfaces, reemission
 from sunwind.forces.gas.panel import GasGroups
 from sunwind.forces.reflection.beam_kernels import scene_rays, strike
 from sunwind.forces.reflection.beams import chain_model
@@ -52,24 +53,29 @@ CHAIN_SEED = 0xC4A1
 MOLECULE_BYTES = 320
 
 
-@dataclass(frozen=True, eq=False)
-class ChainLaws:
-    """What each gas-surface law does with a molecule it does not accommodate, per law (n_laws,).
+class ChainLaws(NamedTuple):
+    """What each gas-surface law does with the molecules it does not accommodate, per law (n_laws,).
+
+    Read from the laws' :class:`~sunwind.forces.gas.laws.Reemission`, so a law's shares are written
+    once, in its function in :mod:`sunwind.forces.gas.laws`. A named tuple, so the numba kernels read
+    its fields by name.
 
     Attributes
     ----------
     mirrored : float64
-        Share sent on mirrored: 1 for ``specular``, ``1 - sigma_n`` for ``schaaf-chambre``.
+        Share sent on mirrored: ``pressure_scale - 1`` of a law other than CLL (1 for ``specular``,
+        ``1 - sigma_n`` for ``schaaf-chambre``).
     cll : bool
         The law is CLL: all sent on, by one draw of its kernel.
     alpha_n, sigma_t : float64
         CLL's accommodations (unused elsewhere).
     diffuse : float64
-        Share re-emitted diffusely (to the exchange): 1 for ``sentman`` and ``dria``, ``sigma_n`` for
-        ``schaaf-chambre``.
-    rule : int64
-        Temperature of that re-emission (:data:`~sunwind.forces.gas.chain_kernels.AT_WALL`, ``SENTMAN``,
-        ``DRIA``), with ``energy_accommodation`` and ``wall_temperature_K``.
+        Share re-emitted diffusely (to the exchange): the law's ``emission_share``.
+    wall_weight, energy_weight : float64
+        The temperature of that re-emission for a molecule arriving at speed ``v``: ``wall_weight T_w +
+        energy_weight m v^2 / (2 k)`` [K].
+    wall_temperature_K : float64
+        ``T_w`` [K].
     """
 
     mirrored: NDArray[np.float64]
@@ -77,41 +83,129 @@ class ChainLaws:
     alpha_n: NDArray[np.float64]
     sigma_t: NDArray[np.float64]
     diffuse: NDArray[np.float64]
-    rule: NDArray[np.int64]
-    energy_accommodation: NDArray[np.float64]
+    wall_weight: NDArray[np.float64]
+    energy_weight: NDArray[np.float64]
     wall_temperature_K: NDArray[np.float64]
 
     @classmethod
     def of(cls, surfaces: GasSurfaces) -> ChainLaws:
-        code = surfaces.code
-        sigma_n = surfaces.normal_accommodation
-        schaaf = code == MODEL_CODES["schaaf-chambre"]
-        diffuse_law = (code == MODEL_CODES["sentman"]) | (code == MODEL_CODES["dria"])
-        rule = np.where(
-            code == MODEL_CODES["sentman"],
-            kernels.SENTMAN,
-            np.where(code == MODEL_CODES["dria"], kernels.DRIA, kernels.AT_WALL),
-        )
+        """The :class:`ChainLaws` of the laws ``surfaces``.
+
+        Parameters
+        ----------
+        surfaces : GasSurfaces
+            Law and parameters of each of ``n_laws`` laws.
+
+        Returns
+        -------
+        ChainLaws
+            One entry per law.
+
+        Examples
+        --------
+        >>> from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+        >>> surfaces = GasSurfaces.of({
+        ...     "code": [MODEL_CODES["specular"], MODEL_CODES["schaaf-chambre"], MODEL_CODES["sentman"]],
+        ...     "energy_accommodation": 0.9, "normal_accommodation": 0.75,
+        ...     "tangential_accommodation": 1.0, "wall_temperature_K": 300.0})
+        >>> laws = ChainLaws.of(surfaces)
+        >>> laws.mirrored.tolist(), laws.diffuse.tolist()
+        ([1.0, 0.25, 0.0], [0.0, 0.75, 1.0])
+        >>> laws.sends.tolist()
+        [True, True, False]
+        """
+        # the shares and weights do not depend on the stream: any speed ratio and temperature give them
+        law = reemission(surfaces, 1.0, 1.0)
+        n = len(surfaces)
+        is_cll = np.zeros(n, dtype=bool) if law.cll_alpha_n is None else np.isfinite(law.cll_alpha_n)
         return cls(
-            mirrored=np.where(code == MODEL_CODES["specular"], 1.0, np.where(schaaf, 1.0 - sigma_n, 0.0)),
-            cll=code == MODEL_CODES["cll"],
-            alpha_n=surfaces.normal_accommodation,
-            sigma_t=surfaces.tangential_accommodation,
-            diffuse=np.where(diffuse_law, 1.0, np.where(schaaf, sigma_n, 0.0)),
-            rule=rule.astype(np.int64),
-            energy_accommodation=surfaces.energy_accommodation,
+            mirrored=np.where(is_cll, 0.0, law.pressure_scale - 1.0),
+            cll=is_cll,
+            alpha_n=np.full(n, np.nan) if law.cll_alpha_n is None else law.cll_alpha_n,
+            sigma_t=law.shear_scale,
+            diffuse=law.emission_share,
+            wall_weight=law.wall_weight,
+            energy_weight=law.energy_weight,
             wall_temperature_K=surfaces.wall_temperature_K,
         )
 
     @property
     def sends(self) -> NDArray[np.bool_]:
-        """Laws that send some arriving molecules on unaccommodated."""
+        """Laws that send some arriving molecules on unaccommodated, (n_laws,) bool."""
         return self.cll | (self.mirrored > 0.0)
 
 
+class SpeciesStream(NamedTuple):
+    """The free stream by species, as the molecular chains draw it.
+
+    Attributes
+    ----------
+    mass_kg : (k,) float64
+        Molecular mass of each species [kg].
+    density_m3 : (k,) float64
+        Number density of each species [m^-3].
+    speed_m_s : float
+        Speed of the flow relative to the body [m/s].
+    """
+
+    mass_kg: NDArray[np.float64]
+    density_m3: NDArray[np.float64]
+    speed_m_s: float
+
+
+class Molecules(NamedTuple):
+    """Molecules on their way, one row each; a named tuple, so the kernels read fields by name.
+
+    Attributes
+    ----------
+    side : (n,) int64
+        Side each arrives at.
+    species : (n,) int64
+        Its species.
+    point : (n, 3) float64
+        Where it arrives [m].
+    velocity : (n, 3) float64
+        Its velocity [m/s].
+    weight : (n,) float64
+        Molecules per second it stands for [1/s].
+    packet : (n,) int64
+        Its own number, which keys its random numbers.
+    """
+
+    side: NDArray[np.int64]
+    species: NDArray[np.int64]
+    point: NDArray[np.float64]
+    velocity: NDArray[np.float64]
+    weight: NDArray[np.float64]
+    packet: NDArray[np.int64]
+
+    def take(self, rows: NDArray) -> Molecules:
+        """The molecules ``rows`` (indices or a mask).
+
+        Parameters
+        ----------
+        rows : (m,) int64 or (n,) bool
+            Which molecules.
+
+        Returns
+        -------
+        Molecules
+            Those molecules.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> one = Molecules(np.arange(3), np.zeros(3, int), np.zeros((3, 3)), np.ones((3, 3)),
+        ...                 np.ones(3), np.arange(3))
+        >>> one.take(np.array([True, False, True])).side.tolist()
+        [0, 2]
+        """
+        return Molecules(*(field[rows] for field in self))
+
+
 @dataclass(frozen=True)
-class ChainTotals:
-    """What the chains of one attitude change; body frame, SI.
+class MoleculeChainTotals:
+    """What the molecular chains of one attitude change; body frame, SI.
 
     Attributes
     ----------
@@ -136,7 +230,20 @@ class ChainTotals:
     truncated: float
 
     def to_json(self) -> dict:
-        """The counts, JSON-ready."""
+        """The counts, JSON-ready.
+
+        Returns
+        -------
+        dict
+            ``molecules``, ``rays`` and ``truncated``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> MoleculeChainTotals(force_N=np.zeros(3), torque_Nm=np.zeros(3), deposit=np.zeros((2, 1)),
+        ...                     packets=4, rays=9, truncated=0.0).to_json()
+        {'molecules': 4, 'rays': 9, 'truncated': 0.0}
+        """
         return {"molecules": self.packets, "rays": self.rays, "truncated": self.truncated}
 
 
@@ -144,36 +251,85 @@ def molecular_chains(
     craft: Spacecraft,
     groups: GasGroups,
     laws: SpeciesLaws,
-    stream: tuple[NDArray[np.float64], NDArray[np.float64], float],
+    stream: SpeciesStream,
     u: NDArray[np.float64],
     reference_m: NDArray[np.float64],
     budget: int,
-) -> ChainTotals:
+) -> MoleculeChainTotals:
     """Follow the unaccommodated molecules of one attitude (module docstring).
 
-    ``stream`` = species masses [kg], number densities [m^-3] (as ``laws``) and the speed [m/s];
-    ``budget`` the molecules drawn in all (at least one per sending side, at most
-    :data:`MAX_PER_SIDE`).
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    groups : GasGroups
+        Its sides grouped by law and normal.
+    laws : SpeciesLaws
+        The free stream by species and each law's answer (species as ``stream``).
+    stream : SpeciesStream
+        Species masses [kg], number densities [m^-3] and the flow speed [m/s] (a plain 3-tuple in that
+        order is taken too).
+    u : (3,) float64
+        Unit flow direction, ``v_rel / |v_rel|``.
+    reference_m : (3,) float64
+        Torque reference point [m].
+    budget : int
+        Molecules drawn in all (at least one per sending side, at most :data:`MAX_PER_SIDE`).
+
+    Returns
+    -------
+    MoleculeChainTotals
+        The force and torque they change and what they bring to the exchange.
+
+    Raises
+    ------
+    MemoryError
+        The molecules would not fit in the memory left (:func:`~sunwind.geometry.memory.require`).
+
+    Examples
+    --------
+    A convex model sends nothing on to another side, so no chain is followed:
+
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.atmosphere import Atmosphere
+    >>> from sunwind.forces.gas.panel import gas_groups, species_laws, species_streams
+    >>> from sunwind.geometry.materials import GasSurface, Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> mirror = Material("m", 0.3, 0.5, gas=GasSurface(model="specular"))
+    >>> craft = build_spacecraft(box(), uniform=mirror)
+    >>> groups = gas_groups(craft)
+    >>> air = Atmosphere({"O": 1e15}, 1000.0, "example")
+    >>> laws = species_laws(groups.surfaces, air, 7500.0)
+    >>> stream = SpeciesStream(*species_streams(air), 7500.0)
+    >>> u = np.array([1.0, 0.0, 0.0])
+    >>> molecular_chains(craft, groups, laws, stream, u, np.zeros(3), 1000).packets
+    0
     """
+    stream = SpeciesStream(*stream)
     chain_laws = ChainLaws.of(groups.surfaces)
     side_law = groups.law[groups.side]
     senders = np.flatnonzero(chain_laws.sends[side_law] & ~clearance(craft).open_sky)
-    molecules = _arrivals(craft, senders, laws, stream, u, budget) if len(senders) else None
-    if molecules is None:
-        return ChainTotals(np.zeros(3), np.zeros(3), np.zeros((2, craft.n_sides)), 0, 0, 0.0)
-    drawn, molecules = molecules
-    totals, deposit = np.zeros(6), np.zeros((2, craft.n_sides))
-    rays, truncated = _follow(
-        craft, molecules, (chain_laws, side_law, stream[0]), reference_m, totals, deposit
-    )
-    first = float(np.sum(molecules[4]))
-    return ChainTotals(
-        force_N=totals[:3].copy(),
-        torque_Nm=totals[3:].copy(),
-        deposit=deposit,
+    arrived = _arrivals(craft, senders, laws, stream, u, budget) if len(senders) else None
+    if arrived is None:
+        return MoleculeChainTotals(
+            force_N=np.zeros(3),
+            torque_Nm=np.zeros(3),
+            deposit=np.zeros((2, craft.n_sides)),
+            packets=0,
+            rays=0,
+            truncated=0.0,
+        )
+    drawn, molecules = arrived
+    followed = _follow(craft, molecules, chain_laws, side_law, stream.mass_kg, reference_m)
+    first = float(np.sum(molecules.weight))
+    return MoleculeChainTotals(
+        force_N=followed.totals[:3].copy(),
+        torque_Nm=followed.totals[3:].copy(),
+        deposit=followed.deposit,
         packets=drawn,
-        rays=drawn + rays,
-        truncated=truncated / first if first > 0 else 0.0,
+        rays=drawn + followed.rays,
+        truncated=followed.truncated / first if first > 0 else 0.0,
     )
 
 
@@ -181,14 +337,14 @@ def _arrivals(
     craft: Spacecraft,
     senders: NDArray[np.int64],
     laws: SpeciesLaws,
-    stream: tuple[NDArray[np.float64], NDArray[np.float64], float],
+    stream: SpeciesStream,
     u: NDArray[np.float64],
     budget: int,
-) -> tuple[int, tuple[NDArray, ...]] | None:
+) -> tuple[int, Molecules] | None:
     """Molecules drawn from the free stream onto ``senders`` (species by their mass flux), and of them
-    those that arrive unobstructed, a ray cast back along each path: side, species, point [m], velocity
-    [m/s], weight [1/s] and number of each; None where no molecule strikes a sender."""
-    mass, density, speed = stream
+    those that arrive unobstructed, a ray cast back along each path; None where no molecule strikes a
+    sender."""
+    mass, density, speed = stream.mass_kg, stream.density_m3, stream.speed_m_s
     gamma = craft.side_normals[senders] @ u
     flux = np.column_stack(
         [
@@ -205,53 +361,52 @@ def _arrivals(
     per_side = int(np.clip(budget // len(senders), 1, MAX_PER_SIDE))
     drawn_at_most = len(senders) * per_side
     require(
-        MOLECULE_BYTES * drawn_at_most, f"{count(drawn_at_most)} chain molecules", "lower chain_molecules",
+        MOLECULE_BYTES * drawn_at_most,
+        f"{count(drawn_at_most)} chain molecules",
+        "lower chain_molecules",
         ("chain_molecules",),
-    )  # fmt: skip
-    drawn = kernels.starts(
+    )
+    side, species, point, velocity, weight = kernels.starts(
         senders, per_side, craft.triangles, craft.side_facet, craft.side_normals, craft.side_areas,
         flux, pick, speed / laws.speed_ratio, -speed * u, np.uint64(CHAIN_SEED),
     )  # fmt: skip
-    side, velocity = drawn[0], drawn[3]
+    drawn = Molecules(side, species, point, velocity, weight, np.arange(len(side), dtype=np.int64))
     scene = craft.scene
     back = -velocity / np.linalg.norm(velocity, axis=1)[:, None]
     origins, directions = scene_rays(
-        drawn[2], craft.side_normals[side], back, scene.centre, scene.half_size, scene.offset_m
+        point, craft.side_normals[side], back, scene.centre, scene.half_size, scene.offset_m
     )
-    arrived = np.flatnonzero(~scene.occluded(origins, directions))
-    return len(side), (*(a[arrived] for a in drawn), arrived.astype(np.int64))
+    return len(side), drawn.take(np.flatnonzero(~scene.occluded(origins, directions)))
+
+
+class _Followed(NamedTuple):
+    """What :func:`_follow` books: force and torque (6,) [N, N m], the exchange's ``deposit`` (2,
+    n_sides), the rays cast and the weight still travelling when chains were cut [1/s]."""
+
+    totals: NDArray[np.float64]
+    deposit: NDArray[np.float64]
+    rays: int
+    truncated: float
 
 
 def _follow(
     craft: Spacecraft,
-    molecules: tuple[NDArray, ...],
-    laws: tuple[ChainLaws, NDArray[np.int64], NDArray[np.float64]],
+    molecules: Molecules,
+    chain_laws: ChainLaws,
+    side_law: NDArray[np.int64],
+    mass: NDArray[np.float64],
     reference_m: NDArray[np.float64],
-    totals: NDArray[np.float64],
-    deposit: NDArray[np.float64],
-) -> tuple[int, float]:
-    """Send ``molecules`` (side, species, point, velocity, weight, number) on from bounce to bounce,
-    booking momentum in ``totals`` and diffuse re-emission in ``deposit``; the rays cast and the weight
-    still travelling when chains were cut."""
-    chain_laws, side_law, mass = laws
-    side, species, point, velocity, weight, packet = molecules
-    bounce_laws = (
-        chain_laws.mirrored, chain_laws.cll, chain_laws.alpha_n, chain_laws.sigma_t,
-        chain_laws.wall_temperature_K,
-    )  # fmt: skip
-    land_laws = (
-        chain_laws.diffuse,
-        chain_laws.rule,
-        chain_laws.energy_accommodation,
-        chain_laws.wall_temperature_K,
-    )
-    start, rays, truncated = weight.copy(), 0, 0.0
+) -> _Followed:
+    """Send ``molecules`` on from bounce to bounce (``side_law`` the law of each side, ``mass`` of each
+    species [kg]), booking momentum and diffuse re-emission."""
+    totals, deposit = np.zeros(6), np.zeros((2, craft.n_sides))
+    start, rays, truncated = molecules.weight.copy(), 0, 0.0
     scene, model = craft.scene, chain_model(craft)
     seed = np.uint64(CHAIN_SEED)
     for depth in range(DEPTH + 1):
         out_velocity, out_weight, sends = kernels.bounce(
-            side, species, point, velocity, weight, packet, depth, side_law, craft.side_normals, mass,
-            bounce_laws, seed, reference_m, totals, depth > 0,
+            molecules, depth, side_law, craft.side_normals, mass, chain_laws, seed, reference_m, totals,
+            depth > 0,
         )  # fmt: skip
         keep = sends & (out_weight >= CUTOFF * start)
         truncated += float(np.sum(out_weight[sends & ~keep]))
@@ -259,8 +414,9 @@ def _follow(
             truncated += float(np.sum(out_weight[keep]))
         if depth == DEPTH or not np.any(keep):
             break
-        lift = craft.side_normals[side[keep]]
-        leg_velocity, leg_weight, leg_point = out_velocity[keep], out_weight[keep], point[keep]
+        leaving = molecules.take(keep)
+        leg_velocity, leg_weight, leg_point = out_velocity[keep], out_weight[keep], leaving.point
+        lift = craft.side_normals[leaving.side]
         direction = leg_velocity / np.linalg.norm(leg_velocity, axis=1)[:, None]
         origins, directions = scene_rays(
             leg_point, lift, direction, scene.centre, scene.half_size, scene.offset_m
@@ -271,10 +427,16 @@ def _follow(
         )  # fmt: skip
         rays += len(struck)
         goes_on = kernels.land(
-            struck, leg_point, species[keep], leg_velocity, leg_weight, side_law, mass, land_laws,
+            struck, leg_point, leaving.species, leg_velocity, leg_weight, side_law, mass, chain_laws,
             reference_m, totals, deposit,
         )  # fmt: skip
-        side, species, point = struck[goes_on], species[keep][goes_on], landing[goes_on]
-        velocity, weight = leg_velocity[goes_on], leg_weight[goes_on]
-        packet, start = packet[keep][goes_on], start[keep][goes_on]
-    return rays, truncated
+        molecules = Molecules(
+            side=struck[goes_on],
+            species=leaving.species[goes_on],
+            point=landing[goes_on],
+            velocity=leg_velocity[goes_on],
+            weight=leg_weight[goes_on],
+            packet=leaving.packet[goes_on],
+        )
+        start = start[keep][goes_on]
+    return _Followed(totals=totals, deposit=deposit, rays=rays, truncated=truncated)

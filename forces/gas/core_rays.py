@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.gas.core_cone import CoreCone
-from sunwind.forces.gas.visible_kernels import core_samples, core_sums
+from sunwind.forces.gas.visible_kernels import FlowLaw, LawTables, core_samples, core_sums
 from sunwind.geometry.memory import count, require
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.rays.clear_kernels import cone_may_be_blocked, may_be_blocked
@@ -76,13 +76,39 @@ def core_sampling(n_sides: int, budget: int) -> tuple[int, tuple[int, int]]:
 
 
 def core_corrections(
-    craft: Spacecraft, flow: Illumination, cone: CoreCone, laws: tuple, budget: int
+    craft: Spacecraft,
+    flow: Illumination,
+    cone: CoreCone,
+    flow_law: FlowLaw,
+    tables: LawTables,
+    budget: int,
 ) -> CoreCorrections:
     """The :class:`CoreCorrections` of one attitude (module docstring).
 
-    ``flow`` is the exact shadow along ``u``; ``laws`` = (``law_of``, ``tables``) of
-    :func:`~sunwind.forces.gas.visible_kernels.core_sums`; ``budget`` the most core rays
-    (:func:`core_sampling`).
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    flow : Illumination
+        The exact shadow along ``u = flow.direction``.
+    cone : CoreCone
+        The free stream's core cone.
+    flow_law : FlowLaw
+        The law of each side, ``u`` and the cone's cosine.
+    tables : LawTables
+        Each law's kernels per direction, its ``a`` and ``c``, and the side normals.
+    budget : int
+        Most core rays (:func:`core_sampling`).
+
+    Returns
+    -------
+    CoreCorrections
+        What the core brings every side beyond the unobstructed core ``K``.
+
+    Raises
+    ------
+    MemoryError
+        The core rays would not fit in the memory left.
     """
     n, u = craft.n_sides, flow.direction
     gamma = craft.side_normals @ u
@@ -93,8 +119,11 @@ def core_corrections(
     rays = 0
     if len(sides):
         plan = (cone, core_sampling(n, budget))
-        rays = _sample_core(craft, sides, gamma[sides] > 0.0, plan, laws, (force, moment, emitted))
-    return CoreCorrections(at_lit, at_centroid, force, moment, emitted, rays)
+        sums = (force, moment, emitted)
+        rays = _sample_core(craft, sides, gamma[sides] > 0.0, plan, flow_law, tables, sums)
+    return CoreCorrections(
+        at_lit=at_lit, at_centroid=at_centroid, force=force, moment=moment, emitted=emitted, rays=rays
+    )
 
 
 def _sample_core(
@@ -102,15 +131,15 @@ def _sample_core(
     sides: NDArray[np.int64],
     facing: NDArray[np.bool_],
     plan: tuple[CoreCone, tuple[int, tuple[int, int]]],
-    laws: tuple,
+    flow_law: FlowLaw,
+    tables: LawTables,
     sums: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
 ) -> int:
     """Cast the core rays of ``sides`` (those facing ``u``: ``facing``) at ``plan`` = (cone, (level,
     strata)) and write their :func:`~sunwind.forces.gas.visible_kernels.core_sums` into ``sums`` (force,
     moment, emitted); the rays cast."""
     cone, (level, strata) = plan
-    law_of, tables = laws
-    u = law_of[1]
+    u = flow_law.u
     points, per_point = level**2, strata[0] * strata[1]
     rows = len(sides) * points
     require(
@@ -157,7 +186,7 @@ def _sample_core(
             blocked,
             samples,
             sides,
-            law_of,
+            flow_law,
             tables,
             cone.normaliser,
             *sums,

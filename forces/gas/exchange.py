@@ -142,14 +142,40 @@ def _escaping(
     return out
 
 
-def gas_interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
-    """``K_IS`` of eq. (7) for molecules (``rho = 1`` on every side): re-emitted molecules that meet
-    the spacecraft again over those that escape; 0 for a convex body."""
-    escaping = float(np.einsum("i,i->", craft.side_areas, view.escape_fraction))
-    returning = float(np.einsum("i,i->", craft.side_areas, 1.0 - view.escape_fraction))
-    if returning <= 0.0:
-        return 0.0
-    return returning / escaping if escaping > 0 else float("inf")
+def open_plate_recoil(
+    craft: Spacecraft, momentum_emitted: NDArray[np.float64], reference_m: NDArray[np.float64]
+) -> ExchangeTotals:
+    """The recoil of molecules each side re-emits diffusely when all of them leave as from an open
+    plate (``(2/3) n`` per unit momentum, as the panel law lets the first re-emission leave): what the
+    chains land is re-emitted so in ``specular`` mode, which exchanges nothing between sides.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+    momentum_emitted : (n_sides,) float64
+        Momentum per second each side re-emits diffusely [N] (the chains' ``deposit[0]``).
+    reference_m : (3,) float64
+        Torque reference point [m].
+
+    Returns
+    -------
+    ExchangeTotals
+        Force [N] and torque about ``reference_m`` [N m].
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1)
+    >>> craft = model.craft
+    >>> side = int(np.argmax(craft.side_normals[:, 2]))  # a side facing +z
+    >>> emitted = np.zeros(craft.n_sides)
+    >>> emitted[side] = 3.0
+    >>> open_plate_recoil(craft, emitted, craft.side_centroids[side]).force_N.round(12) + 0.0
+    array([ 0.,  0., -2.])
+    """
+    escaping = LAMBERT_FACTOR * momentum_emitted[:, None] * craft.side_normals
+    lever = craft.side_centroids - reference_m
+    return ExchangeTotals(force_N=-escaping.sum(axis=0), torque_Nm=-np.cross(lever, escaping).sum(axis=0))
 
 
 def molecular_exchange(

@@ -36,6 +36,15 @@ LONGITUDE_RANGE_DEG = (-360.0, 360.0)
 #: 2600 K (F10.7 500 sfu, Ap 400). Outside, its fit has run away (inf, 1e7 K or below 0 K where F10.7a
 #: is far above F10.7, or both near 0) and the indices are refused.
 MSIS_TEMPERATURE_RANGE_K = (50.0, 5000.0)
+#: Space weather NRLMSIS is given by default (the reference inputs of NRLMSIS's own check values):
+#: the daily F10.7 of the day before and its 81-day centred mean [sfu] of moderate solar activity, and the
+#: daily Ap of a quiet field. Every default of these indices (``nrlmsis``, the orbit's ``SpaceWeather``,
+#: the CLI flags) reads them here.
+DEFAULT_F107_SFU = 150.0
+DEFAULT_F107A_SFU = 150.0
+DEFAULT_AP = 4.0
+#: NRLMSIS version used by default.
+DEFAULT_MSIS_VERSION = 2.1
 #: Model versions ``pymsis.calculate`` accepts -> the model's name.
 _MSIS_VERSIONS = {"2.1": "NRLMSIS 2.1", "2.0": "NRLMSIS 2.0", "0": "NRLMSISE-00"}
 #: Member of ``pymsis.Variable`` (the output columns of ``pymsis.calculate``, pymsis >= 0.10) per species.
@@ -56,10 +65,10 @@ def nrlmsis(
     latitude_deg: float = 0.0,
     longitude_deg: float = 0.0,
     time: str | datetime | date | np.datetime64 = "2024-01-01T00:00:00Z",
-    f107: float = 150.0,
-    f107a: float = 150.0,
-    ap: float = 4.0,
-    version: float | str = 2.1,
+    f107: float = DEFAULT_F107_SFU,
+    f107a: float = DEFAULT_F107A_SFU,
+    ap: float = DEFAULT_AP,
+    version: float | str = DEFAULT_MSIS_VERSION,
 ) -> Atmosphere:
     """The atmosphere of NRLMSIS (through ``pymsis.calculate``) at one place and time.
 
@@ -84,15 +93,15 @@ def nrlmsis(
         only checked).
     f107 : float
         Daily F10.7 solar radio flux of the previous day [sfu = 1e-22 W m^-2 Hz^-1], 0 to 500 (the
-        highest on record is about 450). Default 150.
+        highest on record is about 450). Default :data:`DEFAULT_F107_SFU` (150).
     f107a : float
         81-day centred average of F10.7 [sfu], 0 to 500. Indices for which NRLMSIS's fit runs away (a
         temperature outside :data:`MSIS_TEMPERATURE_RANGE_K`: F10.7a far above F10.7, or both near 0)
-        are refused. Default 150.
+        are refused. Default :data:`DEFAULT_F107A_SFU` (150).
     ap : float
-        Daily geomagnetic Ap index, 0 to 400 (the top of its scale). Default 4.
+        Daily geomagnetic Ap index, 0 to 400 (the top of its scale). Default :data:`DEFAULT_AP` (4).
     version : float or str
-        NRLMSIS version: 2.1 (default), 2.0, or 0 for NRLMSISE-00.
+        NRLMSIS version: 2.1 (default, :data:`DEFAULT_MSIS_VERSION`), 2.0, or 0 for NRLMSISE-00.
 
     Returns
     -------

@@ -31,7 +31,17 @@ from sunwind.forces.gas.core_cone import CoreCone, core_cone
 from sunwind.forces.gas.core_rays import MIN_SIDES_PER_CHUNK, core_corrections
 from sunwind.forces.gas.laws import GasSurfaces
 from sunwind.forces.gas.panel import GasGroups, species_laws
-from sunwind.forces.gas.visible_kernels import core_loads, side_loads, sky_sums
+from sunwind.forces.gas.visible_kernels import (
+    CoreParts,
+    FlowLaw,
+    GroupLoads,
+    LawTables,
+    SideGeometry,
+    SkyParts,
+    core_loads,
+    side_loads,
+    sky_sums,
+)
 from sunwind.geometry.parallel import map_ranges
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
@@ -152,15 +162,15 @@ def arrival(
     laws, directions, cone = tables.laws, tables.directions, tables.cone
     n = craft.n_sides
     side_law = groups.law[groups.side]
-    law_tables = (
-        directions.channels,
-        directions.cll,
-        laws.pressure_scale,
-        laws.shear_scale,
-        craft.side_normals,
+    law_tables = LawTables(
+        channels=directions.channels,
+        cll=directions.cll,
+        pressure_scale=laws.pressure_scale,
+        shear_scale=laws.shear_scale,
+        normals=craft.side_normals,
     )
-    law_of = (side_law, u, math.cos(cone.half_angle))
-    core = core_corrections(craft, flow, cone, (law_of, law_tables), core_rays)
+    flow_law = FlowLaw(side_law=side_law, u=u, cos_core=math.cos(cone.half_angle))
+    core = core_corrections(craft, flow, cone, flow_law, law_tables, core_rays)
     sky_force, sky_moment, sky_emitted = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((n, 2))
     with_rays = np.flatnonzero(np.diff(sky.start) > 0)
     map_ranges(
@@ -168,7 +178,7 @@ def arrival(
             with_rays,
             sky.start,
             (sky.direction, sky.lever),
-            law_of,
+            flow_law,
             law_tables,
             math.pi / sky.rays_per_side,
             sky_force,
@@ -181,16 +191,24 @@ def arrival(
         256,
     )
     force, torque, emitted = np.empty((3, n)), np.empty((3, n)), np.empty((2, n))
-    core_parts = (core.at_lit, core.at_centroid, flow.lit_centroid, core.force, core.moment, core.emitted)
+    core_parts = CoreParts(
+        at_lit=core.at_lit,
+        at_centroid=core.at_centroid,
+        lit_centroid=flow.lit_centroid,
+        force=core.force,
+        moment=core.moment,
+        emitted=core.emitted,
+    )
+    sky_parts = SkyParts(keeps_open=sky.keeps_open, force=sky_force, moment=sky_moment, emitted=sky_emitted)
     map_ranges(
         lambda lo, hi: side_loads(
             groups.side,
-            (groups.law, groups.normals, closed),
+            GroupLoads(law=groups.law, normals=groups.normals, closed=closed),
             cone.gamma_table,
             u,
-            (craft.side_areas, craft.side_centroids),
+            SideGeometry(areas=craft.side_areas, centroids=craft.side_centroids),
             core_parts,
-            (sky.keeps_open, sky_force, sky_moment, sky_emitted),
+            sky_parts,
             reference_m,
             force,
             torque,

@@ -10,12 +10,116 @@ same bits as one.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.geometry.views.hemisphere import side_key, square_to_triangle, uniform
+
+
+class LawTables(NamedTuple):
+    """Each law's kernels per direction and what the sides need to apply them (read by name in numba).
+
+    Attributes
+    ----------
+    channels : (n_laws, n_x, 4) float64
+        :attr:`~sunwind.forces.gas.angular.DirectionTables.channels`, on ``x = sin(psi / 2)``.
+    cll : (n_laws, n_x, n_mu) float64 or None
+        CLL's reflected normal push, on ``mu = t^2``; None where no law is CLL.
+    pressure_scale, shear_scale : (n_laws,) float64
+        Each law's ``a`` and ``c`` (:class:`~sunwind.forces.gas.angular.SpeciesLaws`).
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    """
+
+    channels: NDArray[np.float64]
+    cll: NDArray[np.float64] | None
+    pressure_scale: NDArray[np.float64]
+    shear_scale: NDArray[np.float64]
+    normals: NDArray[np.float64]
+
+
+class FlowLaw(NamedTuple):
+    """The law of each side and the flow it meets.
+
+    Attributes
+    ----------
+    side_law : (n_sides,) int64
+        Law of each side, into the :class:`LawTables`.
+    u : (3,) float64
+        Unit flow direction.
+    cos_core : float
+        Cosine of the core cone's half-angle ``psi_c``.
+    """
+
+    side_law: NDArray[np.int64]
+    u: NDArray[np.float64]
+    cos_core: float
+
+
+class GroupLoads(NamedTuple):
+    """What the whole stream does on an unobstructed side of each group.
+
+    Attributes
+    ----------
+    law : (n_groups,) int64
+        Law of each group.
+    normals : (n_groups, 3) float64
+        Its outward unit normal.
+    closed : (n_groups, 5) float64
+        Force per unit area [Pa] (3) and the two re-emission channels.
+    """
+
+    law: NDArray[np.int64]
+    normals: NDArray[np.float64]
+    closed: NDArray[np.float64]
+
+
+class SideGeometry(NamedTuple):
+    """Side areas (n_sides,) [m^2] and centroids (n_sides, 3) [m]."""
+
+    areas: NDArray[np.float64]
+    centroids: NDArray[np.float64]
+
+
+class CoreParts(NamedTuple):
+    """What the core brings each side (:class:`~sunwind.forces.gas.core_rays.CoreCorrections`).
+
+    Attributes
+    ----------
+    at_lit, at_centroid : (n_sides,) float64
+        Shares of the unobstructed core ``K`` acting at the lit centroid and at the centroid.
+    lit_centroid : (n_sides, 3) float64
+        Lit centroids of the exact shadow along ``u`` [m].
+    force, moment, emitted : (n_sides, 3), (n_sides, 3), (n_sides, 2) float64
+        :func:`core_sums`'s corrections per unit area: force [Pa], moment [Pa m], re-emission.
+    """
+
+    at_lit: NDArray[np.float64]
+    at_centroid: NDArray[np.float64]
+    lit_centroid: NDArray[np.float64]
+    force: NDArray[np.float64]
+    moment: NDArray[np.float64]
+    emitted: NDArray[np.float64]
+
+
+class SkyParts(NamedTuple):
+    """What each side's sampled sky rays give (:func:`sky_sums`).
+
+    Attributes
+    ----------
+    keeps_open : (n_sides,) bool
+        Whether the side's kept rays are its open ones (else its blocked ones).
+    force, moment, emitted : (n_sides, 3), (n_sides, 3), (n_sides, 2) float64
+        Their sums per unit area: force [Pa], moment about the centroid [Pa m], re-emission.
+    """
+
+    keeps_open: NDArray[np.bool_]
+    force: NDArray[np.float64]
+    moment: NDArray[np.float64]
+    emitted: NDArray[np.float64]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -99,8 +203,8 @@ def core_sums(
     blocked: NDArray[np.bool_],
     samples: tuple[NDArray[np.float32], NDArray[np.float64], NDArray[np.float64]],
     sides: NDArray[np.int64],
-    law_of: tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]],
-    tables: tuple,
+    flow_law: FlowLaw,
+    tables: LawTables,
     normaliser: float,
     force: NDArray[np.float64],
     moment: NDArray[np.float64],
@@ -123,12 +227,13 @@ def core_sums(
     :func:`sky_sums`) over what the ``u``-shadow leaves out or counts wrongly: directions ``w`` drawn
     with density ``k_P / Z`` in the cone (``normaliser`` = ``Z`` [Pa]). It keeps the direction of what
     is blocked (a shadow on one side of the cone turns the shear), and vanishes exactly where no ray
-    meets the model and none along ``u`` would. ``law_of`` = the law of each side, ``u``, and the cone's
-    cosine; ``tables`` as :func:`sky_sums`.
+    meets the model and none along ``u`` would. ``flow_law`` = the law of each side, ``u``, and the
+    cone's cosine; ``tables`` as :func:`sky_sums`.
     """
     directions, mu_weights, levers = samples
-    side_law, u, _ = law_of
-    channels, cll, pressure, shear, normals = tables
+    side_law, u = flow_law.side_law, flow_law.u
+    channels, cll, normals = tables.channels, tables.cll, tables.normals
+    pressure, shear = tables.pressure_scale, tables.shear_scale
     per_point = mu_weights.shape[1]
     scale = normaliser / (n_points * per_point)
     for k in range(lo, hi):
@@ -227,8 +332,8 @@ def sky_sums(
     sides: NDArray[np.int64],
     start: NDArray[np.int64],
     rays: tuple[NDArray[np.float32], NDArray[np.float32]],
-    law_of: tuple[NDArray[np.int64], NDArray[np.float64], float],
-    tables: tuple,
+    flow_law: FlowLaw,
+    tables: LawTables,
     weight: float,
     force: NDArray[np.float64],
     moment: NDArray[np.float64],
@@ -238,16 +343,17 @@ def sky_sums(
 ) -> None:
     """Sum over the kept sky rays of ``sides[lo:hi]`` of :func:`_direction_load` outside the core.
 
-    ``rays`` = the kept rays' directions ``w`` and levers [m]; ``law_of`` = the law of each side, ``u``
-    and ``cos(psi_c)``; ``tables`` = ``channels``, ``cll``, the laws' ``a`` and ``c``, and the side
-    normals. A ray with ``w . u < cos(psi_c)`` adds, times ``weight`` (``pi / N``), its law's force [Pa],
-    that force's moment about the side centroid ``lever x force`` [Pa m] and the two re-emission
-    channels. Results go to rows ``sides[k]`` of ``force``, ``moment`` (n_sides, 3) and ``emitted``
-    (n_sides, 2).
+    ``rays`` = the kept rays' directions ``w`` and levers [m]; ``flow_law`` = the law of each side,
+    ``u`` and ``cos(psi_c)`` (:class:`FlowLaw`); ``tables`` = ``channels``, ``cll``, the laws' ``a`` and
+    ``c``, and the side normals (:class:`LawTables`). A ray with ``w . u < cos(psi_c)`` adds, times
+    ``weight`` (``pi / N``), its law's force [Pa], that force's moment about the side centroid ``lever x
+    force`` [Pa m] and the two re-emission channels. Results go to rows ``sides[k]`` of ``force``,
+    ``moment`` (n_sides, 3) and ``emitted`` (n_sides, 2).
     """
     direction, lever = rays
-    side_law, u, cos_core = law_of
-    channels, cll, pressure, shear, normals = tables
+    side_law, u, cos_core = flow_law.side_law, flow_law.u, flow_law.cos_core
+    channels, cll, normals = tables.channels, tables.cll, tables.normals
+    pressure, shear = tables.pressure_scale, tables.shear_scale
     u0, u1, u2 = u[0], u[1], u[2]
     for k in range(lo, hi):
         s = sides[k]
@@ -278,12 +384,12 @@ def sky_sums(
 @numba.njit(cache=True, nogil=True)
 def side_loads(
     side_group: NDArray[np.int64],
-    groups: tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]],
+    groups: GroupLoads,
     core: NDArray[np.float64],
     u: NDArray[np.float64],
-    sides: tuple[NDArray[np.float64], NDArray[np.float64]],
-    core_parts: tuple,
-    sky: tuple,
+    sides: SideGeometry,
+    core_parts: CoreParts,
+    sky: SkyParts,
     reference: NDArray[np.float64],
     force: NDArray[np.float64],
     torque: NDArray[np.float64],
@@ -291,26 +397,27 @@ def side_loads(
     lo: int,
     hi: int,
 ) -> None:
-    """Force [N], torque [N m] (columns of ``force``, ``torque``: (3, n_sides)) and first re-emission
-    (``emitted``: (2, n_sides)) of sides ``lo:hi`` (METHOD.md "The open-sky integral").
+    """Force [N], torque [N m] ((3, n_sides) each) and first re-emission (2, n_sides) of sides ``lo:hi``.
 
-    ``groups`` = each group's law, normal and closed-form loads on an unobstructed side (n_groups, 5:
-    force per unit area [Pa] and the two re-emission channels); ``core`` (n_laws, 4, n_gamma) the core
+    ``groups`` = each group's law, normal and closed-form loads on an unobstructed side
+    (:class:`GroupLoads`); ``core`` (n_laws, 4, n_gamma) the core
     cone's share of them, normal and tangential force and re-emission, on ``gamma`` in [-1, 1];
-    ``sides`` = the side areas [m^2] and centroids [m]. ``core_parts`` = the share of the unobstructed
-    core ``K`` acting at the lit centroid of the exact shadow along ``u`` (``f_u``), the share acting at
-    the centroid, those lit centroids [m], and :func:`core_sums`'s corrections (force, moment, re-emission
-    per unit area); ``sky`` = whether the side's kept sky rays are the open ones, and their
+    ``sides`` = the side areas [m^2] and centroids [m] (:class:`SideGeometry`). ``core_parts``
+    (:class:`CoreParts`) = the share of the unobstructed core ``K`` acting at the lit centroid of the
+    exact shadow along ``u`` (``f_u``), the share acting at the centroid, those lit centroids [m], and
+    :func:`core_sums`'s corrections (force, moment, re-emission per unit area); ``sky``
+    (:class:`SkyParts`) = whether the side's kept sky rays are the open ones, and their
     :func:`sky_sums`. Per unit area::
 
         visible = f_u K + c K + corrections + (closed - K - sky sums  |  sky sums of the open rays),
 
     so an unobstructed side gets ``closed`` exactly.
     """
-    group_law, group_normals, closed = groups
-    areas, centroids = sides
-    at_lit, at_centroid, lit_centroid, core_force, core_moment, core_emitted = core_parts
-    keeps_open, sky_force, sky_moment, sky_emitted = sky
+    group_law, group_normals, closed = groups.law, groups.normals, groups.closed
+    areas, centroids = sides.areas, sides.centroids
+    at_lit, at_centroid, lit_centroid = core_parts.at_lit, core_parts.at_centroid, core_parts.lit_centroid
+    core_force, core_moment, core_emitted = core_parts.force, core_parts.moment, core_parts.emitted
+    keeps_open, sky_force, sky_moment, sky_emitted = sky.keeps_open, sky.force, sky.moment, sky.emitted
     for s in range(lo, hi):
         group = side_group[s]
         law = group_law[group]

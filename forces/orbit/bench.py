@@ -16,7 +16,7 @@ from sunwind.forces.model import Model
 from sunwind.forces.orbit.attitude import AttitudeLaw
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.flight import fly
-from sunwind.forces.orbit.steps import Loads
+from sunwind.forces.orbit.steps import OrbitLoads
 from sunwind.forces.orbit.trajectory import Elements, propagate
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry.parallel import CORES
@@ -49,7 +49,7 @@ def orbit_benchmark(model: Model, steps: int = 40) -> OrbitBenchReport:
     epoch, nadir = Epoch.of(EPOCH), AttitudeLaw.parse("nadir")
     timings = {}
     for name, (elements, step, with_srp, with_drag) in CASES.items():
-        loads = Loads(SrpSetup() if with_srp else None, GasOptions() if with_drag else None)
+        loads = OrbitLoads(SrpSetup() if with_srp else None, GasOptions() if with_drag else None)
         fly(model, propagate(elements, epoch, np.array([0.0, step]), "kepler"), nadir, loads)
         path = propagate(elements, epoch, np.arange(steps) * step, "kepler")
         start = time.perf_counter()

@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.earth import DEFAULT_STEP_DEG, Place, check_step, planet_radiation
+from sunwind.forces.earth import DEFAULT_CELL_DEG, Place, check_cell_size, planet_radiation
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.tables.jobs import SrpSetup
@@ -41,8 +41,8 @@ class EarthTerms:
     Attributes
     ----------
     surface : SrpSetup
-        Shadow sampling, reflections and reference point (those of the SRP term), and the solar flux
-        at 1 au.
+        Shadow sampling, reflections and reference point (those of the SRP term); the solar flux is each
+        step's (:class:`~sunwind.forces.orbit.steps.OrbitLoads`).
     albedo : float, optional
         Bond albedo instead of the Earth's 0.30.
     infrared_W_m2 : float, optional
@@ -50,7 +50,7 @@ class EarthTerms:
     knocke : bool
         Knocke's zonal, seasonal albedo and emissivity, at each step's date, with latitudes about the
         GCRF z axis.
-    step_deg : float
+    cell_deg : float
         Cell size of the Earth's disc [deg].
     thermal : bool
         Each step's equilibrium temperatures and thermal recoil.
@@ -60,12 +60,12 @@ class EarthTerms:
     albedo: float | None = None
     infrared_W_m2: float | None = None
     knocke: bool = False
-    step_deg: float = DEFAULT_STEP_DEG
+    cell_deg: float = DEFAULT_CELL_DEG
     thermal: bool = False
 
     def __post_init__(self) -> None:
         PlanetLight.of(planet("earth"), 1.0, albedo=self.albedo, infrared_W_m2=self.infrared_W_m2)
-        check_step(self.step_deg)
+        check_cell_size(self.cell_deg)
 
     def fields(self, n_parts: int) -> dict[str, int]:
         """Record name -> width of a step, for a model of ``n_parts`` parts."""
@@ -94,7 +94,7 @@ class EarthTerms:
             knocke_julian_date=julian_tt if self.knocke else None,
         )
         options = self.surface.options()
-        result = planet_radiation(model, place, light, step_deg=self.step_deg, **options)
+        result = planet_radiation(model, place, light, cell_deg=self.cell_deg, **options)
         out = {
             "albedo_force_body_N": result.albedo.force_N,
             "albedo_torque_body_Nm": result.albedo.torque_Nm,

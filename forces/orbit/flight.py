@@ -16,27 +16,11 @@ from sunwind.forces.gas.flow import EARTH_RADIUS, EARTH_ROTATION
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.orbit.attitude import AttitudeLaw, quaternion_file_attitude
 from sunwind.forces.orbit.eclipse import solar_fraction
+from sunwind.forces.orbit.inputs import StepInputs
 from sunwind.forces.orbit.results import OrbitResult
-from sunwind.forces.orbit.steps import (
-    FLUX,
-    FRACTION,
-    HEIGHT,
-    NADIR,
-    PLACE,
-    POLE,
-    ROW_WIDTH,
-    SUN,
-    SUNLIGHT,
-    TIME,
-    VELOCITY,
-    Loads,
-    OrbitSetup,
-    SpaceWeather,
-    StepInputs,
-)
+from sunwind.forces.orbit.steps import OrbitLoads, SpaceWeather
 from sunwind.forces.orbit.sun import AU_M, fixed_sun, moon_position, sun_position
 from sunwind.forces.orbit.trajectory import Trajectory
-from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.forces.tables.engine import SweepRun, run_jobs
 from sunwind.forces.tables.jobs import Job
 from sunwind.geometry.errors import InputError
@@ -46,7 +30,7 @@ def fly(
     model: Model,
     trajectory: Trajectory,
     attitude: AttitudeLaw,
-    loads: Loads,
+    loads: OrbitLoads,
     *,
     sun_eci: NDArray[np.float64] | None = None,
     eclipse: str = "conical",
@@ -63,9 +47,9 @@ def fly(
         Times, GCRF positions and velocities (:mod:`sunwind.forces.orbit.trajectory`).
     attitude : AttitudeLaw
         Body-to-GCRF rotation at each step (:mod:`sunwind.forces.orbit.attitude`).
-    loads : Loads
-        SRP and drag settings and the air (:class:`~sunwind.forces.orbit.steps.Loads`);
-        the solar flux is scaled by ``(1 au / d)^2`` and the visible share of the Sun at each step.
+    loads : OrbitLoads
+        What to compute (SRP, drag, the Earth's radiation), the air and the solar flux at 1 au, which
+        is scaled by ``(1 au / d)^2`` and the visible share of the Sun at each step.
     sun_eci : (3,) array_like, optional
         A fixed Sun direction (GCRF, at 1 au) instead of the ephemeris.
     eclipse : str
@@ -74,47 +58,106 @@ def fly(
         The Moon eclipses the Sun too (ERFA's ``moon98``); needs the ephemeris Sun.
     run : SweepRun, optional
         Chunks, checkpoint, resume, Dask, threads and progress, as for sweeps.
+
+    Returns
+    -------
+    OrbitResult
+        The series of every step, their summary and what the run was.
+
+    Raises
+    ------
+    InputError
+        Nothing to compute; a fixed Sun that is not a direction, or given with the Moon; drag above
+        NRLMSIS's range; the Earth's radiation below the Earth's surface.
+
+    Examples
+    --------
+    >>> from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, propagate
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.forces import load
+    >>> from sunwind.meshes import box_wing
+    >>> model = load(box_wing(facet_size=0.5), uniform=Material("paint", 0.4, 0.5, 0.1), two_sided=["wing*"])
+    >>> path = propagate(Elements.circular(700, 98.2), Epoch.of("2024-03-20T00:00:00Z"), [0, 60], "kepler")
+    >>> result = fly(model, path, AttitudeLaw.parse("nadir"), OrbitLoads(SrpSetup(reflections="none")))
+    >>> result.terms, result.series["srp_force_body_N"].shape
+    (('srp',), (2, 3))
     """
     model, run = as_model(model), run or SweepRun()
-    srp = loads.srp
-    if srp is None and loads.drag is None and loads.earth is None:
+    if loads.srp is None and loads.drag is None and loads.earth is None:
         raise InputError(
             "give srp, drag or earth (or more): what the orbit computes", parameters=("srp", "drag", "earth")
         )
-    time_s, r, v = trajectory.time_s, trajectory.position_m, trajectory.velocity_m_s
-    sun_m = sun_position(trajectory.epoch, time_s) if sun_eci is None else fixed_sun(sun_eci, len(time_s))
+    check_sun(sun_eci, moon)
+    steps = step_inputs(trajectory, attitude, loads, sun_eci=sun_eci, eclipse=eclipse, moon=moon)
+    if loads.drag is not None and isinstance(loads.air, SpaceWeather):
+        loads.air.check(steps.altitude_km)
+    if loads.earth is not None:
+        check_height(steps.height_km)
+    setup = loads.sized(len(model.craft.part_names))
+    records = run_jobs(model, [Job(setup, steps)], run)[setup.kind]
+    return OrbitResult.of(model, trajectory, attitude, setup, steps, records)
+
+
+def step_inputs(
+    trajectory: Trajectory,
+    attitude: AttitudeLaw,
+    loads: OrbitLoads,
+    *,
+    sun_eci: NDArray[np.float64] | None = None,
+    eclipse: str = "conical",
+    moon: bool = False,
+) -> StepInputs:
+    """Each step's inputs: the Sun from the ephemeris (or fixed), the eclipse, the attitude, ``v_rel``
+    against the air turning with the Earth and, with drag, the geodetic place of the atmosphere.
+
+    Parameters
+    ----------
+    trajectory, attitude, loads, sun_eci, eclipse, moon
+        As for :func:`fly`.
+
+    Returns
+    -------
+    StepInputs
+
+    Examples
+    --------
+    >>> from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, propagate
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> path = propagate(Elements.circular(700, 98.2), Epoch.of("2024-03-20T00:00:00Z"), [0, 60], "kepler")
+    >>> steps = step_inputs(path, AttitudeLaw.parse("nadir"), OrbitLoads(SrpSetup()))
+    >>> len(steps), steps.nadir_body[0].round(6).tolist()
+    (2, [0.0, 0.0, 1.0])
+    """
+    epoch, time_s, r, v = trajectory.epoch, trajectory.time_s, trajectory.position_m, trajectory.velocity_m_s
+    sun_m = sun_position(epoch, time_s) if sun_eci is None else fixed_sun(sun_eci, len(time_s))
     if attitude.kind == "csv":
-        body_to_eci = quaternion_file_attitude(attitude, trajectory.epoch, time_s)
+        body_to_eci = quaternion_file_attitude(attitude, epoch, time_s)
     else:
         body_to_eci = attitude.body_to_eci(trajectory, sun_m)
     to_sun = sun_m - r
     distance = np.linalg.norm(to_sun, axis=1)
-    check_sun(sun_eci, moon)
-    moon_m = moon_position(trajectory.epoch, time_s) if moon else None
-    fraction = solar_fraction(r, sun_m, eclipse, moon_m)
-    rows = np.zeros((len(time_s), ROW_WIDTH))
-    rows[:, TIME] = time_s
-    rows[:, SUN] = np.einsum("nji,nj->ni", body_to_eci, to_sun / distance[:, None])
-    flux_1au = SOLAR_FLUX_1AU if srp is None else srp.flux_W_m2
-    rows[:, SUNLIGHT] = flux_1au * (AU_M / distance) ** 2
-    rows[:, FRACTION] = fraction
-    rows[:, FLUX] = rows[:, SUNLIGHT] * fraction
+    fraction = solar_fraction(r, sun_m, eclipse, moon_position(epoch, time_s) if moon else None)
+    sunlight = loads.flux_1au_W_m2 * (AU_M / distance) ** 2
     radius = np.linalg.norm(r, axis=1)
-    rows[:, NADIR] = np.einsum("nji,nj->ni", body_to_eci, -r / radius[:, None])
-    rows[:, HEIGHT] = (radius - EARTH_RADIUS) / 1e3
-    rows[:, POLE] = body_to_eci[:, 2, :]  # GCRF z in the body frame
     air_velocity = EARTH_ROTATION * np.stack([-r[:, 1], r[:, 0], np.zeros(len(r))], axis=1)
-    rows[:, VELOCITY] = np.einsum("nji,nj->ni", body_to_eci, v - air_velocity)
-    if loads.drag is not None:
-        rows[:, PLACE] = geodetic(trajectory)
-        if isinstance(loads.air, SpaceWeather):
-            loads.air.check(rows[:, PLACE][:, 0])
-    if loads.earth is not None:
-        check_height(rows[:, HEIGHT])
-    setup = OrbitSetup.of(loads, trajectory.epoch, len(model.craft.part_names))
-    records = run_jobs(model, [Job(setup, rows)], run)["orbit"]
-    steps = StepInputs(rows, body_to_eci, fraction)
-    return OrbitResult.of(model, trajectory, attitude, setup, steps, records)
+    place = geodetic(trajectory) if loads.drag is not None else np.full((len(time_s), 3), np.nan)
+    return StepInputs(
+        epoch,
+        time_s,
+        body_to_eci,
+        sun_body=np.einsum("nji,nj->ni", body_to_eci, to_sun / distance[:, None]),
+        sunlight_W_m2=sunlight,
+        solar_fraction=fraction,
+        flux_W_m2=sunlight * fraction,
+        velocity_body_m_s=np.einsum("nji,nj->ni", body_to_eci, v - air_velocity),
+        nadir_body=np.einsum("nji,nj->ni", body_to_eci, -r / radius[:, None]),
+        pole_body=body_to_eci[:, 2, :],  # GCRF z in the body frame
+        height_km=(radius - EARTH_RADIUS) / 1e3,
+        altitude_km=place[:, 0],
+        latitude_deg=place[:, 1],
+        longitude_deg=place[:, 2],
+    )
 
 
 def check_height(height_km: NDArray[np.float64]) -> None:

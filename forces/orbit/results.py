@@ -23,17 +23,20 @@ from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.model import Model
 from sunwind.forces.orbit.attitude import AttitudeLaw
 from sunwind.forces.orbit.earth_terms import PART_SOURCES
-from sunwind.forces.orbit.steps import FLUX, SUN, VELOCITY, OrbitSetup, StepInputs
+from sunwind.forces.orbit.inputs import StepInputs
+from sunwind.forces.orbit.steps import OrbitLoads
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
 from sunwind.forces.tables.dataset import attribute_text, model_provenance
 from sunwind.geometry.rays.certificate import LoadsError
 
-#: Time series of the output, in order, with their units.
+#: The dimension vectors run along (as in sweep tables), and its coordinate.
+COMPONENT, COMPONENTS = "component", ("x", "y", "z")
+#: Time series of the output, in order, with their units (UDUNITS).
 SERIES = {
     "time_s": "s",
     "position_eci_m": "m",
-    "velocity_eci_m_s": "m/s",
+    "velocity_eci_m_s": "m s-1",
     "sun_body": "1",
     "solar_fraction": "1",
     "srp_force_body_N": "N",
@@ -45,7 +48,7 @@ SERIES = {
     "torque_body_Nm": "N m",
     "angular_impulse_body_Nms": "N m s",
     "angular_impulse_eci_Nms": "N m s",
-    "density_kg_m3": "kg/m^3",
+    "density_kg_m3": "kg m-3",
     "dynamic_pressure_Pa": "Pa",
 }
 #: Series of a run with the Earth's radiation (``thermal_*`` and ``part_temperature_K`` with thermal
@@ -102,14 +105,34 @@ class OrbitResult:
         model: Model,
         trajectory: Trajectory,
         attitude: AttitudeLaw,
-        setup: OrbitSetup,
+        setup: OrbitLoads,
         steps: StepInputs,
         records: dict[str, NDArray[np.float64]],
     ) -> OrbitResult:
-        """The result of a run from its inputs and the records of its steps."""
-        t, rows, body_to_eci = trajectory.time_s, steps.rows, steps.body_to_eci
+        """The result of a run from its inputs and the records of its steps.
+
+        Parameters
+        ----------
+        model : Model
+            The model flown.
+        trajectory : Trajectory
+            The steps' times and GCRF states.
+        attitude : AttitudeLaw
+            The attitude law (its description goes into the attributes).
+        setup : OrbitLoads
+            What the steps computed.
+        steps : StepInputs
+            Each step's inputs.
+        records : dict of str to ndarray
+            The records of the steps (:attr:`OrbitLoads.fields`).
+
+        Returns
+        -------
+        OrbitResult
+        """
+        t, body_to_eci = trajectory.time_s, steps.body_to_eci
         fraction = steps.solar_fraction
-        per_step = [setup.angles(model, row) for row in rows]
+        per_step = [setup.angles(model, steps, i) for i in range(len(steps))]
         angles = {hinge.pattern: np.array([a[hinge.pattern] for a in per_step]) for hinge in model.hinges}
         asked = {"srp": setup.srp, "drag": setup.drag, "albedo": setup.earth, "infrared": setup.earth}
         asked["thermal"] = setup.earth if setup.earth is not None and setup.earth.thermal else None
@@ -121,7 +144,7 @@ class OrbitResult:
             "time_s": t,
             "position_eci_m": trajectory.position_m,
             "velocity_eci_m_s": trajectory.velocity_m_s,
-            "sun_body": rows[:, SUN],
+            "sun_body": steps.sun_body,
             "solar_fraction": fraction,
             **{name: records[name] for name in ("srp_force_body_N", "srp_torque_body_Nm")},
             **{name: records[name] for name in ("drag_force_body_N", "drag_torque_body_Nm")},
@@ -132,8 +155,8 @@ class OrbitResult:
             "angular_impulse_eci_Nms": _impulse(t, torque_eci),
             "density_kg_m3": records["density_kg_m3"],
             "dynamic_pressure_Pa": records["dynamic_pressure_Pa"],
-            "srp_flux_W_m2": rows[:, FLUX],
-            "v_rel_body_m_s": rows[:, VELOCITY],
+            "srp_flux_W_m2": steps.flux_W_m2,
+            "v_rel_body_m_s": steps.velocity_body_m_s,
         }
         for name in EARTH_SERIES:
             if name in records:
@@ -160,8 +183,8 @@ class OrbitResult:
             "settings": setup.describe(),
             **{k: v for k, v in model_provenance(model).items() if v is not None},
         }
-        flux = setup.srp.flux_W_m2 if setup.srp is not None else float("nan")
         parts = tuple(model.craft.part_names) if setup.earth is not None else ()
+        flux = setup.flux_1au_W_m2
         return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms, parts)
 
     def summary(self, mass_kg: float | None = None) -> dict[str, object]:
@@ -261,18 +284,30 @@ class OrbitResult:
         return out
 
     def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
-        """The series as an xarray Dataset on dimensions ``time``, ``xyz`` and ``part``, units in
-        attributes."""
+        """The series as an xarray Dataset on dimensions ``time``, ``component`` (x, y, z, as in sweep
+        tables) and ``part``, units (UDUNITS) in attributes.
+
+        Parameters
+        ----------
+        mass_kg : float, optional
+            Spacecraft mass [kg]: the summary's coefficients per kg.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
         variables, units = {}, SERIES | EARTH_SERIES | dict.fromkeys(ESTIMATE_SERIES, "1")
         for name in self.names:
             values = self.series[name]
-            dims = ("time",) if values.ndim == 1 else ("time", "part" if name.startswith("part_") else "xyz")
+            dims = (
+                ("time",) if values.ndim == 1 else ("time", "part" if name.startswith("part_") else COMPONENT)
+            )
             attrs = {"units": units[name]} | (
                 {"long_name": ESTIMATE_SERIES[name]} if name in ESTIMATE_SERIES else {}
             )
             variables[name] = xr.Variable(dims, values, attrs)
         for pattern, angles in self.hinge_angles_deg.items():
-            variables[f"hinge_angle_deg[{pattern}]"] = xr.Variable(("time",), angles, {"units": "deg"})
+            variables[f"hinge_angle_deg[{pattern}]"] = xr.Variable(("time",), angles, {"units": "degree"})
         summary = {f"summary_{k}": _attribute(v) for k, v in self.summary(mass_kg).items()}
         attrs = {k: (str(v) if isinstance(v, dict) else v) for k, v in self.attributes.items()}
         time = xr.Variable(
@@ -284,7 +319,7 @@ class OrbitResult:
                 "long_name": "UTC",
             },
         )
-        coords = {"time": time, "xyz": ["x", "y", "z"]} | (
+        coords = {"time": time, COMPONENT: list(COMPONENTS)} | (
             {"part": list(self.part_names)} if self.part_names else {}
         )
         return xr.Dataset(variables, coords=coords, attrs=attrs | summary)

@@ -1,19 +1,17 @@
-"""What one orbit step computes, as a sweep job (:mod:`sunwind.forces.tables.jobs`): each step's row of
-inputs in, SRP and drag loads in the body frame out. Steps run in checkpointed chunks, locally or on
-Dask, exactly as a sweep's attitudes (:func:`sunwind.forces.tables.engine.run_jobs`).
+"""What an orbit run computes, and one step of it, as a sweep job (:mod:`sunwind.forces.tables.jobs`):
+each step's inputs (:class:`~sunwind.forces.orbit.inputs.StepInputs`) in, SRP, drag and the Earth's
+radiation in the body frame out. Steps run in checkpointed chunks, locally or on Dask, exactly as a
+sweep's attitudes (:func:`sunwind.forces.tables.engine.run_jobs`): :class:`OrbitLoads` is the
+:class:`~sunwind.forces.tables.jobs.Tabulation` of the steps.
 
-A row holds what the step needs and nothing it has to look up: the time, the body-frame Sun direction,
-the solar flux at the spacecraft (eclipse and distance applied), ``v_rel`` in the body frame, the
-geodetic place of the atmosphere, and for the Earth's radiation the body-frame directions to the Earth's
-centre and its pole, the height above the sphere, the flux without eclipse and the visible share of the
-Sun. Every step calls :func:`~sunwind.forces.srp.srp`, :func:`~sunwind.forces.drag.drag` and
+Every step calls :func:`~sunwind.forces.srp.srp`, :func:`~sunwind.forces.drag.drag` and
 :func:`~sunwind.forces.earth.planet_radiation` as the single-attitude commands do.
 """
 
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
@@ -24,43 +22,79 @@ from sunwind.forces.earth import Place
 from sunwind.forces.error_estimate import summed
 from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning
 from sunwind.forces.gas.msis import (
+    DEFAULT_AP,
+    DEFAULT_F107_SFU,
+    DEFAULT_F107A_SFU,
+    DEFAULT_MSIS_VERSION,
     FREE_MOLECULAR_MIN_ALTITUDE_KM,
     MSIS_FITTED_ALTITUDE_KM,
     MSIS_MAX_ALTITUDE_KM,
     nrlmsis,
 )
 from sunwind.forces.model import Model
-from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.earth_terms import EarthTerms
+from sunwind.forces.orbit.inputs import StepInputs
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, solar_flux
 from sunwind.forces.srp import srp
 from sunwind.forces.tables.jobs import GasOptions, Records, SrpSetup, empty_records
 from sunwind.geometry.errors import InputError
-
-#: Columns of a step's row of inputs.
-TIME, SUN, FLUX, VELOCITY, PLACE = 0, slice(1, 4), 4, slice(5, 8), slice(8, 11)
-NADIR, HEIGHT, POLE, SUNLIGHT, FRACTION = slice(11, 14), 14, slice(15, 18), 18, 19
-ROW_WIDTH = 20
+from sunwind.geometry.rays.certificate import LoadsError
 
 
 @dataclass(frozen=True)
 class SpaceWeather:
-    """NRLMSIS's inputs besides place and time: F10.7 of the day before and its 81-day mean [sfu], the
-    daily Ap, the model version (see :func:`~sunwind.forces.gas.msis.nrlmsis`)."""
+    """NRLMSIS's inputs besides place and time (see :func:`~sunwind.forces.gas.msis.nrlmsis`), its
+    defaults those of :mod:`sunwind.forces.gas.msis`.
 
-    f107: float = 150.0
-    f107a: float = 150.0
-    ap: float = 4.0
-    version: float = 2.1
+    Attributes
+    ----------
+    f107, f107a : float
+        F10.7 of the day before and its 81-day centred mean [sfu].
+    ap : float
+        Daily Ap index.
+    version : float
+        NRLMSIS version.
+
+    Examples
+    --------
+    >>> SpaceWeather()
+    SpaceWeather(f107=150.0, f107a=150.0, ap=4.0, version=2.1)
+    """
+
+    f107: float = DEFAULT_F107_SFU
+    f107a: float = DEFAULT_F107A_SFU
+    ap: float = DEFAULT_AP
+    version: float = DEFAULT_MSIS_VERSION
 
     def check(self, altitude_km: NDArray[np.float64]) -> None:
         """Refuse a run that leaves NRLMSIS's range, and say once (not at every step) where its steps
-        are above the altitudes NRLMSIS is fitted to or below the free-molecular limit."""
+        are above the altitudes NRLMSIS is fitted to or below the free-molecular limit.
+
+        Parameters
+        ----------
+        altitude_km : ndarray, shape (n,)
+            Geodetic altitude of every step [km].
+
+        Raises
+        ------
+        InputError
+            A step is above :data:`~sunwind.forces.gas.msis.MSIS_MAX_ALTITUDE_KM`.
+
+        Warns
+        -----
+        AtmosphereWarning
+            Steps above the fitted range or below the free-molecular limit, counted.
+
+        Examples
+        --------
+        >>> SpaceWeather().check(np.array([400.0, 500.0]))  # nothing to say
+        """
         top = float(altitude_km.max())
         if top > MSIS_MAX_ALTITUDE_KM:
             raise InputError(
                 f"the orbit reaches {top:.0f} km, above {MSIS_MAX_ALTITUDE_KM:g} km where NRLMSIS cannot be "
                 "trusted",
-                hint="compute SRP alone (--srp), or give a fixed atmosphere (--density ...)",
+                hint="compute SRP alone, or give a fixed atmosphere",
                 parameters=("drag",),
             )
         for outside, what in (
@@ -81,47 +115,75 @@ class SpaceWeather:
                     stacklevel=3,
                 )
 
-    def atmosphere(self, epoch: Epoch, time_s: float, place: NDArray[np.float64]) -> Atmosphere:
-        """NRLMSIS at geodetic ``place`` (altitude [km], latitude, longitude [deg]) ``time_s`` after the
-        epoch (its range warnings are said once per run by :meth:`check`)."""
-        altitude, latitude, longitude = (float(v) for v in place)
+    def atmosphere(self, steps: StepInputs, k: int) -> Atmosphere:
+        """NRLMSIS at step ``k`` of ``steps``: its geodetic place and time (the range warnings are said
+        once per run by :meth:`check`).
+
+        Parameters
+        ----------
+        steps : StepInputs
+            The steps.
+        k : int
+            Which of them.
+
+        Returns
+        -------
+        Atmosphere
+
+        Examples
+        --------
+        >>> from dataclasses import replace
+        >>> from sunwind.forces.orbit.clock import Epoch
+        >>> steps = StepInputs.at_rest(Epoch.of("2024-03-20T00:00:00Z"), [0.0])
+        >>> place = {"altitude_km": [400.0], "latitude_deg": [0.0], "longitude_deg": [0.0]}
+        >>> steps = replace(steps, **place)
+        >>> f"{SpaceWeather().atmosphere(steps, 0).density_kg_m3:.2e} kg/m^3"  # doctest: +ELLIPSIS
+        '...e-12 kg/m^3'
+        """
+        place = (float(steps.altitude_km[k]), float(steps.latitude_deg[k]), float(steps.longitude_deg[k]))
+        when = steps.epoch.at(float(steps.time_s[k]))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", AtmosphereWarning)
-            return nrlmsis(
-                altitude, latitude, longitude, epoch.at(time_s), self.f107, self.f107a, self.ap, self.version
-            )
+            return nrlmsis(*place, when, self.f107, self.f107a, self.ap, self.version)
 
 
 @dataclass(frozen=True)
-class Loads:
-    """What an orbit run computes: the SRP settings (None: no SRP; their ``flux_W_m2`` is the flux at
-    1 au), the drag settings (None: no drag; each step has its own flow), the air (NRLMSIS space
-    weather by default, or one fixed atmosphere), the step [deg] to which tracked and scheduled
-    hinge angles are rounded (0: exact), so that steps share posed models and what their caches hold
-    (view factors are made again at every new pose), and the Earth's albedo, infrared and thermal
-    recoil (None: none)."""
+class OrbitLoads:
+    """What an orbit run computes at every step: the sweep engine's
+    :class:`~sunwind.forces.tables.jobs.Tabulation` of the steps (:class:`StepInputs`).
 
-    srp: SrpSetup | None = None
-    drag: GasOptions | None = None
-    air: SpaceWeather | Atmosphere = field(default_factory=SpaceWeather)
-    hinge_step_deg: float = 0.0
-    earth: EarthTerms | None = None
+    Attributes
+    ----------
+    srp : SrpSetup or None
+        Shadow sampling, reflections and reference point of SRP (None: no SRP). Its ``flux_W_m2`` (a
+        sweep's flux at the spacecraft) stays at its default: each step has its own flux, from
+        :attr:`flux_1au_W_m2`.
+    drag : GasOptions or None
+        The drag settings (None: no drag); each step has its own flow.
+    air : SpaceWeather or Atmosphere
+        NRLMSIS's space weather (the default), or one fixed atmosphere for every step.
+    hinge_step_deg : float
+        Step [deg] to which tracked and scheduled hinge angles are rounded (0: exact), so that steps
+        share posed models and what their caches hold (view factors are made again at every new pose).
+    earth : EarthTerms or None
+        The Earth's albedo, infrared and thermal recoil (None: none).
+    flux_1au_W_m2 : float
+        Solar flux at 1 au [W/m^2], scaled to each step's distance from the Sun and eclipse.
+    n_parts : int
+        The model's number of parts: the width of the per-part records of the Earth's radiation (set
+        by :func:`~sunwind.forces.orbit.flight.fly`, :meth:`sized`).
 
+    Raises
+    ------
+    InputError
+        A flux that is not one, or an SRP setup (or the Earth's surface setup) with a flux of its own.
 
-@dataclass(frozen=True)
-class StepInputs:
-    """Each step's row of inputs (n, :data:`ROW_WIDTH`), body-to-GCRF rotation (n, 3, 3) and visible
-    share of the Sun (n,)."""
-
-    rows: NDArray[np.float64]
-    body_to_eci: NDArray[np.float64]
-    solar_fraction: NDArray[np.float64]
-
-
-@dataclass(frozen=True)
-class OrbitSetup:
-    """Settings of every orbit step: those of :class:`Loads`, the epoch of the steps' times and the
-    number of the model's parts (the width of the per-part records)."""
+    Examples
+    --------
+    >>> loads = OrbitLoads(SrpSetup(reflections="none"), flux_1au_W_m2=1361.0)
+    >>> loads.kind, list(loads.fields)[:2]
+    ('orbit', ['srp_force_body_N', 'srp_torque_body_Nm'])
+    """
 
     kind: ClassVar[str] = "orbit"
     #: Records of every run: name -> width.
@@ -136,81 +198,136 @@ class OrbitSetup:
     #: Records of a run whose every term uses the default shadow pass: the passes' estimated absolute
     #: errors of the step's loads, added over its terms [N], [N m].
     estimate_fields: ClassVar[dict[str, int]] = {"shadow_error_force_N": 1, "shadow_error_torque_Nm": 1}
-    srp: SrpSetup | None
-    drag: GasOptions | None
-    air: SpaceWeather | Atmosphere
-    epoch: Epoch
+    srp: SrpSetup | None = None
+    drag: GasOptions | None = None
+    air: SpaceWeather | Atmosphere = field(default_factory=SpaceWeather)
     hinge_step_deg: float = 0.0
     earth: EarthTerms | None = None
-    n_parts: int = 0
+    flux_1au_W_m2: float = field(default=SOLAR_FLUX_1AU, kw_only=True)
+    n_parts: int = field(default=0, kw_only=True, repr=False)
 
-    @classmethod
-    def of(cls, loads: Loads, epoch: Epoch, n_parts: int = 0) -> OrbitSetup:
-        """The settings of ``loads`` with times from ``epoch``, for a model of ``n_parts`` parts."""
-        return cls(loads.srp, loads.drag, loads.air, epoch, loads.hinge_step_deg, loads.earth, n_parts)
+    def __post_init__(self) -> None:
+        solar_flux(self.flux_1au_W_m2)
+        surface = None if self.earth is None else self.earth.surface
+        for name, setup in (("srp", self.srp), ("earth", surface)):
+            if setup is not None and setup.flux_W_m2 != SOLAR_FLUX_1AU:
+                raise InputError(
+                    f"{name}'s flux_W_m2 {setup.flux_W_m2:g} W/m^2 is a sweep's flux at the spacecraft: an "
+                    "orbit scales flux_1au_W_m2 to every step",
+                    hint=f"give OrbitLoads(flux_1au_W_m2={setup.flux_W_m2:g}) and leave the setup's flux",
+                    parameters=("flux_1au_W_m2",),
+                )
+
+    def sized(self, n_parts: int) -> OrbitLoads:
+        """These loads for a model of ``n_parts`` parts (the width of the per-part records).
+
+        Examples
+        --------
+        >>> OrbitLoads(SrpSetup()).sized(3).n_parts
+        3
+        """
+        return replace(self, n_parts=n_parts)
 
     @property
     def fields(self) -> dict[str, int]:
-        """The records of a step: name -> width."""
+        """The records of a step: name -> width (1: a number, else a row of that many)."""
         extra = {} if self.earth is None else self.earth.fields(self.n_parts)
         return self.base_fields | extra | (self.estimate_fields if self.estimates else {})
 
     @property
     def estimates(self) -> bool:
-        """Whether every term uses the default shadow pass, which estimates its error (not ``samples``)."""
+        """Whether every term's shadow pass estimates its error (the default sampling does)."""
         surface = None if self.earth is None else self.earth.surface
-        return all(part.samples is None for part in (self.srp, self.drag, surface) if part is not None)
+        return all(bool(part.estimates) for part in (self.srp, self.drag, surface) if part is not None)
 
     def precompute(self, model: Model) -> None:
-        """View factors and open skies, made once before the first step."""
+        """View factors, open skies and the Earth's optics, made once before the first step.
+
+        Parameters
+        ----------
+        model : Model
+            The model the steps will pose.
+        """
         for part in (self.srp, self.drag, self.earth):
             if part is not None:
                 part.precompute(model)
 
-    def evaluate(self, model: Model, rows: NDArray[np.float64]) -> Records:
-        """The records of the steps ``rows`` (n, :data:`ROW_WIDTH`)."""
-        out = empty_records(self.fields, len(rows))
+    def evaluate(self, model: Model, inputs: StepInputs) -> Records:
+        """The records of the steps ``inputs`` (:attr:`fields`, one row per step).
+
+        Parameters
+        ----------
+        model : Model
+            The model, posed at each step's hinge angles.
+        inputs : StepInputs
+            The steps (a chunk of a run).
+
+        Returns
+        -------
+        dict of str to ndarray
+            Loads of the terms not computed are zero.
+        """
+        out = empty_records(self.fields, len(inputs))
         for name in out:
             out[name][:] = 0.0
-        for i, row in enumerate(rows):
-            posed = model.posed(self.angles(model, row))
-            flux = float(row[FLUX])
+        for i in range(len(inputs)):
+            posed = model.posed(self.angles(model, inputs, i))
+            flux, sun = float(inputs.flux_W_m2[i]), inputs.sun_body[i]
             errors = []
             if self.srp is not None and flux > 0:
-                light = srp(posed, row[SUN], flux_W_m2=flux, **self.srp.options())
+                light = srp(posed, sun, flux_W_m2=flux, **self.srp.options())
                 out["srp_force_body_N"][i], out["srp_torque_body_Nm"][i] = light.force_N, light.torque_Nm
                 errors.append(light.shadow_error)
             if self.drag is not None:
-                air = self.air_at(row)
-                gas = drag(posed, row[VELOCITY], air, **self.drag.options())
+                air = self.air if isinstance(self.air, Atmosphere) else self.air.atmosphere(inputs, i)
+                gas = drag(posed, inputs.velocity_body_m_s[i], air, **self.drag.options())
                 out["drag_force_body_N"][i], out["drag_torque_body_Nm"][i] = gas.force_N, gas.torque_Nm
                 out["density_kg_m3"][i] = air.density_kg_m3
                 out["dynamic_pressure_Pa"][i] = gas.dynamic_pressure_Pa
                 errors.append(gas.shadow_error)
             if self.earth is not None:
-                place = Place(row[NADIR], float(row[HEIGHT]), row[SUN], row[POLE], float(row[FRACTION]))
-                julian = float(sum(self.epoch.tt(float(row[TIME]))))
-                records, error = self.earth.evaluate(posed, place, float(row[SUNLIGHT]), julian)
-                for name, value in records.items():
-                    out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
-                errors.append(error)
+                errors.append(self._earth(posed, inputs, i, out))
             total = summed(errors)
             if self.estimates and total is not None:
-                out["shadow_error_force_N"][i], out["shadow_error_torque_Nm"][i] = (
-                    total.force_N,
-                    total.torque_Nm,
-                )
+                out["shadow_error_force_N"][i] = total.force_N
+                out["shadow_error_torque_Nm"][i] = total.torque_Nm
         return out
 
-    def air_at(self, row: NDArray[np.float64]) -> Atmosphere:
-        """The atmosphere of a step."""
-        if isinstance(self.air, Atmosphere):
-            return self.air
-        return self.air.atmosphere(self.epoch, float(row[TIME]), row[PLACE])
+    def _earth(self, posed: Model, inputs: StepInputs, i: int, out: Records) -> LoadsError | None:
+        """The Earth's radiation at step ``i`` into ``out``; its shadow passes' estimated error."""
+        place = Place(
+            inputs.nadir_body[i],
+            float(inputs.height_km[i]),
+            inputs.sun_body[i],
+            inputs.pole_body[i],
+            float(inputs.solar_fraction[i]),
+        )
+        julian = float(sum(inputs.epoch.tt(float(inputs.time_s[i]))))
+        records, error = self.earth.evaluate(posed, place, float(inputs.sunlight_W_m2[i]), julian)
+        for name, value in records.items():
+            out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
+        return error
 
-    def angles(self, model: Model, row: NDArray[np.float64]) -> dict[str, float]:
-        """Every hinge's angle [deg] at a step, tracked and scheduled ones rounded to the hinge step."""
-        angles = model.angles_at(row[SUN], float(row[TIME])) if model.hinges else {}
+    def angles(self, model: Model, inputs: StepInputs, i: int) -> dict[str, float]:
+        """Every hinge's angle [deg] at step ``i``, tracked and scheduled ones rounded to
+        :attr:`hinge_step_deg`.
+
+        Parameters
+        ----------
+        model : Model
+            The model whose hinges turn.
+        inputs : StepInputs
+            The steps.
+        i : int
+            Which of them.
+
+        Returns
+        -------
+        dict of str to float
+            Hinge glob -> angle; empty for a model without hinges.
+        """
+        sun, time_s = inputs.sun_body[i], float(inputs.time_s[i])
+        angles = model.angles_at(sun, time_s) if model.hinges else {}
         step = self.hinge_step_deg
         if step > 0:
             moving = {hinge.pattern for hinge in model.hinges if hinge.law != "fixed"}
@@ -218,13 +335,18 @@ class OrbitSetup:
         return angles
 
     def describe(self) -> dict:
-        """JSON-ready settings (for a checkpoint's fingerprint and the output's attributes)."""
-        air = self.air.to_json() if isinstance(self.air, Atmosphere) else vars(self.air)
+        """JSON-ready settings (a checkpoint's fingerprint and the output's attributes).
+
+        Examples
+        --------
+        >>> OrbitLoads(SrpSetup()).describe()["air"]
+        {'f107': 150.0, 'f107a': 150.0, 'ap': 4.0, 'version': 2.1}
+        """
         return {
             "srp": None if self.srp is None else self.srp.describe(),
             "drag": None if self.drag is None else self.drag.describe(),
-            "air": air,
-            "epoch": self.epoch.iso(),
+            "air": self.air.to_json() if isinstance(self.air, Atmosphere) else asdict(self.air),
+            "flux_1au_W_m2": self.flux_1au_W_m2,
             "hinge_step_deg": self.hinge_step_deg,
             "earth": None if self.earth is None else self.earth.describe(),
         }

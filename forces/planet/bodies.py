@@ -29,9 +29,10 @@ MAX_INFRARED_W_M2 = 1e5
 class Planet:
     """A planet as a radiation source.
 
-    Attributes
+    Parameters
     ----------
     name : str
+        Lower-case name, the key of :data:`PLANETS`.
     radius_m : float
         Mean (Earth: equatorial) radius [m].
     albedo : float
@@ -42,6 +43,11 @@ class Planet:
         ``C_1`` of the ``night-floor`` law [W/m^2].
     source : str
         Where the numbers come from.
+
+    Examples
+    --------
+    >>> Planet(name="venus", radius_m=6_051_800.0, albedo=0.76, infrared="uniform").albedo
+    0.76
     """
 
     name: str
@@ -54,25 +60,56 @@ class Planet:
 
 PLANETS = {
     "earth": Planet(
-        "earth", 6_378_137.0, 0.30, "uniform",
+        name="earth",
+        radius_m=6_378_137.0,
+        albedo=0.30,
+        infrared="uniform",
         source="WGS 84 equatorial radius; Bond albedo 0.30, the usual mean (Earth radiation budget)",
     ),
     "moon": Planet(
-        "moon", 1_737_400.0, 0.12, "insolation",
+        name="moon",
+        radius_m=1_737_400.0,
+        albedo=0.12,
+        infrared="insolation",
         source="IAU mean radius 1737.4 km; Bond albedo 0.12 (Vasavada et al. 2012, Diviner); "
         "emission follows insolation, none at night (dissertation eq. 1.26)",
     ),
     "mars": Planet(
-        "mars", 3_389_500.0, 0.25, "night-floor", night_exitance_W_m2=50.0,
+        name="mars",
+        radius_m=3_389_500.0,
+        albedo=0.25,
+        infrared="night-floor",
+        night_exitance_W_m2=50.0,
         source="IAU mean radius 3389.5 km; Bond albedo 0.25; night surface near 172 K (sigma T^4 = 50 "
         "W/m^2) plus a day-side part following the insolation, balanced to the absorbed power "
         "(dissertation eq. 1.27)",
     ),
-}  # fmt: skip
+}
 
 
 def planet(name: str) -> Planet:
-    """The planet called ``name`` (case-insensitive), else an error listing the choices."""
+    """The planet called ``name`` (case-insensitive), else an error listing the choices.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`PLANETS`, in any case.
+
+    Returns
+    -------
+    Planet
+        That planet.
+
+    Raises
+    ------
+    InputError
+        An unknown name; the message lists the known ones.
+
+    Examples
+    --------
+    >>> planet("Mars").radius_m
+    3389500.0
+    """
     try:
         return PLANETS[name.lower()]
     except KeyError:
@@ -87,8 +124,24 @@ def planet(name: str) -> Planet:
 class PlanetLight:
     """The albedo and infrared radiance laws of a planet under a given solar flux.
 
-    Build with :meth:`of`; ``albedo`` and ``infrared`` are :class:`~sunwind.forces.planet.cap.Radiance`
-    laws for :class:`~sunwind.forces.planet.cap.Cap`.
+    Build with :meth:`of`.
+
+    Parameters
+    ----------
+    planet : Planet
+        The planet.
+    solar_flux_W_m2 : float
+        Solar flux at the planet [W/m^2].
+    albedo, infrared : Radiance
+        The reflected and emitted radiance laws (:class:`~sunwind.forces.planet.cap.Radiance`, for
+        :class:`~sunwind.forces.planet.cap.Cap`).
+    description : str
+        One line saying which laws these are.
+
+    Examples
+    --------
+    >>> PlanetLight.of(planet("earth"), 1361.0).description
+    'earth: albedo 0.3 Lambertian, infrared (1 - A) S / 4 = 238.2 W/m^2 uniform'
     """
 
     planet: Planet
@@ -111,6 +164,10 @@ class PlanetLight:
 
         Parameters
         ----------
+        body : Planet
+            The planet.
+        solar_flux_W_m2 : float
+            Solar flux at the planet [W/m^2].
         albedo : float, optional
             Bond albedo in [0, 1] instead of the planet's.
         infrared_W_m2 : float, optional
@@ -120,6 +177,28 @@ class PlanetLight:
             Earth only: Knocke's latitude- and season-dependent albedo and emissivity at this TT
             Julian date (:mod:`~sunwind.forces.planet.knocke`); ``albedo`` and ``infrared_W_m2`` may
             still replace either.
+
+        Returns
+        -------
+        PlanetLight
+            The two laws and their description.
+
+        Raises
+        ------
+        InputError
+            An albedo outside [0, 1], an infrared exitance out of range, or Knocke's model for a planet
+            other than the Earth.
+
+        References
+        ----------
+        .. [1] Knocke, P. C., Ries, J. C., Tapley, B. D. (1988). "Earth radiation pressure effects on
+           satellites." AIAA/AAS Astrodynamics Conference, AIAA 88-4292.
+
+        Examples
+        --------
+        >>> light = PlanetLight.of(planet("moon"), 1361.0, albedo=0.1)
+        >>> light.albedo.insolation_W_m2
+        136.1
         """
         flux = solar_flux_W_m2
         if albedo is not None and not (math.isfinite(albedo) and 0.0 <= albedo <= 1.0):

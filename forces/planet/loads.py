@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.error_estimate import summed
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
-from sunwind.forces.reflection import ChainTotals, PowerBalance, follow_chains
+from sunwind.forces.reflection import BeamChainTotals, PowerBalance, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals
 from sunwind.geometry.rays.certificate import LoadsError, ShadowCheck
 from sunwind.geometry.rays.hull import clearance
@@ -67,7 +67,7 @@ class Source:
     exchange: DiffuseExchange | None
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class BandLoad:
     """What one band does at one attitude; body frame, SI.
 
@@ -137,7 +137,7 @@ class _Running:
         self.lost_i2 = np.zeros(n_sides)
         self.shift_torque = np.zeros(3)  # [N m]: forces moved to the lit centroids
         self.shadow_error = shadow_error
-        self.chains: list[ChainTotals] = []
+        self.chains: list[BeamChainTotals] = []
 
 
 @dataclass(frozen=True)
@@ -281,9 +281,21 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
     if not source.beams and source.exchange is None:
         power = PowerBalance(total_in, total_absorbed, total_in - total_absorbed)
         return BandLoad(
-            source.name, force, torque, force, torque, zero, zero, power, incident, absorbed,
-            reflected_side, 0.0, 0, sums.shadow_error,
-        )  # fmt: skip
+            name=source.name,
+            force_N=force,
+            torque_Nm=torque,
+            direct_force_N=force,
+            direct_torque_Nm=torque,
+            reflected_force_N=zero,
+            reflected_torque_Nm=zero,
+            power=power,
+            incident_side_W=incident,
+            absorbed_side_W=absorbed,
+            reflected_side_W=reflected_side,
+            lost_W=0.0,
+            rays=0,
+            shadow_error=sums.shadow_error,
+        )
     chains = _sum_chains(sums.chains, craft.n_sides)
     r_force, r_torque = chains.force_N.copy(), chains.torque_Nm.copy()
     # first beams as the integrals give them; the cells' beams stand for them, and the difference
@@ -315,15 +327,27 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
     lost += chains.absorbed_W - float(((1.0 - rho - sigma) * chains.arrived_W).sum())
     power = PowerBalance(total_in, total_absorbed, float(escaped), chains.truncated_W)
     return BandLoad(
-        source.name, force + r_force, torque + r_torque, force, torque, r_force, r_torque, power,
-        incident, absorbed, reflected_side, lost, chains.rays, sums.shadow_error,
-    )  # fmt: skip
+        name=source.name,
+        force_N=force + r_force,
+        torque_Nm=torque + r_torque,
+        direct_force_N=force,
+        direct_torque_Nm=torque,
+        reflected_force_N=r_force,
+        reflected_torque_Nm=r_torque,
+        power=power,
+        incident_side_W=incident,
+        absorbed_side_W=absorbed,
+        reflected_side_W=reflected_side,
+        lost_W=lost,
+        rays=chains.rays,
+        shadow_error=sums.shadow_error,
+    )
 
 
-def _sum_chains(chains: list[ChainTotals], n_sides: int) -> ChainTotals:
+def _sum_chains(chains: list[BeamChainTotals], n_sides: int) -> BeamChainTotals:
     """The chains of all cells as one."""
     zero3, zero = np.zeros(3), np.zeros(n_sides)
-    return ChainTotals(
+    return BeamChainTotals(
         force_N=sum((c.force_N for c in chains), zero3),
         torque_Nm=sum((c.torque_Nm for c in chains), zero3),
         diffuse_source_W=sum((c.diffuse_source_W for c in chains), zero),

@@ -43,11 +43,33 @@ LAMBERT_FACTOR = 2.0 / 3.0
 def solar_flux(flux_W_m2: float | None = None, distance_au: float | None = None) -> float:
     """Solar flux [W/m^2] from an explicit value or a distance from the Sun [au] (default 1 au).
 
+    Parameters
+    ----------
+    flux_W_m2 : float, optional
+        Flux [W/m^2], finite, >= 0 and at most :data:`MAX_FLUX`.
+    distance_au : float, optional
+        Distance from the Sun [au], at least :data:`SUN_RADIUS_AU`; the flux is
+        ``SOLAR_FLUX_1AU / distance_au**2``.
+
+    Returns
+    -------
+    float
+        The flux [W/m^2]: ``flux_W_m2`` as given, else from ``distance_au``, else :data:`SOLAR_FLUX_1AU`.
+
     Raises
     ------
     InputError
         Both given, a value that is not a finite positive number, a flux above :data:`MAX_FLUX` or a
         distance inside the Sun (below :data:`SUN_RADIUS_AU`).
+
+    Examples
+    --------
+    >>> solar_flux()
+    1361.0
+    >>> solar_flux(distance_au=2.0)
+    340.25
+    >>> solar_flux(flux_W_m2=1000.0)
+    1000.0
     """
     if flux_W_m2 is not None and distance_au is not None:
         raise InputError("give flux_W_m2 or distance_au, not both", parameters=("flux_W_m2", "distance_au"))
@@ -84,7 +106,23 @@ def solar_flux(flux_W_m2: float | None = None, distance_au: float | None = None)
 
 
 def radiation_pressure(flux_W_m2: float) -> float:
-    """Radiation pressure ``P = Phi / c`` [Pa] of a flux [W/m^2] fully absorbed at normal incidence."""
+    """Radiation pressure ``P = Phi / c`` [Pa] of a flux fully absorbed at normal incidence.
+
+    Parameters
+    ----------
+    flux_W_m2 : float
+        Flux [W/m^2].
+
+    Returns
+    -------
+    float
+        ``P`` [Pa].
+
+    Examples
+    --------
+    >>> f"{radiation_pressure(1361.0):.4e}"
+    '4.5398e-06'
+    """
     return flux_W_m2 / SPEED_OF_LIGHT
 
 
@@ -119,6 +157,24 @@ def surface_forces(
     -------
     (n, 3) float64
         Force on each surface [N], body frame.
+
+    References
+    ----------
+    .. [1] Shmatov, S. I., Mordvinkin, A. S. (2013). "Joint computation of the aerodynamic and radiation
+       force effects on spacecraft" (program AIRSOL); eq. (4), with the sign conventions of METHOD.md
+       "Direct solar pressure".
+
+    Examples
+    --------
+    A black plate and a perfect mirror of 1 m^2, facing the Sun, under ``P = 1`` Pa:
+
+    >>> import numpy as np
+    >>> normals = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]])
+    >>> one, zero = np.ones(2), np.zeros(2)
+    >>> rho = np.array([0.0, 1.0])
+    >>> surface_forces(normals, one, one, rho, one, zero, np.array([0.0, 0.0, 1.0]), 1.0) + 0.0
+    array([[ 0.,  0., -1.],
+           [ 0.,  0., -2.]])
     """
     rho_s = rho * beta
     rho_d = rho - rho_s

@@ -2,7 +2,7 @@
 escape test, the diffuse balance and its adjoint, and what they add to the direct result
 (METHOD.md "Inter-reflection")."""
 
-from sunwind.forces.reflection.beams import ChainTotals, follow_chains
+from sunwind.forces.reflection.beams import BeamChainTotals, ChainTotals, follow_chains
 from sunwind.forces.reflection.diffuse import DiffuseExchange, DiffuseTotals, diffuse_exchange
 from sunwind.forces.reflection.plan import (
     PowerBalance,
@@ -11,12 +11,13 @@ from sunwind.forces.reflection.plan import (
     reflected_part,
     reflection_plan,
 )
-from sunwind.forces.reflection.settings import AUTO_THRESHOLD, MODES, ReflectionSettings
+from sunwind.forces.reflection.settings import AUTO_THRESHOLD, MODES, ReflectionSettings, resolved_mode
 from sunwind.forces.reflection.views import interference, interference_criterion, model_view_factors
 
 __all__ = [
     "AUTO_THRESHOLD",
     "MODES",
+    "BeamChainTotals",
     "ChainTotals",
     "DiffuseExchange",
     "DiffuseTotals",
@@ -31,4 +32,5 @@ __all__ = [
     "model_view_factors",
     "reflected_part",
     "reflection_plan",
+    "resolved_mode",
 ]

@@ -57,7 +57,7 @@ _BATCH_RAYS = 1 << 20
 
 
 @dataclass(frozen=True)
-class ChainTotals:
+class BeamChainTotals:
     """What the chains of one attitude add to the direct result; body frame, SI.
 
     Attributes
@@ -94,6 +94,10 @@ class ChainTotals:
     first_W: float
     rays: int
     depth: int
+
+
+#: The old name, kept until :mod:`sunwind.forces.planet.loads` imports :class:`BeamChainTotals`.
+ChainTotals = BeamChainTotals
 
 
 @dataclass(frozen=True)
@@ -355,7 +359,7 @@ def follow_chains(
     cutoff: float = DEFAULT_CUTOFF,
     depth: int = DEFAULT_DEPTH,
     level: int | None = None,
-) -> ChainTotals:
+) -> BeamChainTotals:
     """Trace the mirror and transmitted beams of every lit side until they escape or fade.
 
     Parameters
@@ -393,7 +397,7 @@ def follow_chains(
     totals, arrived = sums.totals, sums.arrived_W
     rho, beta, _ = craft.side_optics.T
     momentum, open_sky = kernels.MOMENTUM, kernels.OPEN_SKY
-    return ChainTotals(
+    return BeamChainTotals(
         force_N=totals[momentum : momentum + 3] / SPEED_OF_LIGHT,
         torque_Nm=totals[momentum + 3 : momentum + 6] / SPEED_OF_LIGHT,
         diffuse_source_W=rho * (1.0 - beta) * arrived,

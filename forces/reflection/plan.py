@@ -10,9 +10,9 @@ from numpy.typing import NDArray
 
 from sunwind.forces.radiation.direct import ChannelWeights, DirectTotals
 from sunwind.forces.radiation.moments import weight_moments
-from sunwind.forces.reflection.beams import ChainTotals, chain_model, follow_chains
+from sunwind.forces.reflection.beams import BeamChainTotals, chain_model, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals, diffuse_exchange
-from sunwind.forces.reflection.settings import AUTO_THRESHOLD, ReflectionSettings
+from sunwind.forces.reflection.settings import ReflectionSettings, resolved_mode
 from sunwind.forces.reflection.views import interference, model_view_factors
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
@@ -58,7 +58,7 @@ class Reflected:
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
     power: PowerBalance
-    chains: ChainTotals | None
+    chains: BeamChainTotals | None
     view: ViewFactors | None
     k_is: float | None
 
@@ -79,7 +79,7 @@ class ReflectionPlan:
     :data:`PASSED`, :data:`DIFFUSE`, :data:`NET`.
     """
 
-    mode: str  # none, specular or full: auto resolved
+    mode: str  # none, specular, full or plates: auto resolved
     view: ViewFactors | None
     k_is: float | None
     exchange: DiffuseExchange | None
@@ -87,21 +87,38 @@ class ReflectionPlan:
 
 
 def reflection_plan(craft: Spacecraft, settings: ReflectionSettings) -> ReflectionPlan:
-    """The :class:`ReflectionPlan` of ``craft`` with ``settings``, made once and kept in its cache."""
+    """The :class:`ReflectionPlan` of ``craft`` with ``settings``, made once and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+    settings : ReflectionSettings
+        The mode (``auto`` resolved here by the model's ``K_IS``) and the view factors' sampling.
+
+    Returns
+    -------
+    ReflectionPlan
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.box_wing(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1)
+    >>> reflection_plan(model.craft, ReflectionSettings("none")).mode
+    'none'
+    """
     return craft.cache.get(
         ("reflection plan", settings.mode, *settings.view_key), lambda: _plan(craft, settings)
     )
 
 
 def _plan(craft: Spacecraft, settings: ReflectionSettings) -> ReflectionPlan:
-    mode, view, k_is, exchange = settings.mode, None, None, None
-    if mode in ("full", "auto"):
+    view, k_is, exchange = None, None, None
+    if settings.uses_view_factors:
         view = model_view_factors(craft, settings)
         k_is = interference(craft, settings)
-        if mode == "auto":
-            mode = "full" if k_is >= AUTO_THRESHOLD else "none"
+    mode = resolved_mode(settings.mode, k_is)
     weights = None
-    if mode != "none":
+    if mode in ("specular", "full"):
         rho, beta, sigma = craft.side_optics.T
         diffuse = rho * (1 - beta)
         columns = [np.where(chain_model(craft).side_sheet, 0.0, sigma), diffuse]
@@ -128,11 +145,31 @@ def reflected_part(
     plan: ReflectionPlan,
 ) -> Reflected:
     """Inter-reflection's correction to the direct force and torque of one attitude, and the power
-    balance, from the ``direct`` pass made with the ``plan``'s weights under ``flux_W_m2``."""
+    balance, from the ``direct`` pass made with the ``plan``'s weights under ``flux_W_m2``.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+    direct : DirectTotals
+        The direct pass of the attitude.
+    flux_W_m2 : float
+        Solar flux [W/m^2].
+    reference_m : (3,) float64
+        Torque reference point [m].
+    settings : ReflectionSettings
+        The chains' cutoff and depth.
+    plan : ReflectionPlan
+        The model's plan under ``settings``; with ``none`` or ``plates`` nothing is added and all the
+        light not absorbed escapes.
+
+    Returns
+    -------
+    Reflected
+    """
     light = direct.illumination
     power = direct.power(flux_W_m2)
     incident, absorbed, channels = power.incident_W, power.absorbed_W, power.channels_W
-    if plan.mode == "none":
+    if plan.mode in ("none", "plates"):
         power = PowerBalance(incident, absorbed, incident - absorbed)
         return Reflected(plan.mode, np.zeros(3), np.zeros(3), power, None, plan.view, plan.k_is)
     chains = follow_chains(craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth, light.level)

@@ -3,6 +3,9 @@ criterion ``K_IS`` of eq. (7) they give (METHOD.md "Inter-reflection")."""
 
 from __future__ import annotations
 
+import numpy as np
+from numpy.typing import NDArray
+
 from sunwind.forces.reflection.settings import ReflectionSettings
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.view_factors import VIEW_SEED, ViewFactors, view_factors
@@ -17,26 +20,57 @@ def model_view_factors(craft: Spacecraft, settings: ReflectionSettings) -> ViewF
     )
 
 
-def interference_criterion(craft: Spacecraft, view: ViewFactors) -> float:
-    """``K_IS`` of eq. (7): reflected light that meets the spacecraft again over light that escapes.
+def interference_criterion(
+    craft: Spacecraft, view: ViewFactors, reflectivity: NDArray[np.float64] | float | None = None
+) -> float:
+    """``K_IS`` of eq. (7): what the sides reflect (or re-emit) diffusely that meets the spacecraft
+    again, over what escapes.
 
     ``Omega_inf / 2 pi`` is taken as the cosine-weighted open-sky share ``f_esc``, the share of a
     side's diffusely reflected light that escapes, which is the ratio eq. (7) describes. 0 for a
     convex body or a black one.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+    view : ViewFactors
+        The view factors of ``craft``'s sides (their ``escape_fraction``).
+    reflectivity : (n_sides,) array_like or float, optional
+        ``rho`` of each side; default the sides' optical reflectivity (light). Molecules take
+        ``rho = 1``: every arriving molecule leaves again.
+
+    Returns
+    -------
+    float
+        ``K_IS`` >= 0 (inf when nothing escapes but something returns).
+
+    Examples
+    --------
+    A convex box: nothing it reflects meets it again.
+
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1)
+    >>> view = model_view_factors(model.craft, ReflectionSettings(cache_dir=False, rays_per_side=16))
+    >>> interference_criterion(model.craft, view, reflectivity=1.0)
+    0.0
     """
-    rho_area = craft.side_optics[:, 0] * craft.side_areas
+    rho = craft.side_optics[:, 0] if reflectivity is None else np.broadcast_to(reflectivity, craft.n_sides)
+    rho_area = rho * craft.side_areas
     escaping = float(rho_area @ view.escape_fraction)
     returning = float(rho_area @ (1.0 - view.escape_fraction))
-    if returning == 0.0:
+    if returning <= 0.0:
         return 0.0
     return returning / escaping if escaping > 0 else float("inf")
 
 
-def interference(craft: Spacecraft, settings: ReflectionSettings) -> float:
-    """``K_IS`` of ``craft`` (eq. 7) with its view factors for ``settings``; kept in its cache."""
+def interference(craft: Spacecraft, settings: ReflectionSettings, molecules: bool = False) -> float:
+    """``K_IS`` of ``craft`` (eq. 7) with its view factors for ``settings``, of light (the sides'
+    reflectivity) or of ``molecules`` (``rho = 1``); kept in its cache."""
     return craft.cache.get(
-        ("K_IS", *settings.view_key),
-        lambda: interference_criterion(craft, model_view_factors(craft, settings)),
+        ("molecular K_IS" if molecules else "K_IS", *settings.view_key),
+        lambda: interference_criterion(
+            craft, model_view_factors(craft, settings), 1.0 if molecules else None
+        ),
     )
 
 

@@ -6,7 +6,7 @@ from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid, directi
 from sunwind.forces.tables.dataset import grid_table, kinds_of, list_table, open_table, table_attributes
 from sunwind.forces.tables.earth_setup import EarthSetup
 from sunwind.forces.tables.engine import DEFAULT_CHUNK, DEFAULT_STEP, SweepRun, run_jobs, sweep
-from sunwind.forces.tables.interpolation import Loads, TableInterpolator
+from sunwind.forces.tables.interpolation import InterpolatedLoads, TableInterpolator
 from sunwind.forces.tables.jobs import (
     DRAG_FIELDS,
     EARTH_FIELDS,
@@ -32,8 +32,8 @@ __all__ = [
     "DirectionGrid",
     "DragSetup",
     "EarthSetup",
+    "InterpolatedLoads",
     "Job",
-    "Loads",
     "SrpSetup",
     "SweepRun",
     "TableInterpolator",

@@ -15,7 +15,7 @@ import json
 import os
 import shutil
 import zipfile
-from dataclasses import asdict
+from dataclasses import asdict, fields
 from importlib.metadata import version
 from pathlib import Path
 from typing import IO
@@ -23,7 +23,7 @@ from typing import IO
 import numpy as np
 
 from sunwind.forces.model import Model
-from sunwind.forces.tables.jobs import Job, Records, record_shape
+from sunwind.forces.tables.jobs import Inputs, Job, Records, record_shape
 from sunwind.geometry.errors import InputError
 
 
@@ -63,8 +63,32 @@ def fingerprint(model: Model, jobs: list[Job], chunk: int) -> dict:
     )
     for job in jobs:
         out[f"{job.kind}_settings"] = jsonable(job.setup.describe())
-        out[f"{job.kind}_attitudes_sha256"] = hashlib.sha256(job.directions.tobytes()).hexdigest()
+        out[f"{job.kind}_attitudes_sha256"] = inputs_digest(job.inputs)
     return out
+
+
+def inputs_digest(inputs: Inputs) -> str:
+    """SHA-256 of a job's inputs: the bytes of an array, or the name, shape and float64 bytes of every
+    column of a record of arrays (an orbit's steps), its other fields (the epoch) by their text.
+
+    Examples
+    --------
+    >>> same = inputs_digest(np.eye(3))
+    >>> same == inputs_digest(np.eye(3)), same == inputs_digest(-np.eye(3))
+    (True, False)
+    """
+    if isinstance(inputs, np.ndarray):
+        return hashlib.sha256(np.ascontiguousarray(inputs).tobytes()).hexdigest()
+    digest = hashlib.sha256(type(inputs).__name__.encode())
+    for item in fields(inputs):
+        value = getattr(inputs, item.name)
+        if isinstance(value, np.ndarray):
+            column = np.ascontiguousarray(value, dtype=np.float64)
+            digest.update(f"{item.name}{column.shape}".encode())
+            digest.update(column.tobytes())
+        else:
+            digest.update(f"{item.name}={value!r}".encode())
+    return digest.hexdigest()
 
 
 def check_place(directory: Path) -> None:

@@ -15,17 +15,14 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-import numpy as np
-from numpy.typing import NDArray
-
 from sunwind.forces.model import Model, ModelSource
-from sunwind.forces.tables.jobs import Job, Records, Setup
+from sunwind.forces.tables.jobs import Inputs, Job, Records, Tabulation
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import CORES
 
 #: Seconds to wait for a scheduler before giving up.
 CONNECT_TIMEOUT_S = 10
-#: A chunk to run: the job, and the range of its directions.
+#: A chunk to run: the job, and the range of its inputs.
 Pending = tuple[Job, int, int]
 
 
@@ -37,15 +34,13 @@ def _worker_model(source: ModelSource, references: dict) -> Model:
     kept = get_worker().__dict__.setdefault("sunwind_models", {})
     key = (source, tuple(sorted((k, str(v)) for k, v in references.items())))
     if key not in kept:
-        kept[key] = Model(source.load(), source, threads=1, **references)
+        kept[key] = Model(source.spacecraft(), source, threads=1, **references)
     return kept[key]
 
 
-def _remote_chunk(
-    source: ModelSource, references: dict, setup: Setup, directions: NDArray[np.float64]
-) -> Records:
+def _remote_chunk(source: ModelSource, references: dict, setup: Tabulation, inputs: Inputs) -> Records:
     """Records of one chunk, in a worker."""
-    return setup.evaluate(_worker_model(source, references), directions)
+    return setup.evaluate(_worker_model(source, references), inputs)
 
 
 def _references(model: Model) -> dict:
@@ -125,7 +120,7 @@ def run_on_dask(
 
     try:
         futures = {
-            client.submit(_remote_chunk, source, references, job.setup, job.directions[lo:hi], pure=False): (
+            client.submit(_remote_chunk, source, references, job.setup, job.inputs[lo:hi], pure=False): (
                 job,
                 lo,
                 hi,
@@ -157,7 +152,7 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
                 source,
                 references,
                 job.setup,
-                job.directions[lo : lo + 1],
+                job.inputs[lo : lo + 1],
                 pure=False,
                 workers=[w],
             )
@@ -167,7 +162,7 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
         wait(warm)
         start = time.perf_counter()
         futures = [
-            client.submit(_remote_chunk, source, references, job.setup, job.directions[lo:hi], pure=False)
+            client.submit(_remote_chunk, source, references, job.setup, job.inputs[lo:hi], pure=False)
             for job, lo, hi in pending
         ]
         results = client.gather(futures)

@@ -38,7 +38,7 @@ from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid
 from sunwind.forces.tables.jobs import FIELDS, Records, Setup
 from sunwind.geometry.errors import InputError
 
-#: Variable units by field name.
+#: Variable units (UDUNITS) by field name.
 UNITS = {
     "force_N": "N",
     "torque_Nm": "N m",
@@ -46,8 +46,8 @@ UNITS = {
     "direct_torque_Nm": "N m",
     "reflected_force_N": "N",
     "reflected_torque_Nm": "N m",
-    "lit_area_m2": "m^2",
-    "projected_area_m2": "m^2",
+    "lit_area_m2": "m2",
+    "projected_area_m2": "m2",
     "CD": "1",
     "CS": "1",
     "CL": "1",
@@ -264,8 +264,8 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
         "reference_point_m": point,
         "reference_point": name,
         "grid_step_deg": step_deg,
-        "samples": "shadow edges located" if first.samples is None else first.samples,
-        "tolerance": first.tolerance,
+        "samples": "shadow edges located" if first.sampling.samples is None else first.sampling.samples,
+        "tolerance": first.sampling.tolerance,
         "reflections_requested": first.settings.mode,  # what each quantity used: srp_/drag_reflections
         **provenance,
     }

@@ -20,11 +20,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.earth import (
-    DEFAULT_STEP_DEG,
+    DEFAULT_CELL_DEG,
     Place,
     check_altitude,
+    check_cell_size,
     check_cells_at,
-    check_step,
     planet_radiation,
 )
 from sunwind.forces.error_estimate import ErrorEstimate
@@ -58,9 +58,11 @@ SLICE = (
 
 @dataclass(frozen=True)
 class EarthSetup(_Setup):
-    """Settings of every entry of an earth table (see :func:`~sunwind.forces.earth.planet_radiation`).
+    """Settings of every entry of an earth table (see :func:`~sunwind.forces.earth.planet_radiation`):
+    those of :class:`~sunwind.forces.tables.jobs._Setup` (``reference_point_m``, ``sampling``,
+    ``reflections``) and the slice's.
 
-    Attributes
+    Parameters
     ----------
     altitude_km : float
         Height above the Earth's surface (WGS 84 equatorial radius) [km].
@@ -72,11 +74,23 @@ class EarthSetup(_Setup):
         Bond albedo instead of the Earth's 0.30 (Lambertian).
     infrared_W_m2 : float, optional
         Uniform infrared exitance at the surface [W/m^2] instead of ``(1 - A) S / 4``.
-    step_deg : float
+    cell_deg : float
         Cell size of the Earth's disc for shadowing and reflections [deg], in (0, 90].
     thermal : bool
         Each side's radiative-equilibrium temperature and the recoil of its infrared, added to the
         total and recorded apart (``thermal_force_N``, ``thermal_torque_Nm``).
+
+    Raises
+    ------
+    InputError
+        An altitude, Sun vector, flux, albedo, infrared exitance, cell size, sampling or reflections out
+        of range.
+
+    Examples
+    --------
+    >>> setup = EarthSetup(altitude_km=500.0, sun_vector=(2.0, 0.0, 0.0), cell_deg=30.0)
+    >>> setup.sun_vector, setup.options()["reflections"].mode
+    ((1.0, 0.0, 0.0), 'auto')
     """
 
     kind: ClassVar[str] = "earth"
@@ -85,7 +99,7 @@ class EarthSetup(_Setup):
     flux_W_m2: float = SOLAR_FLUX_1AU
     albedo: float | None = None
     infrared_W_m2: float | None = None
-    step_deg: float = DEFAULT_STEP_DEG
+    cell_deg: float = DEFAULT_CELL_DEG
     thermal: bool = False
 
     def __post_init__(self) -> None:
@@ -95,7 +109,7 @@ class EarthSetup(_Setup):
         object.__setattr__(self, "sun_vector", tuple(float(v) for v in sun))
         solar_flux(self.flux_W_m2)
         self.light()  # the albedo and infrared checked
-        check_step(self.step_deg)
+        check_cell_size(self.cell_deg)
 
     @property
     def fields(self) -> dict[str, int]:
@@ -116,7 +130,7 @@ class EarthSetup(_Setup):
     def check(self, model: Model) -> None:
         """Refuse, before any work, a model whose materials lack an emissivity, and a cell step that cuts
         the planet's disc into too many cells."""
-        check_cells_at(self.altitude_km, self.step_deg)
+        check_cells_at(self.altitude_km, self.cell_deg)
         infrared_optics(model.craft)
 
     def precompute(self, model: Model) -> None:
@@ -143,7 +157,7 @@ class EarthSetup(_Setup):
         for i, u in enumerate(directions):
             fraction = self.solar_fraction(u)
             place = Place(u, self.altitude_km, sun, None, fraction)
-            result = planet_radiation(model, place, light, step_deg=self.step_deg, **options)
+            result = planet_radiation(model, place, light, cell_deg=self.cell_deg, **options)
             force, torque = result.force_N, result.torque_Nm
             if self.thermal:
                 state = result.equilibrium(options["reflections"])
@@ -179,7 +193,7 @@ class EarthSetup(_Setup):
             "earth_model": light.description,
             "earth_albedo": albedo,
             "earth_infrared_W_m2": light.infrared.uniform_W_m2,
-            "earth_cell_deg": self.step_deg,
+            "earth_cell_deg": self.cell_deg,
             "earth_eclipse": ECLIPSE,
             "earth_thermal": self.thermal,
             "earth_reflections": reflection_plan(posed.craft, self.settings).mode,

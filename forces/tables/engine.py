@@ -58,7 +58,8 @@ class SweepRun:
         Local runs: threads per attitude (default the model's, else every core). Local Dask cluster:
         worker processes (default one per core), each on one thread.
     progress : callable or None
-        Called with the number of attitudes finished so far (resumed ones included).
+        Called with the number of attitudes finished so far (resumed ones included): first once the
+        precomputes are made, before the first chunk is computed, then after each chunk.
     notice : callable or None
         Called with one line when a resumed checkpoint was read: the chunks kept and recomputed.
     """
@@ -215,7 +216,7 @@ def by_hinge_angle(tables: list[xr.Dataset], poses: list[tuple[tuple[str, float]
         name: sorted({angle for pose in poses for n, angle in pose if n == name}) for name, _ in poses[0]
     }
     for name in angles:
-        table[hinge_dimension(name)].attrs = {"units": "deg", "long_name": f'angle of hinge "{name}"'}
+        table[hinge_dimension(name)].attrs = {"units": "degree", "long_name": f'angle of hinge "{name}"'}
     table.attrs["hinge_angles_deg"] = json.dumps(angles)
     return table
 
@@ -246,11 +247,44 @@ def check_hinges(model: Model, with_drag: bool) -> None:
 
 
 def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]:
-    """Evaluate every job; records per kind, rows in the order of the job's directions."""
+    """Evaluate every job in chunks: its setup's precomputes once, then the chunks not in the
+    checkpoint, here or on Dask.
+
+    Parameters
+    ----------
+    model : Model
+        The model every job evaluates.
+    jobs : list of Job
+        Each a :class:`~sunwind.forces.tables.jobs.Tabulation` over its inputs; kinds distinct.
+    run : SweepRun
+        Chunks, checkpoint, resume, Dask, threads and progress.
+
+    Returns
+    -------
+    dict of str to Records
+        Records per kind, rows in the order of the job's inputs.
+
+    Raises
+    ------
+    InputError
+        A checkpoint that cannot be taken (see :meth:`~.checkpoint.Checkpoint.open`), or what a
+        setup refuses.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.forces import load
+    >>> from sunwind.meshes import box
+    >>> model = load(box(), uniform=Material("paint", 0.4, 0.5, 0.1))
+    >>> job = Job(SrpSetup(reflections="none"), np.eye(3))
+    >>> run_jobs(model, [job], SweepRun(chunk=2))["srp"]["force_N"].shape
+    (3, 3)
+    """
     store = None
     if run.checkpoint is not None:
         store = Checkpoint.open(Path(run.checkpoint), fingerprint(model, jobs, run.chunk), run.resume)
-    records = {job.kind: empty_records(job.fields, len(job.directions)) for job in jobs}
+    records = {job.kind: empty_records(job.fields, len(job.inputs)) for job in jobs}
     pending: list[tuple[Job, int, int]] = []
     done = 0
     for job in jobs:
@@ -264,10 +298,11 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
     said = None if store is None else store.summary(len(pending))
     if said and run.notice:
         run.notice(said)
-    if run.progress:
-        run.progress(done)
     finished = _Finished(records, store, done, run.progress)
     try:
+        precompute(model, list({id(job): job for job, _, _ in pending}.values()))
+        if run.progress:
+            run.progress(done)
         if pending:
             _evaluate(model, pending, run, finished)
         if store is not None:
@@ -283,12 +318,11 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
 
 
 def _evaluate(model: Model, pending: list[tuple[Job, int, int]], run: SweepRun, finished: _Finished) -> None:
-    """Compute the pending chunks, here or on Dask, handing each to ``finished``."""
-    precompute(model, [job for job, _, _ in pending])
+    """Compute the pending chunks (their jobs precomputed), here or on Dask, handing each to ``finished``."""
     if run.scheduler is None:
         local = model if run.workers is None else replace(model, threads=run.workers)
         for job, lo, hi in pending:
-            finished(job, lo, hi, job.setup.evaluate(local, job.directions[lo:hi]))
+            finished(job, lo, hi, job.setup.evaluate(local, job.inputs[lo:hi]))
     else:
         run_on_dask(model, pending, run.scheduler, run.workers, finished)
 
@@ -314,8 +348,17 @@ def _fill(records: Records, lo: int, hi: int, values: Records) -> None:
 
 
 def precompute(model: Model, jobs: list[Job]) -> None:
-    """What every attitude reuses, made once before the first (Dask workers then read it from the disk
-    cache): the view factors when a job reflects, each side's open sky when it computes drag, the
-    thermal balance of the Earth's radiation with its thermal recoil."""
+    """What every input of ``jobs`` reuses, made once before the first chunk (Dask workers then read
+    it from the disk cache): the view factors when a job reflects, each side's open sky when it computes
+    drag, the thermal balance of the Earth's radiation with its thermal recoil. :func:`run_jobs` calls
+    it for the jobs it computes; nothing else needs to.
+
+    Parameters
+    ----------
+    model : Model
+        The model the jobs evaluate.
+    jobs : list of Job
+        The jobs.
+    """
     for job in jobs:
         job.setup.precompute(model)

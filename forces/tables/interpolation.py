@@ -48,7 +48,7 @@ class GridAxes(NamedTuple):
     elevation_step_deg: float
 
 
-class Loads(NamedTuple):
+class InterpolatedLoads(NamedTuple):
     """Interpolated force and torque, body frame; torque about the table's reference point."""
 
     force_N: NDArray[np.float64]  # (..., 3)
@@ -128,7 +128,7 @@ class TableInterpolator:
         self.method = method
         self._grids: dict[tuple[str, ...], _SphereGrid] = {}
 
-    def srp(self, sun_vectors: ArrayLike, flux_W_m2: float | None = None) -> Loads:
+    def srp(self, sun_vectors: ArrayLike, flux_W_m2: float | None = None) -> InterpolatedLoads:
         """SRP force [N] and torque [N m] for unit Sun vectors (..., 3) (spacecraft -> Sun, body frame).
 
         ``flux_W_m2`` rescales from the table's flux (SRP is linear in the flux); default: the table's.
@@ -136,12 +136,12 @@ class TableInterpolator:
         values = self.values(["srp_force_N", "srp_torque_Nm"], sun_vectors)
         if flux_W_m2 is not None:
             values = values * (flux_W_m2 / float(self.table.attrs["flux_W_m2"]))
-        return Loads(values[..., :3], values[..., 3:])
+        return InterpolatedLoads(values[..., :3], values[..., 3:])
 
-    def drag(self, flow_vectors: ArrayLike) -> Loads:
+    def drag(self, flow_vectors: ArrayLike) -> InterpolatedLoads:
         """Drag force [N] and torque [N m] for flow vectors ``u = v_rel / |v_rel|`` (..., 3), body frame."""
         values = self.values(["drag_force_N", "drag_torque_Nm"], flow_vectors)
-        return Loads(values[..., :3], values[..., 3:])
+        return InterpolatedLoads(values[..., :3], values[..., 3:])
 
     def values(self, names: Sequence[str], directions: ArrayLike) -> NDArray[np.float64]:
         """Variables ``names`` (all SRP, all drag or all Earth) at ``directions`` (..., 3) (Sun, flow or

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -23,17 +23,22 @@ from sunwind.forces.batches import SrpBatch
 from sunwind.forces.drag import drag
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas.atmosphere import Atmosphere
-from sunwind.forces.gas.exchange import gas_interference_criterion
 from sunwind.forces.gas.flow import flow_speed
 from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.gas.visible import model_sky
 from sunwind.forces.model import Model
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, radiation_pressure, solar_flux
-from sunwind.forces.reflection import AUTO_THRESHOLD, ReflectionSettings, model_view_factors, reflection_plan
+from sunwind.forces.reflection import (
+    ReflectionSettings,
+    interference,
+    model_view_factors,
+    reflection_plan,
+    resolved_mode,
+)
 from sunwind.forces.srp import srp
 from sunwind.geometry.directions import finite_point
 from sunwind.geometry.errors import InputError
-from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
+from sunwind.geometry.rays.sampling import ShadowSampling
 
 #: Quantities a sweep can tabulate, each over its own direction (the Sun, the flow, the Earth's centre).
 KINDS = ("srp", "drag", "earth")
@@ -112,16 +117,28 @@ def estimate_records(estimates: Sequence[ErrorEstimate | None]) -> Records:
 
 @dataclass(frozen=True)
 class _Setup:
-    """What the SRP and drag settings share: sampling, inter-reflection and the reference point."""
+    """What the SRP, drag and Earth settings share, each the keyword of the same name of
+    :func:`~sunwind.forces.srp.srp`, :func:`~sunwind.forces.drag.drag` and
+    :func:`~sunwind.forces.earth.planet_radiation`.
+
+    Parameters
+    ----------
+    reference_point_m : (3,) float, optional
+        Torque reference point [m]; default the model's.
+    sampling : ShadowSampling, optional
+        The shadow pass's sampling (:class:`~sunwind.geometry.rays.sampling.ShadowSampling`); None
+        for its defaults.
+    reflections : str or ReflectionSettings
+        One of :data:`~sunwind.forces.reflection.settings.MODES`, or settings.
+    """
 
     kind: ClassVar[str]
     reference_point_m: tuple[float, float, float] | None = field(default=None, kw_only=True)
-    samples: int | None = field(default=None, kw_only=True)
-    tolerance: float = field(default=DEFAULT_TOLERANCE, kw_only=True)
+    sampling: ShadowSampling = field(default_factory=ShadowSampling, kw_only=True)
     reflections: ReflectionSettings | str = field(default="auto", kw_only=True)
 
     def __post_init__(self) -> None:
-        check_sampling(self.samples, self.tolerance)
+        object.__setattr__(self, "sampling", ShadowSampling.of(self.sampling))
         ReflectionSettings.of(self.reflections)
         if self.reference_point_m is not None:
             finite_point(self.reference_point_m, "reference_point_m")
@@ -130,7 +147,7 @@ class _Setup:
     def estimates(self) -> dict[str, int]:
         """:data:`ESTIMATE_FIELDS` with the default shadow pass (which estimates its error), none with
         fixed sampling."""
-        return ESTIMATE_FIELDS if self.samples is None else {}
+        return ESTIMATE_FIELDS if self.sampling.estimates else {}
 
     @property
     def settings(self) -> ReflectionSettings:
@@ -139,15 +156,14 @@ class _Setup:
 
     def precompute(self, model: Model) -> None:
         """What every attitude reuses, made once before the first: the view factors when it reflects."""
-        if self.settings.mode in ("full", "auto"):
+        if self.settings.uses_view_factors:
             model_view_factors(model.craft, self.settings)
 
     def options(self) -> dict:
-        """The keyword arguments every attitude's call takes."""
+        """The keyword arguments every attitude's call takes: these settings under their own names."""
         return {
             "reference_point_m": self.reference_point_m,
-            "samples": self.samples,
-            "tolerance": self.tolerance,
+            "sampling": self.sampling,
             "reflections": self.settings,
         }
 
@@ -163,7 +179,16 @@ class _Setup:
 
 @dataclass(frozen=True)
 class SrpSetup(_Setup):
-    """Settings of every SRP attitude (see :func:`~sunwind.forces.srp.srp`)."""
+    """Settings of every SRP attitude (see :func:`~sunwind.forces.srp.srp`): those of :class:`_Setup`
+    and the solar flux ``flux_W_m2`` [W/m^2] at the spacecraft (default 1 au).
+
+    Examples
+    --------
+    >>> from sunwind.geometry.rays.sampling import ShadowSampling
+    >>> setup = SrpSetup(sampling=ShadowSampling(samples=4), reflections="none")
+    >>> sorted(setup.options()), setup.estimates
+    (['reference_point_m', 'reflections', 'sampling'], {})
+    """
 
     kind: ClassVar[str] = "srp"
     flux_W_m2: float = SOLAR_FLUX_1AU
@@ -203,27 +228,35 @@ class SrpSetup(_Setup):
 
 @dataclass(frozen=True)
 class GasOptions(_Setup):
-    """How every drag attitude is computed, whatever its flow: the reference point, shadow sampling,
-    re-emission exchange and the sampling of the open-sky integral and chains (see
-    :func:`~sunwind.forces.drag.drag`)."""
+    """How every drag attitude is computed, whatever its flow: the settings of :class:`_Setup` (the
+    molecules' reflections) and ``gas_sampling``, the sampling of the open-sky integral and chains
+    (:class:`~sunwind.forces.gas.sampling.GasSampling`; None for its defaults), as
+    :func:`~sunwind.forces.drag.drag` takes them.
 
-    sky_rays: int | None = field(default=None, kw_only=True)
-    core_rays: int = field(default=GasSampling.core_rays, kw_only=True)
-    chain_molecules: int = field(default=GasSampling.chain_molecules, kw_only=True)
+    Examples
+    --------
+    >>> GasOptions(gas_sampling=GasSampling(sky_rays=36)).options()["gas_sampling"].sky_rays
+    36
+    """
+
+    gas_sampling: GasSampling = field(default_factory=GasSampling, kw_only=True)
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
+        gas = GasSampling() if self.gas_sampling is None else self.gas_sampling
+        if not isinstance(gas, GasSampling):
+            raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
+        object.__setattr__(self, "gas_sampling", gas)
 
     def precompute(self, model: Model) -> None:
         """The view factors when it reflects, and each side's open sky."""
         super().precompute(model)
-        model_sky(model.craft, self.sky_rays, self.settings.cache_dir)
+        if self.settings.mode != "plates":
+            model_sky(model.craft, self.gas_sampling.sky_rays, self.settings.cache_dir)
 
     def options(self) -> dict:
         """The keyword arguments every attitude's call takes."""
-        gas = GasSampling(self.sky_rays, self.core_rays, self.chain_molecules)
-        return super().options() | {"gas_sampling": gas}
+        return super().options() | {"gas_sampling": self.gas_sampling}
 
 
 @dataclass(frozen=True)
@@ -263,10 +296,8 @@ class DragSetup(GasOptions):
         """The re-emission exchange mode the attitudes used: ``auto`` resolved as
         :func:`~sunwind.forces.drag.drag` resolves it (full when the molecular ``K_IS`` >= the threshold)."""
         settings = self.settings
-        if settings.mode != "auto":
-            return settings.mode
-        k_is = gas_interference_criterion(model.craft, model_view_factors(model.craft, settings))
-        return "full" if k_is >= AUTO_THRESHOLD else "none"
+        k_is = interference(model.craft, settings, molecules=True) if settings.mode == "auto" else None
+        return resolved_mode(settings.mode, k_is)
 
     def attributes(self, model: Model) -> dict:
         """What a table of this setup states about its environment, coefficients and exchange mode."""
@@ -286,7 +317,65 @@ class DragSetup(GasOptions):
         }
 
 
+#: The settings of an SRP or a drag sweep (the Earth's, :class:`~.earth_setup.EarthSetup`, import this
+#: module); what the engine runs, whatever it is, is a :class:`Tabulation`.
 Setup = SrpSetup | DragSetup
+
+
+class Inputs(Protocol):
+    """What a job evaluates, one entry per row, cut into chunks by a slice: an (n, 3) array of unit
+    vectors (a sweep's Sun, flow or Earth directions), or the steps of an orbit
+    (:class:`~sunwind.forces.orbit.inputs.StepInputs`)."""
+
+    def __len__(self) -> int: ...
+
+    def __getitem__(self, index: slice, /) -> Any: ...
+
+
+@runtime_checkable
+class Tabulation(Protocol):
+    """What the sweep engine (:func:`~sunwind.forces.tables.engine.run_jobs`) runs over a job's inputs,
+    chunk by chunk, locally or on Dask workers (so it pickles), and checkpoints by its description.
+
+    :class:`SrpSetup`, :class:`DragSetup`, :class:`PosedSetup`,
+    :class:`~sunwind.forces.tables.earth_setup.EarthSetup` and the orbit's
+    :class:`~sunwind.forces.orbit.steps.OrbitLoads` are tabulations.
+
+    Attributes
+    ----------
+    kind : str
+        The name its records are kept under (``"srp"``, ``"drag"``, ``"earth"``, ``"srp@0"``,
+        ``"orbit"``): one per job of a run.
+    fields : dict of str to int
+        The records of one input: name -> width (1: a number, else a row of that many).
+
+    Methods
+    -------
+    precompute(model)
+        Make what every input reuses (view factors, open skies), once, before the first chunk.
+    evaluate(model, inputs)
+        The records (:data:`Records`, :attr:`fields`) of ``inputs``, a chunk of the job's
+        (:class:`Inputs`), one row each in their order.
+    describe()
+        JSON-ready settings: a checkpoint's fingerprint, a table's attributes.
+
+    Examples
+    --------
+    >>> isinstance(SrpSetup(), Tabulation), isinstance(object(), Tabulation)
+    (True, False)
+    """
+
+    @property
+    def kind(self) -> str: ...
+
+    @property
+    def fields(self) -> dict[str, int]: ...
+
+    def precompute(self, model: Model) -> None: ...
+
+    def evaluate(self, model: Model, inputs: Any) -> Records: ...
+
+    def describe(self) -> dict: ...
 
 
 @dataclass(frozen=True)
@@ -322,22 +411,47 @@ class PosedSetup:
 
 @dataclass(frozen=True, eq=False)
 class Job:
-    """One quantity over its directions: the ``setup`` of every attitude, ``directions`` (n, 3) unit
-    vectors (Sun directions for SRP, flow directions for drag)."""
+    """One quantity over its inputs: the ``setup`` that evaluates each, and the ``inputs``.
 
-    setup: Setup
-    directions: NDArray[np.float64]
+    Attributes
+    ----------
+    setup : Tabulation
+        What every input computes.
+    inputs : Inputs
+        Sun directions (SRP), flow directions (drag) or Earth directions (the Earth's radiation), (n, 3)
+        unit vectors; or an orbit's steps (:class:`~sunwind.forces.orbit.inputs.StepInputs`).
+
+    Examples
+    --------
+    >>> job = Job(SrpSetup(), np.eye(3))
+    >>> job.kind, len(job.inputs), job.chunks(2)
+    ('srp', 3, [(0, 2), (2, 3)])
+    """
+
+    setup: Tabulation
+    inputs: Inputs
 
     @property
     def kind(self) -> str:
+        """The setup's kind: the name its records are kept under."""
         return self.setup.kind
 
     @property
     def fields(self) -> dict[str, int]:
-        """The records' fields: name -> width (1: a number, 3: a vector)."""
+        """The records' fields: name -> width (1: a number, else a row of that many)."""
         return self.setup.fields
 
     def chunks(self, size: int) -> list[tuple[int, int]]:
-        """Index ranges ``[lo, hi)`` of the chunks."""
-        n = len(self.directions)
+        """Index ranges ``[lo, hi)`` of the chunks of at most ``size`` inputs.
+
+        Parameters
+        ----------
+        size : int
+            Inputs per chunk, >= 1.
+
+        Returns
+        -------
+        list of (int, int)
+        """
+        n = len(self.inputs)
         return [(lo, min(n, lo + size)) for lo in range(0, n, size)]

@@ -244,7 +244,7 @@ def view_model(table: xr.Dataset) -> Model:
                 parameters=("no_view",),
             )
     reference = np.asarray(table.attrs["reference_point_m"], dtype=np.float64)
-    return Model(source.load(), source, reference_point_m=reference)
+    return Model(source.spacecraft(), source, reference_point_m=reference)
 
 
 def plot_pressure_views(

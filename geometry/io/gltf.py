@@ -38,6 +38,17 @@ def write_gltf(mesh: MeshData, path: Path) -> None:
     -----
     Optics, two-sided parts and back materials are not written: glTF has no place for them
     (its ``doubleSided`` is a rendering flag of a material, not of a part).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.geometry.io.trimesh_ import read_gltf
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_gltf(box(), Path(folder) / "box.glb")
+    ...     mesh = read_gltf(Path(folder) / "box.glb")
+    >>> mesh.n_faces, mesh.part_names
+    (12, ('box',))
     """
     buffer = bytearray()
     header: dict = {

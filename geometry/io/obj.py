@@ -29,7 +29,7 @@ _HINT = "fix that line or re-export the OBJ file"
 
 
 def read_obj(path: Path) -> MeshData:
-    """Read an OBJ file as it is: no vertex merging, no face removal, no winding changes.
+    r"""Read an OBJ file as it is: no vertex merging, no face removal, no winding changes.
 
     Parameters
     ----------
@@ -49,6 +49,16 @@ def read_obj(path: Path) -> MeshData:
     MeshError
         Binary content, an unreadable number, a face with fewer than 3 corners or a face
         referring to a vertex that does not exist; the message gives the line number.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "tri.obj"
+    ...     _ = path.write_text("o panel\nusemtl white\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    ...     mesh = read_obj(path)
+    >>> mesh.faces.tolist(), mesh.part_names, mesh.material_names
+    ([[0, 1, 2]], ('panel',), ('white',))
     """
     data = path.read_bytes()
     if b"\x00" in data:
@@ -230,6 +240,16 @@ def write_obj(mesh: MeshData, path: Path) -> None:
         The mesh to write; part and material names must not contain line breaks.
     path : Path
         The ``.obj`` file to create or overwrite.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_obj(box(), Path(folder) / "box.obj")
+    ...     again = read_obj(Path(folder) / "box.obj")
+    >>> bool(np.array_equal(again.vertices, box().vertices)), again.part_names
+    (True, ('box',))
     """
     order = np.lexsort((mesh.face_material, mesh.face_part, mesh.face_material >= 0))
     part, material = mesh.face_part[order], mesh.face_material[order]

@@ -51,8 +51,24 @@ SUPPORTED_SUFFIXES: tuple[str, ...] = tuple(LOADERS)
 
 
 def mesh_files(path: str | os.PathLike) -> list[Path]:
-    """Every file loading ``path`` reads: a USD stage and what it composes (references, payloads,
-    sub-layers), else the file itself."""
+    """List every file that loading a mesh file reads.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The mesh file.
+
+    Returns
+    -------
+    list of Path
+        For a USD stage the stage and what it composes (references, payloads, sub-layers), sorted;
+        else ``[path]``.
+
+    Examples
+    --------
+    >>> mesh_files("craft.obj")
+    [PosixPath('craft.obj')]
+    """
     path = Path(path)
     return composed_files(path) if LOADERS.get(path.suffix.lower()) is read_usd else [path]
 
@@ -86,6 +102,16 @@ def load_mesh(path: str | os.PathLike[str], unit: str | None = None) -> MeshData
         Unknown unit.
     MeshError
         Missing file, directory, unknown suffix, unreadable or corrupt content, no triangles.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     save_mesh(box(), Path(folder) / "box.obj")
+    ...     mesh = load_mesh(Path(folder) / "box.obj", unit="mm")
+    >>> mesh.n_faces, mesh.metadata["unit"], float(mesh.vertices.max())
+    (12, 'mm (--unit)', 0.0005)
     """
     name = os.fspath(path)
     file = Path(name)
@@ -169,6 +195,15 @@ def save_mesh(
     ------
     InputError
         Unwritable suffix, empty mesh, incomplete optics, missing folder, or a write failure.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import plate
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     save_mesh(plate(divisions=2), Path(folder) / "plate.stl")
+    ...     load_mesh(Path(folder) / "plate.stl").n_faces
+    8
     """
     name = os.fspath(path)
     file = Path(name)

@@ -27,6 +27,12 @@ def fan_triangles(counts: ArrayLike, indices: ArrayLike) -> tuple[NDArray[np.int
         Vertex indices of the triangles, ``sum(counts - 2)`` of them, in polygon order.
     polygon : (n_triangles,) int64
         Polygon each triangle came from.
+
+    Examples
+    --------
+    >>> triangles, polygon = fan_triangles([4, 3], [0, 1, 2, 3, 4, 5, 6])
+    >>> triangles.tolist(), polygon.tolist()
+    ([[0, 1, 2], [0, 2, 3], [4, 5, 6]], [0, 0, 1])
     """
     counts = np.asarray(counts, dtype=np.int64)
     indices = np.asarray(indices, dtype=np.int64)
@@ -54,6 +60,11 @@ def groups(labels: ArrayLike) -> list[tuple[int, NDArray[np.int64]]]:
     -------
     list of (int, (k,) int64)
         Each label present and the positions holding it.
+
+    Examples
+    --------
+    >>> [(label, where.tolist()) for label, where in groups([2, 0, 2, 1])]
+    [(0, [1]), (1, [3]), (2, [0, 2])]
     """
     labels = np.asarray(labels)
     order = np.argsort(labels, kind="stable")
@@ -75,6 +86,12 @@ def compact(faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int
         Original indices of the touched vertices, ascending.
     faces : (n_faces, 3) int64
         The same faces as indices into ``used``.
+
+    Examples
+    --------
+    >>> used, faces = compact(np.array([[4, 7, 9], [9, 7, 5]]))
+    >>> used.tolist(), faces.tolist()
+    ([4, 5, 7, 9], [[0, 2, 3], [3, 2, 1]])
     """
     used, inverse = np.unique(faces, return_inverse=True)
     return used, inverse.reshape(faces.shape).astype(np.int64)
@@ -92,6 +109,12 @@ def bounds(points: NDArray[np.floating]) -> tuple[NDArray[np.floating], NDArray[
     -------
     low, high : (3,) float
         Per-axis bounds, in the dtype of ``points``.
+
+    Examples
+    --------
+    >>> low, high = bounds(np.array([[0.0, 1.0, 2.0], [np.nan, 0.0, 0.0], [-1.0, 3.0, 0.5]]))
+    >>> low.tolist(), high.tolist()
+    ([-1.0, 1.0, 0.5], [0.0, 3.0, 2.0])
     """
     finite = points[np.isfinite(points).all(axis=1)]
     if not len(finite):
@@ -100,13 +123,30 @@ def bounds(points: NDArray[np.floating]) -> tuple[NDArray[np.floating], NDArray[
 
 
 def check_transform(linear: NDArray[np.float64], path: str, part: str) -> None:
-    """Refuse a part's world transform (its 3 x 3 linear part) that is not finite or collapses it flat.
+    """Refuse a part's world transform that is not finite or collapses the part flat.
+
+    Parameters
+    ----------
+    linear : (3, 3) float64
+        The linear part of the transform.
+    path : str
+        The mesh file, named in the error.
+    part : str
+        The part the transform places, named in the error.
 
     Raises
     ------
     MeshError
         A NaN or infinite entry, or a determinant that is zero (to 1e-12 of the largest entry cubed):
         a scale of 0 somewhere in the part's transforms or its parents'.
+
+    Examples
+    --------
+    >>> check_transform(np.eye(3), "craft.usda", "/bus")
+    >>> check_transform(np.diag([1.0, 1.0, 0.0]), "craft.usda", "/bus")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.MeshError: ...collapses it flat...
     """
     if not np.isfinite(linear).all():
         raise MeshError(

@@ -22,12 +22,32 @@ from sunwind.geometry.mesh_data import MeshData
 def read_stl(path: Path) -> MeshData:
     """Read a binary or ASCII STL file as one part (see :func:`read_single`).
 
+    Parameters
+    ----------
+    path : Path
+        The ``.stl`` file.
+
+    Returns
+    -------
+    MeshData
+        One part named after the file stem, in file units, without material keys.
+
     Raises
     ------
     MeshError
         The file is neither: a binary STL's size is 84 bytes plus 50 per triangle announced in
         its header, an ASCII STL starts with ``solid``. (trimesh's own message for this case
         is about text encodings.)
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_stl(box(), Path(folder) / "box.stl")
+    ...     mesh = read_stl(Path(folder) / "box.stl")
+    >>> mesh.n_faces, mesh.part_names
+    (12, ('box',))
     """
     size = path.stat().st_size
     with open(path, "rb") as file:
@@ -55,6 +75,16 @@ def read_single(path: Path) -> MeshData:
     -------
     MeshData
         Vertices in file units; a binary STL has three unshared vertices per triangle.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_ply(box(), Path(folder) / "cube.ply")
+    ...     mesh = read_single(Path(folder) / "cube.ply")
+    >>> mesh.n_faces, mesh.part_names, set(mesh.face_material.tolist())
+    (12, ('cube',), {-1})
     """
     mesh = trimesh.load_mesh(path, file_type=path.suffix.lower()[1:], process=False)
     faces = getattr(mesh, "faces", np.zeros((0, 3), dtype=np.int64))  # a PLY may be points only
@@ -92,6 +122,17 @@ def read_gltf(path: Path) -> MeshData:
     ``<node>_<6 characters>`` under the (geometry-less) node; such a child is reported under
     its parent's name (an unnamed parent gives a part per primitive, named as trimesh names
     the primitives: ``hull``, ``hull_1``). Points and lines primitives are skipped.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.geometry.io.gltf import write_gltf
+    >>> from sunwind.meshes import plate
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_gltf(plate(divisions=1), Path(folder) / "plate.gltf")
+    ...     mesh = read_gltf(Path(folder) / "plate.gltf")
+    >>> mesh.n_faces, mesh.part_names, mesh.metadata["declared_unit"]
+    (2, ('plate',), (1.0, 'glTF specification'))
     """
     if path.suffix.lower() == ".gltf":  # trimesh reports bad JSON as a missing file
         try:
@@ -140,12 +181,46 @@ def _is_primitive_child(node: str, parent: str, with_geometry: Collection[str]) 
 
 
 def write_stl(mesh: MeshData, path: Path) -> None:
-    """Write a binary STL: float32 coordinates, three vertices per triangle, no parts."""
+    """Write a binary STL: float32 coordinates, three vertices per triangle, no parts.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The mesh to write [m].
+    path : Path
+        The ``.stl`` file to create or overwrite.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_stl(box(), Path(folder) / "box.stl")
+    ...     (Path(folder) / "box.stl").stat().st_size == 84 + 50 * 12
+    True
+    """
     _trimesh(mesh).export(path, file_type="stl")
 
 
 def write_ply(mesh: MeshData, path: Path) -> None:
-    """Write a binary PLY: float32 coordinates with shared vertices, no parts."""
+    """Write a binary PLY: float32 coordinates with shared vertices, no parts.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The mesh to write [m].
+    path : Path
+        The ``.ply`` file to create or overwrite.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_ply(box(), Path(folder) / "box.ply")
+    ...     len(read_single(Path(folder) / "box.ply").vertices)
+    8
+    """
     _trimesh(mesh).export(path, file_type="ply")
 
 

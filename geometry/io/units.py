@@ -31,6 +31,16 @@ def parse_unit(unit: str, path: str) -> str:
     ------
     InputError
         ``unit`` is not one of ``UNITS``.
+
+    Returns
+    -------
+    str
+        The key of ``UNITS``.
+
+    Examples
+    --------
+    >>> parse_unit(" MM ", "craft.obj")
+    'mm'
     """
     name = unit.strip().lower()
     if name not in UNITS:
@@ -55,6 +65,13 @@ def resolve_unit(unit: str | None, declared: tuple[float, str] | None) -> tuple[
     label : str
         What was used and why, e.g. ``"mm (--unit)"``, ``"cm (USD metersPerUnit)"``,
         ``"m (default)"``, ``"mm (--unit; overrides USD metersPerUnit: cm)"``.
+
+    Examples
+    --------
+    >>> resolve_unit(None, None)
+    (1.0, 'm (default)')
+    >>> resolve_unit("mm", (0.01, "USD metersPerUnit"))
+    (0.001, 'mm (--unit; overrides USD metersPerUnit: cm)')
     """
     if unit is None:
         if declared is None:
@@ -68,7 +85,23 @@ def resolve_unit(unit: str | None, declared: tuple[float, str] | None) -> tuple[
 
 
 def unit_name(factor: float) -> str:
-    """Short name of a metres-per-unit factor: ``"cm"`` for 0.01, ``"0.3048 m"`` otherwise."""
+    """Name a metres-per-unit factor: its key in ``UNITS``, else the factor in metres.
+
+    Parameters
+    ----------
+    factor : float
+        Metres per file unit.
+
+    Returns
+    -------
+    str
+        E.g. ``"cm"`` for 0.01, ``"0.3048 m"`` for a foot.
+
+    Examples
+    --------
+    >>> unit_name(0.01), unit_name(0.3048)
+    ('cm', '0.3048 m')
+    """
     for name, metres in UNITS.items():
         if math.isclose(factor, metres, rel_tol=1e-9):
             return name

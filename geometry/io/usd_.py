@@ -67,6 +67,16 @@ def read_usd(path: Path) -> MeshData:
     -----
     Instance proxies are read like ordinary prims. ``subdivisionScheme`` is ignored: the
     polygons themselves are the surface. ``upAxis`` is ignored: the body frame is the stage's.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_usd(box(), Path(folder) / "box.usda")
+    ...     mesh = read_usd(Path(folder) / "box.usda")
+    >>> mesh.n_faces, mesh.part_names, mesh.metadata["declared_unit"]
+    (12, ('/box/box',), (1.0, 'USD metersPerUnit'))
     """
     held = Sdf.Layer.Find(str(path))
     if held and not held.dirty:  # a layer still open elsewhere in this process may be stale
@@ -100,8 +110,28 @@ def read_usd(path: Path) -> MeshData:
 
 
 def composed_files(path: Path) -> list[Path]:
-    """The stage file and every file its composition reads (sub-layers, references, payloads and the
-    assets they name), resolved and sorted: what a digest of the model must cover."""
+    """List the stage file and every file its composition reads: what a digest of the model must cover.
+
+    Parameters
+    ----------
+    path : Path
+        A USD stage file.
+
+    Returns
+    -------
+    list of Path
+        The stage and its sub-layers, references, payloads and the assets they name, resolved and sorted;
+        files that do not exist are left out.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_usd(box(), Path(folder) / "box.usda")
+    ...     [file.name for file in composed_files(Path(folder) / "box.usda")]
+    ['box.usda']
+    """
     layers, assets, _missing = UsdUtils.ComputeAllDependencies(str(path))
     found = {Path(layer.realPath) for layer in layers if layer.realPath} | {Path(a) for a in assets if a}
     return sorted({file.resolve() for file in found | {Path(path)} if file.is_file()})
@@ -317,6 +347,15 @@ def write_usd(mesh: MeshData, path: Path) -> None:
     ------
     OSError
         The file cannot be written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.meshes import plate
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_usd(plate(divisions=1), Path(folder) / "plate.usda")
+    ...     "metersPerUnit = 1" in (Path(folder) / "plate.usda").read_text()
+    True
     """
     stage = Usd.Stage.CreateInMemory()
     UsdGeom.SetStageMetersPerUnit(stage, 1.0)

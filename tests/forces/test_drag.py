@@ -12,9 +12,11 @@ from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
 from sunwind.forces.gas.laws import GasSurfaces, panel_coefficients
 from sunwind.forces.model import Model
 from sunwind.forces.results import aerodynamic_axes
+from sunwind.forces.srp import srp
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import GasSurface, Material
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes import primitives
 
@@ -71,7 +73,14 @@ def test_convex_body_is_the_per_side_law_at_every_speed_ratio(body, ratio, refle
     ref = np.array([0.1, 0.2, -0.1])
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # exact at every speed ratio: nothing to warn of
-        result = drag(craft, velocity, AIR, reference_point_m=ref, reflections=reflections, samples=4)
+        result = drag(
+            craft,
+            velocity,
+            AIR,
+            reference_point_m=ref,
+            reflections=reflections,
+            sampling=ShadowSampling(samples=4),
+        )
     force, torque = per_side_law(craft, velocity, AIR, ref)
     scale = np.linalg.norm(force)
     assert np.linalg.norm(result.force_N - force) <= 1e-12 * scale
@@ -145,7 +154,7 @@ def test_coefficients_use_the_stated_axes_and_normalisation():
     assert np.allclose(axes @ axes.T, np.eye(3))
     assert np.allclose(np.cross(axes[0], axes[1]), axes[2])  # drag x side = lift
     assert result.force_coefficients[0] == pytest.approx(-result.force_N @ [0, 1, 0] / (q * 2.0), rel=1e-12)
-    assert np.allclose(result.moment_coefficients, result.torque_Nm / (q * 2.0 * 3.0))
+    assert np.allclose(result.CM, result.torque_Nm / (q * 2.0 * 3.0))
     payload = result.to_json()
     for key in ("force_N", "torque_Nm", "density_kg_m3", "temperature_K", "speed_m_s", "dynamic_pressure_Pa"):
         assert key in payload
@@ -159,12 +168,33 @@ def test_default_reference_area_is_the_mean_projected_area():
     assert result.reference_area_m2 == pytest.approx(math.pi, rel=2e-3)
 
 
-def test_zero_velocity_and_light_only_modes_are_refused():
+def test_zero_velocity_and_unknown_modes_are_refused_as_for_light():
     craft = craft_of(primitives.sphere(1.0, subdivisions=8))
     with pytest.raises(InputError, match="zero length"):
         drag(craft, [0.0, 0.0, 0.0], AIR)
-    with pytest.raises(InputError, match="light only"):
-        drag(craft, [7000.0, 0, 0], AIR, reflections="specular")
+    message = "reflections 'mirror' is not a mode; use one of none, specular, full, auto, plates"
+    with pytest.raises(InputError, match=message):
+        drag(craft, [7000.0, 0, 0], AIR, reflections="mirror")
+    with pytest.raises(InputError, match=message):
+        srp(craft, [1.0, 0, 0], reflections="mirror")
+
+
+def test_plates_give_each_side_the_whole_stream_and_cast_no_ray():
+    box = craft_of(primitives.box((1.0, 2.0, 3.0)))
+    v = speed_for(6.0) * np.array([0.3, -0.5, 0.8])
+    plates, exact = drag(box, v, AIR, reflections="plates"), drag(box, v, AIR, reflections="none")
+    assert plates.reflections == "plates" and plates.rays == 0 and plates.error_estimate is None
+    assert np.allclose(plates.force_N, exact.force_N, rtol=1e-9)  # convex: every side sees open sky
+    assert np.allclose(plates.torque_Nm, exact.torque_Nm, rtol=1e-9, atol=1e-12 * np.abs(exact.force_N).max())
+    assert plates.to_json()["open_sky"]["rays_per_side"] == 0
+
+
+def test_specular_follows_unaccommodated_molecules_without_diffuse_exchange():
+    mirroring = craft_of(primitives.box((1.0, 1.0, 1.0)), "schaaf-chambre", normal_accommodation=0.2)
+    v = speed_for(6.0) * np.array([0.3, -0.5, 0.8])
+    convex = drag(mirroring, v, AIR, reflections="specular")  # no side sends to another
+    assert convex.reflections == "specular"
+    assert np.array_equal(convex.force_N, drag(mirroring, v, AIR, reflections="none").force_N)
 
 
 @pytest.mark.parametrize(

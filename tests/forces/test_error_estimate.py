@@ -20,6 +20,7 @@ from sunwind.forces.srp import srp
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
 from sunwind.geometry.rays.certificate import LoadsError, ShadowCheck
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes.samples import sample_spacecraft
 
@@ -90,7 +91,7 @@ def test_srp_estimate_is_the_checks_bands_times_the_load_of_eq_4(loads_seen):
             assert error.force_N == pytest.approx(bands.sum(), rel=1e-12)
             banded += 1
     assert banded, "no attitude whose check reported chords' bands: the test has no teeth"
-    assert srp(craft, u, reflections="none", samples=4).error_estimate is None
+    assert srp(craft, u, reflections="none", sampling=ShadowSampling(samples=4)).error_estimate is None
 
 
 def test_drag_estimate_takes_the_stream_one_lit_unit_of_area_takes(loads_seen):
@@ -120,18 +121,27 @@ def test_drag_estimate_takes_the_stream_one_lit_unit_of_area_takes(loads_seen):
     assert np.allclose(load[asked], whole_stream, rtol=2e-3, atol=0)
     assert result.shadow_error == check.loads_error(craft, load, result.reference_point_m)
     assert result.to_json()["error_estimate"] == result.error_estimate.to_json()
-    fixed = drag(craft, speed * u, air, reflections="none", samples=4, gas_sampling=GasSampling(sky_rays=36))
+    fixed = drag(
+        craft,
+        speed * u,
+        air,
+        reflections="none",
+        sampling=ShadowSampling(samples=4),
+        gas_sampling=GasSampling(sky_rays=36),
+    )
     assert fixed.error_estimate is None and fixed.to_json()["error_estimate"] is None
 
 
 def test_earth_estimate_adds_the_cells_passes_of_albedo_and_infrared(loads_seen):
     craft = build_spacecraft(sample_spacecraft(2000), uniform=BLACK)
     place = Place([0.3, -0.2, -1.0], 500.0, [1.0, 0.4, 0.2])
-    result = planet_radiation(craft, place, reflections="none", step_deg=30.0)
+    result = planet_radiation(craft, place, reflections="none", cell_deg=30.0)
     assert len(loads_seen) > 2  # a pass per cell, each handed the albedo's and the infrared's loads
     bands = (result.albedo.shadow_error, result.infrared.shadow_error)
     assert result.shadow_error == summed(bands)
     assert result.to_json()["error_estimate"] == result.error_estimate.to_json()
     assert planet_radiation(craft, place, reflections="plates").error_estimate is None
-    fixed = planet_radiation(craft, place, reflections="none", step_deg=30.0, samples=1)
+    fixed = planet_radiation(
+        craft, place, reflections="none", cell_deg=30.0, sampling=ShadowSampling(samples=1)
+    )
     assert fixed.error_estimate is None and fixed.to_json()["error_estimate"] is None

@@ -12,6 +12,7 @@ from sunwind.geometry.errors import InputError, MaterialError
 from sunwind.geometry.io.obj import write_obj
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.sampling import ShadowSampling
 
 SAMPLE = "meshes/data/sample_spacecraft"
 
@@ -23,7 +24,7 @@ def sample():
 
 def test_load_keeps_the_source_and_the_source_loads_the_same_model(sample):
     assert isinstance(sample, Model) and sample.source.mesh.endswith("sample_spacecraft.obj")
-    again = sample.source.load()
+    again = sample.source.spacecraft()
     assert np.array_equal(again.triangles, sample.craft.triangles)
     assert sample.cache is sample.craft.cache
     assert set(sample.digests()) == {"mesh_sha256", "materials_sha256"}
@@ -42,9 +43,9 @@ def test_gas_overrides_set_every_material_and_unknown_keys_are_refused(sample):
 
 def test_coefficient_references_of_the_model_apply_and_are_checked(sample):
     air = explicit(3e-12, 900.0, "O:1")
-    plain = drag(sample, [7600.0, 0, 0], air, samples=1, reflections="none")
+    plain = drag(sample, [7600.0, 0, 0], air, sampling=ShadowSampling(samples=1), reflections="none")
     model = Model(sample.craft, reference_area_m2=2.0, reference_length_m=3.0)
-    scaled = drag(model, [7600.0, 0, 0], air, samples=1, reflections="none")
+    scaled = drag(model, [7600.0, 0, 0], air, sampling=ShadowSampling(samples=1), reflections="none")
     assert scaled.reference_area_m2 == 2.0 and scaled.reference_length_m == 3.0
     np.testing.assert_allclose(scaled.CD * 2.0, plain.CD * plain.reference_area_m2, rtol=1e-12)
     for bad in ({"reference_area_m2": 0.0}, {"reference_length_m": -1.0}, {"reference_area_m2": np.nan}):
@@ -127,7 +128,7 @@ def test_the_source_of_a_posed_model_loads_it_again_bit_for_bit_and_records_its_
     source = posed.source
     assert dict(source.articulate) == posed.craft.articulation
     assert ModelSource.from_attributes(source.attributes()) == source
-    assert np.array_equal(source.load().vertices, posed.craft.vertices)
+    assert np.array_equal(source.spacecraft().vertices, posed.craft.vertices)
     assert json.loads(posed.digests()["articulation_deg"]) == posed.craft.articulation
     held = load(source.mesh, source.materials, articulate={"wing_p": 12.0})
     assert [h.law for h in held.hinges] == ["fixed", "schedule"] and held.craft.articulation["wing_p"] == 12.0

@@ -15,6 +15,7 @@ from sunwind.forces.srp import srp
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import Material
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 
 P = SOLAR_FLUX_1AU / SPEED_OF_LIGHT
@@ -60,8 +61,13 @@ def test_rotating_and_moving_body_and_sun_together_rotates_the_result(dumbbell, 
     turned = build_spacecraft(moved, uniform=MIXED)
     u = np.asarray(sun) / np.linalg.norm(sun)
     ref = np.array([0.1, -0.2, 0.3])
-    base = srp(dumbbell, u, samples=64, reference_point_m=ref)
-    new = srp(turned, rotation.apply(u), samples=64, reference_point_m=rotation.apply(ref) + shift)
+    base = srp(dumbbell, u, sampling=ShadowSampling(samples=64), reference_point_m=ref)
+    new = srp(
+        turned,
+        rotation.apply(u),
+        sampling=ShadowSampling(samples=64),
+        reference_point_m=rotation.apply(ref) + shift,
+    )
     scale = P * 3.0  # pressure times the largest projected area
     assert np.linalg.norm(new.force_N - rotation.apply(base.force_N)) < 2e-3 * scale
     assert np.linalg.norm(new.torque_Nm - rotation.apply(base.torque_Nm)) < 2e-3 * scale * 1.5
@@ -121,7 +127,7 @@ def test_bad_directions_and_reference_points_are_input_errors(dumbbell):
     with pytest.raises(InputError, match="reference_point_m"):
         srp(dumbbell, [1, 0, 0], reference_point_m=[0, np.nan, 0])
     with pytest.raises(InputError, match="samples"):
-        srp(dumbbell, [1, 0, 0], samples=0)
+        srp(dumbbell, [1, 0, 0], sampling=ShadowSampling(samples=0))
 
 
 @pytest.mark.slow
@@ -136,7 +142,11 @@ def test_results_are_the_same_bits_whatever_the_number_of_threads():
         model = Model(craft, threads=threads)
         results[threads] = [
             np.concatenate([r.force_N, r.torque_Nm, [r.lit_area_m2, r.projected_area_m2]])
-            for r in (srp(model, u, samples=1), srp(model, u, samples=4), srp(model, u))
+            for r in (
+                srp(model, u, sampling=ShadowSampling(samples=1)),
+                srp(model, u, sampling=ShadowSampling(samples=4)),
+                srp(model, u),
+            )
         ]
     for threads in (2, 3):
         for a, b in zip(results[1], results[threads], strict=True):
@@ -147,12 +157,12 @@ def test_a_batch_is_its_attitudes_one_by_one(dumbbell):
     """A batch of Sun vectors gives, attitude by attitude, the bits of one call each, and every field
     stacked under the same name."""
     suns = np.array([[1.0, 0.2, 0.3], [-0.3, 0.9, 0.1], [0.0, 0.0, -1.0]])
-    batch = srp(dumbbell, suns, samples=4, reflections="none")
+    batch = srp(dumbbell, suns, sampling=ShadowSampling(samples=4), reflections="none")
     assert isinstance(batch, SrpBatch) and len(batch) == 3
     assert batch.force_N.shape == batch.torque_Nm.shape == batch.sun_vector.shape == (3, 3)
     assert batch.lit_area_m2.shape == batch.rays.shape == batch.azel_deg.shape[:1] == (3,)
     for k, sun in enumerate(suns):
-        one = srp(dumbbell, sun, samples=4, reflections="none")
+        one = srp(dumbbell, sun, sampling=ShadowSampling(samples=4), reflections="none")
         assert np.array_equal(batch[k].force_N, one.force_N)
         assert np.array_equal(batch.torque_Nm[k], one.torque_Nm)
         assert batch.rays[k] == one.rays
@@ -166,11 +176,43 @@ def test_a_batch_is_its_attitudes_one_by_one(dumbbell):
 def test_the_model_reference_point_applies_unless_the_call_gives_one(dumbbell):
     point = np.array([0.1, -0.2, 0.3])
     model = Model(dumbbell, reference_point_m=point)
-    own = srp(model, [1.0, 0.2, 0.3], samples=1, reflections="none")
-    given = srp(dumbbell, [1.0, 0.2, 0.3], samples=1, reflections="none", reference_point_m=point)
+    own = srp(model, [1.0, 0.2, 0.3], sampling=ShadowSampling(samples=1), reflections="none")
+    given = srp(
+        dumbbell,
+        [1.0, 0.2, 0.3],
+        sampling=ShadowSampling(samples=1),
+        reflections="none",
+        reference_point_m=point,
+    )
     assert own.reference_point == given.reference_point == "user"
     assert np.array_equal(own.torque_Nm, given.torque_Nm)
-    other = srp(model, [1.0, 0.2, 0.3], samples=1, reflections="none", reference_point_m=[0, 0, 0])
+    other = srp(
+        model,
+        [1.0, 0.2, 0.3],
+        sampling=ShadowSampling(samples=1),
+        reflections="none",
+        reference_point_m=[0, 0, 0],
+    )
     assert np.array_equal(other.reference_point_m, [0, 0, 0])
     with pytest.raises(InputError, match="threads"):
         Model(dumbbell, threads=0)
+
+
+def test_plates_light_every_facing_side_whole_and_cast_no_ray(dumbbell):
+    box = build_spacecraft(mesh_from_trimesh(trimesh.creation.box(extents=[1, 2, 3])), uniform=MIXED)
+    sun = [0.3, -0.5, 0.8]
+    plates, exact = srp(box, sun, reflections="plates"), srp(box, sun, reflections="none")
+    assert plates.reflections == "plates" and plates.rays == 0 and plates.error_estimate is None
+    assert np.allclose(plates.force_N, exact.force_N, rtol=1e-12, atol=1e-20)  # convex: nothing shadowed
+    assert np.allclose(plates.torque_Nm, exact.torque_Nm, rtol=1e-12, atol=1e-20)
+    shaded = [0.0, 1.0, 0.3]  # box b shades part of box a
+    alone, shadowed = srp(dumbbell, shaded, reflections="plates"), srp(dumbbell, shaded, reflections="none")
+    assert alone.lit_area_m2 > shadowed.lit_area_m2
+    assert alone.power.incident_W == pytest.approx(alone.power.absorbed_W + alone.power.escaped_W, rel=1e-12)
+
+
+def test_sampling_must_be_shadow_sampling(dumbbell):
+    with pytest.raises(InputError, match="is not a ShadowSampling"):
+        srp(dumbbell, [1, 0, 0], sampling=4)
+    with pytest.raises(InputError, match="tolerance"):
+        srp(dumbbell, [1, 0, 0], sampling=ShadowSampling(tolerance=0.0))

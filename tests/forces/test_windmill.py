@@ -169,4 +169,4 @@ def test_a_sweep_at_held_angles_records_them_and_its_source_loads_that_pose(run_
     source = ModelSource.from_attributes(attrs)
     assert source.articulate == (("wing_p", 30.0),)
     turned = model("mirror").posed({"wing_p": 30.0}).craft
-    assert np.array_equal(source.load().triangles, turned.triangles)
+    assert np.array_equal(source.spacecraft().triangles, turned.triangles)

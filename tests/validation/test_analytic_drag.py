@@ -24,7 +24,7 @@ from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes.assembly import rotation_matrix
 from sunwind.validation import analytic_srp
 from sunwind.validation.analytic_drag import cone_drag, cylinder_drag, plate_drag, sphere_drag
-from sunwind.validation.analytic_gas_law import FreeStream, GasLaw, flow_vector_from_alpha, surface_law
+from sunwind.validation.analytic_gas_law import AnalyticStream, GasLaw, flow_vector_from_alpha, surface_law
 from sunwind.validation.analytic_srp_law import SPEED_OF_LIGHT_M_S
 from sunwind.validation.gas_checks import DRAG_BODIES
 
@@ -119,21 +119,21 @@ def body_cases():
     """(name, closed form(u, surface, S), quadrature nodes)."""
     r, length = 0.6, 1.7
     return [
-        ("sphere", lambda u, s, S: sphere_drag(r, FreeStream(u, S, T_INF), s), sphere_nodes(r)),
+        ("sphere", lambda u, s, S: sphere_drag(r, AnalyticStream(u, S, T_INF), s), sphere_nodes(r)),
         (
             "cylinder",
-            lambda u, s, S: cylinder_drag(r, length, FreeStream(u, S, T_INF), s),
+            lambda u, s, S: cylinder_drag(r, length, AnalyticStream(u, S, T_INF), s),
             cylinder_nodes(r, length, True),
         ),
         (
             "tube",
-            lambda u, s, S: cylinder_drag(r, length, FreeStream(u, S, T_INF), s, caps=False),
+            lambda u, s, S: cylinder_drag(r, length, AnalyticStream(u, S, T_INF), s, caps=False),
             cylinder_nodes(r, length, False),
         ),
-        ("cone", lambda u, s, S: cone_drag(r, FreeStream(u, S, T_INF), s), cone_nodes(r, 70.0, True)),
+        ("cone", lambda u, s, S: cone_drag(r, AnalyticStream(u, S, T_INF), s), cone_nodes(r, 70.0, True)),
         (
             "cone-30-open",
-            lambda u, s, S: cone_drag(r, FreeStream(u, S, T_INF), s, half_angle_deg=30.0, base=False),
+            lambda u, s, S: cone_drag(r, AnalyticStream(u, S, T_INF), s, half_angle_deg=30.0, base=False),
             cone_nodes(r, 30.0, False),
         ),
     ]
@@ -168,9 +168,9 @@ def test_plate_is_its_local_law(model, alpha):
     u = flow_vector_from_alpha(alpha)
     front = np.array([[0.0, 0.0, 1.0]])
     for speed_ratio in (0.5, 5.0):
-        one = plate_drag(2.0, 0.5, FreeStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=3.0), surface)
+        one = plate_drag(2.0, 0.5, AnalyticStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=3.0), surface)
         two = plate_drag(
-            2.0, 0.5, FreeStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=3.0), surface, one_sided=False
+            2.0, 0.5, AnalyticStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=3.0), surface, one_sided=False
         )
         f_front, _ = element_loads(surface, speed_ratio, u, front, np.zeros((1, 3)), np.array([1.0]))
         f_back, _ = element_loads(surface, speed_ratio, u, -front, np.zeros((1, 3)), np.array([1.0]))
@@ -184,14 +184,14 @@ def test_plate_is_its_local_law(model, alpha):
 def test_plate_lift_sign_and_edge_on_drag():
     """A plate whose front faces the flow has positive lift; edge-on, C_D = 2 / (S sqrt(pi)) (diffuse)."""
     for model in ("sentman", "schaaf-chambre", "specular"):
-        load = plate_drag(1.0, 1.0, FreeStream(flow_vector_from_alpha(40.0), 5.0, T_INF), SURFACES[model])
+        load = plate_drag(1.0, 1.0, AnalyticStream(flow_vector_from_alpha(40.0), 5.0, T_INF), SURFACES[model])
         assert load.lift_coefficient > 0.1
         assert abs(load.side_coefficient) < 1e-15
     for speed_ratio in (0.5, 2.0, 10.0):
         edge = plate_drag(
             1.0,
             1.0,
-            FreeStream(flow_vector_from_alpha(90.0), speed_ratio, T_INF),
+            AnalyticStream(flow_vector_from_alpha(90.0), speed_ratio, T_INF),
             SURFACES["sentman"],
             one_sided=False,
         )
@@ -213,15 +213,15 @@ def classical_sphere(speed_ratio):
 @pytest.mark.parametrize("speed_ratio", [0.5, 1.0, 3.0, 10.0, 40.0])
 def test_sphere_classical_values_and_limits(speed_ratio):
     u = flow_vector_from_alpha(33.0)
-    specular = sphere_drag(1.0, FreeStream(u, speed_ratio, T_INF), SURFACES["specular"]).drag_coefficient
+    specular = sphere_drag(1.0, AnalyticStream(u, speed_ratio, T_INF), SURFACES["specular"]).drag_coefficient
     cold_diffuse = sphere_drag(
-        1.0, FreeStream(u, speed_ratio, T_INF), GasLaw("sentman", 1.0, wall_temperature_K=0.0)
+        1.0, AnalyticStream(u, speed_ratio, T_INF), GasLaw("sentman", 1.0, wall_temperature_K=0.0)
     ).drag_coefficient
     assert specular == pytest.approx(classical_sphere(speed_ratio), rel=1e-13)
     assert cold_diffuse == pytest.approx(classical_sphere(speed_ratio), rel=1e-13)
     # with re-emission at T_w: + 2 sqrt(pi) sqrt(T_w / T) / (3 S)
     warm = sphere_drag(
-        1.0, FreeStream(u, speed_ratio, T_INF), GasLaw("sentman", 1.0, wall_temperature_K=400.0)
+        1.0, AnalyticStream(u, speed_ratio, T_INF), GasLaw("sentman", 1.0, wall_temperature_K=400.0)
     )
     assert warm.drag_coefficient == pytest.approx(
         classical_sphere(speed_ratio) + 2 * SQRT_PI * math.sqrt(0.4) / (3 * speed_ratio), rel=1e-13
@@ -238,9 +238,11 @@ def test_sphere_hyperthermal_limit_is_two():
         GasLaw("schaaf-chambre", 1.0, 1.0, 1.0, wall_temperature_K=0.0),
     ):
         for speed_ratio in (10.0, 100.0, 1000.0):
-            c_d = sphere_drag(1.0, FreeStream(u, speed_ratio, T_INF), surface).drag_coefficient
+            c_d = sphere_drag(1.0, AnalyticStream(u, speed_ratio, T_INF), surface).drag_coefficient
             assert c_d - 2.0 == pytest.approx(2.0 / speed_ratio**2, rel=1.0 / speed_ratio**2)
-        directed = sphere_drag(1.0, FreeStream(u, 3.0, T_INF, stream="directed"), surface).drag_coefficient
+        directed = sphere_drag(
+            1.0, AnalyticStream(u, 3.0, T_INF, stream="directed"), surface
+        ).drag_coefficient
         assert directed == pytest.approx(2.0, rel=1e-15)
 
 
@@ -250,8 +252,8 @@ def test_full_stream_tends_to_directed_as_s_grows(model):
     u = flow_vector_from_alpha(35.0)
     previous = None
     for speed_ratio in (5.0, 20.0, 80.0):
-        full = cone_drag(0.5, FreeStream(u, speed_ratio, T_INF), SURFACES[model])
-        directed = cone_drag(0.5, FreeStream(u, speed_ratio, T_INF, stream="directed"), SURFACES[model])
+        full = cone_drag(0.5, AnalyticStream(u, speed_ratio, T_INF), SURFACES[model])
+        directed = cone_drag(0.5, AnalyticStream(u, speed_ratio, T_INF, stream="directed"), SURFACES[model])
         gap = abs(full.drag_coefficient / directed.drag_coefficient - 1)
         assert previous is None or gap < previous / 4
         previous = gap
@@ -298,7 +300,7 @@ def test_directed_stream_is_the_radiation_law(surface, alpha):
             plate_drag(
                 1.2,
                 0.7,
-                FreeStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
+                AnalyticStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
                 surface,
                 ref_point_m=ref,
             ),
@@ -307,7 +309,7 @@ def test_directed_stream_is_the_radiation_law(surface, alpha):
         (
             sphere_drag(
                 0.8,
-                FreeStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
+                AnalyticStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
                 surface,
                 ref_point_m=ref,
             ),
@@ -317,7 +319,7 @@ def test_directed_stream_is_the_radiation_law(surface, alpha):
             cylinder_drag(
                 0.5,
                 1.4,
-                FreeStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
+                AnalyticStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
                 surface,
                 ref_point_m=ref,
             ),
@@ -326,7 +328,7 @@ def test_directed_stream_is_the_radiation_law(surface, alpha):
         (
             cone_drag(
                 0.9,
-                FreeStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
+                AnalyticStream(u, speed_ratio, T_INF, stream="directed", dynamic_pressure_Pa=q),
                 surface,
                 ref_point_m=ref,
                 base=False,
@@ -356,9 +358,11 @@ def test_cylinder_lateral_torque_is_cancelled_by_the_caps(stream, model):
         u = flow_vector_from_alpha(alpha)
         for speed_ratio in (0.7, 3.0, 12.0):
             tube = cylinder_drag(
-                radius, length, FreeStream(u, speed_ratio, T_INF, stream=stream), surface, caps=False
+                radius, length, AnalyticStream(u, speed_ratio, T_INF, stream=stream), surface, caps=False
             )
-            closed = cylinder_drag(radius, length, FreeStream(u, speed_ratio, T_INF, stream=stream), surface)
+            closed = cylinder_drag(
+                radius, length, AnalyticStream(u, speed_ratio, T_INF, stream=stream), surface
+            )
             a = math.radians(alpha)
             expected = (
                 (a_t if stream != "thermal" else 0.0)
@@ -395,7 +399,7 @@ def test_lambertian_cylinder_of_length_equal_to_diameter_has_no_lift(surface):
             a = math.radians(alpha)
             for length in (0.5, 1.0, 2.0, 3.0):
                 load = cylinder_drag(
-                    radius, length, FreeStream(u, speed_ratio, T_INF, stream="directed"), surface
+                    radius, length, AnalyticStream(u, speed_ratio, T_INF, stream="directed"), surface
                 )
                 expected = -kappa * math.sin(a) * math.cos(a) * (length / (2 * radius) - 1)
                 assert load.lift_coefficient == pytest.approx(expected, abs=1e-14 * load.drag_coefficient)
@@ -429,17 +433,19 @@ def test_cylinder_lift_at_l_equal_d_at_finite_speed_ratio_and_for_mirrors():
                 -(math.cos(a) * f1 - math.pi * math.sin(a) * math.erf(speed_ratio * math.cos(a))) / math.pi
             )
             for surface in DIFFUSE:
-                load = cylinder_drag(radius, length, FreeStream(u, speed_ratio, T_INF), surface)
+                load = cylinder_drag(radius, length, AnalyticStream(u, speed_ratio, T_INF), surface)
                 assert speed_ratio**2 * load.lift_coefficient == pytest.approx(expected, rel=1e-10)
                 if alpha == 40.0 and speed_ratio >= 5.0:
                     assert abs(speed_ratio**2 * load.lift_coefficient) > 0.25  # not zero
     limit = -(4 * math.cos(math.radians(40.0)) - math.pi * math.sin(math.radians(40.0))) / math.pi
-    load = cylinder_drag(radius, length, FreeStream(flow_vector_from_alpha(40.0), 200.0, T_INF), DIFFUSE[0])
+    load = cylinder_drag(
+        radius, length, AnalyticStream(flow_vector_from_alpha(40.0), 200.0, T_INF), DIFFUSE[0]
+    )
     assert 200.0**2 * load.lift_coefficient == pytest.approx(limit, rel=1e-4)
     mirror = cylinder_drag(
         radius,
         length,
-        FreeStream(flow_vector_from_alpha(40.0), 5.0, T_INF, stream="directed"),
+        AnalyticStream(flow_vector_from_alpha(40.0), 5.0, T_INF, stream="directed"),
         SURFACES["specular"],
     )
     assert abs(mirror.lift_coefficient) > 0.1 * mirror.drag_coefficient
@@ -455,10 +461,10 @@ def test_symmetries(model):
         # axisymmetric bodies: turning the flow about z turns the force and torque
         for body in (
             lambda u, s=speed_ratio: cylinder_drag(
-                0.5, 1.3, FreeStream(u, s, T_INF), surface, ref_point_m=(0, 0, 0.4)
+                0.5, 1.3, AnalyticStream(u, s, T_INF), surface, ref_point_m=(0, 0, 0.4)
             ),
             lambda u, s=speed_ratio: cone_drag(
-                0.5, FreeStream(u, s, T_INF), surface, ref_point_m=(0, 0, 0.1)
+                0.5, AnalyticStream(u, s, T_INF), surface, ref_point_m=(0, 0, 0.1)
             ),
         ):
             base = body(flow_vector_from_alpha(55.0))
@@ -470,38 +476,42 @@ def test_symmetries(model):
             assert turned.lift_coefficient == pytest.approx(base.lift_coefficient, rel=1e-12)
             assert abs(base.side_coefficient) < 1e-13
         # the cylinder is symmetric under z -> -z: alpha and 180 - alpha have equal drag, opposite lift
-        front = cylinder_drag(0.5, 1.3, FreeStream(flow_vector_from_alpha(35.0), speed_ratio, T_INF), surface)
-        back = cylinder_drag(0.5, 1.3, FreeStream(flow_vector_from_alpha(145.0), speed_ratio, T_INF), surface)
+        front = cylinder_drag(
+            0.5, 1.3, AnalyticStream(flow_vector_from_alpha(35.0), speed_ratio, T_INF), surface
+        )
+        back = cylinder_drag(
+            0.5, 1.3, AnalyticStream(flow_vector_from_alpha(145.0), speed_ratio, T_INF), surface
+        )
         assert back.drag_coefficient == pytest.approx(front.drag_coefficient, rel=1e-13)
         assert back.lift_coefficient == pytest.approx(-front.lift_coefficient, rel=1e-12)
         # the sphere's drag does not depend on the direction
         d = [
-            sphere_drag(1.0, FreeStream(flow_vector_from_alpha(a), speed_ratio, T_INF), surface)
+            sphere_drag(1.0, AnalyticStream(flow_vector_from_alpha(a), speed_ratio, T_INF), surface)
             for a in (0.0, 77.0)
         ]
         assert d[0].drag_coefficient == pytest.approx(d[1].drag_coefficient, rel=1e-15)
 
 
 def test_wind_axes_are_right_handed():
-    load = cone_drag(1.0, FreeStream(flow_vector_from_alpha(30.0), 5.0, T_INF), SURFACES["sentman"])
+    load = cone_drag(1.0, AnalyticStream(flow_vector_from_alpha(30.0), 5.0, T_INF), SURFACES["sentman"])
     axes = np.array([load.drag_direction, load.side_direction, load.lift_direction])
     np.testing.assert_allclose(axes @ axes.T, np.eye(3), atol=1e-15)
     assert np.linalg.det(axes) == pytest.approx(1.0)
     assert load.lift_direction[2] < 0  # away from the body axis +z
-    on_axis = cone_drag(1.0, FreeStream(flow_vector_from_alpha(0.0), 5.0, T_INF), SURFACES["sentman"])
+    on_axis = cone_drag(1.0, AnalyticStream(flow_vector_from_alpha(0.0), 5.0, T_INF), SURFACES["sentman"])
     assert on_axis.lift_coefficient == pytest.approx(0.0, abs=1e-15)
 
 
 def test_bad_input():
     with pytest.raises(ValueError, match="unit"):
-        sphere_drag(1.0, FreeStream((1.0, 1.0, 0.0), 2.0, T_INF), SURFACES["sentman"])
+        sphere_drag(1.0, AnalyticStream((1.0, 1.0, 0.0), 2.0, T_INF), SURFACES["sentman"])
     with pytest.raises(ValueError, match="stream"):
-        sphere_drag(1.0, FreeStream((0.0, 0.0, 1.0), 2.0, T_INF, stream="warm"), SURFACES["sentman"])
+        sphere_drag(1.0, AnalyticStream((0.0, 0.0, 1.0), 2.0, T_INF, stream="warm"), SURFACES["sentman"])
     with pytest.raises(ValueError, match="half_angle"):
-        cone_drag(1.0, FreeStream((0.0, 0.0, 1.0), 2.0, T_INF), SURFACES["sentman"], half_angle_deg=95.0)
+        cone_drag(1.0, AnalyticStream((0.0, 0.0, 1.0), 2.0, T_INF), SURFACES["sentman"], half_angle_deg=95.0)
     with pytest.raises(ValueError, match="lateral"):
         cylinder_drag(
-            1.0, 1.0, FreeStream((0.0, 0.0, 1.0), 2.0, T_INF), SURFACES["sentman"], lateral="series"
+            1.0, 1.0, AnalyticStream((0.0, 0.0, 1.0), 2.0, T_INF), SURFACES["sentman"], lateral="series"
         )
 
 
@@ -560,7 +570,7 @@ def test_gsi_on_fine_meshes_matches_closed_forms(name):
         for speed_ratio in (2.0, 5.0, 8.0, 15.0):
             for alpha in (0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0):
                 u = flow_vector_from_alpha(alpha)
-                ref = closed(u, surface, FreeStream(u, speed_ratio, T_INF))
+                ref = closed(u, surface, AnalyticStream(u, speed_ratio, T_INF))
                 force = mesh_force(sides, u, surface, speed_ratio) / ref.reference_area_m2
                 c_d, c_l = force @ ref.drag_direction, force @ ref.lift_direction
                 scale = max(abs(ref.drag_coefficient), abs(ref.lift_coefficient))

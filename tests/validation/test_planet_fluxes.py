@@ -13,7 +13,7 @@ import pytest
 
 from sunwind.validation.planet_fluxes import (
     SPEED_OF_LIGHT_M_S,
-    Planet,
+    SphericalPlanet,
     albedo_closed_is_exact,
     albedo_factor_closed,
     f_2,
@@ -52,7 +52,7 @@ def sun_at(gamma: float, azimuth: float) -> np.ndarray:
 
 @pytest.mark.parametrize("altitude", ALTITUDES)
 def test_view_factor_equals_brute_force_in_all_three_ranges(altitude):
-    planet = Planet(R_EARTH, altitude)
+    planet = SphericalPlanet(R_EARTH, altitude)
     t0, exitance = planet.theta_0, planet.exitance
     psis = np.concatenate(
         [np.radians(np.arange(0, 181, 5)), np.pi / 2 + t0 * np.array([-1, -0.5, 0.5, 0.99])]
@@ -84,7 +84,7 @@ def test_closed_forms_take_arrays():
 
 def test_brute_force_converges_with_both_kinks_in_view():
     """Partial view (the plate's horizon crosses the cap) and the terminator on the cap."""
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     args = (NADIR, sun_at(np.radians(75.0), 0.0), from_nadir(np.radians(92.0), 2.0), planet)
     values = [plate_irradiance(*args, order=order) for order in (8, 16, 32, 64)]
     errors = [abs(v - values[-1]) / values[-1] for v in values[:-1]]
@@ -94,7 +94,7 @@ def test_brute_force_converges_with_both_kinks_in_view():
 
 @pytest.mark.parametrize("altitude", ALTITUDES)
 def test_albedo_closed_form_is_exact_when_the_whole_cap_is_lit_and_in_view(altitude):
-    planet = Planet(R_EARTH, altitude)
+    planet = SphericalPlanet(R_EARTH, altitude)
     t0, rng = planet.theta_0, np.random.default_rng(int(altitude))
     for _ in range(12):
         sun = sun_at(rng.uniform(0.0, t0), rng.uniform(0.0, 2 * np.pi))
@@ -106,7 +106,7 @@ def test_albedo_closed_form_is_exact_when_the_whole_cap_is_lit_and_in_view(altit
 
 def test_albedo_closed_form_fails_at_the_terminator():
     """A nadir plate with the Sun on the sub-spacecraft horizon: the closed form gives 0, the truth 2 %."""
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     sun = sun_at(np.pi / 2, 0.4)
     assert not albedo_closed_is_exact(NADIR, sun, NADIR, planet.theta_0)
     assert albedo_factor_closed(NADIR, sun, NADIR, planet.theta_0) < 1e-15
@@ -116,7 +116,7 @@ def test_albedo_closed_form_fails_at_the_terminator():
 
 @pytest.mark.parametrize("source", ["albedo", "infrared"])
 def test_a_plate_facing_away_sees_nothing(source):
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     sun = sun_at(0.3, 1.0)
     for n in (-NADIR, from_nadir(np.pi / 2 + planet.theta_0 + 1e-6, 0.5)):
         assert plate_irradiance(NADIR, sun, n, planet, source) == 0.0
@@ -128,7 +128,7 @@ def test_a_plate_facing_away_sees_nothing(source):
 def test_nadir_plate_force_in_infrared_against_its_closed_form(optics):
     """Nadir plate, uniform planet: ``int (M/pi) cos^2 dOmega = (2M/3)(1 - cos^3 theta_0)``."""
     rho, beta, sigma = optics
-    planet = Planet(R_EARTH, 1_000e3)
+    planet = SphericalPlanet(R_EARTH, 1_000e3)
     m, t0 = planet.exitance, planet.theta_0
     second = 2 * m / 3 * (1 - np.cos(t0) ** 3)
     along = (
@@ -144,7 +144,7 @@ def test_nadir_plate_force_in_infrared_against_its_closed_form(optics):
 
 def test_opposite_plates_differ_by_the_flux_vector():
     """``E(n) - E(-n) = n . int L omega dOmega``: the plate and sphere quadratures agree."""
-    planet, a = Planet(R_EARTH, 800e3), 0.7
+    planet, a = SphericalPlanet(R_EARTH, 800e3), 0.7
     sun = sun_at(np.radians(80.0), 0.9)
     flux = -sphere_force(a, NADIR, sun, planet) * SPEED_OF_LIGHT_M_S / (np.pi * a**2)
     for psi in np.radians([0.0, 30.0, 70.0, 90.0, 110.0]):
@@ -155,7 +155,7 @@ def test_opposite_plates_differ_by_the_flux_vector():
 
 @pytest.mark.parametrize("altitude", ALTITUDES)
 def test_sphere_closed_forms_against_brute_force(altitude):
-    planet, a = Planet(R_EARTH, altitude), 0.5
+    planet, a = SphericalPlanet(R_EARTH, altitude), 0.5
     ir = sphere_force(a, NADIR, None, planet, source="infrared")
     np.testing.assert_allclose(
         ir, -sphere_force_infrared(a, R_EARTH, altitude, planet.exitance) * NADIR, rtol=1e-10
@@ -184,7 +184,7 @@ def test_sphere_optics_factor_by_quadrature_and_over_the_surface():
             sphere_optics_factor(*optics), rel=1e-13
         )
     assert sphere_optics_factor(1.0, 0.0, 0.0) == pytest.approx(1 + 4 / 9)
-    planet, a = Planet(R_EARTH, 2_000e3), 1.0
+    planet, a = SphericalPlanet(R_EARTH, 2_000e3), 1.0
     sun, t0 = sun_at(np.radians(50.0), 0.4), planet.theta_0
     x, w = np.polynomial.legendre.leggauss(10)
     breaks = np.array([0.0, np.pi / 2 - t0, np.pi / 2 + t0, np.pi])
@@ -225,7 +225,7 @@ def test_plate_points_share_the_area():
 
 
 def test_rays_without_blockers_equal_the_unshadowed_brute_force():
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     n = np.array([0.3, 0.0, 1.0]) / np.hypot(0.3, 1.0)
     got = shadowed_plate_irradiance(np.zeros((0, 3, 3)), PLATE, n, UP, SUN_UNDER, planet)
     same_nodes = plate_moments(UP, SUN_UNDER, n, planet, order=16)
@@ -238,7 +238,7 @@ def test_rays_without_blockers_equal_the_unshadowed_brute_force():
 
 
 def test_a_blocker_over_the_whole_cap_leaves_nothing_and_one_behind_changes_nothing():
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     wall = triangles(square([0.0, 0.0, 0.1], 2_000.0, 0.0))
     hidden = shadowed_plate_irradiance(wall, PLATE, UP, UP, SUN_UNDER, planet, resolution=(8, 8))
     assert hidden.irradiance_W_m2 == 0.0 and not np.any(hidden.force_N_m2(0.6, 0.3, 0.1))
@@ -251,7 +251,7 @@ def test_a_blocker_over_the_whole_cap_leaves_nothing_and_one_behind_changes_noth
 
 def test_a_half_plane_hides_half_of_a_uniform_planet():
     """A blocker over x > 0 at 0.2 m: points at x and -x see complementary halves, so the mean is half."""
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     half = triangles(np.array([[0.0, -1e3, 0.2], [1e3, -1e3, 0.2], [1e3, 1e3, 0.2], [0.0, 1e3, 0.2]]))
     got = shadowed_plate_irradiance(half, PLATE, UP, UP, None, planet, "infrared").irradiance_W_m2
     assert got == pytest.approx(0.5 * plate_irradiance(UP, None, UP, planet, "infrared"), rel=1e-4)  # 2e-6
@@ -259,7 +259,7 @@ def test_a_half_plane_hides_half_of_a_uniform_planet():
 
 def test_a_small_plate_above_a_large_one_converges():
     """A 0.4 m plate 0.3 m toward the planet, turned 23 deg: the default within 1e-4 of a finer run."""
-    planet = Planet(R_EARTH, 400e3)
+    planet = SphericalPlanet(R_EARTH, 400e3)
     blocker = triangles(square([0.1, -0.05, 0.3], 0.4, 23.0))
     coarse = shadowed_plate_irradiance(blocker, PLATE, UP, UP, SUN_UNDER, planet)
     fine = shadowed_plate_irradiance(blocker, PLATE, UP, UP, SUN_UNDER, planet, resolution=(64, 32))

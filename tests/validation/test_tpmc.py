@@ -174,14 +174,14 @@ def test_closed_forms_agree_with_analytic_drag(speed_ratio):
             load = analytic.plate_drag(
                 2.0,
                 1.0,
-                gas_law.FreeStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=q),
+                gas_law.AnalyticStream(u, speed_ratio, T_INF, dynamic_pressure_Pa=q),
                 surface,
                 one_sided=False,
                 ref_point_m=REFERENCE,
             )
             np.testing.assert_allclose(load.force_N, force, rtol=0, atol=1e-12 * q)
             np.testing.assert_allclose(load.torque_Nm, torque, rtol=0, atol=1e-12 * q)
-        sphere = analytic.sphere_drag(1.0, gas_law.FreeStream(u_sphere, speed_ratio, T_INF), surface)
+        sphere = analytic.sphere_drag(1.0, gas_law.AnalyticStream(u_sphere, speed_ratio, T_INF), surface)
         assert sphere.drag_coefficient == pytest.approx(
             sphere_drag_coefficient(speed_ratio, diffuse), rel=1e-12
         )

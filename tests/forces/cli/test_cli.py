@@ -302,6 +302,7 @@ def test_reflections_in_json_split_direct_and_reflected_and_balance_power(run_cl
     code, out, _ = run_cli(*args, "--reflections", "none")
     doc = json.loads(out)
     assert doc["reflections"] == "none" and doc["reflected"]["force_N"] == [0.0, 0.0, 0.0]
+    assert doc["k_is"] is None  # no view factors were asked for, so none are computed for the report
 
 
 def test_no_cache_leaves_no_file_and_info_reports_k_is(run_cli, craft_files, tmp_path):

@@ -19,6 +19,7 @@ from sunwind.forces.export.tudat import write_tudat
 from sunwind.forces.gas import explicit
 from sunwind.forces.tables import DragSetup, SrpSetup, sweep
 from sunwind.geometry.materials import Material
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes.primitives import box_wing
 from tests.forces.export.test_basilisk import load_lookup
@@ -40,7 +41,7 @@ def tables() -> dict:
     air = explicit(3e-12, 900.0, "O:0.8,N2:0.2")
 
     def swept(point) -> xr.Dataset:
-        common = {"samples": 1, "reflections": "none", "reference_point_m": point}
+        common = {"sampling": ShadowSampling(samples=1), "reflections": "none", "reference_point_m": point}
         srp, drag = SrpSetup(**common), DragSetup(speed_m_s=7600.0, atmosphere=air, **common)
         return sweep(craft, srp=srp, drag=drag, step_deg=30.0)
 

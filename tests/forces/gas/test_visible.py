@@ -15,6 +15,7 @@ from sunwind.forces.gas.laws import GasSurfaces, panel_coefficients
 from sunwind.forces.model import Model
 from sunwind.geometry.materials import GasSurface, Material, MaterialTable
 from sunwind.geometry.rays.hull import Clearance
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes import primitives
 from sunwind.meshes.samples import sample_spacecraft
@@ -63,7 +64,7 @@ def counting_rays(monkeypatch, craft):
 def test_convex_body_casts_no_ray_beyond_the_flow_shadow(monkeypatch, samples):
     craft = build_spacecraft(primitives.box((1.0, 2.0, 0.5), divisions=4), uniform=Material("m", 0.3, 0.5))
     batches = counting_rays(monkeypatch, craft)
-    result = drag(craft, SPEED * FLOWS[0], AIR, samples=samples, reflections="full")
+    result = drag(craft, SPEED * FLOWS[0], AIR, sampling=ShadowSampling(samples=samples), reflections="full")
     assert sum(batches) == result.rays  # the shadow pass along the flow only: no core rays, no chains
     assert len(result.open_sky.direction) == 0  # and no side's sky was sampled
 
@@ -74,7 +75,7 @@ def test_every_side_of_a_convex_body_is_its_own_gas_surface_law():
         build_spacecraft(primitives.sphere(1.0, subdivisions=12), uniform=Material("m", 0.3, 0.5))
     )
     u = FLOWS[1]
-    result = drag(craft, SPEED * u, AIR, samples=1, reflections="none")
+    result = drag(craft, SPEED * u, AIR, sampling=ShadowSampling(samples=1), reflections="none")
     n, gamma = craft.side_normals, craft.side_normals @ u
     along = u - gamma[:, None] * n
     tangent = -along / np.linalg.norm(along, axis=1)[:, None]
@@ -116,9 +117,13 @@ def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, sa
 
 @pytest.mark.slow
 def test_results_do_not_depend_on_the_thread_count(sample):
-    results = [drag(sample, SPEED * u, AIR, samples=1, reflections="full") for u in FLOWS]
+    results = [
+        drag(sample, SPEED * u, AIR, sampling=ShadowSampling(samples=1), reflections="full") for u in FLOWS
+    ]
     for u, result in zip(FLOWS, results, strict=True):
-        alone = drag(Model(sample, threads=1), SPEED * u, AIR, samples=1, reflections="full")
+        alone = drag(
+            Model(sample, threads=1), SPEED * u, AIR, sampling=ShadowSampling(samples=1), reflections="full"
+        )
         assert np.array_equal(result.force_N, alone.force_N)
         assert np.array_equal(result.torque_Nm, alone.torque_Nm)
         assert np.array_equal(result.side_force_N, alone.side_force_N)

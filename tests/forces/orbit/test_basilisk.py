@@ -17,7 +17,7 @@ from scipy.spatial.transform import Rotation
 from helpers.basilisk_flight import BASILISK_AU_M, basilisk_srp
 from sunwind.forces import Model, srp, sweep
 from sunwind.forces.export import write
-from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, fly, propagate
+from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, fly, propagate
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.tables.interpolation import azel_directions
 from sunwind.forces.tables.jobs import SrpSetup
@@ -48,7 +48,7 @@ def _fly_both(model, xml, law: str):
     times = np.arange(0.0, 5400.0, 90.0)
     path = propagate(ORBIT, EPOCH, times, "kepler")
     attitude = AttitudeLaw.parse(law)
-    result = fly(model, path, attitude, Loads(SrpSetup(reflections="none")), eclipse="none")
+    result = fly(model, path, attitude, OrbitLoads(SrpSetup(reflections="none")), eclipse="none")
     sun = sun_position(EPOCH, times)
     force, torque = basilisk_srp(xml, path.position_m, sun, result.body_to_eci)
     point = model.reference_point_m

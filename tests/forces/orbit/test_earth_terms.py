@@ -15,7 +15,7 @@ from helpers.planet import BLACK, R_EARTH, infrared_on_black_sphere, materials_t
 from helpers.runs import stopped_then_resumed
 from sunwind.forces import Model
 from sunwind.forces.earth import Place, planet_radiation
-from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, fly, propagate
+from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, fly, propagate
 from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.planet.bodies import PlanetLight, planet
@@ -40,8 +40,8 @@ def run(model):
     times = np.arange(0.0, 5700.0, 600.0)
     path = propagate(Elements.circular(500.0, 51.6, 20.0), EPOCH, times, "kepler")
     surface = SrpSetup(reflections="none")
-    earth = EarthTerms(surface, step_deg=15.0, thermal=True)
-    return path, fly(model, path, AttitudeLaw.parse("lvlh:5,-10,3"), Loads(surface, earth=earth))
+    earth = EarthTerms(surface, cell_deg=15.0, thermal=True)
+    return path, fly(model, path, AttitudeLaw.parse("lvlh:5,-10,3"), OrbitLoads(surface, earth=earth))
 
 
 def test_each_step_is_the_planet_radiation_and_equilibrium_at_its_place(model, run):
@@ -61,7 +61,7 @@ def test_each_step_is_the_planet_radiation_and_equilibrium_at_its_place(model, r
             float(s["solar_fraction"][i]),
         )
         light = PlanetLight.of(planet("earth"), 1361.0 * (AU_M / np.linalg.norm(sun[i])) ** 2)
-        alone = planet_radiation(model, place, light, reflections="none", step_deg=15.0)
+        alone = planet_radiation(model, place, light, reflections="none", cell_deg=15.0)
         for band in ("albedo", "infrared"):
             loads = getattr(alone, band)
             assert np.allclose(s[f"{band}_force_body_N"][i], loads.force_N, rtol=1e-10, atol=0)
@@ -157,7 +157,7 @@ def test_a_resumed_run_keeps_the_per_part_records_of_its_checkpoint(model, run, 
     """Per-part records (one column per part) go through the checkpoint and come back the same bits."""
     path, whole = run
     surface = SrpSetup(reflections="none")
-    loads = Loads(surface, earth=EarthTerms(surface, step_deg=15.0, thermal=True))
+    loads = OrbitLoads(surface, earth=EarthTerms(surface, cell_deg=15.0, thermal=True))
     law = AttitudeLaw.parse("lvlh:5,-10,3")
     resumed, notices = stopped_then_resumed(
         lambda run: fly(model, path, law, loads, run=run), tmp_path / "run.checkpoint", 4

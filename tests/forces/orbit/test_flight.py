@@ -10,7 +10,8 @@ import pytest
 
 from helpers.runs import stopped_then_resumed
 from sunwind.forces import Model, drag, nrlmsis, srp
-from sunwind.forces.orbit import SERIES, AttitudeLaw, Elements, Epoch, Loads, fly, propagate
+from sunwind.forces.gas.sampling import GasSampling
+from sunwind.forces.orbit import SERIES, AttitudeLaw, Elements, Epoch, OrbitLoads, fly, propagate
 from sunwind.forces.orbit.flight import geodetic
 from sunwind.forces.orbit.sun import AU_M, sun_position
 from sunwind.forces.reflection import ReflectionSettings
@@ -38,9 +39,12 @@ def run(model):
         model,
         path,
         AttitudeLaw.parse("lvlh:5,-10,3"),
-        Loads(
+        OrbitLoads(
             SrpSetup(reflections=settings),
-            GasOptions(reflections=settings, sky_rays=36, core_rays=4096, chain_molecules=4096),
+            GasOptions(
+                reflections=settings,
+                gas_sampling=GasSampling(sky_rays=36, core_rays=4096, chain_molecules=4096),
+            ),
         ),
     )
     return path, result
@@ -79,9 +83,7 @@ def test_each_step_is_drag_in_the_air_turning_with_the_earth_at_its_place(model,
             body,
             air,
             reflections="none",
-            gas_sampling=GasOptions(sky_rays=36, core_rays=4096, chain_molecules=4096).options()[
-                "gas_sampling"
-            ],
+            gas_sampling=GasSampling(sky_rays=36, core_rays=4096, chain_molecules=4096),
         )
         assert np.allclose(s["drag_force_body_N"][i], alone.force_N, rtol=1e-12, atol=0)
         assert s["density_kg_m3"][i] == air.density_kg_m3
@@ -142,7 +144,7 @@ def test_an_interrupted_run_resumes_from_its_checkpoint_and_gives_the_same_serie
     run takes it up (said on the notice) and ends with the series of an uninterrupted run."""
     times = np.arange(0.0, 1800.0, 300.0)
     path = propagate(Elements.circular(450.0, 51.6, 20.0), EPOCH, times, "kepler")
-    loads = Loads(SrpSetup(reflections="none"))
+    loads = OrbitLoads(SrpSetup(reflections="none"))
     law = AttitudeLaw.parse("nadir")
     whole = fly(model, path, law, loads)
     checkpoint = tmp_path / "run.checkpoint"

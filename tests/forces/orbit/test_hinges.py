@@ -8,7 +8,7 @@ import pytest
 
 from helpers.shapes import hinged_box_wing
 from sunwind.forces import explicit, load, srp, sweep
-from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, Loads, fly, propagate
+from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, fly, propagate
 from sunwind.forces.tables.jobs import DragSetup, SrpSetup
 from sunwind.geometry.directions import azel_to_vector
 from sunwind.geometry.errors import InputError
@@ -29,7 +29,7 @@ def test_a_tracking_wing_follows_the_sun_and_each_step_is_srp_of_its_pose(model,
     angle the run reports."""
     times = np.arange(0.0, 86400.0, 7200.0)
     path = propagate(Elements(42164.17e3, 0.0, 0.0, 0.0, 0.0, 0.0), EPOCH, times, "kepler")
-    loads = Loads(SrpSetup(reflections="none"), hinge_step_deg=step_deg)
+    loads = OrbitLoads(SrpSetup(reflections="none"), hinge_step_deg=step_deg)
     result = fly(model, path, AttitudeLaw.parse("nadir"), loads, eclipse="none")
     angles = result.hinge_angles_deg["wing_*"]
     sun = result.series["sun_body"]

@@ -46,7 +46,7 @@ def _cap(altitude_km: float, sun: np.ndarray, band: str) -> Cap:
 def test_cap_integrals_equal_the_brute_force_over_the_planet(altitude_km, band):
     """I_0 (absorbed flux factor), I_1 and I_2 of a plate against the surface integral, terminator and
     partial view included: 1e-6 of the unshadowed nadir value."""
-    body = ref.Planet(EARTH.radius_m, altitude_km * 1e3, FLUX, EARTH.albedo)
+    body = ref.SphericalPlanet(EARTH.radius_m, altitude_km * 1e3, FLUX, EARTH.albedo)
     for sun in SUNS[:: (1 if band == "albedo" else 6)]:
         cap = _cap(altitude_km, sun, band)
         i0, i1, i2 = cap.side_integrals(NORMALS)
@@ -70,7 +70,7 @@ def test_plate_force_is_the_momentum_integral_not_flux_over_c(finish):
     (1e-6 relative to the largest), at 500 km, normals across the range, Sun near the terminator."""
     rho, beta, sigma = OPTICS[finish]
     material = Material(finish, rho, beta, sigma, emissivity=1.0 - rho)
-    body = ref.Planet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
+    body = ref.SphericalPlanet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
     sun = SUNS[3]
     for n in NORMALS[::5]:
         craft = _one_sided(quad_sheet(_square(n), "plate", 1), material)
@@ -116,9 +116,9 @@ def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
     """A 1 m plate facing the planet with a 0.4 m plate 0.3 m below it: the shadowed irradiance and force
     on the big plate against the ray brute force, falling with the cell size."""
     craft, big, small = _plate_over_plate()
-    body = ref.Planet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
+    body = ref.SphericalPlanet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
     sun = SUNS[1]
-    result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", step_deg=step_deg)
+    result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cell_deg=step_deg)
     part = craft.facet_part[craft.side_facet]
     facing = (part == craft.part_names.index("big")) & (craft.side_normals[:, 2] < 0)
     blockers = np.array([small[[0, 1, 2]], small[[0, 2, 3]]])

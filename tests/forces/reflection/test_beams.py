@@ -8,11 +8,11 @@ import pytest
 from helpers import MIXED
 from helpers.shapes import MIRROR, SHEER, P, groove, open_box
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
-from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.reflection import ReflectionSettings, beams
 from sunwind.forces.reflection import beam_kernels as kernels
-from sunwind.forces.reflection import beams as chains
 from sunwind.forces.reflection.escape import escape_test
 from sunwind.forces.srp import srp
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import ESCAPED, build_spacecraft
 from sunwind.meshes.samples import sample_spacecraft
@@ -39,7 +39,7 @@ def test_the_shadow_pass_sampling_gives_the_first_beams_level(craft):
 
 @pytest.mark.parametrize("samples", [1, 4])
 def test_a_mirror_groove_lit_along_its_bisector_retro_reflects_exactly_with_fixed_samples(samples):
-    result = srp(groove(MIRROR), [0.0, 0.0, 1.0], samples=samples, reflections=FULL)
+    result = srp(groove(MIRROR), [0.0, 0.0, 1.0], sampling=ShadowSampling(samples=samples), reflections=FULL)
     np.testing.assert_allclose(result.force_N, [0, 0, -2 * P * 8.0], rtol=1e-9, atol=1e-9 * P)
     assert result.power.escaped_W == pytest.approx(result.power.incident_W, rel=1e-12)
     # one ray per lit side and sample point, each meeting the other wall once
@@ -50,7 +50,7 @@ def test_a_mirror_groove_lit_along_its_bisector_retro_reflects_exactly_with_fixe
 @pytest.mark.parametrize("samples", [1, 9])
 def test_power_balances_in_a_cavity_with_fixed_samples(material, samples):
     for sun in ([0.2, 0.1, 1.0], [0.9, -0.4, 0.5]):
-        result = srp(open_box(material), sun, samples=samples, reflections=FULL)
+        result = srp(open_box(material), sun, sampling=ShadowSampling(samples=samples), reflections=FULL)
         assert abs(result.power.imbalance) < 1e-9
 
 
@@ -66,7 +66,9 @@ def test_fixed_and_adaptive_first_beams_agree_on_a_fine_groove(psi):
     exact = v_groove_srp(1.0, 3.0, psi, 1.0, ref_point_m=ref).force_N
     adaptive = srp(craft, u, reference_point_m=ref, reflections=FULL).force_N
     for samples in (1, 4):
-        fixed = srp(craft, u, reference_point_m=ref, samples=samples, reflections=FULL).force_N
+        fixed = srp(
+            craft, u, reference_point_m=ref, sampling=ShadowSampling(samples=samples), reflections=FULL
+        ).force_N
         assert np.linalg.norm(fixed - exact) <= 2e-3 * np.linalg.norm(exact)
         assert np.linalg.norm(fixed - adaptive) <= 2e-3 * np.linalg.norm(exact)
 
@@ -75,9 +77,9 @@ def test_fixed_and_adaptive_first_beams_agree_on_a_fine_groove(psi):
 def test_first_beams_the_escape_test_leaves_out_all_escape(craft, sun):
     u = np.asarray(sun) / np.linalg.norm(sun)
     light = side_sampler(craft).illuminate(u, 1)
-    every = chains._emitters(craft, light, SOLAR_FLUX_1AU, cull=False)
-    kept = chains._emitters(craft, light, SOLAR_FLUX_1AU, cull=True)
-    sides, _ = chains._cast(craft, every.beams)
+    every = beams._emitters(craft, light, SOLAR_FLUX_1AU, cull=False)
+    kept = beams._emitters(craft, light, SOLAR_FLUX_1AU, cull=True)
+    sides, _ = beams._cast(craft, every.beams)
     # no side of the sample transmits: one beam a side
     assert len(np.unique(every.side)) == len(every.side)
     left_out = ~np.isin(every.side, kept.side)
@@ -93,10 +95,10 @@ def test_first_beams_the_escape_test_leaves_out_all_escape(craft, sun):
 def test_the_escape_test_changes_nothing_but_the_rays(craft, sun, monkeypatch):
     light = side_sampler(craft).illuminate(np.asarray(sun) / np.linalg.norm(sun), 1)
     ref = craft.default_reference[0]
-    culled = chains.follow_chains(craft, light, SOLAR_FLUX_1AU, ref, level=1)
-    emit = chains._emitters
-    monkeypatch.setattr(chains, "_emitters", lambda *args, cull: emit(*args, cull=False))
-    every = chains.follow_chains(craft, light, SOLAR_FLUX_1AU, ref, level=1)
+    culled = beams.follow_chains(craft, light, SOLAR_FLUX_1AU, ref, level=1)
+    emit = beams._emitters
+    monkeypatch.setattr(beams, "_emitters", lambda *args, cull: emit(*args, cull=False))
+    every = beams.follow_chains(craft, light, SOLAR_FLUX_1AU, ref, level=1)
     assert culled.rays < every.rays
     for name in ("force_N", "torque_Nm", "open_sky_force_N", "open_sky_torque_Nm", "diffuse_source_W"):
         np.testing.assert_allclose(getattr(culled, name), getattr(every, name), rtol=1e-12, atol=0)
@@ -122,7 +124,7 @@ def test_strike_finds_the_sides_struck_sides_does_and_points_on_their_facets(cra
         direction,
         scene.offset_m,
         craft.facet_normals,
-        chains.chain_model(craft).facet_offsets,
+        beams.chain_model(craft).facet_offsets,
         craft.facet_sides,
     )
     np.testing.assert_array_equal(sides, craft.struck_sides(facets, direction))
@@ -143,6 +145,6 @@ def test_fixed_sample_results_are_the_same_bits_whatever_the_threads(monkeypatch
     runs = []
     for threads in ("1", "2"):
         limit_threads(int(threads))
-        result = srp(craft, [0.3, 0.2, 1.0], samples=4, reflections=FULL)
+        result = srp(craft, [0.3, 0.2, 1.0], sampling=ShadowSampling(samples=4), reflections=FULL)
         runs.append(np.r_[result.force_N, result.torque_Nm])
     assert np.array_equal(runs[0], runs[1])

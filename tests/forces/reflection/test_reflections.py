@@ -13,6 +13,7 @@ from sunwind.forces.srp import srp
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import parse_materials
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes import primitives
@@ -36,7 +37,7 @@ def test_reflections_change_nothing_on_convex_bodies(mesh, mode):
         assert np.abs(result.reflected_force_N).max() <= 1e-12 * scale
         assert np.abs(result.reflected_torque_Nm).max() <= 1e-12 * scale
         assert abs(result.power.imbalance) < 1e-12
-    assert result.k_is == 0.0
+    assert srp(craft, [1.0, 0.0, 0.0], reflections="full").k_is == 0.0
     assert srp(craft, [0, 0, 1]).reflections == "none"  # auto
 
 
@@ -125,7 +126,8 @@ def test_k_is_of_an_l_of_one_sided_squares_is_the_hottel_view_factor_ratio():
     spec = parse_materials(tomllib.loads(document))
     craft = build_spacecraft(MeshData.concatenate([a, b]), materials=spec)
     hottel = 0.200044
-    assert srp(craft, [1, 1, 1], reflections="none").k_is == pytest.approx(hottel / (1 - hottel), rel=0.02)
+    assert srp(craft, [1, 1, 1], reflections="full").k_is == pytest.approx(hottel / (1 - hottel), rel=0.02)
+    assert srp(craft, [1, 1, 1], reflections="none").k_is is None  # not computed unless asked
 
 
 def test_results_with_reflections_are_the_same_bits_whatever_the_threads(monkeypatch, limit_threads):
@@ -149,7 +151,9 @@ def test_the_diffuse_light_the_direct_pass_hands_on_equals_the_side_by_side_sums
     low, high = side_sampler(craft).block_normal_bounds
     assert (np.minimum(low * u, high * u).sum(axis=1) > 0).any()  # blocks summed from their moments
     ref = np.array([0.2, 0.7, 0.4])
-    result = srp(craft, u, reflections=full(), samples=samples, reference_point_m=ref)
+    result = srp(
+        craft, u, reflections=full(), sampling=ShadowSampling(samples=samples), reference_point_m=ref
+    )
     light, chains = result.illumination, result.reflected.chains
     rho, beta, _ = craft.side_optics.T
     power = np.zeros(craft.n_sides)

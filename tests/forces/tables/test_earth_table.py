@@ -56,7 +56,7 @@ def painted(folder):
 
 @pytest.fixture(scope="module")
 def thermal_table(painted):
-    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, step_deg=15.0)
+    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, cell_deg=15.0)
     return setup, sweep(painted, earth=setup, step_deg=45.0)
 
 
@@ -82,7 +82,7 @@ def test_every_node_is_earth_radiation_at_its_earth_direction(painted, thermal_t
             fraction = _node_fraction(u, 500.0, SUN)
             fractions.add(fraction)
             place = Place(u, 500.0, np.array(setup.sun_vector), None, fraction)
-            result = planet_radiation(painted, place, light, reflections="none", step_deg=15.0)
+            result = planet_radiation(painted, place, light, reflections="none", cell_deg=15.0)
             state = nodes.equilibrium(sum(result.absorbed_side_W().values()), result.reference_point_m)
             at = {"earth_azimuth": a, "earth_elevation": e}
             expected = {
@@ -147,14 +147,14 @@ def test_a_tracking_hinge_is_turned_to_the_fixed_sun_and_listed_angles_are_poses
         HINGED_MATERIALS.replace("specular_fraction = 0.4\n", "specular_fraction = 0.4\nemissivity = 0.8\n")
     )
     model = load(mesh, materials)
-    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", step_deg=30.0)
+    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", cell_deg=30.0)
     table = sweep(model, earth=setup, step_deg=90.0)
     assert table.attrs["earth_tracking_hinges"] == "wing_*"
     u = table["earth_vector"].values[1, 1]
     place = Place(u, 500.0, np.array(SUN), None, _node_fraction(u, 500.0, SUN))
     posed = model.posed(model.angles_at(np.array(SUN)))
     light = PlanetLight.of(planet("earth"), 1361.0)
-    direct = planet_radiation(posed, place, light, reflections="none", step_deg=30.0)
+    direct = planet_radiation(posed, place, light, reflections="none", cell_deg=30.0)
     np.testing.assert_allclose(table["earth_force_N"].values[1, 1], direct.force_N, rtol=1e-12, atol=0)
     poses = sweep(model, earth=setup, step_deg=90.0, hinge_angles={"wing_*": [0.0, 60.0]})
     assert poses["earth_force_N"].dims == (
@@ -163,13 +163,13 @@ def test_a_tracking_hinge_is_turned_to_the_fixed_sun_and_listed_angles_are_poses
         "earth_elevation",
         "component",
     )
-    held = planet_radiation(model.held({"wing_*": 60.0}), place, light, reflections="none", step_deg=30.0)
+    held = planet_radiation(model.held({"wing_*": 60.0}), place, light, reflections="none", cell_deg=30.0)
     entry = poses["earth_force_N"].sel({"hinge_deg[wing_*]": 60.0}).values[1, 1]
     np.testing.assert_allclose(entry, held.force_N, rtol=1e-12, atol=0)
 
 
 def test_an_earth_sweep_resumes_from_its_checkpoint(painted, tmp_path):
-    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, step_deg=30.0)
+    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, cell_deg=30.0)
     resumed, notices = stopped_then_resumed(
         lambda run: sweep(painted, earth=setup, step_deg=45.0, run=run), tmp_path / "t.checkpoint", 13
     )
@@ -196,7 +196,7 @@ def test_csv_interpolation_and_plots_take_the_earth_table_spad_leaves_it_out(
     ]
     with pytest.raises(InputError, match="format spad holds srp and drag only, not earth"):
         export.write(table, tmp_path / "t.spo")
-    cheap = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", step_deg=45.0)
+    cheap = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", cell_deg=45.0)
     both = sweep(painted, srp=SrpSetup(reflections="none"), earth=cheap, step_deg=90.0)
     with pytest.warns(UserWarning, match="spad holds srp and drag only: earth is not written"):
         assert [p.name for p in export.write(both, tmp_path / "b.spo")] == ["b.spo"]
@@ -242,7 +242,7 @@ def test_the_command_line_writes_the_earth_table_alone_or_beside_srp(run_cli, fo
     table = open_table(out)
     assert table["earth_force_N"].dims == ("earth_azimuth", "earth_elevation", "component")
     assert not [name for name in table.data_vars if not str(name).startswith("earth_")]
-    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, step_deg=15.0)
+    setup = EarthSetup(altitude_km=500.0, sun_vector=SUN, reflections="none", thermal=True, cell_deg=15.0)
     library = sweep(painted, earth=setup, step_deg=45.0)
     for name in ("earth_force_N", "earth_thermal_torque_Nm", "earth_solar_fraction"):
         np.testing.assert_array_equal(table[name].values, library[name].values)

@@ -29,6 +29,7 @@ from sunwind.forces.tables import (
 )
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.materials import Material
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 from sunwind.meshes.primitives import sphere
 from sunwind.validation.analytic_srp import sphere_srp
@@ -59,8 +60,8 @@ def air():
 def _setups(air, reflections="full"):
     settings = _settings(reflections)
     return (
-        SrpSetup(flux_W_m2=1361.0, samples=4, reflections=settings),
-        DragSetup(speed_m_s=7600.0, atmosphere=air, samples=4, reflections=settings),
+        SrpSetup(flux_W_m2=1361.0, sampling=ShadowSampling(samples=4), reflections=settings),
+        DragSetup(speed_m_s=7600.0, atmosphere=air, sampling=ShadowSampling(samples=4), reflections=settings),
     )
 
 
@@ -114,8 +115,10 @@ def test_every_table_entry_equals_the_single_attitude_result(model, air):
     for i, az in enumerate(grid.azimuth_deg):
         for j, el in enumerate(grid.elevation_deg):
             u = grid.vectors[i, j]
-            light = srp(model, u, samples=4, reflections=_settings("full"))
-            gas = drag(model, 7600.0 * u, air, samples=4, reflections=_settings("full"))
+            light = srp(model, u, sampling=ShadowSampling(samples=4), reflections=_settings("full"))
+            gas = drag(
+                model, 7600.0 * u, air, sampling=ShadowSampling(samples=4), reflections=_settings("full")
+            )
             at = {"sun_azimuth": az, "sun_elevation": el}
             np.testing.assert_array_equal(table.srp_force_N.sel(at).values, light.force_N)
             np.testing.assert_array_equal(table.srp_torque_Nm.sel(at).values, light.torque_Nm)
@@ -141,13 +144,15 @@ def test_a_netcdf_table_states_its_coordinates_modes_and_atmosphere(model, air, 
     atmosphere's source and altitude, and drag's projected area."""
     settings = _settings("auto")
     high = replace(air, altitude_km=400.0)
-    light_setup = SrpSetup(flux_W_m2=1361.0, samples=4, reflections=settings)
-    drag_setup = DragSetup(speed_m_s=7600.0, atmosphere=high, samples=4, reflections=settings)
+    light_setup = SrpSetup(flux_W_m2=1361.0, sampling=ShadowSampling(samples=4), reflections=settings)
+    drag_setup = DragSetup(
+        speed_m_s=7600.0, atmosphere=high, sampling=ShadowSampling(samples=4), reflections=settings
+    )
     (path,) = export.write(sweep(model, srp=light_setup, drag=drag_setup, step_deg=90.0), tmp_path / "t.nc")
     table = open_table(path)
     u = np.array([0.0, 0.0, 1.0])
-    light = srp(model, u, samples=4, reflections=settings)
-    gas = drag(model, 7600.0 * u, high, samples=4, reflections=settings)
+    light = srp(model, u, sampling=ShadowSampling(samples=4), reflections=settings)
+    gas = drag(model, 7600.0 * u, high, sampling=ShadowSampling(samples=4), reflections=settings)
     assert table.attrs["Conventions"] == "CF-1.8" and "sun_vector points" in table.attrs["comment"]
     assert table.attrs["reflections_requested"] == "auto"
     assert table.attrs["srp_reflections"] == light.reflected.mode != "auto"
@@ -200,7 +205,10 @@ def test_sphere_table_equals_the_analytic_sphere():
     craft = build_spacecraft(sphere(1.0, SPHERE_BANDS), uniform=OPTICS)
     grid = direction_grid(30)
     setup = SrpSetup(
-        flux_W_m2=1361.0, reference_point_m=(0.0, 0.0, 0.0), samples=1, reflections=_settings("none")
+        flux_W_m2=1361.0,
+        reference_point_m=(0.0, 0.0, 0.0),
+        sampling=ShadowSampling(samples=1),
+        reflections=_settings("none"),
     )
     table = sweep(craft, srp=setup, step_deg=30)  # a model built in memory
     forces = table.srp_force_N.values.reshape(-1, 3)
@@ -275,7 +283,7 @@ def test_a_checkpoint_of_another_sweep_is_refused(model, air, tmp_path):
         run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint, progress=stop))
     with pytest.raises(InputError, match="resume"):
         run_jobs(model, jobs, SweepRun(chunk=5, checkpoint=checkpoint))
-    other = [Job(replace(j.setup, samples=9), j.directions) for j in jobs]
+    other = [Job(replace(j.setup, sampling=ShadowSampling(samples=9)), j.inputs) for j in jobs]
     with pytest.raises(InputError, match="srp_settings"):
         run_jobs(model, other, SweepRun(chunk=5, checkpoint=checkpoint, resume=True))
     paint = load(
@@ -306,7 +314,7 @@ def test_chunks_without_their_manifest_are_taken_only_by_their_own_sweep(model, 
     checkpoint = tmp_path / "c"
     _stopped_checkpoint(model, jobs, checkpoint)
     (checkpoint / "manifest.json").unlink()
-    other = [Job(replace(j.setup, samples=9), j.directions) for j in jobs]
+    other = [Job(replace(j.setup, sampling=ShadowSampling(samples=9)), j.inputs) for j in jobs]
     lines, progress = [], []
     run = SweepRun(chunk=5, checkpoint=checkpoint, resume=True, progress=progress.append, notice=lines.append)
     resumed = run_jobs(model, other, run)
@@ -480,7 +488,7 @@ def test_list_sweep_from_the_command_line(model, run_cli, tmp_path):
     assert code == 0, err
     table = open_table(out_path)
     assert table.sizes["attitude"] == 2
-    single = srp(model, [0, 0, 1], samples=4, reflections="none")
+    single = srp(model, [0, 0, 1], sampling=ShadowSampling(samples=4), reflections="none")
     np.testing.assert_array_equal(table.srp_force_N.values[1], single.force_N)
 
 

@@ -1,14 +1,15 @@
-"""README's printed outputs: find them, compare them with a run to the digits shown, and rewrite them.
+"""Printed outputs of the documentation pages (README.md, docs/getting_started.md, docs/guides/*.md):
+find them, compare them with a run to the digits shown, and rewrite them.
 
-An output block is a README ``console`` block whose first line is ``$ sunwind ...`` and whose next
+An output block is a page's ``console`` block whose first line is ``$ sunwind ...`` and whose next
 lines (up to the closing fence) are what that command prints. A printed line is split into numbers
 and the text between them: the text must match (runs of spaces count as one, since column widths
-follow the numbers), and each number must equal the run's number rounded to the digits the README
+follow the numbers), and each number must equal the run's number rounded to the digits the page
 shows (``2.573961e-05`` fails against ``2.573963e-05``; ``7670.57`` passes against ``7670.574``). A
 number shown to seven significant digits or more may be one unit off in its last digit: sums of
 many terms can differ in their last bits between processors (the vector width orders the additions),
-which flips the rounding of a seventh digit now and then (the README's ``-5.457986e-04`` of an orbit's
-angular impulse is printed ``-5.457987e-04`` on an AVX-512 machine); any larger difference fails.
+which flips the rounding of a seventh digit now and then (an orbit's angular impulse printed
+``-5.457986e-04`` here is ``-5.457987e-04`` on an AVX-512 machine); any larger difference fails.
 A ``view factors`` or ``open sky`` line is compared up to its first comma (whether they were computed
 or read from a cache, and the cache's path, depend on the machine).
 """
@@ -19,6 +20,25 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+
+#: The pages whose examples are checked, relative to the repository's root.
+PAGE_GLOBS = ("README.md", "docs/getting_started.md", "docs/guides/*.md")
+
+
+def pages(root: Path) -> list[Path]:
+    """Every documentation page with examples, README.md first, then the site's pages by name."""
+    return [path for pattern in PAGE_GLOBS for path in sorted(root.glob(pattern))]
+
+
+def python_blocks(text: str) -> list[str]:
+    """The code of every ``python`` block of ``text``, in order."""
+    return re.findall(r"^```python\n(.*?)^```", text, flags=re.S | re.M)
+
+
+def console_blocks(text: str) -> list[str]:
+    """The body of every ``console`` block of ``text``, in order."""
+    return re.findall(r"^```console\n(.*?)^```", text, flags=re.S | re.M)
+
 
 #: A number as the commands print them: not part of a word, optional sign, decimals and exponent.
 NUMBER = re.compile(r"(?<![\w.^/:-])[+-]?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])")
@@ -39,7 +59,7 @@ class OutputBlock:
 def output_blocks(text: str) -> list[OutputBlock]:
     """Every output block of ``text`` in order; ``start:end`` spans the printed lines."""
     blocks = []
-    for match in re.finditer(r"```console\n(\$ sunwind [^\n]*)\n(.*?)```", text, flags=re.S):
+    for match in re.finditer(r"^```console\n(\$ sunwind [^\n]*)\n(.*?)^```", text, flags=re.S | re.M):
         body = match.group(2)
         if body and not body.startswith("$"):
             printed = body.rstrip("\n").split("\n")
@@ -65,7 +85,7 @@ def _last_digit_flip(token: str, value: float) -> bool:
 
 
 def line_differences(expected: str, got: str) -> list[str]:
-    """What differs between a README line and the printed line, to the README's precision (empty: same)."""
+    """What differs between a page's line and the printed line, to the page's precision (empty: same)."""
     name = expected.strip()
     if name.startswith(MACHINE_DEPENDENT):
         expected, got = expected.split(",")[0], got.split(",")[0]
@@ -76,14 +96,14 @@ def line_differences(expected: str, got: str) -> list[str]:
     problems = []
     for token, value in zip(NUMBER.findall(expected), NUMBER.findall(got), strict=True):
         if _shown(token, float(value)) != token and not _last_digit_flip(token, float(value)):
-            problems.append(f"number: README {token}, run {value} (shown {_shown(token, float(value))})")
+            problems.append(f"number: page {token}, run {value} (shown {_shown(token, float(value))})")
     return problems
 
 
 def block_differences(block: OutputBlock, got: list[str]) -> list[str]:
     """Every difference between a block's printed lines and a run's, line by line."""
     if len(got) != len(block.printed):
-        return [f"{len(block.printed)} lines in README, {len(got)} printed: {got}"]
+        return [f"{len(block.printed)} lines on the page, {len(got)} printed: {got}"]
     return [
         f"line {k + 1}: {p}"
         for k, (e, g) in enumerate(zip(block.printed, got, strict=True))
@@ -93,7 +113,7 @@ def block_differences(block: OutputBlock, got: list[str]) -> list[str]:
 
 def refresh(path: Path, run: Callable[[str], list[str]], only: str | None = None) -> int:
     """Rewrite every output block of the file at ``path`` (``only``: of that command) with
-    ``run(command)``'s lines; how many changed. Machine-dependent lines keep the README's text after
+    ``run(command)``'s lines; how many changed. Machine-dependent lines keep the page's text after
     their first comma.
     """
     text = path.read_text()
