@@ -33,6 +33,7 @@ _PUBLIC = {
     "load": "sunwind.forces.model:load",
     "Model": "sunwind.forces.model:Model",
     "Material": "sunwind.geometry.materials:Material",
+    "MeshData": "sunwind.geometry.mesh_data:MeshData",
     "meshes": "sunwind.meshes",
     # one attitude or a batch
     "srp": "sunwind.forces.srp:srp",
@@ -55,10 +56,13 @@ _PUBLIC = {
     "EarthSetup": "sunwind.forces.tables.earth_setup:EarthSetup",
     # tables and files
     "sweep": "sunwind.forces.tables.engine:sweep",
+    "SweepRun": "sunwind.forces.tables.engine:SweepRun",
     "write": "sunwind.forces.export:write",
+    "TableInterpolator": "sunwind.forces.tables.interpolation:TableInterpolator",
     # orbits
     "orbit": "sunwind.forces.orbit",
     "fly": "sunwind.forces.orbit.flight:fly",
+    "OrbitLoads": "sunwind.forces.orbit.steps:OrbitLoads",
     # results
     "Result": "sunwind.forces.results:Result",
     "SrpResult": "sunwind.forces.results:SrpResult",

@@ -57,6 +57,10 @@ exclude_patterns = [
 ]
 templates_path: list[str] = []
 nitpicky = False
+# `text` in a docstring or a click help string is code (as in Markdown), not italics
+default_role = "literal"
+# quotes and ellipses only: "--flag" in the CLI reference and docstrings stays two hyphens, not a dash
+smartquotes_action = "qe"
 
 # -- MyST -------------------------------------------------------------------------------------------------
 
@@ -111,3 +115,5 @@ html_theme_options = {
     "footer_end": ["sphinx-version"],
 }
 html_context = {"default_mode": "light"}
+# single pages with no children: no empty section navigation beside them
+html_sidebars = {page: [] for page in ("index", "cli", "method", "validation", "performance")}

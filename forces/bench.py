@@ -33,6 +33,7 @@ from sunwind.forces.reflection.diffuse import diffuse_exchange
 from sunwind.forces.srp import srp
 from sunwind.geometry import memory
 from sunwind.geometry.parallel import thread_count
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, level_for_samples, side_sampler
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -49,11 +50,31 @@ BenchProgress = Callable[[str, int, int], None]
 
 @dataclass(frozen=True)
 class LoadError:
-    """Error of a timed setting over its attitudes against the reference of each attitude, worst and
-    median [-]: ``|F - F_ref| / |F_ref|``, ``|M - M_ref| / |M_ref|``, and the torque's on the scale of a
-    torque the force could give, ``|M - M_ref| / (|F_ref| L)`` with ``L`` the model's size
+    """Error of a timed setting over its attitudes against the reference of each attitude, worst and median.
+
+    All relative [-]: ``|F - F_ref| / |F_ref|``, ``|M - M_ref| / |M_ref|``, and the torque's on the scale
+    of a torque the force could give, ``|M - M_ref| / (|F_ref| L)`` with ``L`` the model's size
     (:attr:`~sunwind.geometry.spacecraft.Spacecraft.diagonal_m`, the diagonal of its box), which stays
-    meaningful where the torque is small."""
+    meaningful where the torque is small.
+
+    Attributes
+    ----------
+    force_worst, force_median : float
+        Relative force error, worst and median over the attitudes [-].
+    torque_worst, torque_median : float
+        Relative torque error, worst and median [-].
+    torque_of_force_worst : float
+        Worst torque error over ``|F_ref| L`` [-].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> exact = [(np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]))]
+    >>> close = [(np.array([1.001, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]))]
+    >>> error = LoadError.of(close, exact, size_m=1.0)
+    >>> round(error.force_worst, 6), error.torque_worst
+    (0.001, 0.0)
+    """
 
     force_worst: float
     force_median: float
@@ -64,7 +85,22 @@ class LoadError:
     @classmethod
     def of(cls, loads: list[Loads], references: list[Loads], size_m: float) -> LoadError:
         """The errors of ``loads`` against the first ``len(loads)`` ``references``, attitude by attitude,
-        on a model of size ``size_m`` [m]."""
+        on a model of size ``size_m`` [m].
+
+        Parameters
+        ----------
+        loads : list of (force, torque)
+            Force [N] and torque [N m], each (3,), of the timed setting at each attitude.
+        references : list of (force, torque)
+            The reference's loads at the same attitudes (at least as many).
+        size_m : float
+            The model's size ``L`` [m].
+
+        Returns
+        -------
+        LoadError
+            Worst and median errors.
+        """
         got, exact = np.array(loads), np.array(references[: len(loads)])  # (n, 2 loads, 3)
         difference, scale = np.linalg.norm(got - exact, axis=2), np.linalg.norm(exact, axis=2)
         error = difference / scale
@@ -98,8 +134,67 @@ def _references(
 
 @dataclass(frozen=True)
 class BenchReport:
-    """Benchmark figures; times in seconds unless the name says ms. ``default_*``: the default shadow
-    pass (no ``samples``); ``fixed_*``: ``samples_per_side`` fixed points per side, timed beside it."""
+    """Benchmark figures; times in seconds unless the name says ms.
+
+    ``default_*``: the default shadow pass (no ``samples``); ``fixed_*``: ``samples_per_side`` fixed
+    points per side, timed beside it; ``full_*``: with full reflections; ``drag_*``: free-molecular drag.
+
+    Attributes
+    ----------
+    triangles, sides, attitudes, samples_per_side, threads : int
+        The model's size and the run's settings.
+    load_s, scene_build_s, first_call_s : float
+        Time to load the model, build its ray scene and make the first call [s].
+    default_ms, default_median_ms, fixed_ms, fixed_median_ms : float
+        Mean and median time per attitude of direct SRP [ms].
+    default_rays_per_attitude, fixed_rays_per_attitude : float
+        Rays cast per attitude.
+    default_error, fixed_error : LoadError
+        Their errors against the reference.
+    default_over_fixed, default_batch_ms, fixed_batch_ms, batch_default_over_fixed : float
+        Ratio of the two and the same as a batch of attitudes.
+    batch_identical : bool
+        Whether the batch gives the same loads as the attitudes one by one.
+    fixed_rays_per_s, raw_embree_ms, raw_embree_rays_per_s, overhead : float
+        Ray rate, the same rays cast by Embree alone, and the ratio of the two times.
+    view_factor_s, view_factor_MB, view_factor_peak_MB, exchange_setup_s : float
+        Cost of the view-factor precompute [s, MB] and of setting up the exchange [s].
+    view_factor_rays_per_side : int
+        Rays per side of the precompute.
+    full_ms, full_median_ms, full_over_direct, beam_rays_per_attitude : float
+        SRP with full reflections per attitude [ms], its ratio to direct, beam rays per attitude.
+    full_error : LoadError
+        Its error.
+    fixed_full_ms : float
+        The same with fixed points per side [ms].
+    fixed_full_error : LoadError
+        Its error.
+    drag_ms, drag_over_srp, fixed_drag_ms, drag_full_ms, drag_full_over_srp_full : float
+        Drag per attitude [ms] and its ratio to SRP, without and with exchange.
+    drag_error, fixed_drag_error, drag_full_error : LoadError
+        Their errors.
+    drag_atmosphere : str
+        The atmosphere drag was timed in.
+    sky_s, sky_MB : float
+        Cost of the open-sky precompute [s, MB].
+    sky_rays_per_side : int
+        Its rays per side.
+    peak_memory_MB : float
+        Peak resident memory of the process [MB].
+    machine : str
+        Architecture, cores and Python version.
+
+    Examples
+    --------
+    A cube and two attitudes (a few seconds, mostly the first call of each solver):
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> report = benchmark(cube.craft, attitudes=2)
+    >>> report.triangles, report.attitudes, report.batch_identical
+    (12, 2, True)
+    """
 
     triangles: int
     sides: int
@@ -154,6 +249,13 @@ class BenchReport:
     machine: str
 
     def to_json(self) -> dict:
+        """Return the report as a JSON-ready dict (the errors as nested dicts).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return asdict(self)
 
 
@@ -199,9 +301,13 @@ def _reflection_figures(
     start = time.perf_counter()
     _ = diffuse_exchange(craft, settings).responses
     setup_s = time.perf_counter() - start
-    timed = _timed(lambda u, n: srp(craft, u, samples=n, reflections=settings), directions, samples)
+    timed = _timed(
+        lambda u, n: srp(craft, u, sampling=ShadowSampling(samples=n), reflections=settings),
+        directions,
+        samples,
+    )
     references = _references(
-        lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections=settings),
+        lambda u: srp(craft, u, sampling=ShadowSampling(tolerance=REFERENCE_TOLERANCE), reflections=settings),
         directions,
         "reference, full reflections",
         progress,
@@ -252,7 +358,13 @@ def _drag_figures(
         settings = ReflectionSettings(mode, cache_dir=False)
 
         def evaluate(u, n, settings=settings):
-            return drag(craft, speed * u, air, samples=n, reflections=settings)
+            return drag(
+                craft,
+                speed * u,
+                air,
+                sampling=ShadowSampling(samples=n),
+                reflections=settings,
+            )
 
         timed = _timed(evaluate, directions, samples if mode == "none" else None)  # full: the default only
         references = _references(
@@ -260,7 +372,7 @@ def _drag_figures(
                 craft,
                 speed * u,
                 air,
-                tolerance=REFERENCE_TOLERANCE,
+                sampling=ShadowSampling(tolerance=REFERENCE_TOLERANCE),
                 reflections=settings,
                 gas_sampling=finer,
             ),
@@ -286,7 +398,7 @@ def _batch_figures(craft: Spacecraft, directions: np.ndarray, samples: int, one_
     figures: dict = {}
     for key, n in (("default", None), ("fixed", samples)):
         start = time.perf_counter()
-        batch = srp(craft, directions, samples=n, reflections="none")
+        batch = srp(craft, directions, sampling=ShadowSampling(samples=n), reflections="none")
         figures[f"{key}_batch_ms"] = 1e3 * (time.perf_counter() - start) / len(directions)
         if n is None:
             figures["batch_identical"] = all(
@@ -302,7 +414,25 @@ _ATTITUDE_BYTES = 140
 
 
 def sun_directions(count: int, seed: int = 2026) -> np.ndarray:
-    """``count`` seeded random unit vectors, uniform on the sphere, (count, 3)."""
+    """``count`` seeded random unit vectors, uniform on the sphere.
+
+    Parameters
+    ----------
+    count : int
+        Number of directions.
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``.
+
+    Returns
+    -------
+    (count, 3) float64
+        Unit vectors.
+
+    Examples
+    --------
+    >>> sun_directions(2).round(3).tolist()
+    [[-0.383, 0.116, -0.916], [0.893, 0.409, -0.187]]
+    """
     v = np.random.default_rng(seed).normal(size=(count, 3))
     return v / np.linalg.norm(v, axis=1)[:, None]
 
@@ -314,9 +444,38 @@ def benchmark(
     load_s: float = 0.0,
     progress: BenchProgress | None = None,
 ) -> BenchReport:
-    """Time direct SRP with shadowing on ``craft`` over seeded random Sun directions, at the default and
-    with ``samples`` fixed points per side in the same run, then the other settings, each with its error
-    against :data:`REFERENCE_TOLERANCE`."""
+    """Time SRP and drag on ``craft`` over seeded random Sun directions, each setting with its error.
+
+    Direct SRP with shadowing at the default and with ``samples`` fixed points per side in the same
+    run, then the other settings, each with its error against :data:`REFERENCE_TOLERANCE`.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    attitudes : int, optional
+        Sun directions (:func:`sun_directions`).
+    samples : int, optional
+        Fixed points per side of the fixed setting.
+    load_s : float, optional
+        Time it took to load the model [s], reported as is.
+    progress : callable, optional
+        ``progress(stage, done, total)`` hears each attitude of each stage.
+
+    Returns
+    -------
+    BenchReport
+        The figures.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> report = benchmark(cube.craft, attitudes=2)
+    >>> report.sides, report.default_error.force_worst < 1e-2
+    (12, True)
+    """
     what = f"{memory.count(attitudes)} timed Sun directions"
     memory.require(_ATTITUDE_BYTES * attitudes, what, "lower attitudes", ("attitudes",))
     directions = sun_directions(attitudes)
@@ -327,14 +486,18 @@ def benchmark(
     start = time.perf_counter()
     srp(craft, directions[0], reflections="none")  # compiles kernels, keeps origins
     first_call = time.perf_counter() - start
-    direct = _timed(lambda u, n: srp(craft, u, samples=n, reflections="none"), directions, samples)
+    direct = _timed(
+        lambda u, n: srp(craft, u, sampling=ShadowSampling(samples=n), reflections="none"),
+        directions,
+        samples,
+    )
     # the raw figure casts the fixed setting's rays alone, right after each attitude was timed
     raw_times = []
     for k, u in enumerate(directions):
         _, origins = side_sampler(craft).facing_rays(u, level)
         flat = origins.reshape(-1, 3)
         along = np.broadcast_to(u.astype(np.float32), flat.shape)
-        srp(craft, u, samples=samples, reflections="none")
+        srp(craft, u, sampling=ShadowSampling(samples=samples), reflections="none")
         start = time.perf_counter()
         scene.occluded(flat, along)
         raw_times.append(time.perf_counter() - start)
@@ -342,7 +505,7 @@ def benchmark(
             progress("timing raw Embree", k + 1, attitudes)
     batch = _batch_figures(craft, directions, samples, direct["default"]["loads"])
     references = _references(
-        lambda u: srp(craft, u, tolerance=REFERENCE_TOLERANCE, reflections="none"),
+        lambda u: srp(craft, u, sampling=ShadowSampling(tolerance=REFERENCE_TOLERANCE), reflections="none"),
         directions,
         "reference, direct",
         progress,
@@ -382,6 +545,23 @@ def benchmark(
 
 
 def reference_gas(gas: GasSampling) -> GasSampling:
-    """``gas`` sampled :data:`REFERENCE_GAS_FACTORS` times more finely (``gas.sky_rays`` must be set)."""
+    """``gas`` sampled :data:`REFERENCE_GAS_FACTORS` times more finely.
+
+    Parameters
+    ----------
+    gas : GasSampling
+        The timed setting; ``gas.sky_rays`` must be set.
+
+    Returns
+    -------
+    GasSampling
+        Four times the sky rays, sixteen times the core rays and chain molecules.
+
+    Examples
+    --------
+    >>> from sunwind.forces.gas.sampling import GasSampling
+    >>> reference_gas(GasSampling(sky_rays=256, core_rays=1024, chain_molecules=512))
+    GasSampling(sky_rays=1024, core_rays=16384, chain_molecules=8192)
+    """
     sky, core, chains = REFERENCE_GAS_FACTORS
     return GasSampling(gas.sky_rays * sky, gas.core_rays * core, gas.chain_molecules * chains)

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.batches import DragBatch
 from sunwind.forces.gas.atmosphere import Atmosphere
-from sunwind.forces.gas.chains import ChainLaws, molecular_chains
+from sunwind.forces.gas.chains import ChainLaws, SpeciesStream, molecular_chains
 from sunwind.forces.gas.exchange import molecular_exchange, open_plate_recoil
 from sunwind.forces.gas.flow import flow_speed
 from sunwind.forces.gas.panel import GasGroups, closed_loads, gas_groups, species_streams, summed_laws
@@ -90,7 +90,7 @@ def drag(
     --------
     >>> import sunwind as sw
     >>> model = sw.load(sw.meshes.box_wing(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1)
-    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O")
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
     >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
     >>> result = sw.drag(model, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
     >>> bool(result.force_N[0] < 0)  # drag acts against v_rel
@@ -167,7 +167,7 @@ def _one(
     if mode in ("specular", "full"):
         masses, densities = species_streams(atmosphere)
         chains = molecular_chains(
-            craft, groups, laws, (masses, densities, speed), u, ref, gas.chain_molecules
+            craft, groups, laws, SpeciesStream(masses, densities, speed), u, ref, gas.chain_molecules
         )
         if mode == "full":
             mirrored = ChainLaws.of(groups.surfaces).mirrored[groups.law[groups.side]]

@@ -71,8 +71,25 @@ class PlanetResult(Result):
     reflections : str
         The inter-reflection mode used ("auto" resolved; "plates" in the plate mode).
     reference_point_m : (3,) float64
+        Point the torque is taken about [m], body frame.
     reference_point : str
+        Where it came from (as :class:`~sunwind.forces.results.AttitudeResult`).
     craft : Spacecraft
+        The model evaluated.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> down, up = np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0])
+    >>> noon = sw.Place(nadir=down, altitude_km=500.0, sun_vector=up)  # the Sun overhead
+    >>> result = sw.planet_radiation(cube, noon, reflections="none")
+    >>> bool(result.infrared_force_N[2] > 0), bool(result.albedo_force_N[2] > 0)  # pushed away
+    (True, True)
+    >>> sorted(result.parts()["box"])
+    ['albedo_W', 'area_m2', 'infrared_W', 'reflected_W', 'solar_W']
     """
 
     albedo: BandLoad
@@ -213,7 +230,26 @@ class PlanetResult(Result):
 
 
 def check_altitude(altitude_km: float) -> None:
-    """Refuse a height above the planet's surface [km] that is not a number in (0, MAX_ALTITUDE_KM]."""
+    """Refuse a height above the planet's surface that is not a number in (0, MAX_ALTITUDE_KM].
+
+    Parameters
+    ----------
+    altitude_km : float
+        Height above the surface [km].
+
+    Raises
+    ------
+    InputError
+        ``altitude_km`` is not a finite number in (0, :data:`MAX_ALTITUDE_KM`] (a bool is refused).
+
+    Examples
+    --------
+    >>> check_altitude(500.0)
+    >>> check_altitude(-1.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: altitude_km -1.0 is not in (0, 4e+07] km; ...
+    """
     if (
         isinstance(altitude_km, bool)
         or not isinstance(altitude_km, int | float | np.floating | np.integer)
@@ -227,7 +263,12 @@ def check_altitude(altitude_km: float) -> None:
 
 
 def check_cell_size(cell_deg: float) -> None:
-    """Refuse a cell size of the planet's disc [deg] outside (0, 90].
+    """Refuse a cell size of the planet's disc outside (0, 90] degrees.
+
+    Parameters
+    ----------
+    cell_deg : float
+        Size of the cap's cells [deg].
 
     Raises
     ------
@@ -248,13 +289,30 @@ def check_cell_size(cell_deg: float) -> None:
 
 
 def check_cells_at(altitude_km: float, cell_deg: float) -> None:
-    """Refuse a cell size [deg] that cuts the Earth's disc seen from ``altitude_km`` into too many cells
-    (:func:`~sunwind.forces.planet.cap.check_cells`), before any work.
+    """Refuse, before any work, a cell size that cuts the Earth's disc into too many cells.
+
+    The Earth's disc seen from ``altitude_km`` has half-angle ``asin(R / (R + h))``;
+    :func:`~sunwind.forces.planet.cap.check_cells` counts its cells.
+
+    Parameters
+    ----------
+    altitude_km : float
+        Height above the Earth's surface [km].
+    cell_deg : float
+        Size of the cap's cells [deg].
 
     Raises
     ------
     InputError
         Too many cells, naming ``cell_deg``.
+
+    Examples
+    --------
+    >>> check_cells_at(500.0, 10.0)
+    >>> check_cells_at(500.0, 0.1)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: cell_deg 0.1 cuts the planet's disc (68.0 deg half-angle) into ...
     """
     radius = planet("earth").radius_m
     try:
@@ -267,9 +325,40 @@ def check_cells_at(altitude_km: float, cell_deg: float) -> None:
 
 @dataclass(frozen=True, eq=False)
 class Place:
-    """Where the spacecraft is, in its body frame: the planet's centre along ``nadir``, ``altitude_km``
-    above the surface, the Sun along ``sun_vector`` (both normalised here), the planet's north pole
-    along ``pole`` (for latitudes; default +z), and ``solar_fraction`` of the solar disc in view."""
+    """Where the spacecraft is relative to the planet and the Sun, in its body frame.
+
+    The directions are normalised when the place is made, and the altitude and solar fraction checked.
+
+    Parameters
+    ----------
+    nadir : (3,) array_like of float
+        Direction from the spacecraft to the planet's centre, body frame (any length but zero).
+    altitude_km : float
+        Height above the planet's surface [km], in (0, :data:`MAX_ALTITUDE_KM`].
+    sun_vector : (3,) array_like of float
+        Direction from the spacecraft to the Sun, body frame (any length but zero).
+    pole : (3,) array_like of float, optional
+        Direction of the planet's north pole, body frame, for latitude-dependent models (Knocke);
+        default +z.
+    solar_fraction : float, default 1.0
+        Share of the solar disc in view, in [0, 1] (0 in the planet's umbra).
+
+    Raises
+    ------
+    InputError
+        A zero or non-finite direction, an altitude out of range, or a solar fraction outside [0, 1].
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> place = sw.Place(nadir=[0.0, 0.0, -2.0], altitude_km=500.0, sun_vector=[3.0, 0.0, 4.0])
+    >>> place.nadir, place.sun_vector, place.pole
+    (array([ 0.,  0., -1.]), array([0.6, 0. , 0.8]), array([0., 0., 1.]))
+    >>> sw.Place([0.0, 0.0, -1.0], 500.0, [1.0, 0.0, 0.0], solar_fraction=1.5)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: solar_fraction 1.5 is not in [0, 1]
+    """
 
     nadir: NDArray[np.float64]
     altitude_km: float

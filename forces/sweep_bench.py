@@ -16,20 +16,61 @@ import numpy as np
 
 from sunwind.forces.bench import REFERENCE_TOLERANCE, LoadError, reference_gas
 from sunwind.forces.gas import circular_speed, nrlmsis
-from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.gas.visible import model_sky
 from sunwind.forces.model import load
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables import DragSetup, Job, SrpSetup, SweepRun, direction_grid, run_jobs
 from sunwind.forces.tables.cluster import timed_on_local_cluster
 from sunwind.forces.tables.engine import precompute
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.shadows import level_for_samples
 from sunwind.meshes.samples import write_sample_files
 
 
 @dataclass(frozen=True)
 class SweepReport:
-    """Sweep benchmark figures; times in seconds."""
+    """Sweep benchmark figures; times in seconds.
+
+    Attributes
+    ----------
+    triangles : int
+        Facets of the generated sample.
+    step_deg : float
+        Step of the direction grid [deg].
+    grid_nodes, distinct_directions : int
+        Nodes of the grid and the distinct directions among them.
+    samples_per_side : int or None
+        Fixed points per side, or None for the default shadow pass.
+    reflections : str
+        The reflection mode, ``"full"``.
+    precompute_s, sweep_s : float
+        Time of the precompute (view factors, open sky, first calls) and of the sweep [s].
+    srp_per_attitude_ms, drag_per_attitude_ms : float
+        Time per attitude of each [ms].
+    projected_1_deg_s : float
+        The sweep's time scaled to a 1-degree grid [s].
+    checked_directions : int
+        Directions at which the entries are checked against the reference.
+    srp_error, drag_error : LoadError
+        The entries' errors there.
+    dask_attitudes : int
+        Attitudes timed on the local Dask cluster (both kinds).
+    dask_1_worker_s, dask_2_workers_s, dask_speedup : float
+        Their time on one and on two one-thread workers [s], and the ratio.
+    dask_identical : bool
+        Whether both clusters gave the same entries.
+    machine : str
+        Architecture, cores and Python version.
+
+    Examples
+    --------
+    >>> from sunwind.forces.bench import LoadError
+    >>> exact = LoadError(0.0, 0.0, 0.0, 0.0, 0.0)
+    >>> report = SweepReport(1884, 90.0, 15, 6, None, "full", 3.4, 0.33, 17.6, 36.7, 3500.0, 6, exact, exact,
+    ...                      4, 0.19, 0.26, 0.72, True, "x86_64, 2 cores")
+    >>> report.to_json()["srp_error"]["force_worst"]
+    0.0
+    """
 
     triangles: int
     step_deg: float
@@ -53,6 +94,13 @@ class SweepReport:
     machine: str
 
     def to_json(self) -> dict:
+        """Return the report as a JSON-ready dict (the errors as nested dicts).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return asdict(self)
 
 
@@ -63,12 +111,12 @@ CHECKED_DIRECTIONS = 24
 def _setup_error(model, setup: SrpSetup | DragSetup, directions: np.ndarray) -> LoadError:
     """Error of the entries ``setup`` gives at ``directions`` against the same setup with the default
     shadow pass at :data:`REFERENCE_TOLERANCE` (and, for drag, the gas sampled more finely)."""
-    reference = replace(setup, samples=None, tolerance=REFERENCE_TOLERANCE)
+    reference = replace(setup, sampling=ShadowSampling(tolerance=REFERENCE_TOLERANCE))
     if isinstance(setup, DragSetup):
-        sky = model_sky(model.craft, setup.sky_rays, setup.settings.cache_dir).rays_per_side
-        gas = reference_gas(GasSampling(sky, setup.core_rays, setup.chain_molecules))
-        reference = replace(reference, sky_rays=gas.sky_rays, core_rays=gas.core_rays)
-        reference = replace(reference, chain_molecules=gas.chain_molecules)
+        sampled = setup.gas_sampling
+        sky = model_sky(model.craft, sampled.sky_rays, setup.settings.cache_dir).rays_per_side
+        gas = reference_gas(replace(sampled, sky_rays=sky))
+        reference = replace(reference, gas_sampling=gas)
     got, exact = (
         list(zip(records["force_N"], records["torque_Nm"], strict=True))
         for records in (setup.evaluate(model, directions), reference.evaluate(model, directions))
@@ -83,23 +131,54 @@ def sweep_benchmark(
     samples: int | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> SweepReport:
-    """A whole grid sweep of SRP and drag with full reflections on the generated sample, then the
-    speed-up of a local Dask cluster of 2 one-thread workers over 1 on ``dask_attitudes`` of its
-    directions (timed once every worker has the model; results checked identical)."""
+    """Time a whole grid sweep of SRP and drag with full reflections on the generated sample, and Dask.
+
+    Then the speed-up of a local Dask cluster of 2 one-thread workers over 1 on ``dask_attitudes`` of
+    the grid's directions (timed once every worker has the model; results checked identical).
+
+    Parameters
+    ----------
+    triangles : int, optional
+        Facets asked of the generated sample.
+    step_deg : float, optional
+        Step of the direction grid [deg].
+    dask_attitudes : int, optional
+        Directions of each kind timed on the Dask clusters.
+    samples : int, optional
+        Fixed points per side; default the default shadow pass.
+    progress : callable, optional
+        ``progress(done, total)`` hears each attitude of the sweep.
+
+    Returns
+    -------
+    SweepReport
+        The figures.
+
+    Examples
+    --------
+    The smallest run still starts two local Dask clusters (half a minute):
+
+    >>> report = sweep_benchmark(triangles=2000, step_deg=90.0, dask_attitudes=2)  # doctest: +SKIP
+    >>> report.distinct_directions, report.dask_identical  # doctest: +SKIP
+    (6, True)
+    """
     grid = direction_grid(step_deg)
     directions = grid.distinct[0]
     with tempfile.TemporaryDirectory(prefix="sunwind-bench-") as directory:
         files = write_sample_files(Path(directory), triangles)
         model = load(files["obj"], files["toml"])
         craft = model.craft
-        full = ReflectionSettings("full")
+        full, sampling = ReflectionSettings("full"), ShadowSampling(samples=samples)
         jobs = [
-            Job(SrpSetup(flux_W_m2=1361.0, samples=samples, reflections=full), directions),
+            Job(
+                SrpSetup(flux_W_m2=1361.0, sampling=sampling, reflections=full),
+                directions,
+            ),
             Job(
                 DragSetup(
                     speed_m_s=circular_speed(400.0),
                     atmosphere=nrlmsis(400.0),
-                    samples=samples,
+                    sampling=sampling,
                     reflections=full,
                 ),
                 directions,

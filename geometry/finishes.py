@@ -1,7 +1,7 @@
 """Surface finishes: how a finish meets the rarefied gas (:class:`GasSurface`), and a library of named
 finishes with their solar-band optics and infrared emissivity (:data:`FINISHES`).
 
-A materials file takes one with ``finish = "NAME"`` in a ``[materials.NAME]`` table (README "Materials");
+A materials file takes one with ``finish = "NAME"`` in a ``[materials.NAME]`` table (materials guide);
 keys given beside it override the finish's. In Python: ``FINISHES["az-93"]`` or ``finish("az-93")``.
 
 Sources, cited by short name in each finish's ``source``:
@@ -34,7 +34,7 @@ from sunwind.geometry.errors import MaterialError
 #: Gas-surface interaction models (``gsi``), in the order of their codes in
 #: :class:`~sunwind.geometry.materials.MaterialTable`.
 GSI_MODELS = ("sentman", "dria", "schaaf-chambre", "cll", "specular")
-#: Gas-surface keys of a ``[materials.NAME]`` table and their defaults (README "Materials").
+#: Gas-surface keys of a ``[materials.NAME]`` table and their defaults (the materials guide).
 GAS_DEFAULTS = {
     "gsi": "sentman",
     "energy_accommodation": 1.0,  # alpha_E (sentman, dria)
@@ -411,5 +411,5 @@ def finish(name: object, where: str = "", source: str | None = None) -> Finish:
         f"{where + ': ' if where else ''}finish = {name!r} is not in the finishes library",
         path=source,
         hint=f"the closest names: {shown}; the library: sunwind.geometry.finishes.FINISHES "
-        f'({len(FINISHES)} finishes, README "Materials")',
+        f"({len(FINISHES)} finishes, the materials guide: docs/guides/meshes.md)",
     )

@@ -500,7 +500,7 @@ class MaterialSpec:
 
 
 def load_materials(path: str | os.PathLike) -> MaterialSpec:
-    """Read a materials TOML file (format in README "Materials"), checking every value.
+    """Read a materials TOML file (format: the materials guide), checking every value.
 
     Parameters
     ----------

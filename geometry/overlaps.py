@@ -29,6 +29,13 @@ class Pairs:
     ----------
     first, second : (m,) int64
         The two pieces of each pair, ``first < second``, sorted by ``first``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pairs = Pairs(np.array([0, 0]), np.array([1, 2]))
+    >>> list(zip(pairs.first.tolist(), pairs.second.tolist()))
+    [(0, 1), (0, 2)]
     """
 
     first: NDArray[np.int64]
@@ -47,6 +54,14 @@ class Stacked(Pairs):
         Area they share [m^2] (:func:`overlap_areas`).
     height_m : (m,) float64
         Mean height of ``second``'s corners over the plane of ``first``, along its normal [m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> floor = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]])
+    >>> found = stacked(np.array([floor, floor + [0, 0, 0.002]]), margin=0.01, parallel=0.999)
+    >>> isinstance(found, Pairs), found.area_m2, found.height_m.round(6)
+    (True, array([0.5]), array([0.002]))
     """
 
     area_m2: NDArray[np.float64]
@@ -54,7 +69,7 @@ class Stacked(Pairs):
 
 
 def box_pairs(pieces: NDArray[np.float64], margin: float) -> Pairs:
-    """Pairs of pieces whose bounding boxes come within ``margin`` of each other.
+    """Find the pairs of pieces whose bounding boxes come within ``margin`` of each other.
 
     Parameters
     ----------
@@ -121,9 +136,11 @@ def overlap_areas(
 
 
 def stacked(triangles: NDArray[np.float64], margin: float, parallel: float) -> Stacked:
-    """Pairs of facets laid on one another: parallel (or facing each other) to within ``parallel``,
-    every corner of each within ``margin`` of the other's plane, and sharing more than
-    ``TOUCHING_SHARE`` of the smaller one's area.
+    """Find the pairs of facets laid on one another.
+
+    Such facets are parallel (or facing each other) to within ``parallel``, every corner of each lies
+    within ``margin`` of the other's plane, and they share more than ``TOUCHING_SHARE`` of the smaller
+    one's area.
 
     Parameters
     ----------
@@ -137,6 +154,7 @@ def stacked(triangles: NDArray[np.float64], margin: float, parallel: float) -> S
     Returns
     -------
     Stacked
+        The pairs, ``first < second``, with their shared area and height.
 
     Examples
     --------

@@ -38,13 +38,33 @@ _threads: ContextVar[int | None] = ContextVar("sunwind_threads", default=None)
 
 
 def checked_threads(threads: int | None, name: str = "threads") -> int | None:
-    """``threads`` if it is None (every core) or a whole number >= 1; ``name`` is the parameter's in
-    the message.
+    """Check a thread count: None (every core) or a whole number of at least 1.
+
+    Parameters
+    ----------
+    threads : int or None
+        The thread count as given.
+    name : str, optional
+        The parameter's name, for the message.
+
+    Returns
+    -------
+    int or None
+        ``threads`` unchanged.
 
     Raises
     ------
     InputError
-        Anything else.
+        Anything else (a bool, a float, zero or less).
+
+    Examples
+    --------
+    >>> checked_threads(2), checked_threads(None)
+    (2, None)
+    >>> checked_threads(0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: threads 0 must be a whole number >= 1
     """
     if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
         raise InputError(f"{name} {threads!r} must be a whole number >= 1", parameters=(name,))
@@ -53,8 +73,29 @@ def checked_threads(threads: int | None, name: str = "threads") -> int | None:
 
 @contextmanager
 def using_threads(threads: int | None) -> Iterator[None]:
-    """Run the block's parallel work on ``threads`` threads (None: every core, or what an enclosing
-    block set)."""
+    """Run the parallel work of a ``with`` block on a given number of threads.
+
+    Parameters
+    ----------
+    threads : int or None
+        Threads to use; None keeps what an enclosing block set, else every core.
+
+    Yields
+    ------
+    None
+        Control to the block, with :func:`thread_count` set.
+
+    Raises
+    ------
+    InputError
+        When ``threads`` is not None or a whole number >= 1.
+
+    Examples
+    --------
+    >>> with using_threads(1):
+    ...     thread_count()
+    1
+    """
     checked_threads(threads)
     token = _threads.set(threads if threads is not None else _threads.get())
     try:
@@ -64,7 +105,21 @@ def using_threads(threads: int | None) -> Iterator[None]:
 
 
 def thread_count() -> int:
-    """Threads the work running now may use: as :func:`using_threads` set them, else every core."""
+    """Count the threads the work running now may use.
+
+    Returns
+    -------
+    int
+        What :func:`using_threads` set, else :data:`CORES`.
+
+    Examples
+    --------
+    >>> with using_threads(2):
+    ...     thread_count()
+    2
+    >>> thread_count() == CORES
+    True
+    """
     return _threads.get() or CORES
 
 
@@ -77,11 +132,34 @@ def _executor() -> ThreadPoolExecutor:
 
 
 def map_ranges(function: Callable[[int, int], T], n: int, min_size: int) -> list[T]:
-    """``[function(lo, hi) for each chunk]`` over ``range(n)``, in parallel; results in range order.
+    """Call ``function(lo, hi)`` on chunks of ``range(n)`` in parallel; results in range order.
 
     Chunks hold at least ``min_size`` items (the last may hold fewer). Inside a chunk of another
     call, with one thread, or with fewer than ``2 * min_size`` items, the whole range runs in the
     calling thread.
+
+    Parameters
+    ----------
+    function : callable
+        ``function(lo, hi)`` does the work of items ``lo`` to ``hi - 1``; it should release the GIL to
+        gain from threads.
+    n : int
+        Number of items.
+    min_size : int
+        Least number of items in a chunk.
+
+    Returns
+    -------
+    list
+        The chunks' results, in the order of their ranges.
+
+    Examples
+    --------
+    >>> chunks = map_ranges(lambda lo, hi: sum(range(lo, hi)), 1000, 100)
+    >>> sum(chunks)
+    499500
+    >>> map_ranges(lambda lo, hi: (lo, hi), 10, 100)
+    [(0, 10)]
     """
     threads = thread_count()
     min_size = max(1, min_size)
@@ -116,11 +194,27 @@ def map_ranges(function: Callable[[int, int], T], n: int, min_size: int) -> list
 
 
 def map_items(function: Callable[[T], R], items: Sequence[T]) -> list[R]:
-    """``[function(x) for x in items]``, several at once: the first alone, on every thread (what it
-    builds once per model, it builds in parallel), then the rest shared over the threads, each run
-    serially in its thread (the serial steps of one item run beside another's). Each result is what
-    it would be alone: the work of one item sums in an order of its own (module docstring).
+    """Call ``function(x)`` on each item, several at once; results in item order.
 
+    The first item runs alone, on every thread (what it builds once per model, it builds in parallel),
+    then the rest are shared over the threads, each run serially in its thread (the serial steps of one
+    item run beside another's). Each result is what it would be alone: the work of one item sums in an
+    order of its own (module docstring).
+
+    Parameters
+    ----------
+    function : callable
+        Called on one item.
+    items : sequence
+        The items.
+
+    Returns
+    -------
+    list
+        ``[function(x) for x in items]``.
+
+    Examples
+    --------
     >>> map_items(lambda x: x * x, [1, 2, 3])
     [1, 4, 9]
     """

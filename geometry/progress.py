@@ -16,16 +16,112 @@ from typing import Protocol
 
 
 class Reporter(Protocol):
-    """Receives the steps; its methods may be called from any thread, one at a time."""
+    """Receive the progress of steps; its methods may be called from any thread, one at a time.
+
+    Install one with :func:`reporting`; any object with these three methods will do.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Not used: a protocol is not made itself; any object with these methods is a reporter.
+
+    Examples
+    --------
+    >>> class Printer:
+    ...     def begin(self, name):
+    ...         print("begin", name)
+    ...     def advance(self, name, done, total):
+    ...         print(name, done, "of", total)
+    ...     def end(self, name, seconds):
+    ...         print("end", name)
+    >>> with reporting(Printer()):
+    ...     with step("view factors"):
+    ...         advance(3, 4)
+    begin view factors
+    view factors 3 of 4
+    end view factors
+    """
 
     def begin(self, name: str) -> None:
-        """Step ``name`` started."""
+        """Note that a step has started.
+
+        Parameters
+        ----------
+        name : str
+            The step's name.
+
+        Examples
+        --------
+        >>> class Printer:
+        ...     def begin(self, name):
+        ...         print("begin", name)
+        ...     def advance(self, name, done, total):
+        ...         print(name, done, "of", total)
+        ...     def end(self, name, seconds):
+        ...         print("end", name)
+        >>> with reporting(Printer()):
+        ...     with step("view factors"):
+        ...         advance(3, 4)
+        begin view factors
+        view factors 3 of 4
+        end view factors
+        """
 
     def advance(self, name: str, done: int, total: int) -> None:
-        """``done`` of the ``total`` units of step ``name`` (sides, rows ...) are done."""
+        """Note that part of a step is done.
+
+        Parameters
+        ----------
+        name : str
+            The step's name.
+        done : int
+            Units done so far (sides, rows ...), at most ``total``.
+        total : int
+            Units of the whole step.
+
+        Examples
+        --------
+        >>> class Printer:
+        ...     def begin(self, name):
+        ...         print("begin", name)
+        ...     def advance(self, name, done, total):
+        ...         print(name, done, "of", total)
+        ...     def end(self, name, seconds):
+        ...         print("end", name)
+        >>> with reporting(Printer()):
+        ...     with step("view factors"):
+        ...         advance(3, 4)
+        begin view factors
+        view factors 3 of 4
+        end view factors
+        """
 
     def end(self, name: str, seconds: float) -> None:
-        """Step ``name`` ended after ``seconds`` [s]."""
+        """Note that a step has ended.
+
+        Parameters
+        ----------
+        name : str
+            The step's name.
+        seconds : float
+            How long it ran [s].
+
+        Examples
+        --------
+        >>> class Printer:
+        ...     def begin(self, name):
+        ...         print("begin", name)
+        ...     def advance(self, name, done, total):
+        ...         print(name, done, "of", total)
+        ...     def end(self, name, seconds):
+        ...         print("end", name)
+        >>> with reporting(Printer()):
+        ...     with step("view factors"):
+        ...         advance(3, 4)
+        begin view factors
+        view factors 3 of 4
+        end view factors
+        """
 
 
 class _Step:
@@ -40,7 +136,34 @@ _running: list[_Step] = []
 
 @contextmanager
 def reporting(reporter: Reporter) -> Iterator[Reporter]:
-    """Steps run inside the block report to ``reporter`` (the innermost one installed)."""
+    """Report the steps run inside the block to a reporter (the innermost one installed).
+
+    Parameters
+    ----------
+    reporter : Reporter
+        Receives :meth:`~Reporter.begin`, :meth:`~Reporter.advance` and :meth:`~Reporter.end`.
+
+    Yields
+    ------
+    Reporter
+        ``reporter`` itself.
+
+    Examples
+    --------
+    >>> class Printer:
+    ...     def begin(self, name):
+    ...         print("begin", name)
+    ...     def advance(self, name, done, total):
+    ...         print(name, done, "of", total)
+    ...     def end(self, name, seconds):
+    ...         print("end", name)
+    >>> with reporting(Printer()):
+    ...     with step("view factors"):
+    ...         advance(3, 4)
+    begin view factors
+    view factors 3 of 4
+    end view factors
+    """
     with _lock:
         _reporters.append(reporter)
     try:
@@ -52,7 +175,34 @@ def reporting(reporter: Reporter) -> Iterator[Reporter]:
 
 @contextmanager
 def step(name: str) -> Iterator[None]:
-    """A precompute step called ``name``; nothing happens unless a reporter is installed."""
+    """Mark a named precompute step; nothing happens unless a reporter is installed.
+
+    Parameters
+    ----------
+    name : str
+        The step's name, as shown to the user.
+
+    Yields
+    ------
+    None
+        Control to the step's work.
+
+    Examples
+    --------
+    >>> class Printer:
+    ...     def begin(self, name):
+    ...         print("begin", name)
+    ...     def advance(self, name, done, total):
+    ...         print(name, done, "of", total)
+    ...     def end(self, name, seconds):
+    ...         print("end", name)
+    >>> with reporting(Printer()):
+    ...     with step("view factors"):
+    ...         advance(3, 4)
+    begin view factors
+    view factors 3 of 4
+    end view factors
+    """
     if not _reporters:
         yield
         return
@@ -70,7 +220,31 @@ def step(name: str) -> Iterator[None]:
 
 
 def advance(units: int, total: int) -> None:
-    """``units`` more of ``total`` of the innermost running step are done (any thread)."""
+    """Report that more units of the innermost running step are done; any thread may call it.
+
+    Parameters
+    ----------
+    units : int
+        Units just finished.
+    total : int
+        Units of the whole step.
+
+    Examples
+    --------
+    >>> class Printer:
+    ...     def begin(self, name):
+    ...         print("begin", name)
+    ...     def advance(self, name, done, total):
+    ...         print(name, done, "of", total)
+    ...     def end(self, name, seconds):
+    ...         print("end", name)
+    >>> with reporting(Printer()):
+    ...     with step("view factors"):
+    ...         advance(3, 4)
+    begin view factors
+    view factors 3 of 4
+    end view factors
+    """
     if not _reporters:
         return
     with _lock:

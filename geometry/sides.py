@@ -28,7 +28,7 @@ _NO_MATERIAL_HINT = (
 
 @dataclass(frozen=True, eq=False)
 class SideAssignment:
-    """Per-face kind and materials.
+    """Kind and front and back materials of every face.
 
     Attributes
     ----------
@@ -37,8 +37,17 @@ class SideAssignment:
     front_material, back_material : (n_faces,) int32
         Indices into ``table``; ``back_material`` is -1 where the back side is not lit.
     table : MaterialTable
+        The materials in use, in index order.
     part_summary : dict
         Part name -> human description of its materials and where they came from.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.meshes import box
+    >>> sides = assign_sides(box(), uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> sides.face_kind[:3], sides.back_material[:3], sides.table.names
+    (array([0, 0, 0], dtype=int8), array([-1, -1, -1], dtype=int32), ('m',))
     """
 
     face_kind: NDArray[np.int8]
@@ -106,13 +115,29 @@ def assign_sides(
     uniform: Material | None = None,
     two_sided: Sequence[str] = (),
 ) -> SideAssignment:
-    """Give every face its kind and front/back materials.
+    """Give every face its kind and front and back materials.
 
     Per part, the first matching ``[parts]`` rule of ``spec`` wins. A part no rule matches uses the
     mesh file's material key per face, looked up in ``spec``'s ``[materials]``, then in optics the
     mesh file carries; ``uniform`` (the command-line material) fills whatever is still unassigned.
     A part is two-sided when its rule is a ``{front, back}`` table, when the mesh file declares it
     (USD ``doubleSided``) or when it matches a ``two_sided`` glob.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The mesh, with its parts and material keys.
+    spec : MaterialSpec or None, optional
+        The materials file's contents.
+    uniform : Material or None, optional
+        Material for every face nothing else assigns.
+    two_sided : sequence of str, optional
+        Part globs to treat as two-sided sheets.
+
+    Returns
+    -------
+    SideAssignment
+        Kinds, material indices and a summary per part.
 
     Raises
     ------
@@ -125,6 +150,17 @@ def assign_sides(
     -----
     UserWarning
         A ``[parts]`` glob that matches no part (the file may be meant for other models too).
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import parse_materials
+    >>> from sunwind.meshes import plate
+    >>> spec = parse_materials({"materials": {"foil": {"reflectivity": 0.9, "specular_fraction": 0.9},
+    ...     "black": {"reflectivity": 0.1, "specular_fraction": 0.0}},
+    ...     "parts": {"plate": {"front": "foil", "back": "black"}}})
+    >>> sides = assign_sides(plate(divisions=1), spec)
+    >>> sides.face_kind.tolist(), sides.back_material.tolist(), sides.part_summary["plate"]
+    ([2, 2], [1, 1], 'front foil, back black ([parts] "plate")')
     """
     _check_globs(mesh, spec, two_sided)
     catalogue = _Catalogue(mesh, spec, uniform)
@@ -199,7 +235,28 @@ def _check_globs(mesh: MeshData, spec: MaterialSpec | None, two_sided: Sequence[
 
 
 def declared_kinds(mesh: MeshData, spec: MaterialSpec | None, two_sided: Sequence[str]) -> NDArray[np.int8]:
-    """Face kinds from sheet declarations alone, for when the materials are incomplete."""
+    """Find the face kinds from the sheet declarations alone, for when the materials are incomplete.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The mesh.
+    spec : MaterialSpec or None
+        The materials file's contents, for its ``[parts]`` sheet rules.
+    two_sided : sequence of str
+        Part globs to treat as two-sided sheets.
+
+    Returns
+    -------
+    (n_faces,) ndarray of int8
+        ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` per face.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> declared_kinds(box(), None, ["box"])[:4]
+    array([2, 2, 2, 2], dtype=int8)
+    """
     kind = np.full(mesh.n_faces, SOLID, dtype=np.int8)
     for index, part in enumerate(mesh.part_names):
         rule = spec.rule_for(part) if spec is not None else None

@@ -33,12 +33,32 @@ def describe(
     (:func:`sunwind.geometry.survey.survey_mesh`) is of the mesh as read, whether or not it passes
     the checks.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The mesh file.
+    materials : str or os.PathLike or None, optional
+        A materials TOML file.
+    unit : str or None, optional
+        Length unit of the mesh file, when it does not say (``"m"``, ``"mm"`` ...).
+    uniform : Material or None, optional
+        Material for every face nothing else assigns.
+    two_sided : sequence of str, optional
+        Part globs to treat as two-sided sheets.
+
     Returns
     -------
     dict
         JSON-ready: mesh, unit, triangles, area_m2, volume_m3, closed, bounds_m, reference_point,
         checks (list of str), parts (list of dict), materials (list of dict), survey (dict,
         :meth:`sunwind.geometry.survey.Survey.to_json`).
+
+    Raises
+    ------
+    MeshError
+        A mesh file that cannot be read.
+    MaterialError
+        A materials file that is invalid.
 
     Examples
     --------

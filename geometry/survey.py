@@ -53,6 +53,13 @@ class Tally:
         Their total length [m].
     parts : dict of str -> int
         Edges with a facet of each part on them (an edge between two parts counts in both).
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box_wing
+    >>> found = survey_mesh(box_wing(facet_size=0.5))
+    >>> found.open_edges  # the borders of the two wings
+    Tally(count=32, length_m=16.0, parts={'wing_left': 16, 'wing_right': 16})
     """
 
     count: int
@@ -62,7 +69,27 @@ class Tally:
 
 @dataclass(frozen=True)
 class Crossing:
-    """Two parts (or one part with itself) whose facets pass through each other."""
+    """Two parts (or one part with itself) whose facets pass through each other.
+
+    Attributes
+    ----------
+    parts : tuple of (str, str)
+        The two parts' names.
+    length_m : float
+        Total length of the lines where their facets cross [m].
+    facet_pairs : int
+        Pairs of facets that cross.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.meshes import box
+    >>> a, b = box(), box()
+    >>> b = MeshData(b.vertices + 0.5, b.faces, b.face_part, ["other"], b.face_material)
+    >>> survey_mesh(MeshData.concatenate([a, b])).crossings
+    (Crossing(parts=('box', 'other'), length_m=3.0, facet_pairs=...),)
+    """
 
     parts: tuple[str, str]
     length_m: float  # total length of the lines where their facets cross [m]
@@ -84,6 +111,17 @@ class Layers:
         (neither shades the other by a ray) [m^2].
     parts : dict of str -> int
         Facets of each part.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.meshes import plate
+    >>> sheet = plate(divisions=1)
+    >>> twice = MeshData.concatenate([sheet, sheet])  # a face written twice
+    >>> found = survey_mesh(twice, [1, 1, 1, 1])
+    >>> layers = found.coincident
+    >>> layers.facets, round(layers.area_m2, 6), round(layers.coplanar_area_m2, 6), layers.parts
+    (4, 1.0, 1.0, {'plate': 4})
     """
 
     facets: int
@@ -110,6 +148,13 @@ class Slivers:
         10th percentile of the facets' least altitudes [m].
     probe_spacing_m : float
         The shadow pass's spacing of outline probes drawn from it [m] (before widening for the budget).
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box_wing
+    >>> slivers = survey_mesh(box_wing(facet_size=0.5)).slivers
+    >>> slivers.count, slivers.area_min_m2, round(slivers.width_p10_m, 4)
+    (0, 0.125, 0.3536)
     """
 
     count: int
@@ -123,8 +168,10 @@ class Slivers:
 
 @dataclass(frozen=True)
 class Survey:
-    """What :func:`survey` found; every edge and corner by position (corners within
-    ``mesh_edges.WELD_SHARE`` of the half-size are one).
+    """Hold what :func:`survey` found.
+
+    Every edge and corner is found by position: corners within ``mesh_edges.WELD_SHARE`` of the
+    half-size are one.
 
     Attributes
     ----------
@@ -155,8 +202,16 @@ class Survey:
     coincident, layered : Layers
         Facets on the same welded corners as another, and other facets laid within ``gap_m`` of another.
     slivers : Slivers
+        Needle-thin facets and the spread of facet sizes.
     shells : dict of str -> int
         Pieces of each part that share no corner with each other.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box_wing
+    >>> found = survey_mesh(box_wing(facet_size=0.5))
+    >>> found.facets, found.corners, found.size_m, found.shells
+    (96, 68, 8.0, {'bus': 1, 'wing_left': 1, 'wing_right': 1})
     """
 
     facets: int
@@ -181,7 +236,12 @@ class Survey:
     shells: dict[str, int]
 
     def to_json(self) -> dict:
-        """The survey as JSON-ready nested dicts, keyed by the field names.
+        """Convert the survey to JSON-ready nested dicts, keyed by the field names.
+
+        Returns
+        -------
+        dict
+            The fields; ``crossings`` as a list of dicts with ``parts`` as a list.
 
         Examples
         --------
@@ -206,6 +266,7 @@ def survey(craft: Spacecraft) -> Survey:
     Returns
     -------
     Survey
+        Counts and lengths by part of each thing found.
 
     Examples
     --------
@@ -253,8 +314,9 @@ def survey(craft: Spacecraft) -> Survey:
 
 
 def survey_mesh(mesh: MeshData, facet_kind: NDArray[np.int8] | None = None) -> Survey:
-    """Survey a mesh as read, before the checks of loading (:func:`survey`): an open part not declared
-    a sheet, a part without material, or inconsistent winding do not stop it.
+    """Survey a mesh as read, before the checks of loading (:func:`survey`).
+
+    An open part not declared a sheet, a part without material, or inconsistent winding do not stop it.
 
     Parameters
     ----------
@@ -263,6 +325,11 @@ def survey_mesh(mesh: MeshData, facet_kind: NDArray[np.int8] | None = None) -> S
     facet_kind : (n_faces,) int8, optional
         ``SOLID``, ``ONE_SIDED`` or ``TWO_SIDED`` of each face, as declared
         (:func:`sunwind.geometry.sides.declared_kinds`); default all ``SOLID``.
+
+    Returns
+    -------
+    Survey
+        What :func:`survey` finds on the mesh.
 
     Raises
     ------

@@ -75,9 +75,11 @@ def unwelded(mesh: MeshData, jitter: float = UNWELD_JITTER, seed: int = 0) -> Me
     Parameters
     ----------
     mesh : MeshData
-    jitter : float
+        The model; it is not modified.
+    jitter : float, optional
         Largest displacement of a copy, as a share of the model size [-].
-    seed : int
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
 
     Returns
     -------
@@ -119,6 +121,25 @@ def mixed_winding(mesh: MeshData, share: float = 0.5, seed: int = 0) -> MeshData
     The loader makes a closed body's winding consistent and outward again (with a notice); on a sheet a
     flipped face swaps its front and back.
 
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+    share : float, optional
+        Share of the faces to reverse, in [0, 1].
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
+
+    Returns
+    -------
+    MeshData
+        A new mesh with the defect, its name and parameters appended to ``metadata["cad_defects"]``.
+
+    Raises
+    ------
+    InputError
+        If ``share`` lies outside [0, 1].
+
     Examples
     --------
     >>> from sunwind.meshes.primitives import box
@@ -138,6 +159,17 @@ def open_sheets(mesh: MeshData) -> MeshData:
     shared edges with the same normal direction form a sheet named ``<part>/sheet<k>`` (``k`` from 0 in
     order of first face), with its own copies of its vertices. Parts in ``two_sided_parts`` are kept
     whole. The sheets are open: declare them two-sided (glob ``*/sheet*``).
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+
+    Returns
+    -------
+    MeshData
+        The mesh with one part per flat sheet (and the two-sided parts unchanged), its vertices
+        duplicated between sheets; ``metadata["cad_defects"]`` notes the number of sheets.
 
     Examples
     --------
@@ -189,6 +221,25 @@ def t_junctions(mesh: MeshData, share: float = 0.1, seed: int = 0) -> MeshData:
     keeps the whole edge, so the midpoint lies on its edge (a T-junction). Each face is split at most
     once: of edges drawn for the same face, the first wins.
 
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+    share : float, optional
+        Share of the edges shared by two faces to split, in [0, 1].
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
+
+    Returns
+    -------
+    MeshData
+        A new mesh with the defect, its name and parameters appended to ``metadata["cad_defects"]``.
+
+    Raises
+    ------
+    InputError
+        If ``share`` lies outside [0, 1].
+
     Examples
     --------
     >>> from sunwind.meshes.primitives import box
@@ -210,13 +261,36 @@ def t_junctions(mesh: MeshData, share: float = 0.1, seed: int = 0) -> MeshData:
 def duplicate_layers(
     mesh: MeshData, share: float = 0.1, offset_m: float = 0.0, part: str = "mli", seed: int = 0
 ) -> MeshData:
-    """Copies of a random share of the bodies' faces as a new part: a blanket or a decal over the surface.
+    """Copy a random share of the bodies' faces into a new part: a blanket or a decal over the surface.
 
     The faces are drawn among those of the parts the file does not declare two-sided (a copy of a
     sheet's face would meet the sheet's back side in a tie of no physical meaning). Each copy has its
     own vertices and the face's winding and material key; it lies on its face (``offset_m = 0``,
     coincident faces with the same optics) or is lifted along the face's normal by ``offset_m`` [m].
     The layer is open: declare ``part`` two-sided (or one-sided).
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+    share : float, optional
+        Share of the bodies' faces to copy, in [0, 1].
+    offset_m : float, optional
+        Lift of the copies along their face normals [m]; 0 gives coincident faces.
+    part : str, optional
+        Name of the new part holding the copies.
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
+
+    Returns
+    -------
+    MeshData
+        A new mesh with the defect, its name and parameters appended to ``metadata["cad_defects"]``.
+
+    Raises
+    ------
+    InputError
+        If ``part`` names an existing part, ``offset_m`` is not finite or ``share`` lies outside [0, 1].
 
     Examples
     --------
@@ -253,6 +327,27 @@ def slivers(mesh: MeshData, share: float = 0.25, ratio: float = 1000.0, seed: in
     and a big triangle. The neighbour across that edge is cut at the same point, so the mesh stays
     conforming (no T-junction) and the total area is unchanged to round-off. Each face is cut at most
     once: a drawn face whose neighbour is already cut is skipped.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+    share : float, optional
+        Share of the faces at least as large as the median face to cut, in [0, 1].
+    ratio : float, optional
+        Length of the cut edge over the distance of the cut from its start [-]: the aspect of a sliver.
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
+
+    Returns
+    -------
+    MeshData
+        A new mesh with the defect, its name and parameters appended to ``metadata["cad_defects"]``.
+
+    Raises
+    ------
+    InputError
+        If ``ratio`` is not a finite number > 0 or ``share`` lies outside [0, 1].
 
     Examples
     --------
@@ -304,6 +399,28 @@ def bolts(
     declare two-sided (a base on a sheet would tie with the sheet's back) whose inscribed circle holds
     the largest footprint; the box sits at a random point of that circle, wholly over the face.
 
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+    count : int, optional
+        Number of boxes, >= 1.
+    size_m : tuple of float, optional
+        Smallest and largest edge length of a box [m].
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
+
+    Returns
+    -------
+    MeshData
+        A new mesh with the defect, its name and parameters appended to ``metadata["cad_defects"]``.
+
+    Raises
+    ------
+    InputError
+        If ``count`` < 1, a size is not a finite number > 0, or no face's inscribed circle holds the
+        largest footprint.
+
     Examples
     --------
     >>> from sunwind.meshes.primitives import box
@@ -349,13 +466,35 @@ def interpenetrating(
     yokes: int = 1,
     seed: int = 0,
 ) -> MeshData:
-    """Parts passing through each other: named parts moved, and box beams pushed through a wall.
+    """Make parts pass through each other: named parts moved, and box beams pushed through a wall.
 
     ``moves`` translates whole parts (e.g. the sample's boom into its bus, ``{"boom": (0.3, 0, 0)}``).
     Each of ``yokes`` beams (parts ``yoke<k>``) is a closed box half a target's extent long and a
     twentieth of it wide, along the normal of a face of the target drawn in proportion to area,
     centred on that face: half inside the target, half out. The target is the largest part (by area)
     the file does not declare two-sided.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The model; it is not modified.
+    moves : mapping of str to sequence of float, optional
+        Translation [m], shape (3,), of each named part.
+    yokes : int, optional
+        Number of box beams pushed through the largest body, >= 0.
+    seed : int, optional
+        Seed of ``numpy.random.default_rng``: the same seed gives the same output.
+
+    Returns
+    -------
+    MeshData
+        A new mesh with the defect, its name and parameters appended to ``metadata["cad_defects"]``.
+
+    Raises
+    ------
+    InputError
+        If ``moves`` names a part the mesh does not have, ``yokes`` < 0, or ``yokes`` > 0 and every part
+        is declared two-sided.
 
     Examples
     --------

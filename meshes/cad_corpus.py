@@ -53,6 +53,13 @@ class CorpusEntry:
         parts the defect made. The sample's own sheets are declared by the mesh (``two_sided_parts``).
     defect : str
         What is wrong with it, in one sentence.
+
+    Examples
+    --------
+    >>> from sunwind.meshes.primitives import box
+    >>> entry = CorpusEntry("cube", box(), (), "none: a closed unit cube")
+    >>> entry.name, entry.mesh.n_faces
+    ('cube', 12)
     """
 
     name: str
@@ -75,11 +82,13 @@ def box_union(boxes: ArrayLike, max_cell_m: float | None = None, part: str = "bo
         Low and high corner of each box [m].
     max_cell_m : float, optional
         Longest grid interval [m]; default no limit.
-    part : str
+    part : str, optional
+        Name of the one part.
 
     Returns
     -------
     MeshData
+        The surface, on the grid's vertices, with ``metadata["shape"] == "box_union"``.
 
     Raises
     ------
@@ -145,6 +154,32 @@ def stepped_bus(
     sticking out ``skirt_m`` round the bottom edge. Built by :func:`box_union`, so it is watertight and
     wound outward; faces are cut into cells at most ``max_cell_m`` long.
 
+    Parameters
+    ----------
+    size : sequence of float, optional
+        Edge lengths of the box along x, y, z [m], shape (3,).
+    lip_m : float, optional
+        Width and height of the lip round the top face [m].
+    riser_m : float, optional
+        Thickness of the four tiles on the +x face [m].
+    skirt_m : float, optional
+        Thickness and overhang of the skirt round the bottom edge [m].
+    step_m : float, optional
+        Set-back of the upper two thirds on the -x side [m].
+    max_cell_m : float, optional
+        Longest grid interval [m].
+
+    Returns
+    -------
+    MeshData
+        One closed part ``bus``, watertight and wound outward.
+
+    Raises
+    ------
+    InputError
+        If a length is not a finite number > 0, or a feature is not small beside the bus (over an
+        eighth of its smallest half-size, or no room for the risers).
+
     Examples
     --------
     >>> bus = stepped_bus()
@@ -183,17 +218,19 @@ def stepped_bus(
 
 
 def corpus(triangles: int = 2000, seed: int = 0) -> tuple[CorpusEntry, ...]:
-    """The named CAD corpus: the sample re-exported with each defect alone, with all of them, and the
-    stepped bus.
+    """The named CAD corpus: the sample with each export defect alone, with all of them, and a bus.
+
+    The sample is re-exported once per defect and once with every defect; the last entry is
+    :func:`stepped_bus`.
 
     Every entry loads with ``build_spacecraft(entry.mesh, uniform=..., two_sided=entry.two_sided)``.
     At the default 2000 (1884) triangles of the sample the models hold 1884 to about 4000 triangles.
 
     Parameters
     ----------
-    triangles : int
+    triangles : int, optional
         Triangle count asked of :func:`sunwind.meshes.samples.sample_spacecraft` (>= 2000).
-    seed : int
+    seed : int, optional
         Seed of every random choice.
 
     Returns

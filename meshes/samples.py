@@ -189,7 +189,7 @@ def sample_spacecraft(triangles: int = 20_000, array_angle_deg: float = 0.0) -> 
     yoke_left/   closed     cylinders r 0.025, 0.8 long on the y axis from the    cfrp
     yoke_right              -y / +y faces
     wing_left/   two-sided  3 panels 1.04 (y) x 1.1 (z) with 0.04 gaps, 3.2 long, front solar_cell,
-    wing_right   sheet      in the plane x = 0 beyond the yokes, |y| 1.504-4.704  back cfrp
+    wing_right   sheet      in the plane x = 0 beyond the yokes, y ±(1.504-4.704) back cfrp
     mast         closed     cylinder r 0.05, 0.3 long on +z above the bus         white_paint
     dish         two-sided  paraboloid D 1.2, f/D 0.35 (f 0.42, depth 0.214),     front
                  sheet      vertex at z 0.904 on the mast, concave side +z        reflector_paint,

@@ -36,15 +36,25 @@ __all__ = [
 
 
 def grid_faces(nu: int, nv: int) -> NDArray[np.int64]:
-    """Triangles of an ``nu`` x ``nv`` cell grid, counter-clockwise in the (u, v) plane.
+    """Return the triangles of an ``nu`` x ``nv`` cell grid, counter-clockwise in the (u, v) plane.
 
     Vertices are numbered ``i * (nv + 1) + j`` for ``i`` along u in ``0..nu`` and ``j`` along v in
     ``0..nv``; each cell is split along its (i, j)-(i+1, j+1) diagonal.
 
+    Parameters
+    ----------
+    nu, nv : int
+        Cells along u and along v, >= 1.
+
     Returns
     -------
     (2 nu nv, 3) int64
-        Face normal along ``u x v``.
+        Vertex indices of each triangle; face normal along ``u x v``.
+
+    Examples
+    --------
+    >>> grid_faces(1, 1).tolist()  # one cell, corners 0 (0, 0), 1 (0, 1), 2 (1, 0), 3 (1, 1)
+    [[0, 2, 3], [0, 3, 1]]
     """
     i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
     a = (i * (nv + 1) + j).ravel()
@@ -95,10 +105,10 @@ def _zip_rings(starts: NDArray[np.int64], counts: NDArray[np.int64]) -> tuple[ND
 
 
 def ring_counts(r: ArrayLike, segments: int) -> NDArray[np.int64]:
-    """Vertices per ring in proportion to its radius: ``max(3, round(segments r / max(r)))``, 1 at r = 0.
+    """Count vertices per ring in proportion to its radius: ``max(3, round(segments r / max(r)))``.
 
-    Rings spaced one rim facet width apart then get 1, ~6, ~12, ... vertices: nearly equilateral
-    triangles, no fan of slivers.
+    A ring of radius 0 (a pole) gets one vertex. Rings spaced one rim facet width apart then get
+    1, ~6, ~12, ... vertices: nearly equilateral triangles, no fan of slivers.
 
     Parameters
     ----------
@@ -110,6 +120,12 @@ def ring_counts(r: ArrayLike, segments: int) -> NDArray[np.int64]:
     Returns
     -------
     (n_rings,) int64
+        Vertices of each ring.
+
+    Examples
+    --------
+    >>> ring_counts([0.0, 0.5, 1.0], segments=12).tolist()
+    [1, 6, 12]
     """
     r = np.asarray(r, dtype=np.float64)
     return np.where(r > 0, np.maximum(3, np.rint(segments * r / r.max())), 1).astype(np.int64)
@@ -118,7 +134,7 @@ def ring_counts(r: ArrayLike, segments: int) -> NDArray[np.int64]:
 def ring_vertices(
     r: ArrayLike, z: ArrayLike, counts: ArrayLike
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """Vertices of coaxial rings about the z axis, ring ``k`` at angles ``2 pi i / counts[k]`` from +x.
+    """Place vertices on coaxial rings about the z axis, ring ``k`` at angles ``2 pi i / counts[k]`` from +x.
 
     Parameters
     ----------
@@ -133,6 +149,12 @@ def ring_vertices(
         [m], ring by ring.
     starts : (n_rings,) int64
         Index of each ring's first vertex.
+
+    Examples
+    --------
+    >>> vertices, starts = ring_vertices([0.0, 1.0], [1.0, 0.0], [1, 4])  # a pole over a ring of 4
+    >>> vertices.shape, starts.tolist()
+    ((5, 3), [0, 1])
     """
     r, z = np.asarray(r, dtype=np.float64), np.asarray(z, dtype=np.float64)
     counts = np.asarray(counts, dtype=np.int64)
@@ -167,8 +189,15 @@ def revolve(
     vertices : (n_vertices, 3) float64
         [m].
     faces : (n_faces, 3) int64
+        Vertex indices of each triangle.
     strip : (n_faces,) int64
         Profile segment ``k`` (between points ``k`` and ``k + 1``) each face belongs to.
+
+    Examples
+    --------
+    >>> vertices, faces, strip = revolve([1.0, 1.0], [0.0, 1.0], [4, 4])  # the side of a square prism
+    >>> vertices.shape, faces.shape, strip.tolist()
+    ((8, 3), (8, 3), [0, 0, 0, 0, 0, 0, 0, 0])
     """
     vertices, starts = ring_vertices(r, z, counts)
     faces, strip = _zip_rings(starts, np.asarray(counts, dtype=np.int64))
@@ -196,10 +225,30 @@ def revolved_parts(
     segments : int
         Vertices on the widest ring.
     metadata : dict
-    generator_legs : sequence of int
+        Provenance of the mesh (its ``metadata``).
+    generator_legs : sequence of int, optional
         Legs whose rings all get ``segments`` vertices on the same generators, so the facets are
         planar strips of the inscribed pyramid (a cone's side); other rings get
         :func:`ring_counts`.
+
+    Returns
+    -------
+    MeshData
+        The surface of revolution, the faces of leg ``k`` in part ``leg_parts[k]``.
+
+    Raises
+    ------
+    InputError
+        If the mesh would exceed the memory limit (:func:`sunwind.meshes.arguments.check_triangles`).
+
+    Examples
+    --------
+    >>> can = revolved_parts(
+    ...     [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)], [1, 1, 1], ["bottom", "side", "top"], 8,
+    ...     {"shape": "can"}, generator_legs=(1,),
+    ... )
+    >>> can.part_names, can.n_faces
+    (('bottom', 'side', 'top'), 32)
     """
     widest = max(r for r, _ in corners)
     triangles = 0  # two per ring vertex of each band; a leg's rings have vertices in proportion to r
@@ -220,7 +269,30 @@ def revolved_parts(
 
 
 def oriented(faces: NDArray[np.int64], normals: ArrayLike, vertices: NDArray) -> NDArray[np.int64]:
-    """``faces`` with each row reversed where its right-hand normal opposes ``normals``, (n, 3) or (3,)."""
+    """Return ``faces`` with each row reversed where its right-hand normal opposes ``normals``.
+
+    Parameters
+    ----------
+    faces : (n, 3) int
+        Vertex indices of each triangle.
+    normals : (n, 3) or (3,) float
+        The wanted side of each face, or one direction for all.
+    vertices : (n_vertices, 3) float
+        Vertex positions [m].
+
+    Returns
+    -------
+    (n, 3) int64
+        The faces, each wound so its right-hand normal has a non-negative dot product with its
+        ``normals`` row.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    >>> oriented(np.array([[0, 2, 1]]), [0.0, 0.0, 1.0], corners).tolist()  # now facing +z
+    [[1, 2, 0]]
+    """
     corners = vertices[faces]
     cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     flip = (cross * np.asarray(normals)).sum(axis=1) < 0
@@ -230,10 +302,27 @@ def oriented(faces: NDArray[np.int64], normals: ArrayLike, vertices: NDArray) ->
 def equal_pieces(length: float, step: float) -> int:
     """Fewest equal pieces of ``length`` no longer than ``step`` (at least one).
 
+    Parameters
+    ----------
+    length : float
+        Length to cut [m], > 0.
+    step : float
+        Longest piece [m], > 0.
+
+    Returns
+    -------
+    int
+        ``ceil(length / step)`` (an exact multiple is not rounded up by round-off), at least 1.
+
     Raises
     ------
     InputError
         More pieces than a float counts (``step`` far too small).
+
+    Examples
+    --------
+    >>> equal_pieces(1.0, 0.3), equal_pieces(1.0, 0.25), equal_pieces(0.1, 1.0)
+    (4, 4, 1)
     """
     pieces = length / step - 1e-9
     if not math.isfinite(pieces):
@@ -242,10 +331,30 @@ def equal_pieces(length: float, step: float) -> int:
 
 
 def box_surface(size: Sequence[float], cells: tuple[int, int, int]) -> tuple[NDArray, NDArray]:
-    """Vertices and outward faces of a box centred at the origin with gridded, shared-vertex faces.
+    """Build the vertices and outward faces of a box centred at the origin with gridded, shared-vertex faces.
 
     Each face is a :func:`grid_faces` grid built on the integer lattice ``0..cells[axis]``, so edge
     vertices of adjacent faces are identical integers and merge exactly before scaling.
+
+    Parameters
+    ----------
+    size : sequence of float
+        Edge lengths along x, y, z [m], shape (3,).
+    cells : tuple of int
+        Cells along x, y, z, each >= 1.
+
+    Returns
+    -------
+    vertices : (n_vertices, 3) float64
+        [m], each lattice point on the surface once.
+    faces : (n_faces, 3) int64
+        Two triangles per cell of each face, wound outward.
+
+    Examples
+    --------
+    >>> vertices, faces = box_surface((2.0, 1.0, 1.0), (2, 1, 1))
+    >>> vertices.shape, faces.shape
+    ((12, 3), (20, 3))
     """
     lattice, faces, offset = [], [], 0
     for axis in range(3):

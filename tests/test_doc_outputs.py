@@ -54,15 +54,25 @@ def test_python_examples_run(in_scratch, page):
 
 @pytest.mark.slow
 def test_quick_start_sweep_and_plot_commands_run(run_cli, in_scratch):
-    """The quick start's first command, on a coarse grid (its default grid takes half a minute)."""
+    """The quick start's first command, on a coarse grid without inter-reflection (its default grid takes
+    half a minute, and the reflections' precompute as long again)."""
     sweep = re.search(r"&& sunwind (sweep [^&\n]+)", README).group(1).split()
     plot = re.search(r"&& sunwind (plot [^&\n]+)", README).group(1).split()
-    code, out, err = run_cli(*sweep, "--step", "90")
+    code, out, err = run_cli(*sweep, "--step", "90", "--reflections", "none")
     assert code == 0, err
     assert "sample_spacecraft.usda" in out and "sample.nc" in out
     code, out, err = run_cli(*plot)
     assert code == 0, err
     assert len(list((in_scratch / "plots").glob("*.png"))) == 6  # 2 x 2 maps, a view each
+
+
+@pytest.mark.slow
+def test_readme_single_attitude_command_runs(run_cli, in_scratch):
+    """The README's first command line (it shows no output, so no output block checks it)."""
+    command = re.search(r"^\$ sunwind (srp [^\n#]+)", README, flags=re.M).group(1).split()
+    code, out, err = run_cli(*command)
+    assert code == 0, err
+    assert "force   [N]" in out and "sample_spacecraft.usda" in out
 
 
 def test_comparison_catches_the_last_shown_digit():

@@ -42,7 +42,9 @@ def test_the_site_builds_without_warnings(tmp_path):
     warnings = [line for line in done.stderr.splitlines() if "WARNING" in line or "ERROR" in line]
     assert done.returncode == 0 and not warnings, (
         f"sphinx-build exited {done.returncode} after {took:.0f} s with {len(warnings)} warnings:\n"
-        + "\n".join(warnings or done.stderr.splitlines()[-30:])
+        + "\n".join(warnings)
+        + "\n\nend of stderr:\n"
+        + "\n".join(done.stderr.splitlines()[-40:])
     )
     assert (tmp_path / "html" / "index.html").is_file()
     for page in ("api/index", "cli", "method", "validation", "performance", "gallery/index"):

@@ -84,7 +84,29 @@ Vector = NDArray[np.float64]
 
 
 class Piece(NamedTuple):
-    """The four integrals of one surface piece about the body origin (module Notes), over q."""
+    """The four integrals of one surface piece about the body origin (module Notes), over q.
+
+    Attributes
+    ----------
+    shear : float
+        ``T0 = int tau dA`` [m^2].
+    normal : (3,) float64
+        ``G = int g n dA`` [m^2].
+    shear_moment : (3,) float64
+        ``Tr = int tau r dA`` [m^3].
+    normal_moment : (3,) float64
+        ``Gm = int g (r x n) dA`` [m^3].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.validation.analytic_gas_law import GasLaw, surface_law
+    >>> beam = surface_law(GasLaw("specular"), 7.0, 900.0, stream="directed")
+    >>> u = np.array([0.0, 0.0, 1.0])
+    >>> piece = flat_piece(1.0, np.zeros(3), u, u, beam)
+    >>> piece.shear, piece.normal.tolist()
+    (0.0, [0.0, 0.0, 4.0])
+    """
 
     shear: float  # T0 = int tau dA [m^2]
     normal: Vector  # G = int g n dA [m^2]
@@ -93,14 +115,70 @@ class Piece(NamedTuple):
 
 
 def flat_piece(area: float, first_moment: Vector, normal: Vector, u: Vector, law: SurfaceLaw) -> Piece:
-    """Integrals of a flat piece of ``area`` [m^2], ``int r dA`` [m^3] and unit ``normal``."""
+    """Compute the integrals of a flat piece of ``area`` [m^2], ``int r dA`` [m^3] and unit ``normal``.
+
+    Parameters
+    ----------
+    area : float
+        Area of the piece [m^2].
+    first_moment : (3,) float64
+        ``int r dA`` over the piece [m^3], about the body origin.
+    normal : (3,) float64
+        Unit outward normal.
+    u : (3,) float64
+        Unit flow vector, body frame.
+    law : SurfaceLaw
+        The local law of the surface in the stream.
+
+    Returns
+    -------
+    Piece
+        The integrals ``T0``, ``G``, ``Tr``, ``Gm`` of the piece, over q.
+
+    Examples
+    --------
+    A unit square facing the specular beam: ``G = 4 n`` (twice the stopped momentum), no shear.
+
+    >>> import numpy as np
+    >>> from sunwind.validation.analytic_gas_law import GasLaw, surface_law
+    >>> beam = surface_law(GasLaw("specular"), 7.0, 900.0, stream="directed")
+    >>> u = np.array([0.0, 0.0, 1.0])
+    >>> flat_piece(1.0, np.zeros(3), u, u, beam).normal.tolist()
+    [0.0, 0.0, 4.0]
+    """
     gamma = float(normal @ u)
     tau, g = float(law.shear_over_t(gamma)), float(law.normal_load(gamma))
     return Piece(tau * area, g * area * normal, tau * first_moment, g * np.cross(first_moment, normal))
 
 
 def sphere_piece(radius: float, u: Vector, law: SurfaceLaw) -> Piece:
-    """Integrals of a sphere centred at the origin (module Notes, "Sphere")."""
+    """Compute the integrals of a sphere centred at the origin (module Notes, "Sphere").
+
+    Parameters
+    ----------
+    radius : float
+        Radius [m].
+    u : (3,) float64
+        Unit flow vector, body frame.
+    law : SurfaceLaw
+        The local law of the surface in the stream.
+
+    Returns
+    -------
+    Piece
+        The integrals ``T0``, ``G``, ``Tr``, ``Gm`` of the piece, over q.
+
+    Examples
+    --------
+    The specular sphere in the beam: ``|G| = 2 pi R^2``, so ``C_D = 2``.
+
+    >>> import numpy as np
+    >>> from sunwind.validation.analytic_gas_law import GasLaw, surface_law
+    >>> beam = surface_law(GasLaw("specular"), 7.0, 900.0, stream="directed")
+    >>> u = np.array([0.0, 0.0, 1.0])
+    >>> round(float(sphere_piece(1.0, u, beam).normal[2] / np.pi), 12)
+    2.0
+    """
     if law.stream == "thermal":
         return _difference(
             sphere_piece(radius, u, _with(law, "full")), sphere_piece(radius, u, _with(law, "directed"))
@@ -125,10 +203,39 @@ def sphere_piece(radius: float, u: Vector, law: SurfaceLaw) -> Piece:
 def frustum_piece(
     r_bottom: float, z_bottom: float, r_top: float, z_top: float, u: Vector, law: SurfaceLaw, closed: bool
 ) -> Piece:
-    """Integrals of the outer lateral surface of a frustum of revolution about z (module Notes).
+    """Compute the integrals of the outer lateral surface of a frustum of revolution about z (module Notes).
 
     ``closed`` selects the Bessel forms (cylinder only, ``r_bottom = r_top``) for the full stream;
     otherwise the full stream's azimuth integrals are adaptive quadratures.
+
+    Parameters
+    ----------
+    r_bottom, z_bottom : float
+        Radius and height of the lower rim [m].
+    r_top, z_top : float
+        Radius and height of the upper rim [m]; 0 radius for a cone's apex.
+    u : (3,) float64
+        Unit flow vector, body frame.
+    law : SurfaceLaw
+        The local law of the surface in the stream.
+    closed : bool
+        Use the closed (Bessel) forms of a cylinder's azimuth integrals.
+
+    Returns
+    -------
+    Piece
+        The integrals ``T0``, ``G``, ``Tr``, ``Gm`` of the piece, over q.
+
+    Examples
+    --------
+    A cylinder's side seen along its axis takes nothing from the beam:
+
+    >>> import numpy as np
+    >>> from sunwind.validation.analytic_gas_law import GasLaw, surface_law
+    >>> beam = surface_law(GasLaw("specular"), 7.0, 900.0, stream="directed")
+    >>> u = np.array([0.0, 0.0, 1.0])
+    >>> frustum_piece(1.0, -0.5, 1.0, 0.5, u, beam, closed=True).normal.tolist()
+    [0.0, 0.0, 0.0]
     """
     d_r, d_z = r_top - r_bottom, z_top - z_bottom
     slant = math.hypot(d_r, d_z)

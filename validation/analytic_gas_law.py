@@ -79,6 +79,12 @@ class GasLaw:
         ``sigma_n``, ``sigma_t`` [-] (schaaf-chambre).
     wall_temperature_K : float
         ``T_w`` [K].
+
+    Examples
+    --------
+    >>> diffuse = GasLaw("sentman", energy_accommodation=0.9, wall_temperature_K=300.0)
+    >>> diffuse.model, diffuse.normal_accommodation
+    ('sentman', 1.0)
     """
 
     model: str
@@ -134,6 +140,15 @@ class SurfaceLaw:
         ``K = share * sqrt(T_r / T)`` of the Lambertian re-emission [-].
     stream : str
         ``"full"``, ``"directed"`` or ``"thermal"``.
+
+    Examples
+    --------
+    A specular face normal to the hyperthermal beam takes ``c_n = 4`` (twice the stopped momentum, over q):
+
+    >>> law = surface_law(GasLaw("specular"), speed_ratio=7.0, temperature_K=900.0, stream="directed")
+    >>> c_n, c_t = law.coefficients([1.0, 0.5])
+    >>> c_n.tolist(), c_t.tolist()
+    ([4.0, 1.0], [0.0, 0.0])
     """
 
     speed_ratio: float
@@ -187,6 +202,11 @@ def flow_vector_from_alpha(alpha_deg: float) -> Vector:
     -------
     (3,) float64
         ``u = (sin(alpha), 0, cos(alpha))``.
+
+    Examples
+    --------
+    >>> flow_vector_from_alpha(90.0).round(12).tolist()
+    [1.0, 0.0, 0.0]
     """
     alpha = math.radians(alpha_deg)
     return np.array([math.sin(alpha), 0.0, math.cos(alpha)])
@@ -197,10 +217,39 @@ def surface_law(
 ) -> SurfaceLaw:
     """The local law of ``surface`` for a species of speed ratio ``S`` in gas at ``T`` [K].
 
+    Parameters
+    ----------
+    surface : GasLaw
+        Model and accommodation of the surface.
+    speed_ratio : float
+        ``S = V / sqrt(2 k T / m)`` of the species [-], finite and > 0.
+    temperature_K : float
+        Free-stream temperature ``T`` [K], finite and > 0.
+    stream : {"full", "directed", "thermal"}, optional
+        Which molecules count (module Notes, "Streams").
+
+    Returns
+    -------
+    SurfaceLaw
+        ``(a_n, a_t, K)`` of the model at this ``S`` and ``T_w / T`` (module Notes, "Local law").
+
     Raises
     ------
     ValueError
         Unknown model or stream, or a parameter out of range.
+
+    Examples
+    --------
+    >>> law = surface_law(GasLaw("schaaf-chambre", normal_accommodation=0.5), 7.0, 900.0)
+    >>> law.a_n, law.a_t, round(law.k, 4)
+    (1.5, 1.0, 0.2887)
+
+    References
+    ----------
+    .. [1] L. H. Sentman, "Free molecule flow theory and its application to the determination of
+       aerodynamic forces", Lockheed Missiles and Space Co., LMSC-448514, 1961.
+    .. [2] S. A. Schaaf and P. L. Chambre, "Flow of rarefied gases", in *Fundamentals of Gas
+       Dynamics*, Princeton University Press, 1958.
     """
     if surface.model not in DRAG_MODELS:
         raise ValueError(f"model must be one of {DRAG_MODELS}, got {surface.model!r}")

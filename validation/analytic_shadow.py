@@ -54,6 +54,12 @@ class PlatePair:
         Centre ``c_B = (x0, y0, h)`` of plate B [m], with ``h > 0``.
     gamma_deg : float
         Rotation of B about z [deg].
+
+    Examples
+    --------
+    >>> pair = PlatePair(side_a_m=1.0, side_b_m=1.0, centre_b_m=(0.5, 0.0, 1.0), gamma_deg=0.0)
+    >>> pair.side_b_m
+    1.0
     """
 
     side_a_m: float
@@ -79,6 +85,13 @@ class ShadowedPlatesSrp:
     shadow_polygon_m : (k, 2) float64
         Vertices (x, y) of B's shadow clipped to A, counter-clockwise seen from +z, in the plane
         z = 0 [m]; ``k = 0`` when no shadow falls on A.
+
+    Examples
+    --------
+    >>> pair = PlatePair(1.0, 1.0, (0.5, 0.0, 1.0), 0.0)
+    >>> result = shadowed_plates_srp(pair, [0.0, 0.0, 1.0], (0.0, 0.0, 0.0))
+    >>> result.shadow_area_m2, result.shadow_polygon_m.shape
+    (0.5, (4, 2))
     """
 
     plate_a: ForceTorque
@@ -125,6 +138,22 @@ def shadowed_plates_srp(
     meets B's back, which does not interact. A solver that traces inter-reflection and lets B's
     back stop that light moves part of A's escaping momentum onto B, so compare with
     inter-reflection off or with ``rho = 0``. Light B reflects goes upward, away from A.
+
+    Raises
+    ------
+    ValueError
+        If the Sun vector is not a unit (3,) vector with ``u_z > 0``, or the plates or optics are
+        out of range.
+
+    Examples
+    --------
+    Black plates, Sun overhead, B shifted half a side: half of A is in shadow, so the total push is
+    1.5 times that on one plate, ``P = flux / c`` per m^2:
+
+    >>> pair = PlatePair(1.0, 1.0, (0.5, 0.0, 1.0), 0.0)
+    >>> result = shadowed_plates_srp(pair, [0.0, 0.0, 1.0], (0.0, 0.0, 0.0))
+    >>> result.shadow_area_m2, round(float(result.total.force_N[2] * 1e6), 4)
+    (0.5, -6.8097)
     """
     side_a_m, side_b_m = plates.side_a_m, plates.side_b_m
     u = unit_sun(sun_vector)

@@ -116,6 +116,26 @@ def plate_srp(
     -------
     ForceTorque
         Force [N] and torque [N m] about ``ref_point_m``, body frame.
+
+    Raises
+    ------
+    ValueError
+        If the Sun vector is not a unit (3,) vector, or ``back_optics`` is given with ``one_sided=True``.
+
+    Examples
+    --------
+    Sun overhead, 1 m^2: a black plate takes ``P = flux / c``, a white specular one twice that [uN]:
+
+    >>> black = (0.0, 0.0, 0.0)  # rho, beta, sigma
+    >>> (plate_srp(1.0, 1.0, [0.0, 0.0, 1.0], black).force_N * 1e6).round(4).tolist()
+    [0.0, 0.0, -4.5398]
+    >>> (plate_srp(1.0, 1.0, [0.0, 0.0, 1.0], (1.0, 1.0, 0.0)).force_N * 1e6).round(4).tolist()
+    [0.0, 0.0, -9.0796]
+
+    References
+    ----------
+    .. [1] O. Montenbruck and E. Gill, *Satellite Orbits: Models, Methods and Applications*,
+       Springer, 2000, section 3.4.
     """
     u = unit_sun(sun_vector)
     if one_sided and back_optics is not None:
@@ -156,6 +176,17 @@ def sphere_srp(
     ForceTorque
         Force [N], equal to ``-P pi R^2 (1 - sigma + 4 rho (1 - beta) / 9) u``, and torque
         [N m] about ``ref_point_m``, body frame.
+
+    Raises
+    ------
+    ValueError
+        If the Sun vector is not a unit (3,) vector.
+
+    Examples
+    --------
+    >>> black = (0.0, 0.0, 0.0)  # rho, beta, sigma
+    >>> (sphere_srp(1.0, [0.0, 0.0, 1.0], black).force_N * 1e6).round(4).tolist()  # -P pi R^2 u
+    [0.0, 0.0, -14.2622]
     """
     u = unit_sun(sun_vector)
     return total_load([(_sphere(radius_m, u), optics)], u, flux_W_m2, ref_point_m)
@@ -195,6 +226,20 @@ def cylinder_srp(
     -------
     ForceTorque
         Force [N] and torque [N m] about ``ref_point_m``, body frame.
+
+    Raises
+    ------
+    ValueError
+        If the Sun vector is not a unit (3,) vector.
+
+    Examples
+    --------
+    Lit side-on, a black cylinder takes ``P`` on its silhouette ``2 R L`` [uN]:
+
+    >>> black = (0.0, 0.0, 0.0)  # rho, beta, sigma
+    >>> load = cylinder_srp(0.5, 1.0, [1.0, 0.0, 0.0], black)
+    >>> ((load.force_N * 1e6).round(4) + 0.0).tolist()  # + 0.0 turns -0.0 into 0.0
+    [-4.5398, 0.0, 0.0]
     """
     u = unit_sun(sun_vector)
     half = 0.5 * length_m
@@ -251,6 +296,19 @@ def cone_srp(
     ``alpha <= half_angle``, fully dark for ``alpha >= 180 deg - half_angle`` and lit on the arc
     ``|phi| < arccos(-tan(half_angle) / tan(alpha))`` of azimuth about the Sun's between; the
     base is lit for ``alpha > 90 deg``.
+
+    Raises
+    ------
+    ValueError
+        If the Sun vector is not a unit (3,) vector or ``half_angle_deg`` lies outside (0, 90).
+
+    Examples
+    --------
+    Lit from below, only the base is lit: ``F = P pi R^2`` along +z [uN]:
+
+    >>> black = (0.0, 0.0, 0.0)  # rho, beta, sigma
+    >>> (cone_srp(1.0, [0.0, 0.0, -1.0], black).force_N * 1e6).round(4).tolist()
+    [0.0, 0.0, 14.2622]
     """
     if not 0.0 < half_angle_deg < 90.0:
         raise ValueError(f"cone half_angle_deg must lie in (0, 90), got {half_angle_deg}")

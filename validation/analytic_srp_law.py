@@ -74,6 +74,11 @@ class Optics(NamedTuple):
         Specular share of the reflected light [-], in [0, 1].
     sigma : float
         Transmissivity [-], in [0, 1], with ``rho + sigma <= 1``.
+
+    Examples
+    --------
+    >>> Optics(rho=0.6, beta=0.9, sigma=0.0).rho
+    0.6
     """
 
     rho: float
@@ -90,6 +95,12 @@ class ForceTorque(NamedTuple):
         Force [N].
     torque_Nm : (3,) float64
         Torque [N m] about the reference point the function was given.
+
+    Examples
+    --------
+    >>> load = ForceTorque(np.zeros(3), np.array([0.0, 0.0, 1e-6]))
+    >>> load.torque_Nm.tolist()
+    [0.0, 0.0, 1e-06]
     """
 
     force_N: Vector
@@ -110,6 +121,14 @@ class LitIntegrals:
         ``R1 = int c r dA`` [m^3].
     moment_1, moment_2 : (3,) float64
         ``T1 = int c (r x n) dA``, ``T2 = int c^2 (r x n) dA`` [m^3].
+
+    Examples
+    --------
+    A 2 m^2 patch facing +z, the Sun 60 deg off its normal, projects half its area:
+
+    >>> patch = flat_patch(2.0, np.zeros(3), np.array([0.0, 0.0, 1.0]), sun_vector_from_alpha(60.0))
+    >>> round(patch.projected, 12), patch.normal_2.round(12).tolist()
+    (1.0, [0.0, 0.0, 0.5])
     """
 
     projected: float
@@ -132,13 +151,43 @@ def sun_vector_from_alpha(alpha_deg: float) -> Vector:
     -------
     (3,) float64
         ``u = (sin(alpha), 0, cos(alpha))``, unit, spacecraft -> Sun, body frame.
+
+    Examples
+    --------
+    >>> sun_vector_from_alpha(90.0).round(12).tolist()
+    [1.0, 0.0, 0.0]
     """
     alpha = np.radians(alpha_deg)
     return np.array([np.sin(alpha), 0.0, np.cos(alpha)])
 
 
 def unit_sun(sun_vector: ArrayLike) -> Vector:
-    """Check that the Sun vector is a unit (3,) vector and return it as float64."""
+    """Check that the Sun vector is a unit (3,) vector and return it as float64.
+
+    Parameters
+    ----------
+    sun_vector : (3,) array_like
+        Unit vector from the spacecraft toward the Sun, body frame.
+
+    Returns
+    -------
+    (3,) float64
+        The same vector.
+
+    Raises
+    ------
+    ValueError
+        If the vector is not of shape (3,) or its norm differs from 1 by more than 1e-9.
+
+    Examples
+    --------
+    >>> unit_sun([0, 0, 1]).tolist()
+    [0.0, 0.0, 1.0]
+    >>> unit_sun([0, 0, 2])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: ...
+    """
     u = np.asarray(sun_vector, dtype=float)
     if u.shape != (3,) or abs(np.linalg.norm(u) - 1.0) > _UNIT_TOLERANCE:
         raise ValueError(
@@ -181,6 +230,21 @@ def total_load(
     -------
     ForceTorque
         Total force [N] and torque [N m] about ``ref_point_m``.
+
+    Examples
+    --------
+    A black 2 m^2 plate, the Sun 60 deg off its normal: ``F = -P A cos(alpha) u``:
+
+    >>> u = sun_vector_from_alpha(60.0)
+    >>> patch = flat_patch(2.0, np.zeros(3), np.array([0.0, 0.0, 1.0]), u)
+    >>> load = total_load([(patch, Optics(0.0, 0.0, 0.0))], u, 1361.0, (0.0, 0.0, 0.0))
+    >>> (load.force_N * 1e6).round(4).tolist()
+    [-3.9316, 0.0, -2.2699]
+
+    References
+    ----------
+    .. [1] O. Montenbruck and E. Gill, *Satellite Orbits: Models, Methods and Applications*,
+       Springer, 2000, section 3.4 (solar radiation pressure on a flat surface).
     """
     ref = np.asarray(ref_point_m, dtype=float)
     if ref.shape != (3,):
@@ -214,6 +278,28 @@ def flat_patch(area: float, first_moment: Vector, normal: Vector, u: Vector) -> 
     """Lit integrals of a flat piece from its area [m^2], ``int r dA`` (3,) [m^3] and unit normal.
 
     The piece is wholly lit when ``n . u > 0`` and contributes nothing otherwise.
+
+    Parameters
+    ----------
+    area : float
+        Area of the piece [m^2].
+    first_moment : (3,) float64
+        ``int r dA`` over the piece [m^3], about the body origin.
+    normal : (3,) float64
+        Unit front normal.
+    u : (3,) float64
+        Unit Sun vector, body frame.
+
+    Returns
+    -------
+    LitIntegrals
+        The six integrals, with ``c = n . u`` constant over the piece; all zero when it is dark.
+
+    Examples
+    --------
+    >>> dark = flat_patch(1.0, np.zeros(3), np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]))
+    >>> dark.projected
+    0.0
     """
     c = max(float(normal @ u), 0.0)
     arm = np.cross(first_moment, normal)

@@ -107,6 +107,19 @@ def v_groove_srp(
     -------
     ForceTorque
         Force [N] and torque [N m] about ``ref_point_m``, body frame.
+
+    Raises
+    ------
+    ValueError
+        If ``angle_deg`` lies outside [-45, 45] (light would strike the outer sides).
+
+    Examples
+    --------
+    Sun along the groove's bisector, mirrors: each ray strikes both plates and leaves upward [uN]:
+
+    >>> load = v_groove_srp(1.0, 1.0, 0.0)
+    >>> ((load.force_N * 1e6).round(4) + 0.0).tolist()  # + 0.0 turns -0.0 into 0.0
+    [0.0, 0.0, -12.8405]
     """
     if abs(angle_deg) > 45.0:
         raise ValueError(f"angle_deg = {angle_deg} outside [-45, 45]: light would strike the outer sides")

@@ -1,4 +1,4 @@
-"""The SRP validation cases, one table read by the runner, the tests and the README.
+"""The SRP validation cases, one table read by the runner, the tests and the validation page.
 
 Each case is a meshed body with one material, a closed-form reference from
 :mod:`sunwind.validation.analytic_srp`, the Sun directions it is checked at, and a tolerance with its reason.

@@ -43,6 +43,7 @@ class Measure:
 
     @property
     def passed(self) -> bool:
+        """Whether ``low <= value <= limit`` (a NaN value fails)."""
         return self.low <= self.value <= self.limit  # NaN fails
 
     @property
@@ -83,6 +84,7 @@ class Check:
 
     @property
     def passed(self) -> bool:
+        """Whether every measure passes."""
         return all(m.passed for m in self.measures)
 
     @property

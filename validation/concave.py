@@ -69,7 +69,25 @@ PartOptics = Mapping[str, tuple[Optics, Optics]]
 
 
 def sun_from_az_el(azimuth_deg: float, elevation_deg: float) -> NDArray[np.float64]:
-    """Unit Sun vector from azimuth ``atan2(u_y, u_x)`` and elevation ``asin(u_z)`` [deg], body frame."""
+    """Unit Sun vector from azimuth ``atan2(u_y, u_x)`` and elevation ``asin(u_z)`` [deg], body frame.
+
+    Parameters
+    ----------
+    azimuth_deg : float
+        Angle from +x toward +y of the vector's projection on the xy-plane [deg].
+    elevation_deg : float
+        Angle above the xy-plane [deg].
+
+    Returns
+    -------
+    (3,) float64
+        ``(cos el cos az, cos el sin az, sin el)``.
+
+    Examples
+    --------
+    >>> (sun_from_az_el(90.0, 0.0).round(12) + 0.0).tolist()
+    [0.0, 1.0, 0.0]
+    """
     az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
     return np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
 
@@ -98,6 +116,17 @@ class ConcaveCase:
         Largest extent of the model [m], for :func:`torque_scale`.
     notes : str
         Sizes and why these Sun directions.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> mirror = Optics(1.0, 1.0, 0.0)
+    >>> tiny = ConcaveCase(
+    ...     "tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), {"specular": {"*": (mirror, mirror)}},
+    ...     ((0.0, 90.0),), size_m=3.0,
+    ... )
+    >>> tiny.spacecraft("specular")
+    <Spacecraft 'tiny groove/specular': 8 facets, 16 sides, 2 parts, 2 materials>
     """
 
     name: str
@@ -118,8 +147,29 @@ def _spacecraft(case: ConcaveCase, finish: str) -> Spacecraft:
 
 
 def finished_spacecraft(mesh: MeshData, finish: PartOptics, source: str = "<concave>") -> Spacecraft:
-    """``mesh`` built with ``finish`` (part glob -> (front, back) optics): every matched part a two-sided
-    sheet. ``source`` names the model in messages."""
+    """Build ``mesh`` with ``finish``: every part a two-sided sheet, optics by its first matching glob.
+
+    Parameters
+    ----------
+    mesh : MeshData
+        The geometry, every part a sheet.
+    finish : mapping of str to (Optics, Optics)
+        Part glob -> (front, back) optics; the first matching glob wins.
+    source : str, optional
+        Name of the model in messages.
+
+    Returns
+    -------
+    Spacecraft
+        The model, one material per distinct optics.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import l_mesh
+    >>> mirror = Optics(1.0, 1.0, 0.0)
+    >>> finished_spacecraft(l_mesh(divisions=1), {"*": (mirror, mirror)}, source="corner")
+    <Spacecraft 'corner': 4 facets, 8 sides, 2 parts, 2 materials>
+    """
     materials, parts = {}, {}
     for k, (glob, (front, back)) in enumerate(finish.items()):
         for side, optics in (("front", front), ("back", back)):
@@ -191,6 +241,25 @@ def torque_scale(force_N: ArrayLike, torque_Nm: ArrayLike, size_m: float) -> flo
 
     The torque's own size, unless symmetry makes it small; then a shift of the force's line of action
     by a quarter of the model size, so that 1 % of the scale is a shift of 0.25 % of the size.
+
+    Parameters
+    ----------
+    force_N : (3,) array_like
+        Force [N].
+    torque_Nm : (3,) array_like
+        Torque [N m].
+    size_m : float
+        Largest extent of the model [m].
+
+    Returns
+    -------
+    float
+        The scale [N m].
+
+    Examples
+    --------
+    >>> torque_scale([0.0, 0.0, 1e-6], [0.0, 0.0, 0.0], size_m=2.0)
+    5e-07
     """
     return max(float(np.linalg.norm(torque_Nm)), float(np.linalg.norm(force_N)) * size_m * TORQUE_LEVER)
 
@@ -224,6 +293,18 @@ class ReflectionRow:
         Bundles the tracer launched.
     tracer_seconds, solver_seconds : float
         Wall-clock times [s].
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> mirror = Optics(1.0, 1.0, 0.0)
+    >>> tiny = ConcaveCase(
+    ...     "tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), {"specular": {"*": (mirror, mirror)}},
+    ...     ((0.0, 90.0),), size_m=3.0,
+    ... )
+    >>> row = compare(tiny, "specular", (0.0, 90.0), photons=2000)
+    >>> row.case, row.passed
+    ('tiny groove', True)
     """
 
     case: str
@@ -259,7 +340,39 @@ def trace_case(
 ) -> TracerResult:
     """The tracer's loads for one case, finish and (azimuth, elevation), about the model's default point.
 
-    ``photons``, ``seed`` and ``max_bounces`` as in :class:`sunwind.validation.sampling.Sampling`.
+    Parameters
+    ----------
+    case : ConcaveCase
+        The model, its finishes and Sun directions.
+    finish : str
+        One of ``case.finishes``.
+    sun_deg : (float, float)
+        Sun azimuth and elevation [deg] (:func:`sun_from_az_el`).
+    photons : int, optional
+        Bundles the tracer launches.
+    seed : int, optional
+        Seed of the tracer.
+    max_bounces : int, optional
+        Most interactions a bundle may have.
+
+    Returns
+    -------
+    TracerResult
+        Force [N] and torque [N m] with their standard errors, at 1361 W/m^2.
+
+    Examples
+    --------
+    Mirrors, Sun overhead, a tiny mesh and few bundles:
+
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> mirror = Optics(1.0, 1.0, 0.0)
+    >>> tiny = ConcaveCase(
+    ...     "tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), {"specular": {"*": (mirror, mirror)}},
+    ...     ((0.0, 90.0),), size_m=3.0,
+    ... )
+    >>> result = trace_case(tiny, "specular", (0.0, 90.0), photons=2000)
+    >>> bool(result.force_N[2] < 0), result.photons
+    (True, 2000)
     """
     sampling = Sampling(photons, seed=seed, max_bounces=max_bounces)
     return trace_photons(case.spacecraft(finish), sun_from_az_el(*sun_deg), sampling)
@@ -272,9 +385,40 @@ def compare(
     photons: int = MC_PHOTONS,
     seed: int = 0,
 ) -> ReflectionRow:
-    """Solver (``reflections="full"``) against the tracer (the physics) for one case, finish and Sun
-    direction; both at 1361 W/m^2, torques about the model's default reference point (its area
-    centroid)."""
+    """Run the solver (``reflections="full"``) and the tracer (the physics) for one case, finish and Sun.
+
+    Both at 1361 W/m^2, torques about the model's default reference point (its area centroid).
+
+    Parameters
+    ----------
+    case : ConcaveCase
+        The model, its finishes and Sun directions.
+    finish : str
+        One of ``case.finishes``.
+    sun_deg : (float, float)
+        Sun azimuth and elevation [deg] (:func:`sun_from_az_el`).
+    photons : int, optional
+        Bundles the tracer launches.
+    seed : int, optional
+        Seed of the tracer.
+
+    Returns
+    -------
+    ReflectionRow
+        Both loads, their differences and the tracer's standard errors.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> mirror = Optics(1.0, 1.0, 0.0)
+    >>> tiny = ConcaveCase(
+    ...     "tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), {"specular": {"*": (mirror, mirror)}},
+    ...     ((0.0, 90.0),), size_m=3.0,
+    ... )
+    >>> row = compare(tiny, "specular", (0.0, 90.0), photons=2000)
+    >>> bool(row.force_difference < 1e-9), row.photons
+    (True, 2000)
+    """
     from sunwind.forces.srp import srp  # the solver under test; imported here so the tracer needs none of it
 
     craft = case.spacecraft(finish)
@@ -321,7 +465,33 @@ def reflection_table(
     photons: int = MC_PHOTONS,
     seed: int = 0,
 ) -> list[ReflectionRow]:
-    """:func:`compare` for every case, finish and Sun direction, in that order."""
+    """Run :func:`compare` for every case, finish and Sun direction, in that order.
+
+    Parameters
+    ----------
+    cases : tuple of ConcaveCase, optional
+        The cases; default :data:`CONCAVE_CASES` (minutes at the default ``photons``).
+    photons : int, optional
+        Bundles the tracer launches per row.
+    seed : int, optional
+        Seed of the tracer.
+
+    Returns
+    -------
+    list of ReflectionRow
+        One row per case, finish and Sun direction.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> mirror = Optics(1.0, 1.0, 0.0)
+    >>> tiny = ConcaveCase(
+    ...     "tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), {"specular": {"*": (mirror, mirror)}},
+    ...     ((0.0, 90.0),), size_m=3.0,
+    ... )
+    >>> [row.finish for row in reflection_table((tiny,), photons=2000)]
+    ['specular']
+    """
     return [
         compare(case, finish, sun, photons, seed)
         for case in cases

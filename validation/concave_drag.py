@@ -60,7 +60,20 @@ BATCHES = 40
 
 @dataclass(frozen=True)
 class Law:
-    """A gas-surface law as the solver's finish (``surface``) and as the tracer's kernel (``walls``)."""
+    """A gas-surface law as the solver's finish (``surface``) and as the tracer's kernel (``walls``).
+
+    Attributes
+    ----------
+    surface : GasSurface
+        The solver's gas-surface model and parameters.
+    walls : WallInteraction
+        The same law as the tracer's kernel.
+
+    Examples
+    --------
+    >>> LAWS["specular"].walls.diffuse_fraction, LAWS["specular"].surface.model
+    (0.0, 'specular')
+    """
 
     surface: GasSurface
     walls: WallInteraction
@@ -112,9 +125,28 @@ LAWS = {
 
 @dataclass(frozen=True)
 class DragCase:
-    """A shape, the flow directions (azimuth, elevation of ``v_rel`` [deg]) it is run at, its size [m]
-    for :func:`sunwind.validation.concave.torque_scale`, and its two-sided parts (globs; the rest are
-    closed bodies)."""
+    """A shape, the flow directions it is run at, its size and its two-sided parts.
+
+    Attributes
+    ----------
+    name : str
+        Name in reports.
+    mesh : callable
+        ``mesh()`` builds the geometry.
+    flows_deg : tuple of (float, float)
+        Azimuth and elevation of ``v_rel`` [deg] of each run.
+    size_m : float
+        Largest extent [m], for :func:`sunwind.validation.concave.torque_scale`.
+    two_sided : tuple of str, optional
+        Globs of the parts that are sheets; the rest are closed bodies.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> tiny.mesh().n_faces, tiny.two_sided
+    (8, ('*',))
+    """
 
     name: str
     mesh: Callable[[], MeshData]
@@ -134,7 +166,23 @@ DRAG_CASES = (
 
 @dataclass(frozen=True, eq=False)
 class Gas:
-    """A row's free stream: the solver's atmosphere, the speed ``|v_rel|`` [m/s] and a name for reports."""
+    """A row's free stream: the solver's atmosphere, the speed ``|v_rel|`` [m/s] and a name for reports.
+
+    Attributes
+    ----------
+    name : str
+        Name in reports, e.g. ``"O, S 8"``.
+    atmosphere : Atmosphere
+        Species number densities [m^-3] and temperature [K].
+    speed_m_s : float
+        ``|v_rel|`` [m/s].
+
+    Examples
+    --------
+    >>> gas = oxygen(8.0)
+    >>> gas.name, gas.speed_ratios, list(gas.streams())
+    ('O, S 8', {'O': 8.0}, ['O'])
+    """
 
     name: str
     atmosphere: Atmosphere
@@ -155,7 +203,23 @@ class Gas:
 
 
 def oxygen(speed_ratio: float) -> Gas:
-    """Atomic oxygen at 1000 K, 1e15 m^-3, at the speed that gives ``speed_ratio``."""
+    """Atomic oxygen at 1000 K, 1e15 m^-3, at the speed that gives ``speed_ratio``.
+
+    Parameters
+    ----------
+    speed_ratio : float
+        ``S = V / sqrt(2 k T / m)`` [-].
+
+    Returns
+    -------
+    Gas
+        Named ``"O, S <speed_ratio>"``.
+
+    Examples
+    --------
+    >>> round(oxygen(8.0).speed_m_s, 1)
+    8156.0
+    """
     air = Atmosphere({SPECIES: NUMBER_DENSITY_M3}, TEMPERATURE_K, "validation: atomic oxygen")
     speed = speed_ratio * math.sqrt(2 * BOLTZMANN * TEMPERATURE_K / SPECIES_MASS_KG[SPECIES])
     return Gas(f"O, S {speed_ratio:g}", air, speed)
@@ -163,7 +227,23 @@ def oxygen(speed_ratio: float) -> Gas:
 
 @lru_cache(maxsize=4)
 def msis_mixture(altitude_km: float = 900.0) -> Gas:
-    """NRLMSIS at ``altitude_km`` (default place, time and indices) at circular-orbit speed there."""
+    """NRLMSIS at ``altitude_km`` (default place, time and indices) at circular-orbit speed there.
+
+    Parameters
+    ----------
+    altitude_km : float, optional
+        Geodetic altitude [km].
+
+    Returns
+    -------
+    Gas
+        Every NRLMSIS species with a number density > 0, named ``"NRLMSIS <altitude> km"``; cached.
+
+    Examples
+    --------
+    >>> msis_mixture(900.0).name
+    'NRLMSIS 900 km'
+    """
     from sunwind.forces.gas import nrlmsis
     from sunwind.forces.gas.flow import circular_speed
 
@@ -172,26 +252,115 @@ def msis_mixture(altitude_km: float = 900.0) -> Gas:
 
 @lru_cache(maxsize=8)
 def spacecraft(case: DragCase, law: str) -> Spacecraft:
-    """``case``'s shape with gas-surface law ``law`` (a key of :data:`LAWS`) on every side."""
+    """``case``'s shape with gas-surface law ``law`` (a key of :data:`LAWS`) on every side.
+
+    Parameters
+    ----------
+    case : DragCase
+        The shape and its two-sided parts.
+    law : str
+        A key of :data:`LAWS`.
+
+    Returns
+    -------
+    Spacecraft
+        The model; cached, the same object for the same arguments.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> spacecraft(tiny, "specular")
+    <Spacecraft '<v-groove>': 8 facets, 16 sides, 2 parts, 1 materials>
+    """
     material = Material("wall", 0.0, 0.0, gas=LAWS[law].surface)
     return build_spacecraft(case.mesh(), uniform=material, two_sided=case.two_sided)
 
 
 def run_key(case: DragCase, law: str, flow_deg: tuple[float, float], gas: Gas, species: str) -> str:
-    """The name of one species' tracer run, from which its seeds come (:func:`seed_of`)."""
+    """The name of one species' tracer run, from which its seeds come (:func:`seed_of`).
+
+    Parameters
+    ----------
+    case : DragCase
+        The shape and its two-sided parts.
+    law : str
+        A key of :data:`LAWS`.
+    flow_deg : (float, float)
+        Azimuth and elevation of ``v_rel`` [deg].
+    gas : Gas
+        The free stream.
+    species : str
+        The species traced.
+
+    Returns
+    -------
+    str
+        ``"<case>/<law>/<azimuth>/<elevation>/<gas>/<species>"``.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> run_key(tiny, "diffuse", (0.0, 90.0), oxygen(8.0), "O")
+    'tiny groove/diffuse/0/90/O, S 8/O'
+    """
     return f"{case.name}/{law}/{flow_deg[0]:g}/{flow_deg[1]:g}/{gas.name}/{species}"
 
 
 def seed_of(key: str) -> int:
-    """A seed from a run's name: the same on every machine and in every process."""
+    """A seed from a run's name: the same on every machine and in every process.
+
+    Parameters
+    ----------
+    key : str
+        The run's name (:func:`run_key`).
+
+    Returns
+    -------
+    int
+        A non-negative seed.
+
+    Examples
+    --------
+    >>> seed_of("tiny groove/diffuse/0/90/O, S 8/O")
+    1812333995
+    """
     return zlib.crc32(key.encode())
 
 
 def trace_gas(
     case: DragCase, law: str, flow_deg: tuple[float, float], gas: Gas, samplings: Mapping[str, Sampling]
 ) -> list[TpmcResult]:
-    """The tracer's loads of each species ``k`` of ``gas`` on ``case`` with ``law``, sampled as
-    ``samplings[k]``, about the model's default reference point; in the atmosphere's order."""
+    """Trace each species of ``gas`` on ``case`` with ``law``, about the model's default reference point.
+
+    Parameters
+    ----------
+    case : DragCase
+        The shape and its two-sided parts.
+    law : str
+        A key of :data:`LAWS`.
+    flow_deg : (float, float)
+        Azimuth and elevation of ``v_rel`` [deg].
+    gas : Gas
+        The free stream.
+    samplings : mapping of str to Sampling
+        Molecules, seed and batches of each species.
+
+    Returns
+    -------
+    list of TpmcResult
+        One per species, in the atmosphere's order.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> from sunwind.validation.sampling import Sampling
+    >>> runs = trace_gas(tiny, "diffuse", (0.0, 90.0), oxygen(8.0), {"O": Sampling(2000, batches=4)})
+    >>> len(runs), runs[0].molecules
+    (1, 2000)
+    """
     craft, flow = spacecraft(case, law), sun_from_az_el(*flow_deg)
     return [
         trace_molecules(craft, flow, stream, LAWS[law].walls, samplings[k])
@@ -201,8 +370,30 @@ def trace_gas(
 
 @dataclass(frozen=True)
 class TracedGas:
-    """The tracer's loads summed over a gas's species: force [N], torque [N m] about
-    ``reference_point_m`` [m], their standard errors (in quadrature over species), molecules, seconds."""
+    """The tracer's loads summed over a gas's species.
+
+    Attributes
+    ----------
+    force_N, torque_Nm : (3,) float64
+        Force [N] and torque [N m] about ``reference_point_m``.
+    force_se_N, torque_se_Nm : (3,) float64
+        Their standard errors, added in quadrature over the species.
+    reference_point_m : (3,) float64
+        Torque reference point [m].
+    molecules : int
+        Molecules traced in all.
+    seconds : float
+        Wall-clock time of the runs [s].
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> from sunwind.validation.sampling import Sampling
+    >>> runs = trace_gas(tiny, "diffuse", (0.0, 90.0), oxygen(8.0), {"O": Sampling(2000, batches=4)})
+    >>> summed(runs).molecules
+    2000
+    """
 
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
@@ -214,7 +405,27 @@ class TracedGas:
 
 
 def summed(results: list[TpmcResult]) -> TracedGas:
-    """Loads of the species traced apart, summed; standard errors added in quadrature."""
+    """Sum the loads of the species traced apart; standard errors added in quadrature.
+
+    Parameters
+    ----------
+    results : list of TpmcResult
+        One run per species, all about the same reference point.
+
+    Returns
+    -------
+    TracedGas
+        Their sum.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> from sunwind.validation.sampling import Sampling
+    >>> runs = trace_gas(tiny, "diffuse", (0.0, 90.0), oxygen(8.0), {"O": Sampling(2000, batches=4)})
+    >>> bool((summed(runs).force_N == runs[0].force_N).all())
+    True
+    """
     return TracedGas(
         force_N=np.sum([r.force_N for r in results], axis=0),
         torque_Nm=np.sum([r.torque_Nm for r in results], axis=0),
@@ -228,15 +439,36 @@ def summed(results: list[TpmcResult]) -> TracedGas:
 
 @dataclass(frozen=True)
 class DragRow:
-    """Solver against tracer for one case, law, flow direction and gas; differences over the tracer's
-    scales.
+    """Solver against tracer for one case, law, flow direction and gas; differences over the tracer's scales.
 
-    ``force_difference`` is ``|F_solver - F_mc| / |F_mc|`` with the exchange of re-emitted molecules,
-    ``force_difference_none`` without it (every re-emitted molecule escaping); torques likewise over
-    :func:`sunwind.validation.concave.torque_scale`. ``*_sigma`` are the tracer's standard errors on the
-    same scales. ``speed_ratios`` holds each species and its speed ratio; ``molecules`` the tracer's in
-    all; ``tracer_seconds`` and ``solver_seconds`` [s] the wall-clock times of the tracer's runs and of
-    the solver with exchange.
+    Attributes
+    ----------
+    case, law, gas : str
+        Names of the case, the law (a key of :data:`LAWS`) and the gas.
+    azimuth_deg, elevation_deg : float
+        Flow direction [deg].
+    speed_ratios : tuple of (str, float)
+        Each species and its speed ratio [-].
+    force_mc_N : float
+        The tracer's ``|F|`` [N].
+    force_difference, force_difference_none : float
+        ``|F_solver - F_mc| / |F_mc|`` [-] with the exchange of re-emitted molecules and without it
+        (every re-emitted molecule escaping).
+    force_mc_sigma : float
+        The tracer's standard error of the force over ``|F_mc|`` [-].
+    torque_difference, torque_difference_none, torque_mc_sigma : float
+        Likewise for the torque, over :func:`sunwind.validation.concave.torque_scale` [-].
+    molecules : int
+        The tracer's molecules in all.
+    tracer_seconds, solver_seconds : float
+        Wall-clock times of the tracer's runs and of the solver with exchange [s].
+
+    Examples
+    --------
+    >>> row = DragRow("groove", "diffuse", 0.0, 90.0, "O, S 8", (("O", 8.0),), 8e-3, 0.004, 0.014, 0.003,
+    ...               0.003, 0.002, 0.003, 214_560, 1.0, 2.0)
+    >>> row.passed
+    True
     """
 
     case: str
@@ -266,8 +498,37 @@ class DragRow:
 def compare(
     case: DragCase, law: str, flow_deg: tuple[float, float], gas: Gas, molecules: Mapping[str, int]
 ) -> DragRow:
-    """Solver (with and without re-emission exchange) against the tracer, ``molecules[k]`` of each
-    species ``k`` of ``gas`` (seeds from :func:`run_key`), torques about the tracer's point."""
+    """Run the solver (with and without re-emission exchange) against the tracer.
+
+    Traces ``molecules[k]`` of each species ``k`` of ``gas`` (seeds from :func:`run_key`); torques are
+    about the tracer's point.
+
+    Parameters
+    ----------
+    case : DragCase
+        The shape and its two-sided parts.
+    law : str
+        A key of :data:`LAWS`.
+    flow_deg : (float, float)
+        Azimuth and elevation of ``v_rel`` [deg].
+    gas : Gas
+        The free stream.
+    molecules : mapping of str to int
+        Molecules of each species.
+
+    Returns
+    -------
+    DragRow
+        The differences and the tracer's standard errors.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> row = compare(tiny, "diffuse", (0.0, 90.0), oxygen(8.0), {"O": 2000})
+    >>> row.molecules, bool(row.force_difference < 0.05)
+    (2000, True)
+    """
     samplings = {
         k: Sampling(n, seed_of(run_key(case, law, flow_deg, gas, k)), BATCHES) for k, n in molecules.items()
     }

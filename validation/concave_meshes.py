@@ -35,11 +35,18 @@ def sheet(
     divisions : (int, int)
         Cells along ``edge_u`` and ``edge_v``.
     part : str
+        Name of the one part.
 
     Returns
     -------
     MeshData
         ``2 nu nv`` triangles, no material.
+
+    Examples
+    --------
+    >>> plate = sheet((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (2, 1), "plate")
+    >>> plate.n_faces, plate.part_names
+    (4, ('plate',))
     """
     nu, nv = divisions
     a, b = np.meshgrid(np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1), indexing="ij")
@@ -61,6 +68,26 @@ def v_groove_mesh(
     The plates run from the apex (the y axis, ``|y| <= length / 2``) up to ``x = -+ w / sqrt(2)``,
     ``z = w / sqrt(2)``; fronts face into the groove. Parts ``"wall_left"`` (x < 0) and
     ``"wall_right"``; ``divisions`` cells across and along each.
+
+    Parameters
+    ----------
+    width_m : float, optional
+        Slant width ``w`` of each plate [m].
+    length_m : float, optional
+        Length of the groove along y [m].
+    divisions : (int, int), optional
+        Cells across and along each plate.
+
+    Returns
+    -------
+    MeshData
+        ``4 * divisions[0] * divisions[1]`` triangles in two parts, no material.
+
+    Examples
+    --------
+    >>> groove = v_groove_mesh(divisions=(1, 2))
+    >>> groove.part_names, groove.n_faces
+    (('wall_left', 'wall_right'), 8)
     """
     h = width_m / math.sqrt(2)
     apex = (0.0, -length_m / 2, 0.0)
@@ -77,6 +104,26 @@ def l_mesh(
 
     The floor spans ``0 <= x <= floor_m[0]``, ``|y| <= floor_m[1] / 2``, front +z; the wall
     ``|y| <= floor_m[1] / 2``, ``0 <= z <= wall_height_m``, front +x. Parts ``"floor"``, ``"wall"``.
+
+    Parameters
+    ----------
+    floor_m : (float, float), optional
+        Floor extent along x and y [m].
+    wall_height_m : float, optional
+        Height of the wall [m].
+    divisions : int, optional
+        Cells along each edge of a plate.
+
+    Returns
+    -------
+    MeshData
+        Two parts, no material.
+
+    Examples
+    --------
+    >>> corner = l_mesh(divisions=1)
+    >>> corner.part_names, corner.n_faces
+    (('floor', 'wall'), 4)
     """
     a, b = floor_m
     corner = (0.0, -b / 2, 0.0)
@@ -89,6 +136,24 @@ def open_box_mesh(edge_m: float = 1.0, divisions: int = 8) -> MeshData:
     """A cube centred at the origin without its top face (z = +edge / 2): five sheets, fronts inward.
 
     Parts ``"floor"``, ``"wall_+x"``, ``"wall_-x"``, ``"wall_+y"``, ``"wall_-y"``.
+
+    Parameters
+    ----------
+    edge_m : float, optional
+        Cube edge [m].
+    divisions : int, optional
+        Cells along each edge.
+
+    Returns
+    -------
+    MeshData
+        Five parts, ``10 * divisions**2`` triangles, no material.
+
+    Examples
+    --------
+    >>> tray = open_box_mesh(divisions=1)
+    >>> tray.part_names, tray.n_faces
+    (('floor', 'wall_+x', 'wall_-x', 'wall_+y', 'wall_-y'), 10)
     """
     e, g = edge_m / 2, (divisions, divisions)
     pieces = [sheet((-e, -e, -e), (edge_m, 0.0, 0.0), (0.0, edge_m, 0.0), g, "floor")]
@@ -109,10 +174,24 @@ def open_box_mesh(edge_m: float = 1.0, divisions: int = 8) -> MeshData:
 
 @lru_cache(maxsize=2)
 def dish_mesh(triangles: int = 20_000) -> MeshData:
-    """The ``"dish"`` part of :func:`sunwind.meshes.samples.sample_spacecraft` alone, where it sits in the
-    sample.
+    """The ``"dish"`` part of :func:`sunwind.meshes.samples.sample_spacecraft` alone, where it sits there.
 
     A paraboloid of diameter 1.2 m and f/D 0.35, concave side +z (its front), vertex at z = 0.904 m.
+
+    Parameters
+    ----------
+    triangles : int, optional
+        Triangle count asked of the whole sample; the dish gets its share.
+
+    Returns
+    -------
+    MeshData
+        One part ``"dish"``, the same object for the same ``triangles`` (cached).
+
+    Examples
+    --------
+    >>> dish_mesh(2000).part_names
+    ('dish',)
     """
     sample = sample_spacecraft(triangles)
     keep = sample.face_part == sample.part_names.index("dish")
@@ -136,6 +215,26 @@ def box_wing_mesh(
     The wing spans ``0.5 + gap_m <= y <= 0.5 + gap_m + wing_m[0]`` and ``|z| <= wing_m[1] / 2``, front
     +x, so the bus's +y face and the wing's root see each other across the gap. Parts ``"bus"``
     (``divisions`` cells along each cube edge) and ``"wing"`` (square cells of about the bus's).
+
+    Parameters
+    ----------
+    wing_m : (float, float), optional
+        Wing span along y and chord along z [m].
+    gap_m : float, optional
+        Gap between the bus's +y face and the wing's root [m].
+    divisions : int, optional
+        Cells along each cube edge.
+
+    Returns
+    -------
+    MeshData
+        Parts ``"bus"`` (closed) and ``"wing"`` (a sheet), no material.
+
+    Examples
+    --------
+    >>> model = box_wing_mesh(divisions=1)
+    >>> model.part_names, model.n_faces
+    (('bus', 'wing'), 16)
     """
     span, width = wing_m
     cells = (max(1, round(span * divisions)), max(1, round(width * divisions)))

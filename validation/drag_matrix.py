@@ -4,7 +4,7 @@ speed ratio and flow direction, and the NRLMSIS mixture.
 :func:`matrix` lists the points (:data:`SPEED_RATIOS` of atomic oxygen for every case and law of
 :mod:`sunwind.validation.concave_drag`, and the open box in the 900 km NRLMSIS mixture with two laws);
 :func:`run_point` compares solver and tracer at one, with the tracer's molecules chosen by
-:func:`molecules_for`; :func:`markdown_table` sums the rows up for a README.
+:func:`molecules_for`; :func:`markdown_table` sums the rows up for the validation page.
 ``python -m sunwind.validation.drag_matrix [--quick]`` prints that table and the times.
 
 Notes
@@ -69,7 +69,28 @@ MOLECULE_RANGE = (2_000, 8_000_000)
 
 @dataclass(frozen=True, eq=False)
 class Point:
-    """One row of the matrix: a case, a law (a key of :data:`LAWS`), a flow direction [deg] and a gas."""
+    """One row of the matrix: a case, a law, a flow direction and a gas.
+
+    Attributes
+    ----------
+    case : DragCase
+        The shape.
+    law : str
+        A key of :data:`LAWS`.
+    flow_deg : (float, float)
+        Azimuth and elevation of ``v_rel`` [deg].
+    gas : Gas
+        The free stream.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragCase, oxygen
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> point = Point(tiny, "diffuse", (0.0, 90.0), oxygen(8.0))
+    >>> point.gas.name
+    'O, S 8'
+    """
 
     case: DragCase
     law: str
@@ -78,9 +99,28 @@ class Point:
 
 
 def matrix(quick: bool = False) -> list[Point]:
-    """Every point of the matrix: atomic oxygen at each speed ratio for every case, law and flow, then
-    the mixture. ``quick``: each case once, at its last flow (off every symmetry plane), with a law of
-    its own and the :data:`QUICK_SPEED_RATIOS` in turn, and the mixture with its first law."""
+    """List the points: atomic oxygen at each speed ratio for every case, law and flow, then the mixture.
+
+    ``quick``: each case once, at its last flow (off every symmetry plane), with a law of its own and
+    the :data:`QUICK_SPEED_RATIOS` in turn, and the mixture with its first law.
+
+    Parameters
+    ----------
+    quick : bool, optional
+        Return the quick subset.
+
+    Returns
+    -------
+    list of Point
+        The points in the order they are run.
+
+    Examples
+    --------
+    >>> len(matrix()), len(matrix(quick=True))
+    (381, 6)
+    >>> [(p.case.name, p.law, p.gas.name) for p in matrix(quick=True)][:2]
+    [('v-groove', 'diffuse', 'O, S 1.5'), ('L', 'maxwell-0.5', 'O, S 8')]
+    """
     if quick:
         points = [
             Point(case, law, case.flows_deg[-1], oxygen(QUICK_SPEED_RATIOS[i % 2]))
@@ -107,7 +147,7 @@ def _flows(case: DragCase, quick: bool) -> tuple[tuple[float, float], ...]:
 
 
 def allocate(sigma_shares: ArrayLike, pilot_molecules: int, aim: float) -> list[int]:
-    """Molecules of each species so that their standard errors, in quadrature, come to ``aim``.
+    """Count the molecules of each species so that their standard errors, in quadrature, come to ``aim``.
 
     Parameters
     ----------
@@ -123,6 +163,13 @@ def allocate(sigma_shares: ArrayLike, pilot_molecules: int, aim: float) -> list[
     list of int
         ``N_k = max over measures of N_0 a_k (sum_j a_j) / aim^2`` (module Notes), rounded up to a
         multiple of the batches and kept within :data:`MOLECULE_RANGE`.
+
+    Examples
+    --------
+    Two species, the second half as noisy as the first:
+
+    >>> allocate([[0.1, 0.2], [0.05, 0.1]], pilot_molecules=40_000, aim=0.05)
+    [960000, 480000]
     """
     shares = np.asarray(sigma_shares, dtype=np.float64)
     needed = (pilot_molecules * shares * shares.sum(axis=0) / aim**2).max(axis=1)
@@ -131,8 +178,29 @@ def allocate(sigma_shares: ArrayLike, pilot_molecules: int, aim: float) -> list[
 
 
 def pilot_shares(point: Point) -> NDArray[np.float64]:
-    """(n_species, 2): each species' pilot standard error of force and torque over the pilot's summed
-    ``|F|`` and torque scale."""
+    """Each species' pilot standard errors of force and torque over the pilot's ``|F|`` and torque scale.
+
+    Runs :data:`PILOT_MOLECULES` of each species.
+
+    Parameters
+    ----------
+    point : Point
+        The case, law, flow direction and gas.
+
+    Returns
+    -------
+    (n_species, 2) float64
+        Standard error of the force and of the torque of each species over the row's scales [-].
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragCase, oxygen
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> point = Point(tiny, "diffuse", (0.0, 90.0), oxygen(8.0))
+    >>> pilot_shares(point).shape
+    (1, 2)
+    """
     samplings = {
         k: Sampling(PILOT_MOLECULES, seed_of(_pilot_key(point, k)), BATCHES) for k in point.gas.streams()
     }
@@ -148,14 +216,57 @@ def _pilot_key(point: Point, species: str) -> str:
 
 
 def molecules_for(point: Point) -> dict[str, int]:
-    """Molecules of each species' run at ``point``, from its pilot (module Notes)."""
+    """Count the molecules of each species' run at ``point``, from its pilot (module Notes).
+
+    Parameters
+    ----------
+    point : Point
+        The case, law, flow direction and gas.
+
+    Returns
+    -------
+    dict of str to int
+        Molecules of each species, within :data:`MOLECULE_RANGE`.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragCase, oxygen
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> point = Point(tiny, "diffuse", (0.0, 90.0), oxygen(8.0))
+    >>> molecules = molecules_for(point)
+    >>> list(molecules), MOLECULE_RANGE[0] <= molecules["O"] <= MOLECULE_RANGE[1]
+    (['O'], True)
+    """
     counts = allocate(pilot_shares(point), PILOT_MOLECULES, SIGMA_AIM * SIGMA_SHARE * TOLERANCE)
     return dict(zip(point.gas.streams(), counts, strict=True))
 
 
 def run_point(point: Point) -> DragRow:
-    """Solver against tracer at ``point``, the tracer's molecules from :func:`molecules_for`; the row's
-    ``tracer_seconds`` include the pilot's."""
+    """Compare solver and tracer at ``point``, the tracer's molecules from :func:`molecules_for`.
+
+    Parameters
+    ----------
+    point : Point
+        The case, law, flow direction and gas.
+
+    Returns
+    -------
+    DragRow
+        The row; its ``tracer_seconds`` include the pilot's.
+
+    Examples
+    --------
+    A tiny groove (a couple of seconds: a pilot and a run of some 200 000 molecules):
+
+    >>> from sunwind.validation.concave_drag import DragCase, oxygen
+    >>> from sunwind.validation.concave_meshes import v_groove_mesh
+    >>> tiny = DragCase("tiny groove", lambda: v_groove_mesh(divisions=(1, 2)), ((0.0, 90.0),), size_m=3.0)
+    >>> point = Point(tiny, "diffuse", (0.0, 90.0), oxygen(8.0))
+    >>> row = run_point(point)
+    >>> row.case, row.passed
+    ('tiny groove', True)
+    """
     start = time.perf_counter()
     molecules = molecules_for(point)
     pilot_seconds = time.perf_counter() - start
@@ -164,8 +275,28 @@ def run_point(point: Point) -> DragRow:
 
 
 def run_matrix(quick: bool = False, progress: Callable[[DragRow], None] | None = None) -> list[DragRow]:
-    """:func:`run_point` at every point of :func:`matrix` (``quick``: the subset); ``progress(row)``
-    hears each row."""
+    """Run :func:`run_point` at every point of :func:`matrix`.
+
+    Parameters
+    ----------
+    quick : bool, optional
+        Run the quick subset only.
+    progress : callable, optional
+        ``progress(row)`` hears each row as it is done.
+
+    Returns
+    -------
+    list of DragRow
+        One row per point, in the matrix's order.
+
+    Examples
+    --------
+    The quick subset takes minutes, the whole matrix hours; there is no smaller matrix:
+
+    >>> rows = run_matrix(quick=True)  # doctest: +SKIP
+    >>> all(row.passed for row in rows)  # doctest: +SKIP
+    True
+    """
     rows = []
     for row in map(run_point, matrix(quick)):
         rows.append(row)
@@ -175,7 +306,26 @@ def run_matrix(quick: bool = False, progress: Callable[[DragRow], None] | None =
 
 
 def gas_label(row: DragRow) -> str:
-    """The row's gas and speed ratio: ``"O, S 8"``, or a mixture's name with each species' ``S``."""
+    """The row's gas and speed ratio: ``"O, S 8"``, or a mixture's name with each species' ``S``.
+
+    Parameters
+    ----------
+    row : DragRow
+        A row of the matrix.
+
+    Returns
+    -------
+    str
+        The label.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragRow
+    >>> row = DragRow("groove", "diffuse", 0.0, 90.0, "O, S 8", (("O", 8.0),), 8e-3, 0.004, 0.014, 0.003,
+    ...               0.003, 0.002, 0.003, 214_560, 1.0, 2.0)
+    >>> gas_label(row)
+    'O, S 8'
+    """
     if len(row.speed_ratios) == 1:
         return row.gas
     return f"{row.gas}: " + ", ".join(f"{k} {s:.2f}" for k, s in sorted(row.speed_ratios, key=lambda p: p[1]))
@@ -205,9 +355,34 @@ def _percent(value: float) -> str:
 
 
 def markdown_table(rows: Sequence[DragRow]) -> str:
-    """One Markdown line per case, law and gas: its flows, the worst force and torque differences
-    over them (with and without exchange), the worst tracer standard error, the molecules and the
-    verdict; then the rows passed and the times."""
+    """Write the rows as a Markdown table, one line per case, law and gas.
+
+    Each line gives its flows, the worst force and torque differences over them (with and without
+    exchange), the worst tracer standard error, the molecules and the verdict; then the rows passed
+    and the times.
+
+    Parameters
+    ----------
+    rows : sequence of DragRow
+        The rows of the matrix.
+
+    Returns
+    -------
+    str
+        The table and its :func:`summary`.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragRow
+    >>> row = DragRow("groove", "diffuse", 0.0, 90.0, "O, S 8", (("O", 8.0),), 8e-3, 0.004, 0.014, 0.003,
+    ...               0.003, 0.002, 0.003, 214_560, 1.0, 2.0)
+    >>> print(markdown_table([row]))  # doctest: +ELLIPSIS
+    | case | law | gas, speed ratio | flows | force | ...
+    |---|...
+    | groove | diffuse | O, S 8 | 1 | 0.40 % | 1.40 % | 0.30 % | 0.20 % | 0.30 % | 0.21-0.21 M | pass |
+    <BLANKLINE>
+    1 of 1 rows passed ...
+    """
     lines = [
         "| case | law | gas, speed ratio | flows | force | force, no exchange | torque | torque, no exchange "
         "| tracer σ | molecules | |",
@@ -229,7 +404,26 @@ def markdown_table(rows: Sequence[DragRow]) -> str:
 
 
 def summary(rows: Sequence[DragRow]) -> str:
-    """Rows passed and failed, the tolerance, and the tracer's and solver's seconds in all."""
+    """Count the rows passed and failed; give the tolerance, and the tracer's and solver's seconds in all.
+
+    Parameters
+    ----------
+    rows : sequence of DragRow
+        The rows of the matrix.
+
+    Returns
+    -------
+    str
+        One line.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragRow
+    >>> row = DragRow("groove", "diffuse", 0.0, 90.0, "O, S 8", (("O", 8.0),), 8e-3, 0.004, 0.014, 0.003,
+    ...               0.003, 0.002, 0.003, 214_560, 1.0, 2.0)
+    >>> summary([row])
+    '1 of 1 rows passed (force and torque within 2.00 %, tracer σ within 0.50 %); tracer 1 s, solver 2 s'
+    """
     failed = sum(not r.passed for r in rows)
     tracer, solver = sum(r.tracer_seconds for r in rows), sum(r.solver_seconds for r in rows)
     return (
@@ -239,8 +433,25 @@ def summary(rows: Sequence[DragRow]) -> str:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the matrix (``--quick``: the subset), print its table and the wall-clock time; progress on
-    stderr. 0 when every row passed, else 1."""
+    """Run the matrix, print its table and the wall-clock time; progress on stderr.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Command-line arguments (``--quick``: the subset); default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        0 when every row passed, else 1.
+
+    Examples
+    --------
+    The quick subset takes minutes:
+
+    >>> main(["--quick"])  # doctest: +SKIP
+    0
+    """
     parser = argparse.ArgumentParser(prog="python -m sunwind.validation.drag_matrix", description=__doc__)
     parser.add_argument(
         "--quick", action="store_true", help="each case once, at one flow, with a law of its own, S 1.5 or 8"

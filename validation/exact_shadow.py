@@ -23,15 +23,61 @@ _SLIVER = 1e-12
 
 @dataclass(frozen=True)
 class LitSide:
-    """The exactly lit part of one side: area [m^2] and centroid (3,) [m] (the side's centroid if dark)."""
+    """The exactly lit part of one side: its area and centroid.
+
+    Attributes
+    ----------
+    area_m2 : float
+        Lit area [m^2].
+    centroid_m : (3,) float64
+        Centroid of the lit part [m]; the side's own centroid when it is dark.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> floor = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+    >>> roof = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]]
+    >>> up = np.array([0.0, 0.0, 1.0])
+    >>> lit = lit_side(np.array([floor]), 0, up, up)
+    >>> lit.area_m2, lit.centroid_m.round(6).tolist()
+    (0.5, [0.333333, 0.333333, 0.0])
+    """
 
     area_m2: float
     centroid_m: NDArray[np.float64]
 
 
 def lit_side(triangles: NDArray[np.float64], index: int, normal: NDArray, sun: NDArray) -> LitSide:
-    """The lit part of the side of facet ``index`` of ``triangles`` (n, 3, 3) with outward ``normal``
-    under the Sun direction ``sun`` (unit, toward the Sun); every other facet may shade it."""
+    """Clip the lit part of the side of facet ``index``; every other facet may shade it.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of every facet of the model [m].
+    index : int
+        The facet whose side is wanted.
+    normal : (3,) float64
+        Outward unit normal of that side.
+    sun : (3,) float64
+        Unit Sun direction (toward the Sun), body frame.
+
+    Returns
+    -------
+    LitSide
+        Lit area [m^2] and centroid [m]; zero area when the side faces away from the Sun.
+
+    Examples
+    --------
+    A triangle under a copy of itself 1 m above, Sun overhead: the lower one is dark, the upper one lit.
+
+    >>> import numpy as np
+    >>> floor = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+    >>> roof = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]]
+    >>> up = np.array([0.0, 0.0, 1.0])
+    >>> pair = np.array([floor, roof])
+    >>> lit_side(pair, 0, up, up).area_m2, lit_side(pair, 1, up, up).area_m2
+    (0.0, 0.5)
+    """
     corners = triangles[index]
     origin = corners.mean(axis=0)
     facing = float(normal @ sun)
@@ -62,16 +108,65 @@ def lit_side(triangles: NDArray[np.float64], index: int, normal: NDArray, sun: N
 
 
 def exact_sides(craft, sun: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Exact lit area [m^2] (n_sides,) and lit centroid [m] (n_sides, 3) of every side of a
-    :class:`~sunwind.geometry.spacecraft.Spacecraft` under the unit Sun direction ``sun``."""
+    """Exact lit area and lit centroid of every side of a model under the Sun direction ``sun``.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model (:class:`~sunwind.geometry.spacecraft.Spacecraft`), tens to hundreds of facets.
+    sun : (3,) float64
+        Unit Sun direction (toward the Sun), body frame.
+
+    Returns
+    -------
+    area : (n_sides,) float64
+        Lit area of each side [m^2].
+    centroid : (n_sides, 3) float64
+        Lit centroid of each side [m] (the side's centroid where it is dark).
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> black = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> area, centroid = exact_sides(black, np.array([0.0, 0.0, 1.0]))
+    >>> round(float(area.sum()), 12), int((area > 0).sum())  # the top face's two triangles
+    (1.0, 2)
+    """
     triangles = craft.vertices[craft.faces]
     lit = [lit_side(triangles, f, n, sun) for f, n in zip(craft.side_facet, craft.side_normals, strict=True)]
     return np.array([s.area_m2 for s in lit]), np.array([s.centroid_m for s in lit])
 
 
 def exact_absorber_srp(craft, sun: NDArray[np.float64]) -> tuple[NDArray, NDArray, float]:
-    """Direct SRP of a wholly absorbing model under a radiation pressure of 1 Pa from its exact lit
-    polygons: force [N], torque about the origin [N m] and lit area [m^2]."""
+    """Direct SRP of a wholly absorbing model at a radiation pressure of 1 Pa, from its exact lit polygons.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model (:class:`~sunwind.geometry.spacecraft.Spacecraft`); its optics are ignored (every
+        side absorbs).
+    sun : (3,) float64
+        Unit Sun direction (toward the Sun), body frame.
+
+    Returns
+    -------
+    force : (3,) float64
+        Force [N] at 1 Pa, ``-P A_lit,projected u``.
+    torque : (3,) float64
+        Torque about the origin [N m].
+    area : float
+        Lit area [m^2].
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> black = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> force, torque, area = exact_absorber_srp(black, np.array([0.0, 0.0, 1.0]))
+    >>> (force.round(12) + 0.0).tolist(), round(area, 12)
+    ([0.0, 0.0, -1.0], 1.0)
+    """
     area, centre = exact_sides(craft, sun)
     force = -(area * np.clip(craft.side_normals @ sun, 0, None))[:, None] * sun
     return force.sum(axis=0), np.cross(centre, force).sum(axis=0), float(area.sum())

@@ -39,7 +39,25 @@ ALUMINIUM = Material("aluminium", 0.85, 0.9, gas=GasSurface("sentman", wall_temp
 
 @dataclass(frozen=True)
 class Figure1:
-    """Force magnitudes [N] against altitude [km] and the crossover altitude per activity level."""
+    """Force magnitudes [N] against altitude [km] and the crossover altitude per activity level.
+
+    Attributes
+    ----------
+    altitudes_km : (n,) float64
+        Altitudes [km].
+    srp_N : float
+        ``|F|`` of solar radiation pressure at 1 au [N], the same at every altitude.
+    drag_N : dict of str to (n,) float64
+        ``|F|`` of drag at each altitude [N], by activity level (:data:`ACTIVITY`).
+    crossover_km : dict of str to float
+        Altitude where drag falls to the SRP force [km], by activity level; NaN if it does not.
+
+    Examples
+    --------
+    >>> result = figure1(np.array([500.0, 900.0]), subdivisions=4)
+    >>> list(result.drag_N), result.drag_N["low"].shape
+    (['low', 'moderate', 'high'], (2,))
+    """
 
     altitudes_km: NDArray[np.float64]
     srp_N: float
@@ -48,12 +66,48 @@ class Figure1:
 
 
 def aluminium_sphere(subdivisions: int = 48) -> Spacecraft:
-    """The 1 m radius sphere, aluminium all over."""
+    """The 1 m radius sphere, aluminium all over.
+
+    Parameters
+    ----------
+    subdivisions : int, optional
+        Resolution of :func:`sunwind.meshes.primitives.sphere`.
+
+    Returns
+    -------
+    Spacecraft
+        The sphere with the sample's aluminium optics.
+
+    Examples
+    --------
+    >>> aluminium_sphere(4)
+    <Spacecraft '<sphere>': 40 facets, 40 sides, 1 parts, 1 materials>
+    """
     return build_spacecraft(sphere(1.0, subdivisions), uniform=ALUMINIUM)
 
 
 def crossover(altitudes_km: NDArray, drag_N: NDArray, srp_N: float) -> float:
-    """Altitude [km] where drag falls to the SRP force, interpolating ``log(drag)`` linearly; NaN if none."""
+    """Altitude [km] where drag falls to the SRP force, interpolating ``log(drag)`` linearly; NaN if none.
+
+    Parameters
+    ----------
+    altitudes_km : (n,) float64
+        Altitudes [km], increasing.
+    drag_N : (n,) float64
+        Drag magnitude at each [N], > 0.
+    srp_N : float
+        SRP magnitude [N].
+
+    Returns
+    -------
+    float
+        The first crossing [km], or NaN when drag stays above or below ``srp_N``.
+
+    Examples
+    --------
+    >>> round(crossover(np.array([400.0, 500.0, 600.0]), np.array([1e-4, 1e-5, 1e-6]), 10**-5.5), 6)
+    550.0
+    """
     excess = np.log(drag_N / srp_N)
     below = np.flatnonzero((excess[:-1] > 0) & (excess[1:] <= 0))
     if len(below) == 0:
@@ -64,7 +118,29 @@ def crossover(altitudes_km: NDArray, drag_N: NDArray, srp_N: float) -> float:
 
 
 def figure1(altitudes_km: NDArray = ALTITUDES_KM, subdivisions: int = 48) -> Figure1:
-    """Drag and SRP magnitudes over ``altitudes_km`` for every :data:`ACTIVITY` level."""
+    """Drag and SRP magnitudes over ``altitudes_km`` for every :data:`ACTIVITY` level.
+
+    The sphere flies at circular-orbit speed through NRLMSIS (default place and time, the level's
+    F10.7 as daily and 81-day values); SRP at 1 au; neither reflects between facets.
+
+    Parameters
+    ----------
+    altitudes_km : (n,) float64, optional
+        Altitudes [km]; default :data:`ALTITUDES_KM`.
+    subdivisions : int, optional
+        Resolution of the sphere (:func:`aluminium_sphere`).
+
+    Returns
+    -------
+    Figure1
+        The forces and the crossover altitudes.
+
+    Examples
+    --------
+    >>> result = figure1(np.array([500.0, 900.0]), subdivisions=4)
+    >>> {level: round(km) for level, km in result.crossover_km.items() if km == km}
+    {'moderate': 636, 'high': 737}
+    """
     craft = aluminium_sphere(subdivisions)
     direction = np.array([1.0, 0.0, 0.0])
     light = srp(craft, direction, distance_au=1.0, reflections="none")
@@ -84,7 +160,24 @@ def figure1(altitudes_km: NDArray = ALTITUDES_KM, subdivisions: int = 48) -> Fig
 
 
 def plot(result: Figure1, path: str) -> None:
-    """Write the figure as PNG: both forces on a log scale against altitude."""
+    """Write the figure as PNG: both forces on a log scale against altitude.
+
+    Parameters
+    ----------
+    result : Figure1
+        The forces to draw.
+    path : str
+        File to write.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> result = figure1(np.array([500.0, 900.0]), subdivisions=4)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     plot(result, os.path.join(folder, "figure1.png"))
+    ...     os.listdir(folder)
+    ['figure1.png']
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -109,6 +202,20 @@ def plot(result: Figure1, path: str) -> None:
 
 
 def main(argv: list[str] | None = None) -> None:
+    """Compute the figure, print its table and crossovers, and write it as PNG.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (``-o``/``--output``: the PNG file); default ``sys.argv[1:]``.
+
+    Examples
+    --------
+    The whole altitude grid at full resolution takes a minute:
+
+    >>> main(["--output", "figure1.png"])  # doctest: +SKIP
+    SRP on the sphere at 1 au: ...
+    """
     parser = argparse.ArgumentParser(
         prog="python -m sunwind.validation.figure1", description=__doc__.split("\n")[0]
     )

@@ -19,6 +19,7 @@ from sunwind.forces.drag import drag
 from sunwind.forces.gas.atmosphere import SPECIES_MASS_KG, Atmosphere
 from sunwind.geometry.materials import Material, parse_materials
 from sunwind.geometry.mesh_data import MeshData
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import Spacecraft, build_spacecraft
 from sunwind.meshes import primitives
 from sunwind.validation import drag_matrix
@@ -119,8 +120,29 @@ def _gas_body(name: str, surface: GasLaw):
 
 
 def drag_closed_form_checks(quick: bool) -> Iterator[Check]:
-    """The solver on meshed primitives against the closed forms of :mod:`sunwind.validation.analytic_drag`:
-    every body, law, speed ratio and flow angle (quick: :data:`QUICK_BODIES`)."""
+    """Check the solver on meshed primitives against the closed forms of drag.
+
+    The closed forms are those of :mod:`sunwind.validation.analytic_drag`: every body, law, speed
+    ratio and flow angle (quick: :data:`QUICK_BODIES`).
+
+    Parameters
+    ----------
+    quick : bool
+        Run the quick subset.
+
+    Yields
+    ------
+    Check
+        One check per case and condition, computed when asked for.
+
+    Examples
+    --------
+    The checks are computed one at a time, so the first alone is quick:
+
+    >>> check = next(drag_closed_form_checks(quick=True))
+    >>> check.case, check.passed
+    ('plate one-sided/sentman', True)
+    """
     air = Atmosphere({SPECIES: NUMBER_DENSITY_M3}, TEMPERATURE_K, "validation: atomic oxygen")
     directions = np.array([flow_vector_from_alpha(a) for a in ALPHAS_DEG])
     for name in QUICK_BODIES if quick else DRAG_BODIES:
@@ -133,7 +155,7 @@ def drag_closed_form_checks(quick: bool) -> Iterator[Check]:
                     ratio * _C_M * directions,
                     air,
                     reference_point_m=np.zeros(3),
-                    samples=1,
+                    sampling=ShadowSampling(samples=1),
                     reflections="none",
                 )
                 worst, at = 0.0, "all below scale"
@@ -158,15 +180,58 @@ def drag_closed_form_checks(quick: bool) -> Iterator[Check]:
 
 
 def concave_drag_checks(quick: bool) -> Iterator[Check]:
-    """The matrix of :mod:`sunwind.validation.drag_matrix`, one check per row: the solver with re-emission
-    exchange against the TPMC tracer on concave shapes (quick: its subset, the same molecule rule)."""
+    """Check the matrix of :mod:`sunwind.validation.drag_matrix`, one check per row.
+
+    Each row compares the solver with re-emission exchange against the TPMC tracer on a concave shape
+    (quick: the matrix's subset, with the same molecule rule).
+
+    Parameters
+    ----------
+    quick : bool
+        Run the quick subset.
+
+    Yields
+    ------
+    Check
+        One check per case and condition, computed when asked for.
+
+    Examples
+    --------
+    The first row of the quick subset (a few seconds):
+
+    >>> check = next(concave_drag_checks(quick=True))
+    >>> check.case, check.passed
+    ('v-groove/diffuse', True)
+    """
     for point in drag_matrix.matrix(quick):
         yield concave_drag_check(drag_matrix.run_point(point))
 
 
 def concave_drag_check(row: DragRow) -> Check:
-    """One solver-against-tracer drag comparison as a check: force and torque (with re-emission
-    exchange) within the tolerance, the tracer's standard errors within ``SIGMA_SHARE`` of it."""
+    """Turn one solver-against-tracer drag comparison into a check.
+
+    Force and torque (with re-emission exchange) must lie within the tolerance, the tracer's standard
+    errors within ``SIGMA_SHARE`` of it.
+
+    Parameters
+    ----------
+    row : DragRow
+        The comparison.
+
+    Returns
+    -------
+    Check
+        Four measures: force, torque and the tracer's two standard errors.
+
+    Examples
+    --------
+    >>> from sunwind.validation.concave_drag import DragRow
+    >>> row = DragRow("groove", "diffuse", 0.0, 90.0, "O, S 8", (("O", 8.0),), 8e-3, 0.004, 0.014, 0.003,
+    ...               0.003, 0.002, 0.003, 214_560, 1.0, 2.0)
+    >>> check = concave_drag_check(row)
+    >>> check.case, check.passed, [m.name for m in check.measures][:2]
+    ('groove/diffuse', True, ['force', 'torque'])
+    """
     single = len(row.speed_ratios) == 1
     where = f"az {row.azimuth_deg:g} el {row.elevation_deg:g}, {row.molecules} molecules"
     return Check(
@@ -204,8 +269,27 @@ def _surface(diffuse: bool) -> GasLaw:
 
 
 def tpmc_checks(quick: bool) -> Iterator[Check]:
-    """The TPMC tracer against closed forms: the two-sided plate at four angles of attack, the edge-on
-    plate's ``C_D = 2 / (S sqrt(pi))`` and the sphere (quick: plates, a quarter of the molecules)."""
+    """Check the TPMC tracer against closed forms.
+
+    The two-sided plate at four angles of attack, the edge-on plate's ``C_D = 2 / (S sqrt(pi))`` and
+    the sphere (quick: the plates, with a quarter of the molecules).
+
+    Parameters
+    ----------
+    quick : bool
+        Run the quick subset.
+
+    Yields
+    ------
+    Check
+        One check per case and condition, computed when asked for.
+
+    Examples
+    --------
+    >>> check = next(tpmc_checks(quick=True))
+    >>> check.case, check.passed
+    ('plate/diffuse', True)
+    """
     plate_molecules = PLATE_MOLECULES // 4 if quick else PLATE_MOLECULES
     yield from tpmc_plate_checks(plate_molecules)
     yield from tpmc_edge_on_checks(plate_molecules)
@@ -225,7 +309,24 @@ def _tpmc_plate() -> Spacecraft:
 
 
 def tpmc_plate_checks(molecules: int) -> Iterator[Check]:
-    """Two-sided plate, diffuse and specular, S = 2 and 8, angles of attack 0, 20, 50, 90 deg."""
+    """Check the tracer on the two-sided plate: diffuse and specular, S = 2 and 8, attack 0, 20, 50, 90 deg.
+
+    Parameters
+    ----------
+    molecules : int
+        Molecules per run.
+
+    Yields
+    ------
+    Check
+        One check per case and condition, computed when asked for.
+
+    Examples
+    --------
+    >>> check = next(tpmc_plate_checks(4000))
+    >>> check.case, check.at
+    ('plate/diffuse', 'S 2, attack 0, 4000 molecules')
+    """
     plate = _tpmc_plate()
     for ratio in (2.0, 8.0):
         stream, q = _stream(ratio)
@@ -255,8 +356,28 @@ def tpmc_plate_checks(molecules: int) -> Iterator[Check]:
 
 
 def tpmc_edge_on_checks(molecules: int) -> Iterator[Check]:
-    """Diffuse plate along the flow, walls at 300 and 1500 K, S = 1, 2, 8: ``C_D = 2 / (S sqrt(pi))``
-    on the one-side area, and no lift."""
+    """Check the tracer on a diffuse plate along the flow: ``C_D = 2 / (S sqrt(pi))``, and no lift.
+
+    Walls at 300 and 1500 K, S = 1, 2, 8; ``C_D`` on the area of one side.
+
+    Parameters
+    ----------
+    molecules : int
+        Molecules per run.
+
+    Yields
+    ------
+    Check
+        One check per case and condition, computed when asked for.
+
+    Examples
+    --------
+    Too few molecules to pass, but quick:
+
+    >>> check = next(tpmc_edge_on_checks(4000))
+    >>> check.case, check.at
+    ('edge-on plate/wall 300 K', 'S 1, 4000 molecules')
+    """
     plate = _tpmc_plate()
     for ratio in (1.0, 2.0, 8.0):
         stream, q = _stream(ratio)
@@ -280,7 +401,28 @@ def tpmc_edge_on_checks(molecules: int) -> Iterator[Check]:
 
 
 def tpmc_sphere_checks(molecules: int) -> Iterator[Check]:
-    """Unit sphere (41 716 facets), diffuse and specular, S = 2 and 8, flow off every axis."""
+    """Check the tracer on the unit sphere (41 716 facets): diffuse and specular, S = 2 and 8.
+
+    The flow is off every axis.
+
+    Parameters
+    ----------
+    molecules : int
+        Molecules per run.
+
+    Yields
+    ------
+    Check
+        One check per case and condition, computed when asked for.
+
+    Examples
+    --------
+    Too few molecules to pass, but quick:
+
+    >>> check = next(tpmc_sphere_checks(4000))
+    >>> check.case, check.at
+    ('sphere/diffuse', 'S 2, 4000 molecules')
+    """
     sphere = build_spacecraft(primitives.sphere(1.0, 128), uniform=_NEUTRAL)
     u = np.array([0.3, -0.5, 0.8]) / math.sqrt(0.98)
     for ratio in (2.0, 8.0):

@@ -106,6 +106,16 @@ class TracerResult:
         Solar flux [W/m^2].
     reference_point_m : (3,) float64
         Torque reference point [m].
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> from sunwind.validation.sampling import Sampling
+    >>> black = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> result = trace_photons(black, [0.0, 0.0, 1.0], Sampling(2000, batches=4))
+    >>> result.photons, result.escaped_W, round(result.absorbed_W, 6)
+    (2000, 0.0, 1361.0)
     """
 
     force_N: NDArray[np.float64]
@@ -349,6 +359,18 @@ def trace_photons(
     Returns
     -------
     TracerResult
+
+    Examples
+    --------
+    A black unit cube, Sun overhead: every bundle is absorbed, ``F = -P A u`` with ``P = flux / c`` [uN]:
+
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> from sunwind.validation.sampling import Sampling
+    >>> black = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> result = trace_photons(black, [0.0, 0.0, 1.0], Sampling(2000, batches=4))
+    >>> ((result.force_N * 1e6).round(4) + 0.0).tolist()
+    [0.0, 0.0, -4.5398]
     """
     photons, batches, max_bounces = sampling.particles, sampling.batches, sampling.max_bounces
     if batches < 2 or photons < batches or max_bounces < 1:

@@ -68,16 +68,57 @@ def _unit(v: ArrayLike) -> Array:
 
 
 def theta_0_of(radius_m: ArrayLike, altitude_m: ArrayLike) -> Array | float:
-    """Angular radius of the planet seen from the spacecraft [rad]: ``arcsin(R / (R + H))``."""
+    """Angular radius of the planet seen from the spacecraft [rad]: ``arcsin(R / (R + H))``.
+
+    Parameters
+    ----------
+    radius_m : float or array_like
+        Planet radius ``R`` [m].
+    altitude_m : float or array_like
+        Altitude ``H`` [m].
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> round(float(np.degrees(theta_0_of(6_371e3, 400e3))), 2)
+    70.21
+    """
     r = np.asarray(radius_m, dtype=float)
     return _scalar(np.arcsin(r / (r + np.asarray(altitude_m, dtype=float))))
 
 
 # ----------------------------------------------------------------------------------- closed forms
 def phi_1(theta_0: ArrayLike, psi_n: ArrayLike) -> Array | float:
-    """View factor ``phi_1`` [-] from a plate to a sphere (eqs. 1.21, 1.25), exact in every range: a uniform
-    emitter of exitance ``M`` [W/m^2] gives the plate ``M phi_1``. ``theta_0`` [rad] in (0, pi/2), ``psi_n``
-    [rad] (normal to nadir) in [0, pi]; arrays broadcast."""
+    """View factor ``phi_1`` [-] from a plate to a sphere (eqs. 1.21, 1.25), exact in every range.
+
+    A uniform emitter of exitance ``M`` [W/m^2] gives the plate ``M phi_1``.
+
+    Parameters
+    ----------
+    theta_0 : float or array_like
+        Angular radius of the planet [rad], in (0, pi/2).
+    psi_n : float or array_like
+        Angle between the plate's normal and nadir [rad], in [0, pi].
+        Arrays broadcast.
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    Facing nadir the plate sees the whole disc, ``phi_1 = sin^2(theta_0)``; facing away, nothing:
+
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> theta_0 = earth.theta_0
+    >>> bool(np.isclose(phi_1(theta_0, 0.0), np.sin(theta_0) ** 2)), phi_1(theta_0, np.pi)
+    (True, 0.0)
+    """
     t, p = np.broadcast_arrays(np.asarray(theta_0, dtype=float), np.asarray(psi_n, dtype=float))
     st, ct, cp, sp = np.sin(t), np.cos(t), np.cos(p), np.sin(p)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -90,28 +131,107 @@ def phi_1(theta_0: ArrayLike, psi_n: ArrayLike) -> Array | float:
 
 
 def f_2(theta_0: ArrayLike) -> Array | float:
-    """``f_2(theta_0)`` [-]: albedo factor of a nadir plate with the Sun at the sub-spacecraft zenith."""
+    """``f_2(theta_0)`` [-]: albedo factor of a nadir plate with the Sun at the sub-spacecraft zenith.
+
+    Parameters
+    ----------
+    theta_0 : float or array_like
+        Angular radius of the planet [rad], in (0, pi/2).
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> theta_0 = earth.theta_0
+    >>> round(f_2(theta_0), 6)
+    0.881754
+    """
     s = np.sin(np.asarray(theta_0, dtype=float))
     c4 = (1.0 - s**2) ** 2
     return _scalar(0.25 * (1.0 + s**2 + 2.0 * s**3 - c4 / s * np.arctanh(s)))
 
 
 def f_3(theta_0: ArrayLike) -> Array | float:
-    """``f_3(theta_0)`` [-]: the albedo factor's term in ``sin(psi_n) sin(gamma_s) cos(delta_s)``."""
+    """``f_3(theta_0)`` [-]: the albedo factor's term in ``sin(psi_n) sin(gamma_s) cos(delta_s)``.
+
+    Parameters
+    ----------
+    theta_0 : float or array_like
+        Angular radius of the planet [rad], in (0, pi/2).
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> theta_0 = earth.theta_0
+    >>> round(f_3(theta_0), 6)
+    0.047264
+    """
     s = np.sin(np.asarray(theta_0, dtype=float))
     first = (1.0 - s**2) * (3.0 + s**2) / (8.0 * s) * np.arctanh(s)
     return _scalar(first - (1.0 - s) * (3.0 + 3.0 * s + 2.0 * s**2) / 8.0)
 
 
 def f_2_star(theta_0: ArrayLike, psi_n: ArrayLike) -> Array | float:
-    """``f_2* = f_2(theta_0) phi_1 / sin^2(theta_0)`` [-] (``f_2 cos(psi_n)`` in full view)."""
+    """``f_2* = f_2(theta_0) phi_1 / sin^2(theta_0)`` [-] (``f_2 cos(psi_n)`` in full view).
+
+    Parameters
+    ----------
+    theta_0 : float or array_like
+        Angular radius of the planet [rad], in (0, pi/2).
+    psi_n : float or array_like
+        Angle between the plate's normal and nadir [rad], in [0, pi].
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> theta_0 = earth.theta_0
+    >>> bool(np.isclose(f_2_star(theta_0, 0.0), f_2(theta_0)))
+    True
+    """
     t = np.asarray(theta_0, dtype=float)
     return _scalar(f_2(t) * np.asarray(phi_1(t, psi_n)) / np.sin(t) ** 2)
 
 
 def f_3_star(theta_0: ArrayLike, psi_n: ArrayLike) -> Array | float:
-    """``f_3*`` [-]: ``f_3`` in full view, ``f_3 (theta_0 + pi/2 - psi_n) / (2 theta_0)`` in partial view,
-    0 beyond."""
+    """``f_3*`` [-]: the albedo factor's ``f_3`` term reduced to the part of the disc in view.
+
+    ``f_3`` in full view, ``f_3 (theta_0 + pi/2 - psi_n) / (2 theta_0)`` in partial view, 0 beyond.
+
+    Parameters
+    ----------
+    theta_0 : float or array_like
+        Angular radius of the planet [rad], in (0, pi/2).
+    psi_n : float or array_like
+        Angle between the plate's normal and nadir [rad], in [0, pi].
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    Edge-on to nadir the plate sees half the disc, and half of ``f_3``:
+
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> theta_0 = earth.theta_0
+    >>> bool(np.isclose(f_3_star(theta_0, np.pi / 2), f_3(theta_0) / 2)), f_3_star(theta_0, np.pi)
+    (True, 0.0)
+    """
     t, p = np.broadcast_arrays(np.asarray(theta_0, dtype=float), np.asarray(psi_n, dtype=float))
     return _scalar(f_3(t) * np.clip((t + np.pi / 2 - p) / (2.0 * t), 0.0, 1.0))
 
@@ -119,9 +239,31 @@ def f_3_star(theta_0: ArrayLike, psi_n: ArrayLike) -> Array | float:
 def phi_2(theta_0: ArrayLike, psi_n: ArrayLike, gamma_s: ArrayLike, delta_s: ArrayLike) -> Array | float:
     """Albedo factor ``phi_2`` [-] (eqs. 1.14-1.20), clamped at 0: the plate's irradiance is ``A S phi_2``.
 
-    ``theta_0``, ``psi_n`` as :func:`phi_1`; ``gamma_s`` the angle between ``-nadir`` and ``sun`` [rad];
-    ``delta_s`` the angle between the planes (nadir, normal) and (nadir, Sun) [rad], 0 when the plate
-    leans toward the sunlit side. Exact only where :func:`albedo_closed_is_exact`.
+    Exact only where :func:`albedo_closed_is_exact`.
+
+    Parameters
+    ----------
+    theta_0 : float or array_like
+        Angular radius of the planet [rad], in (0, pi/2).
+    psi_n : float or array_like
+        Angle between the plate's normal and nadir [rad], in [0, pi].
+    gamma_s : float or array_like
+        Angle between ``-nadir`` and ``sun`` [rad].
+    delta_s : float or array_like
+        Angle between the planes (nadir, normal) and (nadir, Sun) [rad], 0 when the plate leans toward
+        the sunlit side.
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> theta_0 = earth.theta_0
+    >>> bool(np.isclose(phi_2(theta_0, 0.0, 0.0, 0.0), f_2(theta_0)))  # nadir plate, Sun at the zenith
+    True
     """
     p, g, d = (np.asarray(x, dtype=float) for x in (psi_n, gamma_s, delta_s))
     value = f_2_star(theta_0, p) * np.cos(g) + f_3_star(theta_0, p) * np.sin(p) * np.sin(g) * np.cos(d)
@@ -142,20 +284,94 @@ def _angles(nadir: ArrayLike, sun: ArrayLike, n: ArrayLike) -> tuple[Array, Arra
 
 
 def albedo_factor_closed(nadir: ArrayLike, sun: ArrayLike, n: ArrayLike, theta_0: float) -> Array | float:
-    """The dissertation's albedo factor ``phi_2`` [-] of a plate from its vectors (irradiance ``A S phi_2``
-    [W/m^2]); vectors are (3,) or (..., 3), normalised here."""
+    """The dissertation's albedo factor ``phi_2`` [-] of a plate from its vectors.
+
+    The plate's albedo irradiance is ``A S phi_2`` [W/m^2]; vectors are normalised here.
+
+    Parameters
+    ----------
+    nadir : (3,) or (..., 3) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) or (..., 3) array_like
+        Direction toward the Sun.
+    n : (3,) or (..., 3) array_like
+        The plate's outward normal.
+    theta_0 : float
+        Angular radius of the planet [rad].
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> round(albedo_factor_closed(down, zenith_sun, nadir_plate, earth.theta_0), 6)
+    0.881754
+    """
     return phi_2(theta_0, *_angles(nadir, sun, n))
 
 
 def infrared_factor_closed(nadir: ArrayLike, n: ArrayLike, theta_0: float) -> Array | float:
-    """The view factor ``phi_1`` [-] of a plate from its vectors (infrared irradiance ``M phi_1`` [W/m^2])."""
+    """The view factor ``phi_1`` [-] of a plate from its vectors (infrared irradiance ``M phi_1`` [W/m^2]).
+
+    Parameters
+    ----------
+    nadir : (3,) or (..., 3) array_like
+        Direction from the spacecraft to the planet's centre.
+    n : (3,) or (..., 3) array_like
+        The plate's outward normal.
+    theta_0 : float
+        Angular radius of the planet [rad].
+
+    Returns
+    -------
+    float or ndarray
+        A float for scalar arguments, else an array of their broadcast shape.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> round(infrared_factor_closed(down, nadir_plate, earth.theta_0), 6)
+    0.885339
+    """
     cos_psi = np.sum(_unit(n) * _unit(nadir), axis=-1)
     return phi_1(theta_0, np.arccos(np.clip(cos_psi, -1.0, 1.0)))
 
 
 def albedo_closed_is_exact(nadir: ArrayLike, sun: ArrayLike, n: ArrayLike, theta_0: float) -> Array | bool:
-    """Whether ``phi_2`` is exact: every visible point sunlit (``gamma_s <= theta_0``) and the whole disc
-    in view (``psi_n <= pi/2 - theta_0``)."""
+    """Whether ``phi_2`` is exact: every visible point sunlit and the whole disc in view.
+
+    That is ``gamma_s <= theta_0`` and ``psi_n <= pi/2 - theta_0``.
+
+    Parameters
+    ----------
+    nadir : (3,) or (..., 3) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) or (..., 3) array_like
+        Direction toward the Sun.
+    n : (3,) or (..., 3) array_like
+        The plate's outward normal.
+    theta_0 : float
+        Angular radius of the planet [rad].
+
+    Returns
+    -------
+    bool or ndarray of bool
+        A bool for single vectors, else an array.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> albedo_closed_is_exact(down, zenith_sun, nadir_plate, earth.theta_0)
+    True
+    >>> albedo_closed_is_exact(down, [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], earth.theta_0)  # Sun at the horizon
+    False
+    """
     psi, gamma, _ = _angles(nadir, sun, n)
     exact = (gamma <= theta_0) & (psi <= np.pi / 2 - theta_0)
     return bool(exact) if np.ndim(exact) == 0 else exact
@@ -207,9 +423,29 @@ class SphericalPlanet:
 
 @dataclass(frozen=True)
 class CapNodes:
-    """Quadrature nodes over the visible cap: directions ``omega`` (m, 3) from the spacecraft to the
-    elements [-], solid angles ``domega`` (m,) [sr], element outward normals ``normal`` (m, 3) [-] and
-    positions ``point_m`` (m, 3) relative to the spacecraft [m]."""
+    """Quadrature nodes over the visible cap.
+
+    Attributes
+    ----------
+    omega : (m, 3) float64
+        Directions from the spacecraft to the elements [-].
+    domega : (m,) float64
+        Solid angles [sr].
+    normal : (m, 3) float64
+        Outward normals of the elements [-].
+    point_m : (m, 3) float64
+        Positions of the elements relative to the spacecraft [m].
+
+    Examples
+    --------
+    The solid angles add up to the cap's, ``2 pi (1 - cos(theta_0))``:
+
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> nodes = cap_nodes(down, zenith_sun, nadir_plate, earth)
+    >>> bool(np.isclose(nodes.domega.sum(), 2 * np.pi * (1 - np.cos(earth.theta_0))))
+    True
+    """
 
     omega: Array
     domega: Array
@@ -278,9 +514,32 @@ def cap_nodes(
 ) -> CapNodes:
     """Quadrature nodes over the part of the planet visible from the spacecraft (module notes).
 
-    ``sun`` (or None) adds the terminator, ``n`` (or None) a plate's horizon ``n . omega = 0``, as kinks
-    to split at; ``order`` Gauss-Legendre nodes per piece of ``lambda`` and per arc of ``phi``. Only the
-    planet's radius and altitude are used.
+    Only the planet's radius and altitude are used.
+
+    Parameters
+    ----------
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like or None
+        Direction toward the Sun: adds the terminator as a kink to split at.
+    n : (3,) array_like or None
+        A plate's outward normal: adds its horizon ``n . omega = 0`` as a kink to split at.
+    planet : SphericalPlanet
+        The planet and the spacecraft's altitude.
+    order : int, optional
+        Gauss-Legendre nodes per piece of ``lambda`` and per arc of ``phi``.
+
+    Returns
+    -------
+    CapNodes
+        Directions, solid angles, normals and positions of the elements.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> cap_nodes(down, None, None, earth, order=8).omega.shape
+    (64, 3)
     """
     nadir = _unit(nadir)
     big_r, r = planet.radius_m, planet.radius_m + planet.altitude_m
@@ -318,9 +577,27 @@ def cap_nodes(
 
 @dataclass(frozen=True)
 class PlateMoments:
-    """The light reaching a plate of outward normal ``normal``, per unit area, as eq. (4) needs it for any
-    optics: irradiance ``E = int L (n . omega)+ dOmega``, ``V = int L (n . omega)+ omega dOmega`` (3,) and
-    ``W = int L (n . omega)+^2 dOmega``, all [W/m^2]."""
+    """The light reaching a plate, per unit area, as eq. (4) needs it for any optics.
+
+    Attributes
+    ----------
+    normal : (3,) float64
+        The plate's outward normal ``n``.
+    irradiance_W_m2 : float
+        ``E = int L (n . omega)+ dOmega`` [W/m^2].
+    vector_W_m2 : (3,) float64
+        ``V = int L (n . omega)+ omega dOmega`` [W/m^2].
+    second_W_m2 : float
+        ``W = int L (n . omega)+^2 dOmega`` [W/m^2].
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> moments = plate_moments(down, zenith_sun, nadir_plate, earth)
+    >>> round(moments.irradiance_W_m2, 3)  # A S phi_2 = 0.3 * 1361 * 0.881754
+    360.02
+    """
 
     normal: Array
     irradiance_W_m2: float
@@ -351,9 +628,33 @@ def plate_moments(
 ) -> PlateMoments:
     """Brute-force :class:`PlateMoments` of the planet's light on an unshadowed plate (module notes).
 
-    ``nadir``, ``sun``, ``n``: (3,) unit vectors to the planet's centre, toward the Sun (ignored for
-    infrared), the plate's outward normal; ``source`` 'albedo' or 'infrared'; ``order`` Gauss-Legendre
-    nodes per piece (32: about 1e-12 relative).
+    Parameters
+    ----------
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like
+        Direction toward the Sun (ignored for infrared).
+    n : (3,) array_like
+        The plate's outward normal.
+    planet : SphericalPlanet
+        The planet and the spacecraft's altitude.
+    source : {"albedo", "infrared"}, optional
+        Which light.
+    order : int, optional
+        Gauss-Legendre nodes per piece (32: about 1e-12 relative).
+
+    Returns
+    -------
+    PlateMoments
+        ``E``, ``V`` and ``W`` of the plate.
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> moments = plate_moments(down, zenith_sun, nadir_plate, earth, source="infrared")
+    >>> bool(np.isclose(moments.irradiance_W_m2, earth.exitance * phi_1(earth.theta_0, 0.0)))
+    True
     """
     n = _unit(n)
     nodes = cap_nodes(nadir, sun if source == "albedo" else None, n, planet, order)
@@ -368,8 +669,35 @@ def plate_irradiance(
     source: str = "albedo",
     order: int = 32,
 ) -> float:
-    """Irradiance ``E = int L (n . omega)+ dOmega`` [W/m^2] of a plate by the planet's albedo or infrared
-    (arguments as :func:`plate_moments`)."""
+    """Irradiance ``E = int L (n . omega)+ dOmega`` [W/m^2] of a plate by the planet's albedo or infrared.
+
+    Parameters
+    ----------
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like
+        Direction toward the Sun (ignored for infrared).
+    n : (3,) array_like
+        The plate's outward normal.
+    planet : SphericalPlanet
+        The planet and the spacecraft's altitude.
+    source : {"albedo", "infrared"}, optional
+        Which light.
+    order : int, optional
+        Gauss-Legendre nodes per piece (32: about 1e-12 relative).
+
+    Returns
+    -------
+    float
+        ``E`` [W/m^2].
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> round(plate_irradiance(down, zenith_sun, nadir_plate, earth, source="infrared"), 4)
+    210.8656
+    """
     return plate_moments(nadir, sun, n, planet, source, order).irradiance_W_m2
 
 
@@ -382,44 +710,191 @@ def plate_force(
     source: str = "albedo",
     order: int = 32,
 ) -> Array:
-    """Force per unit area [N/m^2] (3,) on a plate of ``optics = (rho, beta, sigma)`` by eq. (4) applied
-    to every direction (arguments as :func:`plate_moments`)."""
+    """Force per unit area [N/m^2] on a plate by eq. (4) applied to every direction.
+
+    Parameters
+    ----------
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like
+        Direction toward the Sun (ignored for infrared).
+    n : (3,) array_like
+        The plate's outward normal.
+    planet : SphericalPlanet
+        The planet and the spacecraft's altitude.
+    optics : (float, float, float), optional
+        ``(rho, beta, sigma)``: reflectance, specular share and transmittance [-].
+    source : {"albedo", "infrared"}, optional
+        Which light.
+    order : int, optional
+        Gauss-Legendre nodes per piece (32: about 1e-12 relative).
+
+    Returns
+    -------
+    (3,) float64
+        Force per unit area [N/m^2].
+
+    Examples
+    --------
+    An absorbing plate facing the planet is pushed away from it [nN/m^2]:
+
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> force = plate_force(down, zenith_sun, nadir_plate, earth, source="infrared")
+    >>> (force * 1e9).round(3).tolist()
+    [0.0, 0.0, 509.08]
+    """
     return plate_moments(nadir, sun, n, planet, source, order).force_N_m2(*optics)
 
 
 # --------------------------------------------------------------------------------------- spheres
 def sphere_force_infrared(a: float, R: float, H: float, M: float) -> float:
-    """Magnitude [N] of the infrared force on an absorbing sphere of radius ``a`` [m] at altitude ``H``
-    [m] over a planet of radius ``R`` [m] and exitance ``M`` [W/m^2]: ``pi a^2 M sin^2(theta_0) / c``,
-    directed along ``-nadir`` (away from the planet)."""
+    """Magnitude [N] of the infrared force on an absorbing sphere: ``pi a^2 M sin^2(theta_0) / c``.
+
+    Directed along ``-nadir`` (away from the planet).
+
+    Parameters
+    ----------
+    a : float
+        Sphere radius [m].
+    R : float
+        Planet radius [m].
+    H : float
+        Altitude [m].
+    M : float
+        Infrared exitance [W/m^2].
+
+    Returns
+    -------
+    float
+        ``|F|`` [N].
+
+    Examples
+    --------
+    >>> round(sphere_force_infrared(1.0, 6_371e3, 400e3, 238.2) * 1e6, 4)
+    2.2099
+    """
     return float(np.pi * a**2 * M * (R / (R + H)) ** 2 / SPEED_OF_LIGHT_M_S)
 
 
 def sphere_force_albedo_subsolar(a: float, R: float, H: float, A: float, S: float) -> float:
-    """Magnitude [N] of the albedo force on an absorbing sphere (radius ``a`` [m]) with the Sun at the
-    sub-spacecraft zenith (``sun = -nadir``): ``pi a^2 A S f_2(theta_0) / c``, along ``-nadir``; Bond
-    albedo ``A`` [-], solar flux ``S`` [W/m^2]."""
+    """Magnitude [N] of the albedo force on an absorbing sphere, Sun at the sub-spacecraft zenith.
+
+    ``sun = -nadir``: ``pi a^2 A S f_2(theta_0) / c``, along ``-nadir``.
+
+    Parameters
+    ----------
+    a : float
+        Sphere radius [m].
+    R : float
+        Planet radius [m].
+    H : float
+        Altitude [m].
+    A : float
+        Bond albedo [-].
+    S : float
+        Solar flux [W/m^2].
+
+    Returns
+    -------
+    float
+        ``|F|`` [N].
+
+    Examples
+    --------
+    >>> round(sphere_force_albedo_subsolar(1.0, 6_371e3, 400e3, 0.3, 1361.0) * 1e6, 4)
+    3.7727
+    """
     return float(np.pi * a**2 * A * S * f_2(theta_0_of(R, H)) / SPEED_OF_LIGHT_M_S)
 
 
 def sphere_force_albedo_lit_cap(a: float, nadir: ArrayLike, sun: ArrayLike, planet: SphericalPlanet) -> Array:
-    """Albedo force [N] (3,) on an absorbing sphere of radius ``a`` [m], exact while the whole visible cap
-    is lit (``gamma_s <= theta_0``): ``-(pi a^2 A S / c) [f_2 cos(gamma_s) nadir + f_3 sin(gamma_s)
-    s_perp]``, ``s_perp`` the unit part of ``sun`` across ``nadir``."""
+    """Albedo force [N] on an absorbing sphere, exact while the whole visible cap is lit.
+
+    ``-(pi a^2 A S / c) [f_2 cos(gamma_s) nadir + f_3 sin(gamma_s) s_perp]`` for ``gamma_s <= theta_0``,
+    ``s_perp`` the unit part of ``sun`` across ``nadir``.
+
+    Parameters
+    ----------
+    a : float
+        Sphere radius [m].
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like
+        Direction toward the Sun.
+    planet : SphericalPlanet
+        The planet, its albedo and solar flux, and the spacecraft's altitude.
+
+    Returns
+    -------
+    (3,) float64
+        Force [N].
+
+    Examples
+    --------
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> ((sphere_force_albedo_lit_cap(1.0, down, zenith_sun, earth) * 1e6).round(4) + 0.0).tolist()
+    [0.0, 0.0, 3.7727]
+    """
     d, s = _unit(nadir), _unit(sun)
     flux = f_2(planet.theta_0) * -(s @ d) * d + f_3(planet.theta_0) * (s - (s @ d) * d)
     return -np.pi * a**2 * planet.albedo * planet.solar_flux_W_m2 * flux / SPEED_OF_LIGHT_M_S
 
 
 def sphere_optics_factor(rho: float = 0.0, beta: float = 0.0, sigma: float = 0.0) -> float:
-    """Force on a convex sphere of optics ``(rho, beta, sigma)`` over that on an absorbing one [-], for
-    any beam: ``1 - sigma + (4/9) rho (1 - beta)`` (specular light adds nothing, diffuse 4/9)."""
+    """Force on a convex sphere of optics ``(rho, beta, sigma)`` over that on an absorbing one [-].
+
+    For any beam: ``1 - sigma + (4/9) rho (1 - beta)`` (specular light adds nothing, diffuse 4/9).
+
+    Parameters
+    ----------
+    rho : float, optional
+        Reflectance [-].
+    beta : float, optional
+        Specular share of the reflected light [-].
+    sigma : float, optional
+        Transmittance [-].
+
+    Returns
+    -------
+    float
+        The factor [-].
+
+    Examples
+    --------
+    >>> sphere_optics_factor(1.0, 1.0), round(sphere_optics_factor(1.0, 0.0), 6)
+    (1.0, 1.444444)
+    """
     return 1.0 - sigma + 4.0 / 9.0 * rho * (1.0 - beta)
 
 
 def sphere_optics_factor_quadrature(rho: float, beta: float, sigma: float, order: int = 24) -> float:
-    """:func:`sphere_optics_factor` by Gauss-Legendre quadrature of eq. (4) over the lit hemisphere of a
-    unit sphere under one beam along ``-z`` (Sun at +z), over ``pi`` [-]."""
+    """:func:`sphere_optics_factor` by Gauss-Legendre quadrature of eq. (4) over a sphere under one beam.
+
+    The lit hemisphere of a unit sphere under a beam along ``-z`` (Sun at +z), over ``pi`` [-].
+
+    Parameters
+    ----------
+    rho : float
+        Reflectance [-].
+    beta : float
+        Specular share of the reflected light [-].
+    sigma : float
+        Transmittance [-].
+    order : int, optional
+        Gauss-Legendre nodes per dimension.
+
+    Returns
+    -------
+    float
+        The factor [-].
+
+    Examples
+    --------
+    >>> bool(np.isclose(sphere_optics_factor_quadrature(1.0, 0.0, 0.0), 13 / 9))
+    True
+    """
     t, w = _gauss01(order)
     mu = t  # cos of the incidence angle; azimuth integrates to 2 pi (components off z cancel)
     along_z = -(1 - sigma - rho * beta) * mu - (2 * rho * beta * mu + 2 / 3 * rho * (1 - beta)) * mu * mu
@@ -435,9 +910,42 @@ def sphere_force(
     source: str = "albedo",
     order: int = 32,
 ) -> Array:
-    """Force [N] (3,) on a convex sphere of radius ``a`` [m] by the planet's albedo or infrared:
-    ``-(pi a^2 / c) sphere_optics_factor(*optics) int L omega dOmega``, by the cap quadrature (any Sun;
-    directions as :func:`plate_moments`)."""
+    """Force [N] on a convex sphere by the planet's albedo or infrared, by the cap quadrature (any Sun).
+
+    ``-(pi a^2 / c) sphere_optics_factor(*optics) int L omega dOmega``.
+
+    Parameters
+    ----------
+    a : float
+        Sphere radius [m].
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like
+        Direction toward the Sun (ignored for infrared).
+    planet : SphericalPlanet
+        The planet and the spacecraft's altitude.
+    optics : (float, float, float), optional
+        ``(rho, beta, sigma)`` [-].
+    source : {"albedo", "infrared"}, optional
+        Which light.
+    order : int, optional
+        Gauss-Legendre nodes per piece (32: about 1e-12 relative).
+
+    Returns
+    -------
+    (3,) float64
+        Force [N].
+
+    Examples
+    --------
+    With the whole cap lit it agrees with :func:`sphere_force_albedo_lit_cap`:
+
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> force = sphere_force(1.0, down, zenith_sun, earth)
+    >>> bool(np.allclose(force, sphere_force_albedo_lit_cap(1.0, down, zenith_sun, earth), rtol=1e-9))
+    True
+    """
     nodes = cap_nodes(nadir, sun if source == "albedo" else None, None, planet, order)
     flux = (nodes.radiance(sun, planet, source) * nodes.domega) @ nodes.omega
     return -np.pi * a**2 * sphere_optics_factor(*optics) * flux / SPEED_OF_LIGHT_M_S
@@ -445,9 +953,31 @@ def sphere_force(
 
 # ------------------------------------------------------------------------------------------ rays
 def plate_points(plate: ArrayLike, grid: int) -> tuple[Array, Array]:
-    """Centroids (p, 3) [m] and area shares (p,) [-] of a regular subdivision of a plate: a triangle
-    (3, 3) or a planar convex quad (4, 3) of corners [m], split into ``grid^2`` equal triangles per
-    triangle of its fan."""
+    """Compute the centroids and area shares of a regular subdivision of a plate.
+
+    The plate (a triangle or a planar convex quad) is split into ``grid^2`` equal triangles per
+    triangle of its fan.
+
+    Parameters
+    ----------
+    plate : (3, 3) or (4, 3) array_like
+        Corners [m].
+    grid : int
+        Subdivisions per side of each triangle.
+
+    Returns
+    -------
+    points : (p, 3) float64
+        Centroids [m].
+    shares : (p,) float64
+        Area shares [-], summing to 1.
+
+    Examples
+    --------
+    >>> points, shares = plate_points([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], 2)
+    >>> points.shape, shares.tolist()
+    ((4, 3), [0.25, 0.25, 0.25, 0.25])
+    """
     corners = np.asarray(plate, dtype=float)
     ij = np.stack(np.meshgrid(np.arange(grid), np.arange(grid), indexing="ij"), -1).reshape(-1, 2)
     total = ij.sum(axis=1)
@@ -499,9 +1029,17 @@ def shadowed_plate_irradiance(
     blockers : (k, 3, 3) array_like
         Blocker triangles [m] (k may be 0), both sides block; the planet's centre is at ``(R + H) nadir``.
     plate : (3, 3) or (4, 3) array_like
-        Corners of the receiving triangle or planar convex quad [m]; ``n`` its outward normal.
-    nadir, sun, planet, source
-        As :func:`plate_moments`.
+        Corners of the receiving triangle or planar convex quad [m].
+    n : (3,) array_like
+        The plate's outward normal.
+    nadir : (3,) array_like
+        Direction from the spacecraft to the planet's centre.
+    sun : (3,) array_like
+        Direction toward the Sun (ignored for infrared).
+    planet : SphericalPlanet
+        The planet and the spacecraft's altitude.
+    source : {"albedo", "infrared"}, optional
+        Which light.
     resolution : (int, int)
         Subdivisions per side of each triangle of the plate, and the cap quadrature's order. The default
         reaches about 1e-4 of the unshadowed irradiance.
@@ -512,6 +1050,24 @@ def shadowed_plate_irradiance(
         Means over the plate: ``irradiance_W_m2`` [W/m^2], ``force_N_m2(rho, beta, sigma)`` [N/m^2]. A
         pair (point, element) counts only if the segment between them misses every blocker; the weights
         use the directions from the origin (the parallax, plate size over distance, is below 1e-5).
+
+    Examples
+    --------
+    A unit square facing the planet, unshadowed, then under a large triangle between it and the planet:
+
+    >>> earth = SphericalPlanet(6_371e3, 400e3)
+    >>> down, zenith_sun, nadir_plate = [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]
+    >>> square = [[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [0.5, 0.5, 0.0], [-0.5, 0.5, 0.0]]
+    >>> free = shadowed_plate_irradiance(
+    ...     np.zeros((0, 3, 3)), square, nadir_plate, down, zenith_sun, earth, "infrared", (2, 16)
+    ... )
+    >>> round(free.irradiance_W_m2, 2)
+    210.87
+    >>> roof = [[[-10.0, -10.0, -1.0], [10.0, -10.0, -1.0], [0.0, 10.0, -1.0]]]
+    >>> shadowed_plate_irradiance(
+    ...     roof, square, nadir_plate, down, zenith_sun, earth, "infrared", (2, 16)
+    ... ).irradiance_W_m2
+    0.0
     """
     n = _unit(n)
     nodes = cap_nodes(nadir, sun if source == "albedo" else None, n, planet, resolution[1])

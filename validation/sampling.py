@@ -21,6 +21,11 @@ class Sampling:
         Independent batches the standard errors come from (>= 2).
     max_bounces : int
         Most wall interactions a particle may have (>= 1); the tracer reports what it stopped.
+
+    Examples
+    --------
+    >>> Sampling(10_000, seed=3)
+    Sampling(particles=10000, seed=3, batches=20, max_bounces=100)
     """
 
     particles: int

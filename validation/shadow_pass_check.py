@@ -1,5 +1,5 @@
 """The default shadow pass on any model against the z-buffer reference, and its error estimate against
-the error it made: the check behind README "Validation", "CAD exports".
+the error it made: the check behind the validation page (docs/validation.md) and its CAD exports.
 
 At each Sun direction the default pass (``geometry.rays.shadows``) gives every side's lit share and lit
 centroid; eq. (4) of METHOD.md at ``P = 1 Pa`` on them gives the direct force and torque, compared with
@@ -58,6 +58,14 @@ class PassComparison:
         Rays the pass cast (its check's included).
     seconds : float
         Wall time of the pass.
+
+    Examples
+    --------
+    >>> from sunwind.meshes.primitives import box
+    >>> craft = build_spacecraft(box(), uniform=GREY)
+    >>> [row] = compare_pass(craft, np.array([[0.3, 0.4, 0.866]]), 0.05)
+    >>> row.covered, row.rays > 0
+    (True, True)
     """
 
     sun_vector: NDArray[np.float64]
@@ -82,6 +90,18 @@ class PassComparison:
 def unit_area_loads(craft: Spacecraft, sun_vector: NDArray[np.float64]) -> NDArray[np.float64]:
     """Eq. (4) of METHOD.md on a unit lit area of each side at ``P = 1 Pa`` [N/m^2], (n_sides, 3).
 
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model, with the optics of each side.
+    sun_vector : (3,) float64
+        Unit direction toward the Sun, body frame.
+
+    Returns
+    -------
+    (n_sides, 3) float64
+        Force on a unit lit area of each side [N/m^2] at 1 Pa.
+
     Examples
     --------
     >>> from sunwind.meshes.primitives import box
@@ -94,8 +114,23 @@ def unit_area_loads(craft: Spacecraft, sun_vector: NDArray[np.float64]) -> NDArr
 
 
 def compare_pass(craft: Spacecraft, sun_vectors: NDArray[np.float64], pixel_m: float) -> list[PassComparison]:
-    """The default pass of ``craft`` against the reference of pixel ``pixel_m`` at each of
-    ``sun_vectors`` (k, 3), torques about the mean vertex.
+    """Compare the default pass of ``craft`` with the reference at each Sun direction.
+
+    The reference has pixel ``pixel_m``; torques are about the mean vertex.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    sun_vectors : (k, 3) float64
+        Directions toward the Sun, body frame (normalised here).
+    pixel_m : float
+        Pixel of the reference [m].
+
+    Returns
+    -------
+    list of PassComparison
+        One per Sun direction.
 
     Examples
     --------
@@ -146,8 +181,20 @@ def compare_pass(craft: Spacecraft, sun_vectors: NDArray[np.float64], pixel_m: f
 
 
 def check_directions(spread: int = 16) -> NDArray[np.float64]:
-    """``spread`` Sun directions over the sphere (a Fibonacci lattice) and four grazing the faces of a
-    box aligned with the axes by 0.03 to 0.2 degrees, from either side; (spread + 4, 3), unit.
+    """Give ``spread`` Sun directions over the sphere and four grazing the faces of an axis-aligned box.
+
+    The ``spread`` directions are a Fibonacci lattice; the four graze the box's faces by 0.03 to 0.2
+    degrees, from either side.
+
+    Parameters
+    ----------
+    spread : int, optional
+        Directions of the lattice over the sphere.
+
+    Returns
+    -------
+    (spread + 4, 3) float64
+        Unit directions, the grazing four last.
 
     Examples
     --------
@@ -176,9 +223,37 @@ def _row(name: str, craft: Spacecraft, rows: list[PassComparison]) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Print, per model, the worst force and torque error over the directions with the reference's noise
-    and the estimate at that direction, at how many directions the estimate covers the error, and the
-    median time and rays per direction."""
+    """Print, per model, the shadow pass's worst errors against the reference and their estimates.
+
+    For the worst force and torque error over the directions: the reference's noise and the estimate
+    at that direction; then at how many directions the estimate covers the error, and the median time
+    and rays per direction.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments: mesh files (default the CAD corpus), ``--unit``, ``--pixel`` [m] and
+        ``--directions``; default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        0.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from sunwind.geometry.io.obj import write_obj
+    >>> from sunwind.meshes.primitives import box
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "cube.obj"
+    ...     write_obj(box(), path)
+    ...     main([str(path), "--directions", "2", "--pixel", "0.05"])  # doctest: +ELLIPSIS
+    model               facets     force ...
+    .../cube.obj      12 ...
+    0
+    """
     parser = argparse.ArgumentParser(prog="python -m sunwind.validation.shadow_pass_check")
     parser.add_argument("meshes", nargs="*", help="mesh files (default: the CAD corpus)")
     parser.add_argument(

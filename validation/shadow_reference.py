@@ -95,6 +95,15 @@ class ShadowReference:
         Seed of the sample points.
     samples : int
         Pixels in the image.
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> black = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> ref = shadow_reference(black, (0.0, 0.0, 1.0), pixel_m=0.05)
+    >>> round(ref.projected_area_m2, 9), ref.pixel_m
+    (1.0, 0.05)
     """
 
     sun_vector: NDArray[np.float64]
@@ -128,6 +137,15 @@ class ConvergenceEstimate:
         (a difference of two noisy runs can be small by chance, a standard error cannot see a bias).
     seconds : float
         Wall time of both runs [s].
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> black = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> estimate = converged_reference(black, (0.0, 0.0, 1.0), pixel_m=0.05)
+    >>> estimate.fine.pixel_m, bool(estimate.force_error_N < 1e-6)
+    (0.025, True)
     """
 
     coarse: ShadowReference
@@ -260,6 +278,24 @@ def converged_reference(
     """:func:`shadow_reference` at ``pixel_m`` and at ``pixel_m / 2`` (seed ``seed + 1``, so the two sample
     sets are independent), their difference, and the error bound of the finer run.
 
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    sun_vector : (3,) array_like
+        Direction toward the Sun, body frame.
+    pixel_m : float
+        Pixel of the coarser run [m]; the finer one uses half.
+    reference_point_m : (3,) array_like, optional
+        Torque reference point [m]; default as :func:`shadow_reference`.
+    seed : int, optional
+        Seed of the coarser run; the finer one uses ``seed + 1``.
+
+    Returns
+    -------
+    ConvergenceEstimate
+        Both references, their differences and the error bound of the finer one.
+
     Examples
     --------
     >>> from sunwind.geometry import Material, build_spacecraft
@@ -291,6 +327,18 @@ def converged_reference(
 def projected_area_loads(craft: Spacecraft, sun_vector: NDArray[np.float64]) -> NDArray[np.float64]:
     """Eq. (4) of METHOD.md at ``P = 1 Pa`` per unit of each side's area projected along the unit
     ``sun_vector`` [N/m^2], (n_sides, 3): the force of one sample of unit pixel area.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model, with the optics of each side.
+    sun_vector : (3,) float64
+        Unit direction toward the Sun, body frame.
+
+    Returns
+    -------
+    (n_sides, 3) float64
+        Force per unit projected area of each side [N/m^2] at 1 Pa.
 
     Examples
     --------

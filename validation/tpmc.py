@@ -99,6 +99,20 @@ class TpmcResult:
         Unit ``u = v_rel / |v_rel|``, body frame.
     seconds : float
         Wall-clock time of the trace [s].
+
+    Examples
+    --------
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> from sunwind.validation.sampling import Sampling
+    >>> from sunwind.validation.tpmc_kernels import WallInteraction
+    >>> from sunwind.validation.tpmc_source import SpeciesStream
+    >>> cube = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> oxygen = SpeciesStream(7500.0, 1000.0, 1e15, 16 * 1.66054e-27)  # V [m/s], T [K], n [m^-3], m [kg]
+    >>> diffuse = WallInteraction(diffuse_fraction=1.0, wall_temperature_K=300.0)
+    >>> result = trace_molecules(cube, [0.0, 0.0, 1.0], oxygen, diffuse, Sampling(2000, batches=4))
+    >>> result.molecules, result.dropped, round(result.speed_ratio, 2)
+    (2000, 0, 7.36)
     """
 
     force_N: NDArray[np.float64]
@@ -330,6 +344,24 @@ def trace_molecules(
     Returns
     -------
     TpmcResult
+
+    Examples
+    --------
+    A unit cube flying along +z through atomic oxygen at 7.5 km/s: the drag points along -z and is about
+    ``C_D q A`` with ``C_D`` a little above 2 (a tiny run, so only its sign and size are shown):
+
+    >>> from sunwind.geometry import Material, build_spacecraft
+    >>> from sunwind.meshes.primitives import box
+    >>> from sunwind.validation.sampling import Sampling
+    >>> from sunwind.validation.tpmc_kernels import WallInteraction
+    >>> from sunwind.validation.tpmc_source import SpeciesStream
+    >>> cube = build_spacecraft(box(), uniform=Material("black", 0.0, 0.0))
+    >>> oxygen = SpeciesStream(7500.0, 1000.0, 1e15, 16 * 1.66054e-27)  # V [m/s], T [K], n [m^-3], m [kg]
+    >>> diffuse = WallInteraction(diffuse_fraction=1.0, wall_temperature_K=300.0)
+    >>> result = trace_molecules(cube, [0.0, 0.0, 1.0], oxygen, diffuse, Sampling(2000, batches=4))
+    >>> q = 0.5 * 1e15 * 16 * 1.66054e-27 * 7500.0**2
+    >>> bool(2.0 < -result.force_N[2] / q < 2.5)
+    True
     """
     molecules, batches, max_bounces = sampling.particles, sampling.batches, sampling.max_bounces
     speed_m_s, temperature_K = stream.speed_m_s, stream.temperature_K

@@ -72,6 +72,12 @@ class WallInteraction:
     normal_accommodation, tangential_accommodation : float or (n_sides,) array_like, optional
         CLL kernel only (then required): normal energy accommodation ``alpha_n`` and tangential
         momentum accommodation ``sigma_t`` of each side [-], in [0, 1].
+
+    Examples
+    --------
+    >>> walls = WallInteraction(diffuse_fraction=[1.0, 0.5], wall_temperature_K=300.0)
+    >>> walls.per_side(2)["diffuse_fraction"].tolist()
+    [1.0, 0.5]
     """
 
     diffuse_fraction: ArrayLike | None
@@ -182,6 +188,21 @@ def maxwell_reemission(
     Returns
     -------
     (k, 3) float64
+
+    Examples
+    --------
+    With no diffuse share the molecule is reflected specularly:
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> v_in, normal = np.array([[0.0, 0.0, -7000.0]]), np.array([[0.0, 0.0, 1.0]])
+    >>> maxwell_reemission(v_in, normal, np.array([0.0]), np.array([1e5]), np.array([1.0]), rng).tolist()
+    [[0.0, 0.0, 7000.0]]
+
+    References
+    ----------
+    .. [1] J. C. Maxwell, "On stresses in rarified gases arising from inequalities of temperature",
+       Philosophical Transactions of the Royal Society of London 170, 231-256, 1879.
     """
     k = len(v_in)
     vn = _dot(v_in, normals)
@@ -224,6 +245,23 @@ def cll_reemission(
     Returns
     -------
     (k, 3) float64
+
+    Examples
+    --------
+    With no accommodation at all (``alpha_n = sigma_t = 0``) the kernel is specular reflection:
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> v_in, normal = np.array([[0.0, 0.0, -7000.0]]), np.array([[0.0, 0.0, 1.0]])
+    >>> cll_reemission(v_in, normal, np.array([1e5]), np.array([0.0]), np.array([0.0]), rng).tolist()
+    [[0.0, 0.0, 7000.0]]
+
+    References
+    ----------
+    .. [1] C. Cercignani and M. Lampis, "Kinetic models for gas-surface interactions", Transport
+       Theory and Statistical Physics 1, 101-114, 1971.
+    .. [2] R. G. Lord, "Some extensions to the Cercignani-Lampis gas-surface scattering kernel",
+       Physics of Fluids A 3, 706-710, 1991.
     """
     k = len(v_in)
     c_w = np.sqrt(wall_c2)

@@ -65,6 +65,12 @@ class SpeciesStream:
         Number density ``n`` of the species [m^-3], >= 0.
     mass_kg : float
         Molecular mass ``m`` of the species [kg], > 0.
+
+    Examples
+    --------
+    >>> oxygen = SpeciesStream(7500.0, 1000.0, 1e15, 16 * 1.66054e-27)
+    >>> oxygen.speed_m_s
+    7500.0
     """
 
     speed_m_s: float
@@ -78,15 +84,50 @@ def inflow_flux(s: float) -> float:
 
     ``Gamma / (n c_m) = [exp(-s^2) + sqrt(pi) s erfc(-s)] / (2 sqrt(pi))`` with ``s`` the drift
     velocity's component along the plane's inward normal over ``c_m = sqrt(2 k T / m)``.
+
+    Parameters
+    ----------
+    s : float
+        Drift component along the inward normal over ``c_m`` [-]; negative when the gas drifts away.
+
+    Returns
+    -------
+    float
+        ``Gamma / (n c_m)`` [-]: ``1 / (2 sqrt(pi))`` for a gas at rest, tending to ``s`` for large ``s``.
+
+    Examples
+    --------
+    >>> round(inflow_flux(0.0) * 2 * math.sqrt(math.pi), 12), round(inflow_flux(5.0), 6)
+    (1.0, 5.0)
     """
     return (math.exp(-s * s) + math.sqrt(math.pi) * s * math.erfc(-s)) / (2.0 * math.sqrt(math.pi))
 
 
 def flux_normal_speeds(s: float, count: int, rng: np.random.Generator) -> NDArray[np.float64]:
-    """``count`` exact samples ``x > 0`` of ``p(x) ~ x exp(-(x - s)^2)``, by rejection (module Notes).
+    """Draw ``count`` exact samples ``x > 0`` of ``p(x) ~ x exp(-(x - s)^2)``, by rejection (module Notes).
 
     The normal velocity component, over ``c_m``, of molecules of a drifting Maxwellian crossing a
     plane in the direction of its normal, when the drift component along it over ``c_m`` is ``s``.
+
+    Parameters
+    ----------
+    s : float
+        Drift component along the plane's normal over ``c_m`` [-].
+    count : int
+        Number of samples.
+    rng : numpy.random.Generator
+        Source of the random numbers.
+
+    Returns
+    -------
+    (count,) float64
+        Normal speeds over ``c_m`` [-], all > 0.
+
+    Examples
+    --------
+    >>> x = flux_normal_speeds(0.0, 5, np.random.default_rng(0))
+    >>> x.shape, bool((x > 0).all())
+    ((5,), True)
     """
     out: list[NDArray[np.float64]] = []
     need = count

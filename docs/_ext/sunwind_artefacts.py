@@ -105,7 +105,7 @@ class ArtefactDirective(SphinxDirective):
             raise KeyError("provenance.command (or the directive's :command: option)")
         items = nodes.bullet_list()
         facts = [
-            ("Regenerate with", nodes.literal(text="python docs/_data/regenerate.py")),
+            ("Regenerate with", nodes.literal(text=f"python docs/_data/regenerate.py {Path(relative).stem}")),
             ("Command", nodes.literal(text=command)),
             ("Artefact", nodes.literal(text=f"docs/{relative}")),
             ("Run on", nodes.Text(given.get("date", "date not recorded"))),
@@ -115,6 +115,8 @@ class ArtefactDirective(SphinxDirective):
             facts.append(("Versions", nodes.Text(f"sunwind {given['sunwind']}, Python {given['python']}")))
         if "wall_s" in given:
             facts.append(("Wall time", nodes.Text(f"{given['wall_s']:.0f} s")))
+        if "note" in given:
+            facts.append(("Note", nodes.Text(given["note"])))
         for label, value in facts:
             item = nodes.list_item()
             item += nodes.paragraph("", "", nodes.strong(text=f"{label}: "), value)
@@ -176,17 +178,19 @@ class ValidationDirective(ArtefactDirective):
         return out
 
 
-#: The benchmark's timed settings: label, time key [ms], error key (a LoadError) or None; ``{fixed}`` is
-#: the fixed-sampling label.
+#: The benchmark's timed settings: label, key of the mean and of the median time per attitude [ms] (None:
+#: not measured), key of the setting's error (a LoadError; None: no loads). ``{fixed}``: the fixed sampling.
 TIMED = (
-    ("SRP direct, default shadow pass", "default_ms", "default_error"),
-    ("SRP direct, {fixed}", "fixed_ms", "fixed_error"),
-    ("SRP direct, raw Embree on the same rays, {fixed}", "raw_embree_ms", None),
-    ("SRP full reflections, default pass", "full_ms", "full_error"),
-    ("SRP full reflections, {fixed}", "fixed_full_ms", "fixed_full_error"),
-    ("Drag, no re-emission, default pass", "drag_ms", "drag_error"),
-    ("Drag, no re-emission, {fixed}", "fixed_drag_ms", "fixed_drag_error"),
-    ("Drag, full re-emission", "drag_full_ms", "drag_full_error"),
+    ("SRP direct, default shadow pass", "default_ms", "default_median_ms", "default_error"),
+    ("SRP direct, {fixed}", "fixed_ms", "fixed_median_ms", "fixed_error"),
+    ("SRP direct, {attitudes} attitudes as one batch, default pass", "default_batch_ms", None, None),
+    ("SRP direct, {attitudes} attitudes as one batch, {fixed}", "fixed_batch_ms", None, None),
+    ("Raw Embree on the rays of {fixed}", "raw_embree_ms", None, None),
+    ("SRP full reflections, default pass", "full_ms", "full_median_ms", "full_error"),
+    ("SRP full reflections, {fixed}", "fixed_full_ms", None, "fixed_full_error"),
+    ("Drag, no re-emission, default", None, "drag_ms", "drag_error"),
+    ("Drag, no re-emission, {fixed}", None, "fixed_drag_ms", "fixed_drag_error"),
+    ("Drag, full re-emission", None, "drag_full_ms", "drag_full_error"),
 )
 #: One-off costs per model: label, key [s].
 ONCE = (
@@ -205,18 +209,19 @@ class BenchDirective(ArtefactDirective):
     def render(self, data: dict) -> list[nodes.Node]:
         fixed = f"{data['samples_per_side']} point(s) per side"
         rows = []
-        for label, time_key, error_key in TIMED:
+        for label, mean_key, median_key, error_key in TIMED:
             error = data[error_key] if error_key else None
             rows.append(
                 [
-                    label.format(fixed=fixed),
-                    f"{data[time_key]:.2f}",
-                    number(error["force_worst"]) if error else "— (no loads)",
+                    label.format(fixed=fixed, attitudes=data["attitudes"]),
+                    f"{data[mean_key]:.2f}" if mean_key else "—",
+                    f"{data[median_key]:.2f}" if median_key else "—",
+                    number(error["force_worst"]) if error else "—",
                     number(error["torque_worst"]) if error else "—",
                     number(error["force_median"]) if error else "—",
                 ]
             )
-        headers = ["Setting", "Time per attitude [ms]", "Force error, worst", "Torque error, worst"]
+        headers = ["Setting", "Mean [ms]", "Median [ms]", "Force error, worst", "Torque error, worst"]
         timed = table([*headers, "Force error, median"], rows, ["sunwind-bench"])
         once = table(["One-off cost per model", "Time [s]"], [[a, f"{data[k]:.2f}"] for a, k in ONCE])
         model = nodes.paragraph(
@@ -225,7 +230,8 @@ class BenchDirective(ArtefactDirective):
                 f"triangles, {data['sides']:,} sides; {data['attitudes']} attitudes timed on "
                 f"{data['threads']} threads; peak memory {data['peak_memory_MB']:.0f} MB. The errors are "
                 "relative, against a reference run of each attitude at a ten times tighter shadow "
-                "tolerance (and finer gas sampling for drag)."
+                "tolerance (and finer gas sampling for drag); times are per attitude, a batch's divided by "
+                "its size."
             )
         )
         return [model, timed, once]

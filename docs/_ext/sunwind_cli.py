@@ -28,7 +28,7 @@ def escape_bars(line: str) -> str:
     return indent + marker + "".join(parts)
 
 
-def plain_help(ctx: Any, lines: list[str]) -> None:
+def plain_help(app: Sphinx, ctx: Any, lines: list[str]) -> None:
     lines[:] = [escape_bars(line) for line in lines]
 
 

@@ -41,7 +41,8 @@ origin_m = [0, 0, 0]
 track = "sun"
 """
 mesh = sw.meshes.sample_spacecraft(triangles=3000)
-folder = Path(tempfile.mkdtemp(prefix="sunwind-geo-"))
+workdir = tempfile.TemporaryDirectory(prefix="sunwind-geo-")  # removed when the script ends
+folder = Path(workdir.name)
 materials = folder / "sample_tracking.toml"
 materials.write_text(sw.meshes.materials_toml(mesh) + ARRAY_DRIVE, encoding="utf-8")
 model = sw.load(mesh, materials, reference_point_m=(0.0, 0.0, 0.0), threads=1)

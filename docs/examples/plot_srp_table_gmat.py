@@ -4,7 +4,7 @@ An SRP table for GMAT
 
 GMAT models solar-radiation pressure on a detailed spacecraft through a SPAD file: a table of area
 vectors over the Sun's azimuth and elevation in the body frame, which it interpolates at every step
-of a propagation. This example sweeps the sample spacecraft over Sun directions on a coarse 20 deg
+of a propagation. This example sweeps the sample spacecraft over Sun directions on a coarse 15 deg
 grid with self-shadowing and inter-reflection, writes the table in GMAT's SPAD format with
 :func:`sunwind.write`, shows the head of the file and maps the force over the grid.
 """
@@ -26,8 +26,10 @@ import numpy as np
 
 import sunwind as sw
 
-model = sw.load(sw.meshes.sample_path(), sw.meshes.sample_materials_path(), threads=1)
-table = sw.sweep(model, srp=sw.SrpSetup(), step_deg=20.0)
+model = sw.load(
+    sw.meshes.sample_path(), sw.meshes.sample_materials_path(), reference_point_m=(0.0, 0.0, 0.0), threads=1
+)
+table = sw.sweep(model, srp=sw.SrpSetup(), step_deg=15.0)
 print(model.craft)
 print(f"grid: {table.sizes['sun_azimuth']} azimuths x {table.sizes['sun_elevation']} elevations")
 print(f"frame: {table.attrs['frame']}; reflections: {table.attrs['srp_reflections']}")
@@ -42,7 +44,8 @@ print(f"flux {table.attrs['flux_W_m2']:.0f} W/m^2, pressure {table.attrs['pressu
 # at 1 au, pointing along the force; GMAT turns it back into an acceleration ``P A / m`` with its own
 # flux, distance and shadow model. SPAD files hold forces only, so the reference point does not enter
 # (the header says so).
-folder = Path(tempfile.mkdtemp(prefix="sunwind-gmat-"))
+workdir = tempfile.TemporaryDirectory(prefix="sunwind-gmat-")  # removed when the script ends
+folder = Path(workdir.name)
 written = sw.write(table, folder / "sample_spacecraft.spo")
 spad = written[0]
 lines = spad.read_text(encoding="utf-8").splitlines()
@@ -60,7 +63,7 @@ print("\n".join(lines[:34]))
 #     FM.SRP.SRPModel = SPADFile;
 #
 # GMAT needs the spacecraft's attitude as well, since the table is looked up at the Sun's direction
-# in the body frame. A finer grid (``step_deg=5``) is what one would hand over; 20 deg keeps this page
+# in the body frame. A finer grid (``step_deg=5``) is what one would hand over; 15 deg keeps this page
 # quick.
 
 # %%
@@ -68,9 +71,10 @@ print("\n".join(lines[:34]))
 # -----------------------------------
 # The map shows ``|F|`` at 1 au, in µN, with the azimuth ``atan2(s_y, s_x)`` and the elevation
 # ``asin(s_z)`` of the Sun direction ``s`` in the body frame. The force is largest with the Sun on the
-# cells (+x, azimuth 0) or on the wings' backs (azimuth ±180), where the wings show their 2 x 7 m²
-# of area, and smallest with the Sun along the wings (azimuth ±90), where only the bus, the dish and
-# the wings' edges are lit.
+# cells (+x, azimuth 0) or on the wings' backs (azimuth ±180), where the wings show their whole 7 m²
+# of area, and smallest with the Sun in the plane of the wings (azimuth ±90, or elevation ±90), where
+# they are edge-on and only the bus, the dish and the wings' edges are lit. The rows at elevation ±90
+# are all the same direction, whatever their azimuth.
 force = table["srp_force_N"]
 magnitude = np.linalg.norm(force.values, axis=-1) * 1e6
 azimuth, elevation = table["sun_azimuth"].values, table["sun_elevation"].values

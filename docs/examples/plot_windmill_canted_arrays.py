@@ -28,7 +28,6 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import sunwind as sw
-from sunwind.geometry.mesh_data import MeshData
 
 SPAN, WIDTH, D = 2.0, 1.0, 2.0  # wing length along y, width, distance of its centre from the body [m]
 MATERIALS = """
@@ -44,12 +43,13 @@ specular_fraction = 0.2
 [parts]
 "wing_*" = { front = "solar_cell", back = "cfrp" }
 """
-folder = Path(tempfile.mkdtemp(prefix="sunwind-windmill-"))
+workdir = tempfile.TemporaryDirectory(prefix="sunwind-windmill-")  # removed when the script ends
+folder = Path(workdir.name)
 materials = folder / "windmill.toml"
 materials.write_text(MATERIALS, encoding="utf-8")
 
 
-def spacecraft(cant_deg: float) -> MeshData:
+def spacecraft(cant_deg: float) -> sw.MeshData:
     """The cube with its wings canted by +cant_deg (+y wing) and -cant_deg (-y wing) about y."""
     bus = sw.meshes.label(sw.meshes.box((1.0, 1.0, 1.0), divisions=2), "bus", "white_paint")
     facing_sun = sw.meshes.transform(
@@ -59,7 +59,7 @@ def spacecraft(cant_deg: float) -> MeshData:
     for name, sign in (("wing_plus", 1.0), ("wing_minus", -1.0)):
         canted = sw.meshes.transform(facing_sun, sw.meshes.rotation_matrix("y", sign * cant_deg))
         wings.append(sw.meshes.label(sw.meshes.transform(canted, None, (0.0, sign * D, 0.0)), name))
-    return MeshData.concatenate([bus, *wings], source="<canted arrays>")
+    return sw.MeshData.concatenate([bus, *wings], source="<canted arrays>")
 
 
 def load(cant_deg: float) -> sw.Model:
@@ -96,7 +96,7 @@ def plate_estimate(cant_deg: np.ndarray) -> np.ndarray:
 # -----------------------------
 # The Sun is along +x (face-on to the uncanted wings). For drag, the flow of a circular 400 km orbit
 # comes along the same axis (``v_rel`` along +x), through a NRLMSIS atmosphere at moderate activity,
-# with the sample's default gas law (Sentman, full accommodation, walls at 300 K); its plate estimate is
+# with the default gas law (Sentman, full accommodation, walls at 300 K); its plate estimate is
 # sunwind's ``reflections="plates"`` mode (every side alone in the whole stream).
 cants = np.arange(0.0, 81.0, 10.0)
 air = sw.nrlmsis(400.0, 0.0, 0.0, "2024-03-20T12:00:00Z", f107=150.0, f107a=150.0, ap=4.0)

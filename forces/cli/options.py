@@ -275,19 +275,7 @@ def posed(model: Model, sun_vector: NDArray[np.float64] | None, command: str) ->
     """``model`` with its hinges at the angles of ``sunwind COMMAND``: fixed ones at theirs, tracking ones
     turned to ``sun_vector``. A schedule (it needs a time: ``sunwind orbit``), or tracking without a Sun
     (``drag``, and ``sweep``, which turns nothing from one attitude to the next), is refused."""
-    for hinge in model.hinges:
-        if hinge.law == "schedule" or (hinge.law == "track" and sun_vector is None):
-            what = "follows a schedule" if hinge.law == "schedule" else "tracks the Sun"
-            lacks = "time" if hinge.law == "schedule" else "Sun direction"
-            elsewhere = (
-                "sunwind orbit flies schedules"
-                if hinge.law == "schedule"
-                else "srp and forces turn it to --sun"
-            )
-            raise InputError(
-                f'[articulation] "{hinge.pattern}" {what}: sunwind {command} has no {lacks} for it',
-                hint=f'hold it at an angle with --articulate "{hinge.pattern}=DEG" ({elsewhere})',
-            )
+    model.check_turnable(f"sunwind {command}", sun=sun_vector is not None)
     return model.posed(model.angles_at(sun_vector))
 
 

@@ -71,8 +71,8 @@ class StepLines:
 
 _PRINTING = threading.Lock()
 
-#: Seconds numba takes to compile one of sunwind's kernels, on average: the README's quick-start sweep
-#: compiled 92 in about 70 s on a 2-core machine (README "First run").
+#: Seconds numba takes to compile one of sunwind's kernels, on average: the quick-start sweep
+#: compiled 92 in about 70 s on a 2-core machine (docs/getting_started.md).
 COMPILE_S = 0.75
 
 

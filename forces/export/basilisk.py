@@ -72,10 +72,18 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
     """Write the SRP of a sweep table (grid or list) as a Basilisk ``RadiationPressure`` lookup XML.
 
     A grid table gives one entry per distinct direction: the duplicated azimuth +180 column is left out
-    and each pole is written once (its row's mean over azimuth). A list table gives one entry per attitude.
+    and each pole is written once (its row's mean over azimuth). A list table gives one entry per
+    attitude. Forces and torques are scaled to 1 au (1361 W/m^2).
 
     The torques are written about the body-frame origin B, which the format fixes:
     ``M_B = M_ref + r_ref x F`` for the table's reference point ``r_ref``, which a comment names.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        Sweep table with ``srp_force_N``, ``srp_torque_Nm`` and a ``flux_W_m2`` attribute.
+    path : str or Path
+        The file to write.
 
     Returns
     -------
@@ -92,6 +100,31 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
     ReferencePointWarning
         The reference point is not the origin: the torques were moved to B, and Basilisk needs the
         centre of mass relative to B in the hub's ``r_BcB_B``.
+
+    References
+    ----------
+    .. [1] Basilisk astrodynamics framework, Autonomous Vehicle Systems Laboratory, University of
+       Colorado Boulder: the ``radiationPressure`` module's lookup-table mode.
+       https://github.com/AVSLab/basilisk
+
+    Examples
+    --------
+    A 90-degree grid holds the cube's six face directions once each:
+
+    >>> import tempfile
+    >>> import xml.etree.ElementTree as ElementTree
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> setup = sw.SrpSetup(reflections="none", reference_point_m=(0.0, 0.0, 0.0))  # B: no warning
+    >>> table = sw.sweep(cube, srp=setup, step_deg=90.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     root = ElementTree.parse(write_basilisk(table, Path(folder) / "cube.xml")).getroot()
+    >>> [len(block) for block in root]
+    [6, 6, 6]
+    >>> [round(float(value.text) * 1e6, 4) for value in root.find("forceBValues")[-1]]  # Sun overhead [uN]
+    [0.0, 0.0, -5.4478]
     """
     missing = [name for name in ("srp_force_N", "srp_torque_Nm") if name not in table.data_vars]
     if missing:
@@ -152,7 +185,44 @@ def write_basilisk(table: xr.Dataset, path: str | Path) -> Path:
 
 
 def write(table: xr.Dataset, path: str | Path) -> list[Path]:
-    """:func:`write_basilisk`, as the export registry calls it; the file written."""
+    """:func:`write_basilisk`, as the export registry calls it.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        Sweep table with SRP results.
+    path : str or Path
+        The file to write.
+
+    Returns
+    -------
+    list of Path
+        The file written.
+
+    Raises
+    ------
+    InputError
+        What :func:`write_basilisk` refuses.
+
+    Warns
+    -----
+    ReferencePointWarning
+        The reference point is not the body-frame origin.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import xml.etree.ElementTree as ElementTree
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> setup = sw.SrpSetup(reflections="none", reference_point_m=(0.0, 0.0, 0.0))  # B: no warning
+    >>> table = sw.sweep(cube, srp=setup, step_deg=90.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     print([path.name for path in write(table, Path(folder) / "cube.xml")])
+    ['cube.xml']
+    """
     return [write_basilisk(table, path)]
 
 

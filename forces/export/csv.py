@@ -22,8 +22,35 @@ KINDS = ("srp", "drag", "earth")
 
 
 def csv_paths(path: Path, table: xr.Dataset) -> dict[str, Path]:
-    """CSV file of each quantity: ``path`` itself for a list table or one quantity, else
-    ``NAME.srp.csv``, ``NAME.drag.csv``, ``NAME.earth.csv`` (each on its own grid)."""
+    """The CSV file each quantity of a table goes to.
+
+    A list table, or a table of one quantity, is one file at ``path``; a grid table of several
+    quantities (each on its own grid) is one file per quantity, ``NAME.srp.csv``, ``NAME.drag.csv``,
+    ``NAME.earth.csv``.
+
+    Parameters
+    ----------
+    path : Path
+        The output path the user gave.
+    table : xarray.Dataset
+        The sweep table.
+
+    Returns
+    -------
+    dict of str to Path
+        ``{"all": path}`` for one file, else quantity -> file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)  # 5 x 3 Sun directions
+    >>> {kind: str(path) for kind, path in csv_paths(Path("cube.csv"), table).items()}  # SRP alone
+    {'all': 'cube.csv'}
+    """
     kinds = kinds_of(table)
     if "attitude" in table.dims or len(kinds) == 1:
         return {"all": path}
@@ -31,7 +58,38 @@ def csv_paths(path: Path, table: xr.Dataset) -> dict[str, Path]:
 
 
 def write(table: xr.Dataset, path: str | os.PathLike) -> list[Path]:
-    """Write ``table`` as CSV (see :func:`csv_paths`), atomically; returns the files written."""
+    """Write a sweep table as CSV, atomically.
+
+    ``#`` comment lines hold the table's attributes, a header row names each column with its unit
+    (``srp_force_N_x[N]``), and each grid node or attitude is a row (full precision, ``%.17g``).
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        The sweep table (:mod:`sunwind.forces.tables.dataset`).
+    path : str or os.PathLike
+        Where to write (:func:`csv_paths` says the files).
+
+    Returns
+    -------
+    list of Path
+        The files written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)  # 5 x 3 Sun directions
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     (path,) = write(table, Path(folder) / "cube.csv")
+    ...     lines = path.read_text().splitlines()
+    >>> header = next(line for line in lines if not line.startswith("#"))
+    >>> header.split(",")[:3], len(lines) - lines.index(header) - 1  # one row per grid node
+    (['sun_azimuth_deg', 'sun_elevation_deg', 'srp_force_N_x[N]'], 15)
+    """
     path = Path(path)
     written = []
     for kind, target in csv_paths(path, table).items():

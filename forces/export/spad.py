@@ -57,8 +57,35 @@ _ROW_FORMAT = "%8.2f %8.2f % .15e % .15e % .15e"
 
 
 def spad_paths(output_path: str | Path, kinds: Sequence[str]) -> dict[str, Path]:
-    """File names of the SPAD files of a sweep: ``name.spo`` for one kind, ``name.srp.spo`` and
-    ``name.drag.spo`` for both. A missing suffix becomes ``.spo``."""
+    """The file names of the SPAD files of a sweep.
+
+    ``NAME.spo`` for one quantity, ``NAME.srp.spo`` and ``NAME.drag.spo`` for both; a path without
+    a suffix gets ``.spo``.
+
+    Parameters
+    ----------
+    output_path : str or Path
+        The output path the user gave.
+    kinds : sequence of str
+        The quantities, ``"srp"`` and/or ``"drag"``.
+
+    Returns
+    -------
+    dict of str to Path
+        Quantity -> file.
+
+    Raises
+    ------
+    InputError
+        No quantity, or one that is not ``"srp"`` or ``"drag"``.
+
+    Examples
+    --------
+    >>> {kind: path.name for kind, path in spad_paths("out/cube", ["srp"]).items()}
+    {'srp': 'cube.spo'}
+    >>> {kind: path.name for kind, path in spad_paths("out/cube.spo", ["srp", "drag"]).items()}
+    {'srp': 'cube.srp.spo', 'drag': 'cube.drag.spo'}
+    """
     path = Path(output_path)
     suffix = path.suffix or ".spo"
     stem = path.stem if path.suffix else path.name
@@ -71,13 +98,28 @@ def spad_paths(output_path: str | Path, kinds: Sequence[str]) -> dict[str, Path]
 
 
 def check_request(step_deg: float | None) -> None:
-    """Refuse, before a sweep, attitudes SPAD files cannot hold: a list (``step_deg`` None) or a grid
-    step that is not a whole number of degrees.
+    """Refuse, before a sweep, attitudes SPAD files cannot hold.
+
+    GMAT reads the grid's steps as whole degrees, so a list of attitudes or a step that is not a
+    whole number of degrees dividing 180 is refused before any attitude is computed.
+
+    Parameters
+    ----------
+    step_deg : float or None
+        The grid step [deg]; None for a list of attitudes.
 
     Raises
     ------
     InputError
-        Either of them.
+        A list, or a step that is not a whole number of degrees dividing 180.
+
+    Examples
+    --------
+    >>> check_request(10.0)
+    >>> check_request(7.5)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: SPAD grid step 7.5 deg is not a whole number of degrees; ...
     """
     if step_deg is None:
         raise InputError(
@@ -91,13 +133,19 @@ def check_request(step_deg: float | None) -> None:
 def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
     """Write the SRP or drag area table of a grid sweep as a GMAT SPAD file.
 
+    SRP rows hold ``A = F_SRP(1 au) / P(1 au)`` along the force at the Sun direction's (az, el);
+    drag rows hold ``A = -F_drag / q`` at the flow grid point opposite (GMAT looks drag up at
+    ``-v_rel``). The header states the frame, the reference point (which does not enter) and the
+    provenance, in keys GMAT's reader passes over.
+
     Parameters
     ----------
     table : xarray.Dataset
         Grid sweep table (sunwind contract) with ``srp_force_N`` or ``drag_force_N``.
-    path : path
+    path : str or Path
         File to write.
     kind : {"srp", "drag"}
+        The quantity.
 
     Returns
     -------
@@ -109,6 +157,27 @@ def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
     InputError
         A list table, missing variables or attributes, a step that is not a whole number of degrees
         dividing 360 / 180, or (drag) a flow grid without the points (az + 180, -el).
+
+    References
+    ----------
+    .. [1] NASA Goddard Space Flight Center. *General Mission Analysis Tool (GMAT) User Guide*: the SPAD
+       file models of solar radiation pressure and drag. https://gmat.gsfc.nasa.gov
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)  # 5 x 3 Sun directions
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_spad(table, Path(folder) / "cube.spo", "srp")
+    ...     lines = path.read_text().splitlines()
+    >>> [line for line in lines if line.startswith("Analysis Type")]
+    ['Analysis Type      : Area']
+    >>> lines[-1].split()  # the Sun overhead: 1.2 m^2 of a grey 1 m cube, pushed along -z
+    ['180.00', '90.00', '0.000000000000000e+00', '0.000000000000000e+00', '-1.200000000000000e+00']
     """
     if kind not in KINDS:
         raise InputError(f"unknown SPAD kind {kind!r}", hint="use 'srp' or 'drag'")
@@ -144,22 +213,88 @@ def write_spad(table: xr.Dataset, path: str | Path, kind: str) -> Path:
 
 
 def write(table: xr.Dataset, path: str | Path) -> list[Path]:
-    """Write one SPAD file per quantity of a grid sweep table (:func:`spad_paths`); the files written."""
+    """Write one SPAD file per quantity of a grid sweep table; the Earth's radiation has none.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        Grid sweep table.
+    path : str or Path
+        The output path (:func:`spad_paths` names the files).
+
+    Returns
+    -------
+    list of Path
+        The files written.
+
+    Raises
+    ------
+    InputError
+        What :func:`spad_paths` and :func:`write_spad` refuse.
+
+    References
+    ----------
+    .. [1] NASA Goddard Space Flight Center. *General Mission Analysis Tool (GMAT) User Guide*: the SPAD
+       file models of solar radiation pressure and drag. https://gmat.gsfc.nasa.gov
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)  # 5 x 3 Sun directions
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     print([path.name for path in write(table, Path(folder) / "cube")])
+    ['cube.spo']
+    """
     kinds = [kind for kind in kinds_of(table) if kind in KINDS]  # the Earth's radiation has no SPAD file
     paths = spad_paths(path, kinds)
     return [write_spad(table, paths[kind], kind) for kind in kinds]
 
 
 def read_spad(path: str | Path) -> xr.Dataset:
-    """Read a SPAD area file into ``area_m2`` (azimuth, elevation, component) [m^2], header in ``attrs``.
+    """Read a SPAD area file into an ``area_m2`` table, its header in ``attrs``.
 
-    Reads what :func:`write_spad` writes (and GMAT's sample files); checks that the rows fill the grid the
-    Motion blocks declare, in order.
+    Reads what :func:`write_spad` writes (and GMAT's sample files); checks that the rows fill the grid
+    the Motion blocks declare, in order.
+
+    Parameters
+    ----------
+    path : str or Path
+        The SPAD file.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``area_m2`` (azimuth, elevation, component) [m^2] on the file's grid [deg]; the header's keys
+        in ``attrs`` (a list where a key repeats).
 
     Raises
     ------
     InputError
         An unreadable file, not a SPAD area file, rows that are not numbers or do not fill the grid.
+
+    References
+    ----------
+    .. [1] NASA Goddard Space Flight Center. *General Mission Analysis Tool (GMAT) User Guide*: the SPAD
+       file models of solar radiation pressure and drag. https://gmat.gsfc.nasa.gov
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)  # 5 x 3 Sun directions
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     back = read_spad(write_spad(table, Path(folder) / "cube.spo", "srp"))
+    >>> back["area_m2"].sel(azimuth=0.0, elevation=90.0).values.round(6)
+    array([ 0. ,  0. , -1.2])
+    >>> back.attrs["Step"]
+    ['90', '90']
     """
     try:
         lines = Path(path).read_text(encoding="utf-8-sig").splitlines()  # -sig: a byte-order mark is skipped

@@ -66,7 +66,28 @@ _COMPONENTS = "xyz"
 
 
 class TudatFiles(NamedTuple):
-    """Files and reference values to hand to Tudat's tabulated aerodynamic coefficient settings."""
+    """Files and reference values to hand to Tudat's tabulated aerodynamic coefficient settings.
+
+    Parameters
+    ----------
+    force : dict of int to Path
+        The ``C_Fx``, ``C_Fy``, ``C_Fz`` files, keyed 0, 1, 2.
+    moment : dict of int to Path
+        The ``C_Mx``, ``C_My``, ``C_Mz`` files, keyed 0, 1, 2.
+    reference_area_m2 : float
+        ``S_ref`` [m^2] of the coefficients.
+    reference_length_m : float
+        ``L_ref`` [m] of the moment coefficients.
+    moment_reference_point_m : tuple of 3 float
+        The table's reference point [m], body frame: Tudat's ``moment_reference_point``.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> files = TudatFiles({0: Path("c_CFx.txt")}, {0: Path("c_CMx.txt")}, 1.5, 1.0, (0.0, 0.0, 0.0))
+    >>> files.reference_area_m2, files.force[0].name
+    (1.5, 'c_CFx.txt')
+    """
 
     force: dict[int, Path]  # 0, 1, 2 -> C_Fx, C_Fy, C_Fz files
     moment: dict[int, Path]  # 0, 1, 2 -> C_Mx, C_My, C_Mz files
@@ -76,18 +97,60 @@ class TudatFiles(NamedTuple):
 
 
 def flow_vector(alpha_rad: NDArray, beta_rad: NDArray) -> NDArray[np.float64]:
-    """Body-frame unit flow vectors ``u`` (..., 3) of Tudat angles of attack and sideslip [rad]."""
+    """Body-frame unit flow vectors of Tudat angles of attack and sideslip.
+
+    ``u = (cos(alpha) cos(beta), sin(beta), sin(alpha) cos(beta))``, the x-axis of Tudat's
+    airspeed-based aerodynamic frame in the body frame.
+
+    Parameters
+    ----------
+    alpha_rad : array_like of float
+        Angles of attack [rad].
+    beta_rad : array_like of float
+        Sideslip angles [rad], broadcasting with ``alpha_rad``.
+
+    Returns
+    -------
+    ndarray of float64, shape (..., 3)
+        Unit vectors ``u = v_rel / |v_rel|``, body frame.
+
+    References
+    ----------
+    .. [1] Tudat (TU Delft Astrodynamics Toolbox) documentation: tabulated aerodynamic coefficients,
+       coefficient frames and the moment reference point. https://docs.tudat.space
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> flow_vector(np.radians([0.0, 90.0, 0.0]), np.radians([0.0, 0.0, 90.0])).round(12) + 0.0
+    array([[1., 0., 0.],
+           [0., 0., 1.],
+           [0., 1., 0.]])
+    """
     alpha, beta = np.broadcast_arrays(np.asarray(alpha_rad, float), np.asarray(beta_rad, float))
     return np.stack([np.cos(alpha) * np.cos(beta), np.sin(beta), np.sin(alpha) * np.cos(beta)], axis=-1)
 
 
 def check_request(step_deg: float | None) -> None:
-    """Refuse, before a sweep, a list of attitudes (``step_deg`` None): Tudat files need a grid.
+    """Refuse, before a sweep, a list of attitudes: Tudat files need a grid.
+
+    Parameters
+    ----------
+    step_deg : float or None
+        The grid step [deg]; None for a list of attitudes.
 
     Raises
     ------
     InputError
-        A list.
+        A list (``step_deg`` None).
+
+    Examples
+    --------
+    >>> check_request(5.0)
+    >>> check_request(None)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: Tudat coefficient files need a grid of flow directions, ...
     """
     if step_deg is None:
         raise InputError(
@@ -106,29 +169,64 @@ def write_tudat(
 ) -> TudatFiles:
     """Write the drag of a grid sweep table as six Tudat coefficient files ``{prefix}_C{F,M}{x,y,z}.txt``.
 
+    Every value is interpolated from the table at the flow direction of each (alpha, beta) node
+    (:func:`flow_vector`); forces become ``C_F = F / (q S_ref)`` and moments ``C_M = M / (q S_ref
+    L_ref)`` about the table's reference point, body frame.
+
     Parameters
     ----------
     table : xarray.Dataset
         Grid sweep table with ``drag_force_N`` and ``drag_torque_Nm``.
-    prefix : path
+    prefix : str or Path
         Directory and start of the file names.
     alpha_step_deg, beta_step_deg : float, optional
-        Steps of the angle-of-attack (-180..180) and sideslip (-90..90) grids [deg]; default the table's
-        flow azimuth and elevation steps.
+        Steps of the angle-of-attack (-180..180) and sideslip (-90..90) grids [deg]; default the
+        table's flow azimuth and elevation steps.
     method : {"bicubic", "bilinear"}
         Interpolation from the table's grid to the alpha/beta nodes.
+
+    Returns
+    -------
+    TudatFiles
+        The six files and the reference area, length and point to give Tudat.
 
     Raises
     ------
     InputError
-        A list table, no drag results, a step that does not divide its range, or missing or non-positive
-        ``dynamic_pressure_Pa``, ``reference_area_m2`` or ``reference_length_m``.
+        A list table, no drag results, a step that does not divide its range, or missing or
+        non-positive ``dynamic_pressure_Pa``, ``reference_area_m2`` or ``reference_length_m``.
 
     Warns
     -----
     ReferencePointWarning
         The table's reference point is a default (a centroid): Tudat, left without
         ``moment_reference_point``, would take the moments as about the centre of mass.
+
+    References
+    ----------
+    .. [1] Tudat (TU Delft Astrodynamics Toolbox) documentation: tabulated aerodynamic coefficients,
+       coefficient frames and the moment reference point. https://docs.tudat.space
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> setup = sw.DragSetup(
+    ...     speed_m_s=7600.0, atmosphere=air, reflections="none", reference_point_m=(0.0, 0.0, 0.0),
+    ...     gas_sampling=sw.GasSampling(sky_rays=16, core_rays=1024),
+    ... )
+    >>> table = sw.sweep(cube, drag=setup, step_deg=90.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     files = write_tudat(table, Path(folder) / "cube")
+    ...     rows = [line for line in files.force[0].read_text().splitlines() if not line.startswith("#")]
+    >>> files.reference_area_m2, files.moment_reference_point_m
+    (1.5, (0.0, 0.0, 0.0))
+    >>> rows[0], len(rows[1].split()), len(rows[2].split())  # two variables: 5 alphas, 3 betas
+    ('2', 5, 3)
     """
     missing = [name for name in ("drag_force_N", "drag_torque_Nm") if name not in table.data_vars]
     if missing:
@@ -190,7 +288,47 @@ def write_tudat(
 
 
 def write(table: xr.Dataset, path: str | Path) -> list[Path]:
-    """:func:`write_tudat` with its default grid and interpolation; the six files written."""
+    """:func:`write_tudat` with its default grid and interpolation.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        Grid sweep table with drag results.
+    path : str or Path
+        Directory and start of the file names.
+
+    Returns
+    -------
+    list of Path
+        The six files written: the force coefficients, then the moment coefficients.
+
+    Raises
+    ------
+    InputError
+        What :func:`write_tudat` refuses.
+
+    Warns
+    -----
+    ReferencePointWarning
+        The table's reference point is a default.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> setup = sw.DragSetup(
+    ...     speed_m_s=7600.0, atmosphere=air, reflections="none", reference_point_m=(0.0, 0.0, 0.0),
+    ...     gas_sampling=sw.GasSampling(sky_rays=16, core_rays=1024),
+    ... )
+    >>> table = sw.sweep(cube, drag=setup, step_deg=90.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     print([path.name for path in write(table, Path(folder) / "cube")])
+    ['cube_CFx.txt', 'cube_CFy.txt', 'cube_CFz.txt', 'cube_CMx.txt', 'cube_CMy.txt', 'cube_CMz.txt']
+    """
     files = write_tudat(table, path)
     return [*files.force.values(), *files.moment.values()]
 

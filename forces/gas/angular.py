@@ -65,7 +65,37 @@ N_CHANNELS = 4
 
 
 def scaled_moments(cos_psi: NDArray[np.float64], speed_ratio: float) -> tuple[NDArray, NDArray]:
-    """``exp(-S^2 sin^2 psi) J_3(S cos psi)`` and the same with ``J_4``, elementwise (module docstring)."""
+    """Compute ``exp(-S^2 sin^2 psi) J_k(S cos psi)`` for ``k = 3, 4``, elementwise.
+
+    Evaluated without overflow or cancellation: for ``s = S cos psi < 0`` through ``erfcx`` and the
+    common factor ``exp(-S^2)`` (module docstring).
+
+    Parameters
+    ----------
+    cos_psi : (n,) array_like of float64
+        Cosine of the angle between the arrival direction ``w`` and the flow direction ``u``; clipped
+        to [-1, 1].
+    speed_ratio : float
+        Molecular speed ratio ``S = V / c_m`` [-], positive.
+
+    Returns
+    -------
+    j3 : (n,) ndarray of float64
+        ``exp(-S^2 sin^2 psi) J_3(s)`` [-], never negative.
+    j4 : (n,) ndarray of float64
+        ``exp(-S^2 sin^2 psi) J_4(s)`` [-], never negative.
+
+    References
+    ----------
+    Olver et al. (eds.), NIST Digital Library of Mathematical Functions, ch. 7 (repeated integrals of
+    the error function).
+
+    Examples
+    --------
+    >>> j3, j4 = scaled_moments([1.0, 0.0], 2.0)
+    >>> j3.round(4), j4.round(4)
+    (array([1.94972e+01, 9.20000e-03]), array([5.09579e+01, 1.22000e-02]))
+    """
     cos_psi = np.clip(np.asarray(cos_psi, dtype=np.float64), -1.0, 1.0)
     s = speed_ratio * cos_psi
     gauss = math.exp(-speed_ratio * speed_ratio)  # exp(-S^2 sin^2 psi) exp(-s^2)
@@ -81,18 +111,71 @@ def scaled_moments(cos_psi: NDArray[np.float64], speed_ratio: float) -> tuple[ND
 
 
 def direction_flux(cos_psi: NDArray[np.float64], speed_ratio: float) -> tuple[NDArray, NDArray]:
-    """``k_N`` (over ``n V``) and ``k_P`` (over ``q``) per unit solid angle and ``mu`` (module docstring)."""
+    """Number kernel ``k_N / (n V)`` and momentum kernel ``k_P / q`` per unit solid angle and ``mu``.
+
+    Parameters
+    ----------
+    cos_psi : (n,) array_like of float64
+        Cosine of the angle between the arrival direction ``w`` and the flow direction ``u``.
+    speed_ratio : float
+        Molecular speed ratio ``S`` [-], positive.
+
+    Returns
+    -------
+    number : (n,) ndarray of float64
+        ``exp(-S^2 sin^2 psi) J_3 / (pi^(3/2) S)`` [1/sr].
+    momentum : (n,) ndarray of float64
+        ``2 exp(-S^2 sin^2 psi) J_4 / (pi^(3/2) S^2)`` [1/sr], the magnitude of the momentum brought
+        along ``-w``.
+
+    Examples
+    --------
+    Head-on arrivals carry almost everything at ``S = 5``; from the side or behind, next to nothing:
+
+    >>> number, momentum = direction_flux([1.0, 0.0, -1.0], 5.0)
+    >>> number.round(4), momentum.round(4)
+    (array([8.4352, 0.    , 0.    ]), array([17.8445,  0.    ,  0.    ]))
+    """
     j3, j4 = scaled_moments(cos_psi, speed_ratio)
     return j3 / (_PI_32 * speed_ratio), 2.0 * j4 / (_PI_32 * speed_ratio**2)
 
 
 def x_grid() -> NDArray[np.float64]:
-    """The table abscissae ``x = sin(psi / 2)``, (X_POINTS,)."""
+    """Abscissae ``x = sin(psi / 2)`` of the direction tables, evenly spaced in [0, 1].
+
+    Returns
+    -------
+    (X_POINTS,) ndarray of float64
+        From 0 (arrival along ``u``) to 1 (arrival from behind).
+
+    Examples
+    --------
+    >>> x = x_grid()
+    >>> x.shape, float(x[0]), float(x[-1])
+    ((4097,), 0.0, 1.0)
+    """
     return np.linspace(0.0, 1.0, X_POINTS)
 
 
 def cos_of_x(x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``cos(psi) = 1 - 2 x^2`` for ``x = sin(psi / 2)``."""
+    """Cosine ``cos(psi) = 1 - 2 x^2`` at the table abscissae ``x = sin(psi / 2)``.
+
+    Parameters
+    ----------
+    x : ndarray of float64
+        Values of ``sin(psi / 2)`` in [0, 1], any shape.
+
+    Returns
+    -------
+    ndarray of float64
+        ``cos(psi)``, the shape of ``x``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cos_of_x(np.array([0.0, 0.5, 1.0]))
+    array([ 1. ,  0.5, -1. ])
+    """
     return 1.0 - 2.0 * x * x
 
 
@@ -116,6 +199,18 @@ class SpeciesLaws:
         its sqrt(mass)-weighted molecule rate [sqrt(kg)/(s m^2)].
     cll_alpha_n, cll_tau_w : (n_laws,) float64
         CLL's ``alpha_n`` (NaN for other laws) and ``T_w / T``.
+
+    Examples
+    --------
+    Made by :func:`sunwind.forces.gas.panel.species_laws`; here one species and one law by hand:
+
+    >>> import numpy as np
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(speed_ratio=np.array([7.0]), dynamic_pressure_Pa=np.array([3e-5]),
+    ...     pressure_scale=one, shear_scale=one, push=np.array([[0.1]]), emission=np.zeros((1, 1, 2)),
+    ...     cll_alpha_n=np.array([np.nan]), cll_tau_w=np.zeros(1))
+    >>> laws.push.shape
+    (1, 1)
     """
 
     speed_ratio: NDArray[np.float64]
@@ -140,6 +235,16 @@ class DirectionTables:
     cll : (n_laws, X_POINTS, MU_POINTS) float64 or None
         CLL's reflected normal momentum [Pa] per unit solid angle and ``mu`` on ``(x, mu)``; zero for
         other laws; None where no law is CLL.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(np.array([7.0]), np.array([3e-5]), one, one, np.array([[0.1]]),
+    ...     np.zeros((1, 1, 2)), np.array([np.nan]), np.zeros(1))
+    >>> tables = direction_tables(laws, {})
+    >>> tables.channels.shape, tables.cll is None
+    ((1, 4097, 4), True)
     """
 
     channels: NDArray[np.float64]
@@ -149,9 +254,39 @@ class DirectionTables:
 def channel_values(
     laws: SpeciesLaws, cos_psi: NDArray[np.float64], cll_tables: dict[int, NDArray[np.float64]]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
-    """The kernels of every law at the directions ``cos_psi`` (n,): channels (n_laws, N_CHANNELS, n) and
-    CLL's reflected normal momentum (n_laws, n, MU_POINTS) or None (:class:`DirectionTables`);
-    ``cll_tables`` maps each CLL law to its :func:`cll_normal_table` (reaching the species' ``S``)."""
+    """Evaluate the kernels of every law at the directions ``cos_psi``, summed over the species.
+
+    Parameters
+    ----------
+    laws : SpeciesLaws
+        The attitude's free stream by species and each law's answer to it.
+    cos_psi : (n,) ndarray of float64
+        Cosine of the angle between each arrival direction and the flow direction ``u``.
+    cll_tables : dict of int to ndarray
+        Each CLL law's index mapped to its :func:`cll_normal_table`, which must reach ``s = S`` of
+        every species; empty when no law is CLL.
+
+    Returns
+    -------
+    channels : (n_laws, N_CHANNELS, n) ndarray of float64
+        :data:`MOMENTUM` [Pa], :data:`PUSH` [Pa], :data:`EMITTED_MOMENTUM` [N/m^2] and
+        :data:`EMITTED_ROOT_MASS` [sqrt(kg)/(s m^2)], each per unit solid angle and unit ``mu``.
+    cll : (n_laws, n, MU_POINTS) ndarray of float64 or None
+        CLL's reflected normal momentum [Pa] per unit solid angle and ``mu`` (zero rows for other laws);
+        None when ``cll_tables`` is empty.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(np.array([7.0]), np.array([3e-5]), one, one, np.array([[0.1]]),
+    ...     np.zeros((1, 1, 2)), np.array([np.nan]), np.zeros(1))
+    >>> channels, cll = channel_values(laws, np.array([1.0, -1.0]), {})
+    >>> channels.shape, cll
+    ((1, 4, 2), None)
+    >>> (channels[0, MOMENTUM] / 3e-5).round(3)
+    array([33.114,  0.   ])
+    """
     n_laws = laws.push.shape[0]
     channels = np.zeros((n_laws, N_CHANNELS, len(cos_psi)))
     cll = None if not cll_tables else np.zeros((n_laws, len(cos_psi), MU_POINTS))
@@ -167,7 +302,29 @@ def channel_values(
 
 
 def direction_tables(laws: SpeciesLaws, cll_tables: dict[int, NDArray[np.float64]]) -> DirectionTables:
-    """The :class:`DirectionTables` of one attitude (:func:`channel_values` on :func:`x_grid`)."""
+    """Direction tables of one attitude: :func:`channel_values` on :func:`x_grid`.
+
+    Parameters
+    ----------
+    laws : SpeciesLaws
+        The attitude's free stream by species and each law's answer to it.
+    cll_tables : dict of int to ndarray
+        Each CLL law's index mapped to its :func:`cll_normal_table`; empty when no law is CLL.
+
+    Returns
+    -------
+    DirectionTables
+        The channels laid out point by point, and CLL's table or None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(np.array([7.0]), np.array([3e-5]), one, one, np.array([[0.1]]),
+    ...     np.zeros((1, 1, 2)), np.array([np.nan]), np.zeros(1))
+    >>> direction_tables(laws, {}).channels.shape
+    (1, 4097, 4)
+    """
     channels, cll = channel_values(laws, cos_of_x(x_grid()), cll_tables)
     return DirectionTables(np.ascontiguousarray(channels.transpose(0, 2, 1)), cll)
 
@@ -176,13 +333,54 @@ def direction_tables(laws: SpeciesLaws, cll_tables: dict[int, NDArray[np.float64
 
 
 def mu_grid() -> NDArray[np.float64]:
-    """The CLL tables' abscissae ``mu = t^2`` in [0, 1] (``t`` evenly spaced), (MU_POINTS,)."""
+    """Abscissae ``mu = t^2`` of the CLL tables, ``t`` evenly spaced in [0, 1].
+
+    Returns
+    -------
+    (MU_POINTS,) ndarray of float64
+        Finest near grazing arrival (``mu = 0``).
+
+    Examples
+    --------
+    >>> mu = mu_grid()
+    >>> mu.shape, round(float(mu[1]), 6), float(mu[-1])
+    ((33,), 0.000977, 1.0)
+    """
     return np.linspace(0.0, 1.0, MU_POINTS) ** 2
 
 
 def cll_normal_table(alpha_n: float, tau_w: float, s_high: float) -> NDArray[np.float64]:
-    """``G(s, mu) exp(min(s, 0)^2)`` on ``s = -_S_LOW + j _S_STEP`` up to ``s_high`` and :func:`mu_grid`,
-    (n_s, MU_POINTS), for CLL's ``alpha_n`` and ``tau_w = T_w / T`` (module docstring)."""
+    """Table of CLL's integral ``G(s, mu) exp(min(s, 0)^2)`` for one law and free-stream temperature.
+
+    ``G(s, mu) = int_0^inf x^3 exp(-(x - s)^2) h(x mu) dx`` with ``h`` the mean reflected normal speed
+    (:func:`sunwind.forces.gas.incident.cll_reflected_normal`), integrated by Gauss-Legendre panels of
+    width 1 over the window where the weight exceeds ``exp(-49)``.
+
+    Parameters
+    ----------
+    alpha_n : float
+        CLL's normal energy accommodation [-], in [0, 1].
+    tau_w : float
+        ``T_w / T``, wall over free-stream temperature [-].
+    s_high : float
+        Largest ``s`` the table must reach (the largest speed ratio ``S`` of the species).
+
+    Returns
+    -------
+    (n_s, MU_POINTS) ndarray of float64
+        Rows on ``s = -6 + 0.05 j`` up to just past ``s_high``, columns on :func:`mu_grid`.
+
+    References
+    ----------
+    Cercignani and Lampis (1971); Lord (1991); Olver et al. (eds.), NIST Digital Library of Mathematical
+    Functions, section 3.5 (Gauss quadrature).
+
+    Examples
+    --------
+    >>> table = cll_normal_table(0.5, 0.3, 3.0)
+    >>> table.shape
+    (182, 33)
+    """
     s = np.arange(-_S_LOW, s_high + 2 * _S_STEP, _S_STEP)
     mu = mu_grid()
     out = np.empty((len(s), MU_POINTS))
@@ -206,9 +404,33 @@ def cll_normal_table(alpha_n: float, tau_w: float, s_high: float) -> NDArray[np.
 def cll_direction_kernel(
     cos_psi: NDArray[np.float64], speed_ratio: float, table: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """CLL's reflected normal momentum over ``q`` per unit solid angle and ``mu``, (len(cos_psi),
-    MU_POINTS): ``2 exp(-S^2 sin^2 psi) G(S cos psi, mu) / (pi^(3/2) S^2)`` from ``table``
-    (:func:`cll_normal_table`, which must reach ``s = S``)."""
+    """Interpolate CLL's reflected normal momentum over ``q`` per unit solid angle and ``mu`` in ``table``.
+
+    The value is ``2 exp(-S^2 sin^2 psi) G(S cos psi, mu) / (pi^(3/2) S^2)`` (module docstring), linear
+    in ``s`` between the rows of ``table``.
+
+    Parameters
+    ----------
+    cos_psi : (n,) ndarray of float64
+        Cosine of the angle between each arrival direction and the flow direction ``u``.
+    speed_ratio : float
+        Molecular speed ratio ``S`` [-] of the species.
+    table : (n_s, MU_POINTS) ndarray of float64
+        The law's :func:`cll_normal_table`, which must reach ``s = S``.
+
+    Returns
+    -------
+    (n, MU_POINTS) ndarray of float64
+        The kernel [1/sr] at each direction and each ``mu`` of :func:`mu_grid`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> table = cll_normal_table(0.5, 0.3, 3.0)
+    >>> kernel = cll_direction_kernel(np.array([1.0, 0.5]), 3.0, table)
+    >>> kernel.shape, bool((kernel >= 0.0).all())
+    ((2, 33), True)
+    """
     s = speed_ratio * np.asarray(cos_psi, dtype=np.float64)
     position = (np.clip(s, -_S_LOW, None) + _S_LOW) / _S_STEP
     below = np.minimum(np.floor(position).astype(np.int64), table.shape[0] - 2)

@@ -117,6 +117,18 @@ def starts(
 
     Parameters
     ----------
+    senders : (n_senders,) int64
+        Sides the molecules strike.
+    per_side : int
+        Molecules drawn per sender.
+    triangles : (n_facets, 3, 3) float64
+        Corners of each facet [m].
+    side_facet : (n_sides,) int64
+        Facet of each side.
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    areas : (n_sides,) float64
+        Area of each side [m^2].
     species_flux : (n_senders, k) float64
         Incident number flux of each species on each sender if unobstructed [1/(s m^2)].
     species_pick : (n_senders, k) float64
@@ -125,6 +137,8 @@ def starts(
         ``sqrt(2 k T / m_k)`` [m/s].
     drift : (3,) float64
         The gas velocity relative to the body, ``-V u`` [m/s].
+    seed : uint64
+        Seed of the random numbers.
 
     Returns
     -------
@@ -135,6 +149,24 @@ def starts(
         Its velocity [m/s], into the side.
     weight : (n,) float64
         Molecules per second it stands for: ``A N_k / (p_k per_side)``.
+
+    Examples
+    --------
+    Two molecules onto side 0 of a unit cube (normal -x) from a stream drifting along +x:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> craft.side_normals[0], float(craft.side_areas[0])
+    (array([-1.,  0., -0.]), 0.5)
+    >>> side, species, point, velocity, weight = starts(np.array([0]), 2, craft.triangles, craft.side_facet,
+    ...     craft.side_normals, craft.side_areas, np.array([[1e17]]), np.array([[1.0]]), np.array([1000.0]),
+    ...     np.array([7500.0, 0.0, 0.0]), np.uint64(1))
+    >>> side, species, weight
+    (array([0, 0]), array([0, 0]), array([2.5e+16, 2.5e+16]))
+    >>> bool(np.all(velocity @ craft.side_normals[0] < 0.0))  # into the side
+    True
     """
     n = senders.shape[0] * per_side
     side = np.empty(n, dtype=np.int64)
@@ -237,6 +269,31 @@ def bounce(
         Its weight [1/s].
     sends : (n,) bool
         Which molecules send anything on.
+
+    Examples
+    --------
+    A mirror sends every molecule on with its normal velocity reversed:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> craft.side_normals[0], float(craft.side_areas[0])
+    (array([-1.,  0., -0.]), 0.5)
+    >>> side, species, point, velocity, weight = starts(np.array([0]), 2, craft.triangles, craft.side_facet,
+    ...     craft.side_normals, craft.side_areas, np.array([[1e17]]), np.array([[1.0]]), np.array([1000.0]),
+    ...     np.array([7500.0, 0.0, 0.0]), np.uint64(1))
+    >>> from sunwind.forces.gas.chains import ChainLaws, Molecules
+    >>> from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+    >>> mirror = ChainLaws.of(GasSurfaces.of({"code": [MODEL_CODES["specular"]], "energy_accommodation": 1.0,
+    ...     "normal_accommodation": 1.0, "tangential_accommodation": 1.0, "wall_temperature_K": 300.0}))
+    >>> side_law, mass = np.zeros(craft.n_sides, dtype=np.int64), np.array([2.66e-26])
+    >>> molecules = Molecules(side, species, point, velocity, weight, np.arange(2))
+    >>> totals = np.zeros(6)
+    >>> out_velocity, out_weight, sends = bounce(molecules, 0, side_law, craft.side_normals, mass, mirror,
+    ...     np.uint64(1), np.zeros(3), totals, False)
+    >>> sends, bool(np.allclose(out_velocity[:, 0], -velocity[:, 0])), bool(np.all(totals == 0.0))
+    (array([ True,  True]), True, True)
     """
     side, species, point, velocity = molecules.side, molecules.species, molecules.point, molecules.velocity
     weight, packet = molecules.weight, molecules.packet
@@ -359,6 +416,31 @@ def land(
     -------
     goes_on : (n,) bool
         Which legs struck a side whose law sends some of them on.
+
+    Examples
+    --------
+    Of two legs, one escapes (``struck`` negative) and one meets a mirror, which sends it on:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> craft.side_normals[0], float(craft.side_areas[0])
+    (array([-1.,  0., -0.]), 0.5)
+    >>> side, species, point, velocity, weight = starts(np.array([0]), 2, craft.triangles, craft.side_facet,
+    ...     craft.side_normals, craft.side_areas, np.array([[1e17]]), np.array([[1.0]]), np.array([1000.0]),
+    ...     np.array([7500.0, 0.0, 0.0]), np.uint64(1))
+    >>> from sunwind.forces.gas.chains import ChainLaws, Molecules
+    >>> from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+    >>> mirror = ChainLaws.of(GasSurfaces.of({"code": [MODEL_CODES["specular"]], "energy_accommodation": 1.0,
+    ...     "normal_accommodation": 1.0, "tangential_accommodation": 1.0, "wall_temperature_K": 300.0}))
+    >>> side_law, mass = np.zeros(craft.n_sides, dtype=np.int64), np.array([2.66e-26])
+    >>> totals, deposit = np.zeros(6), np.zeros((2, craft.n_sides))
+    >>> land(np.array([-1, 1]), point, species, -velocity, weight, side_law, mass, mirror, np.zeros(3),
+    ...     totals, deposit)
+    array([False,  True])
+    >>> bool(np.any(totals != 0.0)), bool(np.all(deposit == 0.0))
+    (True, True)
     """
     diffuse, wall_weight, energy_weight = laws.diffuse, laws.wall_weight, laws.energy_weight
     wall = laws.wall_temperature_K

@@ -267,8 +267,7 @@ def molecular_chains(
     laws : SpeciesLaws
         The free stream by species and each law's answer (species as ``stream``).
     stream : SpeciesStream
-        Species masses [kg], number densities [m^-3] and the flow speed [m/s] (a plain 3-tuple in that
-        order is taken too).
+        Species masses [kg], number densities [m^-3] and the flow speed [m/s].
     u : (3,) float64
         Unit flow direction, ``v_rel / |v_rel|``.
     reference_m : (3,) float64
@@ -306,7 +305,6 @@ def molecular_chains(
     >>> molecular_chains(craft, groups, laws, stream, u, np.zeros(3), 1000).packets
     0
     """
-    stream = SpeciesStream(*stream)
     chain_laws = ChainLaws.of(groups.surfaces)
     side_law = groups.law[groups.side]
     senders = np.flatnonzero(chain_laws.sends[side_law] & ~clearance(craft).open_sky)

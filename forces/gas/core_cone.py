@@ -78,6 +78,18 @@ class CoreCone:
         (density ``k_P / Z`` per unit solid angle, ``k_P`` the species' summed momentum kernel).
     normaliser : float
         ``Z = integral over the cone of k_P dOmega`` [Pa].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.angular import SpeciesLaws
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(speed_ratio=np.array([7.0]), dynamic_pressure_Pa=np.array([3e-5]),
+    ...     pressure_scale=one, shear_scale=one, push=np.array([[0.1]]), emission=np.zeros((1, 1, 2)),
+    ...     cll_alpha_n=np.array([np.nan]), cll_tau_w=np.zeros(1))
+    >>> cone = core_cone(laws, {})
+    >>> cone.gamma_table.shape, cone.psi_quantiles.shape
+    ((1, 4, 513), (257,))
     """
 
     half_angle: float
@@ -87,7 +99,32 @@ class CoreCone:
 
 
 def core_half_angle(laws: SpeciesLaws) -> float:
-    """``psi_c`` [rad] (module docstring)."""
+    """Half-angle ``psi_c`` of the core cone [rad] (module docstring).
+
+    ``psi_c = min(CORE_MAX_RAD, CORE_SPREAD / S_min)``, ``S_min`` the lowest speed ratio among the
+    species carrying at least :data:`SIGNIFICANT` of the dynamic pressure.
+
+    Parameters
+    ----------
+    laws : SpeciesLaws
+        The attitude's free stream by species.
+
+    Returns
+    -------
+    float
+        ``psi_c`` [rad], in (0, CORE_MAX_RAD].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.angular import SpeciesLaws
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(speed_ratio=np.array([7.0]), dynamic_pressure_Pa=np.array([3e-5]),
+    ...     pressure_scale=one, shear_scale=one, push=np.array([[0.1]]), emission=np.zeros((1, 1, 2)),
+    ...     cll_alpha_n=np.array([np.nan]), cll_tau_w=np.zeros(1))
+    >>> core_half_angle(laws)
+    0.3
+    """
     q = laws.dynamic_pressure_Pa
     significant = laws.speed_ratio[q >= SIGNIFICANT * q.sum()]
     return min(CORE_MAX_RAD, CORE_SPREAD / float(significant.min()))
@@ -96,9 +133,44 @@ def core_half_angle(laws: SpeciesLaws) -> float:
 def core_cone(
     laws: SpeciesLaws, cll_tables: dict[int, NDArray[np.float64]], half_angle: float | None = None
 ) -> CoreCone:
-    """The :class:`CoreCone` of one attitude; ``cll_tables`` as for
-    :func:`~sunwind.forces.gas.angular.channel_values`; ``half_angle`` [rad] replaces
-    :func:`core_half_angle` (a test: at pi the core is the whole stream)."""
+    """Core cone of one attitude: its width, per-law tables on ``gamma`` and sampling distribution.
+
+    Parameters
+    ----------
+    laws : SpeciesLaws
+        The attitude's free stream by species and each law's answer to it.
+    cll_tables : dict of int to ndarray
+        As for :func:`~sunwind.forces.gas.angular.channel_values`: each CLL law's
+        :func:`~sunwind.forces.gas.angular.cll_normal_table`; empty when no law is CLL.
+    half_angle : float, optional
+        ``psi_c`` [rad] to use instead of :func:`core_half_angle` (for tests: at pi the core is the
+        whole stream).
+
+    Returns
+    -------
+    CoreCone
+        The cone, its tables on ``gamma = n . u`` and its sampling distribution.
+
+    References
+    ----------
+    Olver et al. (eds.), NIST Digital Library of Mathematical Functions, section 3.5 (Gauss-Legendre
+    quadrature of the radial integral).
+
+    Examples
+    --------
+    Head-on, the core carries nearly all the normal force of the whole stream at ``S = 7``:
+
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.angular import SpeciesLaws
+    >>> one = np.ones(1)
+    >>> laws = SpeciesLaws(speed_ratio=np.array([7.0]), dynamic_pressure_Pa=np.array([3e-5]),
+    ...     pressure_scale=one, shear_scale=one, push=np.array([[0.1]]), emission=np.zeros((1, 1, 2)),
+    ...     cll_alpha_n=np.array([np.nan]), cll_tau_w=np.zeros(1))
+    >>> core = core_cone(laws, {}).gamma_table[0, NORMAL, -1]
+    >>> whole = core_cone(laws, {}, half_angle=np.pi).gamma_table[0, NORMAL, -1]
+    >>> round(float(core / 3e-5), 3), round(float(whole / 3e-5), 3)
+    (-2.097, -2.12)
+    """
     half = core_half_angle(laws) if half_angle is None else half_angle
     gamma = np.linspace(-1.0, 1.0, GAMMA_POINTS)
     kink = np.clip(np.abs(np.arcsin(gamma)), 0.0, half)

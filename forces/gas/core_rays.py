@@ -55,6 +55,14 @@ class CoreCorrections:
         moment about the centroid [Pa m], re-emission channels.
     rays : int
         Rays cast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> none = CoreCorrections(at_lit=np.ones(2), at_centroid=np.zeros(2), force=np.zeros((2, 3)),
+    ...     moment=np.zeros((2, 3)), emitted=np.zeros((2, 2)), rays=0)
+    >>> none.at_lit + none.at_centroid
+    array([1., 1.])
     """
 
     at_lit: NDArray[np.float64]
@@ -66,9 +74,30 @@ class CoreCorrections:
 
 
 def core_sampling(n_sides: int, budget: int) -> tuple[int, tuple[int, int]]:
-    """The finest of :data:`CORE_SAMPLINGS` whose rays over ``n_sides`` sides fit ``budget``: taken over
-    all the model's sides, so that a side's core rays do not depend on the attitude or on which rays
-    were found clear."""
+    """Finest of :data:`CORE_SAMPLINGS` whose rays over ``n_sides`` sides fit ``budget``.
+
+    Taken over all the model's sides, so that a side's core rays depend neither on the attitude nor on
+    which rays were found clear.
+
+    Parameters
+    ----------
+    n_sides : int
+        Sides of the model.
+    budget : int
+        Most core rays per attitude.
+
+    Returns
+    -------
+    level : int
+        Points per side along each edge of the side's sampling (``level**2`` points).
+    strata : (int, int)
+        Radial and azimuthal strata of the directions drawn from each point.
+
+    Examples
+    --------
+    >>> core_sampling(12, 1000), core_sampling(12, 10)
+    ((4, (2, 2)), (1, (1, 2)))
+    """
     for level, strata in CORE_SAMPLINGS:
         if n_sides * level**2 * (strata[0] * strata[1] + 1) <= budget:
             return level, strata
@@ -109,6 +138,31 @@ def core_corrections(
     ------
     MemoryError
         The core rays would not fit in the memory left.
+
+    Examples
+    --------
+    Every side of a convex body sees the whole core, so a cube in a stream along +x casts no core ray:
+
+    >>> import math
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.gas.panel import gas_groups
+    >>> from sunwind.forces.gas.visible import stream_tables
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> groups = gas_groups(craft)
+    >>> stream = stream_tables(craft, groups.surfaces, air, 7500.0)
+    >>> u = np.array([1.0, 0.0, 0.0])
+    >>> tables = LawTables(channels=stream.directions.channels, cll=stream.directions.cll,
+    ...     pressure_scale=stream.laws.pressure_scale, shear_scale=stream.laws.shear_scale,
+    ...     normals=craft.side_normals)
+    >>> flow_law = FlowLaw(side_law=groups.law[groups.side], u=u, cos_core=math.cos(stream.cone.half_angle))
+    >>> flow = side_sampler(craft).illuminate(u, 4, None)
+    >>> corrections = core_corrections(craft, flow, stream.cone, flow_law, tables, 1000)
+    >>> corrections.rays, bool(np.all(corrections.at_lit + corrections.at_centroid == 1.0))
+    (0, True)
     """
     n, u = craft.n_sides, flow.direction
     gamma = craft.side_normals @ u

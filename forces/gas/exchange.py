@@ -47,13 +47,48 @@ MEAN_SPEED_FACTOR = 3.0 * math.sqrt(math.pi) / 4.0
 
 
 def mean_momentum(temperature_K: NDArray | float, mass_kg: float) -> NDArray | float:
-    """Mean momentum [kg m/s] of a molecule diffusely re-emitted at ``temperature_K``."""
+    """Mean momentum [kg m/s] of a molecule diffusely re-emitted at ``temperature_K``.
+
+    Molecules effusing from a Maxwellian at ``T`` have the mean speed ``(3 sqrt(pi)/4) sqrt(2 k T / m)``.
+
+    Parameters
+    ----------
+    temperature_K : float or ndarray
+        Temperature of the re-emission [K].
+    mass_kg : float
+        Molecular mass [kg].
+
+    Returns
+    -------
+    float or ndarray
+        ``m`` times the mean speed [kg m/s], the shape of ``temperature_K``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> (mean_momentum(np.array([300.0, 1200.0]), 2.66e-26) / 1e-23).round(4)
+    array([1.9733, 3.9466])
+    """
     return MEAN_SPEED_FACTOR * np.sqrt(2.0 * BOLTZMANN * np.asarray(temperature_K) * mass_kg)
 
 
 @dataclass(frozen=True)
 class ExchangeTotals:
-    """What the molecular exchange changes in the panel law's force and torque; body frame, SI."""
+    """What the molecular exchange changes in the panel law's force and torque; body frame, SI.
+
+    Parameters
+    ----------
+    force_N : (3,) float64
+        Change of the force [N].
+    torque_Nm : (3,) float64
+        Change of the torque about the reference point [N m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ExchangeTotals(force_N=np.zeros(3), torque_Nm=np.zeros(3)).force_N
+    array([0., 0., 0.])
+    """
 
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
@@ -65,6 +100,7 @@ class MolecularExchange:
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     view : ViewFactors
         View factors of ``craft``'s sides.
     mirrored : (n_sides,) float64
@@ -72,6 +108,21 @@ class MolecularExchange:
         ChainLaws`); the exchange factors follow diffusely re-emitted molecules through such mirrors.
     cache_dir : path, bool or None
         Where those exchange factors are kept on disk.
+
+    Examples
+    --------
+    On a convex body nothing a side re-emits lands on another, so the exchange changes nothing:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.reflection import ReflectionSettings
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> settings = ReflectionSettings("full", rays_per_side=16, cache_dir=False)
+    >>> exchange = molecular_exchange(craft, settings, np.zeros(craft.n_sides))
+    >>> emitted = np.ones(craft.n_sides)
+    >>> totals = exchange.totals(emitted, 1e-13 * emitted, np.zeros(3))
+    >>> exchange.escape.shape, bool(np.allclose(totals.force_N, 0.0, atol=1e-12))
+    ((12, 6), True)
     """
 
     def __init__(
@@ -116,7 +167,25 @@ class MolecularExchange:
             Torque reference point [m].
         landed : (2, n_sides), optional
             The same two rates of the diffuse re-emission of molecules the chains brought
-            (:class:`~sunwind.forces.gas.chains.ChainTotals`), which nothing has let escape yet.
+            (:class:`~sunwind.forces.gas.chains.MoleculeChainTotals`), which nothing has let escape yet.
+
+        Returns
+        -------
+        ExchangeTotals
+            Change of the panel law's force [N] and torque about ``reference_m`` [N m].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.reflection import ReflectionSettings
+        >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+        >>> settings = ReflectionSettings("full", rays_per_side=16, cache_dir=False)
+        >>> exchange = molecular_exchange(craft, settings, np.zeros(craft.n_sides))
+        >>> emitted = np.ones(craft.n_sides)
+        >>> totals = exchange.totals(emitted, 1e-13 * emitted, np.zeros(3))
+        >>> totals.force_N.shape, totals.torque_Nm.shape
+        ((3,), (3,))
         """
         momentum, root_mass = momentum_emitted, root_mass_emitted
         if landed is not None:
@@ -145,13 +214,15 @@ def _escaping(
 def open_plate_recoil(
     craft: Spacecraft, momentum_emitted: NDArray[np.float64], reference_m: NDArray[np.float64]
 ) -> ExchangeTotals:
-    """The recoil of molecules each side re-emits diffusely when all of them leave as from an open
-    plate (``(2/3) n`` per unit momentum, as the panel law lets the first re-emission leave): what the
+    """Recoil of the molecules each side re-emits diffusely when all of them leave as from an open plate.
+
+    That is ``(2/3) n`` per unit momentum, as the panel law lets the first re-emission leave: what the
     chains land is re-emitted so in ``specular`` mode, which exchanges nothing between sides.
 
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     momentum_emitted : (n_sides,) float64
         Momentum per second each side re-emits diffusely [N] (the chains' ``deposit[0]``).
     reference_m : (3,) float64
@@ -181,9 +252,35 @@ def open_plate_recoil(
 def molecular_exchange(
     craft: Spacecraft, settings: ReflectionSettings, mirrored: NDArray[np.float64]
 ) -> MolecularExchange:
-    """The :class:`MolecularExchange` of ``craft`` with its view factors for ``settings`` and the share
-    ``mirrored`` (n_sides,) each side mirrors (fixed by its materials), built once and kept in its
-    cache."""
+    """Molecular exchange of ``craft`` for ``settings``, built once and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    settings : ReflectionSettings
+        The view factors' sampling and disk cache.
+    mirrored : (n_sides,) float64
+        Share of arriving molecules each side sends on mirrored (fixed by its materials).
+
+    Returns
+    -------
+    MolecularExchange
+        The exchange of diffusely re-emitted molecules between ``craft``'s sides.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.reflection import ReflectionSettings
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> settings = ReflectionSettings("full", rays_per_side=16, cache_dir=False)
+    >>> exchange = molecular_exchange(craft, settings, np.zeros(craft.n_sides))
+    >>> emitted = np.ones(craft.n_sides)
+    >>> totals = exchange.totals(emitted, 1e-13 * emitted, np.zeros(3))
+    >>> molecular_exchange(craft, settings, np.zeros(craft.n_sides)) is exchange
+    True
+    """
     return craft.cache.get(
         ("molecular exchange", *settings.view_key),
         lambda: MolecularExchange(

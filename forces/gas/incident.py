@@ -50,8 +50,23 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(_CLL_NODES)
 
 
 class Incident(NamedTuple):
-    """What a stream brings to surface elements, each (n,): momentum over ``q`` normal to the element
-    (``c_n_inc``) and along its shear direction (``c_t_inc``), and molecules over ``n_k V``."""
+    """What a stream brings to surface elements, each field (n,).
+
+    Parameters
+    ----------
+    c_n : (n,) float64
+        Incident momentum normal to the element over ``q`` (``c_n_inc``) [-].
+    c_t : (n,) float64
+        Incident momentum along the element's shear direction over ``q`` (``c_t_inc``) [-].
+    number_flux : (n,) float64
+        Incident molecules per unit area and time over ``n_k V`` [-].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> incident(np.array([1.0, 0.0]), 7.0).c_n.round(4)
+    array([2.0204, 0.0102])
+    """
 
     c_n: NDArray[np.float64]
     c_t: NDArray[np.float64]
@@ -59,7 +74,39 @@ class Incident(NamedTuple):
 
 
 def incident(gamma: NDArray[np.float64], speed_ratio: float, stream: str = "full") -> Incident:
-    """The incident ``stream`` on elements of ``gamma = n . u`` (module docstring), unchecked."""
+    """Incident ``stream`` on elements of ``gamma = n . u`` (module docstring), its arguments unchecked.
+
+    Parameters
+    ----------
+    gamma : (n,) float64
+        ``gamma = n_out . u`` of each element, in [-1, 1].
+    speed_ratio : float
+        ``S`` of the species [-], > 0.
+    stream : {"full", "directed", "thermal"}, optional
+        The drifting Maxwellian, its cold directed beam, or their difference.
+
+    Returns
+    -------
+    Incident
+        Normal and tangential momentum over ``q`` and number flux over ``n_k V``, each (n,).
+
+    References
+    ----------
+    Schaaf and Chambré (1958), the free-molecular incident fluxes of a drifting Maxwellian.
+
+    Examples
+    --------
+    At ``S = 7``, head-on, edge-on and from behind; the full stream is the directed and the thermal:
+
+    >>> import numpy as np
+    >>> gamma = np.array([1.0, 0.0, -1.0])
+    >>> full = incident(gamma, 7.0)
+    >>> full.c_n.round(4), full.c_t.round(4), full.number_flux.round(4)
+    (array([2.0204, 0.0102, 0.    ]), array([0.    , 0.0806, 0.    ]), array([1.    , 0.0403, 0.    ]))
+    >>> parts = incident(gamma, 7.0, "directed").c_n + incident(gamma, 7.0, "thermal").c_n
+    >>> bool(np.allclose(parts, full.c_n))
+    True
+    """
     t = np.sqrt(np.maximum(1.0 - gamma * gamma, 0.0))
     if stream == "directed":
         windward = np.maximum(gamma, 0.0)
@@ -96,6 +143,16 @@ def incident_number_flux(
     -------
     (n,) float64
         ``chi(S gamma) / (2 sqrt(pi) S)`` (full), ``max(gamma, 0)`` (directed) or their difference.
+
+    Raises
+    ------
+    InputError
+        An unknown ``stream``, or a speed ratio that is not a finite number > 0.
+
+    Examples
+    --------
+    >>> incident_number_flux([1.0, 0.5], 7.0, "directed")
+    array([1. , 0.5])
     """
     check_stream(stream)
     check_speed_ratio(speed_ratio)
@@ -106,17 +163,67 @@ def incident_number_flux(
 def diffuse_normal(
     flux: NDArray[np.float64] | float, temperature_ratio: NDArray[np.float64], speed_ratio: float
 ) -> NDArray[np.float64]:
-    """Normal momentum over ``q`` of a Lambertian re-emission of ``flux`` (over ``n V``) at
-    ``T_r / T = temperature_ratio``."""
+    """Normal momentum over ``q`` of a Lambertian re-emission of ``flux`` at ``T_r / T = temperature_ratio``.
+
+    Parameters
+    ----------
+    flux : float or ndarray of float64
+        Re-emitted molecules per unit area and time over ``n V`` [-].
+    temperature_ratio : ndarray of float64
+        ``T_r / T``, re-emission over free-stream temperature [-].
+    speed_ratio : float
+        ``S`` of the species [-], > 0.
+
+    Returns
+    -------
+    ndarray of float64
+        ``flux sqrt(pi) sqrt(T_r / T) / S`` [-], broadcast over the arguments.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> diffuse_normal(1.0, np.array([0.3, 1.0]), 7.0).round(4)
+    array([0.1387, 0.2532])
+    """
     return flux * _SQRT_PI * np.sqrt(temperature_ratio) / speed_ratio
 
 
 def rice_mean(x: NDArray[np.float64], alpha_n: NDArray[np.float64], tau_w: NDArray[np.float64]) -> NDArray:
     """Mean reflected normal speed of the CLL kernel at incident normal speed ``x`` (over ``sqrt(2kT/m)``).
 
-    Rice distribution with ``nu = sqrt(1 - alpha_n) x`` and ``sigma^2 = alpha_n tau_w / 2``; its mean is
-    ``sigma sqrt(pi/2) [(1 + a) i0e(a/2) + a i1e(a/2)]`` with ``a = nu^2 / (2 sigma^2)``, and ``nu`` when
-    ``sigma = 0``.
+    The reflected normal speed follows the Rice distribution with ``nu = sqrt(1 - alpha_n) x`` and
+    ``sigma^2 = alpha_n tau_w / 2``; its mean is ``sigma sqrt(pi/2) [(1 + a) i0e(a/2) + a i1e(a/2)]`` with
+    ``a = nu^2 / (2 sigma^2)``, and ``nu`` when ``sigma = 0``.
+
+    Parameters
+    ----------
+    x : ndarray of float64
+        Incident normal speed over ``sqrt(2 k T / m)`` [-], >= 0.
+    alpha_n : ndarray of float64
+        CLL's normal energy accommodation [-], in [0, 1].
+    tau_w : ndarray of float64
+        ``T_w / T``, wall over free-stream temperature [-].
+
+    Returns
+    -------
+    ndarray of float64
+        Mean reflected normal speed over ``sqrt(2 k T / m)`` [-], broadcast over the arguments.
+
+    References
+    ----------
+    Rice (1944); Cercignani and Lampis (1971); Lord (1991); Olver et al. (eds.), NIST Digital Library of
+    Mathematical Functions, ch. 10 (modified Bessel functions).
+
+    Examples
+    --------
+    Without accommodation the normal speed is kept; with full accommodation it is the wall's, whatever
+    ``x``:
+
+    >>> import numpy as np
+    >>> rice_mean(np.array([1.0, 2.0]), np.zeros(2), np.full(2, 0.3))
+    array([1., 2.])
+    >>> rice_mean(np.array([1.0, 2.0]), np.ones(2), np.ones(2)).round(4)
+    array([0.8862, 0.8862])
     """
     sigma_sq = 0.5 * alpha_n * tau_w
     nu_sq = (1.0 - alpha_n) * x * x
@@ -155,6 +262,40 @@ def cll_reflected_normal(
     is 2e-12, the level of the reference itself; for ``alpha_n = 0`` (``h(x) = x``, closed form
     ``c_n_inc``) it is below 1e-15 for ``s`` in [0, 40]. Elements are processed in chunks of
     ``_CLL_CHUNK`` to bound memory.
+
+    Parameters
+    ----------
+    gamma : (n,) float64
+        ``gamma = n_out . u`` of each element, in [-1, 1].
+    alpha_n : (n,) float64
+        CLL's normal energy accommodation of each element [-], in [0, 1].
+    tau_w : (n,) float64
+        ``T_w / T`` of each element [-].
+    speed_ratio : float
+        ``S`` of the species [-], > 0.
+    stream : {"full", "directed", "thermal"}
+        Which incident stream is reflected.
+
+    Returns
+    -------
+    (n,) ndarray of float64
+        Normal momentum of the reflected molecules over ``q`` [-].
+
+    References
+    ----------
+    Cercignani and Lampis (1971); Lord (1991); Walker, Mehta and Koller (2014, CLL drag coefficients);
+    Olver et al. (eds.), NIST Digital Library of Mathematical Functions, section 3.5.
+
+    Examples
+    --------
+    With ``alpha_n = 0`` molecules leave with the normal momentum they brought (``c_n_inc``):
+
+    >>> import numpy as np
+    >>> gamma = np.array([1.0, 0.5])
+    >>> cll_reflected_normal(gamma, np.zeros(2), np.full(2, 0.3), 7.0, "full").round(4)
+    array([2.0204, 0.5204])
+    >>> incident(gamma, 7.0).c_n.round(4)
+    array([2.0204, 0.5204])
     """
     windward = np.maximum(gamma, 0.0)
     directed = 2.0 * windward * rice_mean(speed_ratio * windward, alpha_n, tau_w) / speed_ratio
@@ -191,7 +332,26 @@ def _cll_full_integral(
 
 
 def check_stream(stream: str) -> None:
-    """Refuse a stream that is not one of :data:`STREAMS`."""
+    """Refuse a stream that is not one of :data:`STREAMS`.
+
+    Parameters
+    ----------
+    stream : str
+        The stream's name.
+
+    Raises
+    ------
+    InputError
+        ``stream`` is not one of :data:`STREAMS`.
+
+    Examples
+    --------
+    >>> check_stream("thermal")
+    >>> check_stream("cold")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: stream 'cold' is unknown; choose one of: full, directed, thermal
+    """
     if stream not in STREAMS:
         raise InputError(
             f"stream {stream!r} is unknown",
@@ -201,7 +361,26 @@ def check_stream(stream: str) -> None:
 
 
 def check_speed_ratio(speed_ratio: float) -> None:
-    """Refuse a speed ratio that is not a finite number > 0."""
+    """Refuse a speed ratio that is not a finite number > 0.
+
+    Parameters
+    ----------
+    speed_ratio : float
+        ``S`` [-].
+
+    Raises
+    ------
+    InputError
+        ``speed_ratio`` is not finite, or not > 0.
+
+    Examples
+    --------
+    >>> check_speed_ratio(7.0)
+    >>> check_speed_ratio(0.0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: speed_ratio 0.0 must be a finite number > 0
+    """
     if not (math.isfinite(speed_ratio) and speed_ratio > 0.0):
         raise InputError(
             f"speed_ratio {speed_ratio!r} must be a finite number > 0", parameters=("speed_ratio",)

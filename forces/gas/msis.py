@@ -106,6 +106,12 @@ def nrlmsis(
     Returns
     -------
     Atmosphere
+        Number density of each species and the temperature at the place and time.
+
+    Raises
+    ------
+    InputError
+        An altitude, latitude, date, index or version outside the ranges above.
 
     Notes
     -----
@@ -114,10 +120,19 @@ def nrlmsis(
     or downloaded: the indices are always passed to ``pymsis``. For mean conditions as ECSS-E-ST-10-04C
     defines them use F10.7 = F10.7a = 140, Ap = 15.
 
-    Raises
-    ------
-    InputError
-        An altitude, latitude, date, index or version outside the ranges above.
+    References
+    ----------
+    Emmert et al. (2022), NRLMSIS 2.1; Emmert et al. (2021), NRLMSIS 2.0; Picone et al. (2002),
+    NRLMSISE-00; evaluated through pymsis (SWx TREC).
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> air = sw.nrlmsis(400.0)
+    >>> round(air.temperature_K), sorted(air.number_density_m3)
+    (943, ['Ar', 'H', 'He', 'N', 'N2', 'O', 'O*', 'O2'])
+    >>> f"{air.model_density_kg_m3:.3e}"
+    '2.358e-12'
     """
     altitude = finite_number(altitude_km, "altitude_km", "km", minimum=0.0)
     if altitude > MSIS_MAX_ALTITUDE_KM:
@@ -227,10 +242,30 @@ def _check_fit(temperature_K: float, f107: float, f107a: float, ap: float) -> No
 def parse_time(time: str | datetime | date | np.datetime64) -> datetime:
     """A UTC time (timezone-aware) from an ISO 8601 string, a datetime (naive = UTC), a date or datetime64.
 
+    Parameters
+    ----------
+    time : str, datetime, date or numpy.datetime64
+        The time. A string is ISO 8601, UTC unless it carries an offset (a trailing ``Z`` is UTC); a
+        naive datetime or a date is taken as UTC.
+
+    Returns
+    -------
+    datetime
+        The time in UTC, timezone-aware.
+
     Raises
     ------
     InputError
-        A string that does not parse, or a year outside 1958 to 2100.
+        A string that does not parse, a NaT, or a year outside 1958 to 2100.
+
+    Examples
+    --------
+    >>> parse_time("2024-01-01T12:00:00+02:00")
+    datetime.datetime(2024, 1, 1, 10, 0, tzinfo=datetime.timezone.utc)
+    >>> parse_time("1900-01-01")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: time year 1900 is outside 1958-2100: ...
     """
     if isinstance(time, np.datetime64):
         if np.isnat(time):

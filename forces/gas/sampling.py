@@ -26,6 +26,21 @@ class GasSampling:
     chain_molecules : int
         First molecules per attitude drawn for the chains of unaccommodated molecules
         (:mod:`sunwind.forces.gas.chains`); each sending side draws at least one.
+
+    Raises
+    ------
+    InputError
+        A count that is not a whole number in range (1 to :data:`MAX_SKY_RAYS` sky rays, 1 to
+        :data:`MAX_PER_ATTITUDE` core rays or chain molecules).
+
+    Examples
+    --------
+    >>> GasSampling(sky_rays=16)
+    GasSampling(sky_rays=16, core_rays=262144, chain_molecules=131072)
+    >>> GasSampling(core_rays=0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: core_rays 0 must be a whole number from 1 to 67108864
     """
 
     sky_rays: int | None = None

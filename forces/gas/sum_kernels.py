@@ -60,6 +60,21 @@ def species_sums(
     out : (n, 4 + m) float64
         ``sum_k w_k (c_n, c_t)`` of the directed stream, the same of the thermal stream, and
         ``sum_k flux_weight[law, k] N_k / (n_k V)`` of the full stream.
+    lo, hi : int
+        The elements to compute, ``lo:hi``; other rows of ``out`` are left as they are.
+
+    Examples
+    --------
+    One species at ``S = 7``, law ``a = c = 1``, ``b = 0``, head-on and edge-on (the directed stream
+    misses the edge):
+
+    >>> import numpy as np
+    >>> out = np.empty((2, 4))
+    >>> species_sums(np.array([0, 0]), np.array([1.0, 0.0]), np.array([7.0]), np.array([1.0]),
+    ...     np.array([1.0]), np.array([[0.0]]), np.array([1.0]), np.zeros((1, 1, 0)), out, 0, 2)
+    >>> out.round(4)
+    array([[2.    , 0.    , 0.0204, 0.    ],
+           [0.    , 0.    , 0.0102, 0.0806]])
     """
     n_species, m = speed_ratio.shape[0], flux_weight.shape[2]
     # the divisions of the incident stream (module Notes of sunwind.forces.gas.laws), as factors
@@ -107,11 +122,34 @@ def group_stresses(
     normals: NDArray[np.float64],
     u: NDArray[np.float64],
 ) -> NDArray[np.float64]:
-    """Force per unit area [Pa] of the directed and the thermal stream on each group, (n_groups, 6).
+    """Force per unit area [Pa] of the directed and the thermal stream on each group.
 
     Group ``g`` of normal ``normals[g]`` and ``gamma[g] = n . u`` takes ``-c_n n + c_t t_hat`` with its
     :func:`species_sums` row ``sums[g]`` (weights ``q_k`` [Pa]); ``t_hat = -(u - gamma n) / |...|``, none
     where that length is below 1e-12.
+
+    Parameters
+    ----------
+    gamma : (n_groups,) float64
+        ``n . u`` of each group [-].
+    sums : (n_groups, 4 + m) float64
+        :func:`species_sums` of each group, weighted by ``q_k`` [Pa]; the first four columns are read.
+    normals : (n_groups, 3) float64
+        Outward unit normal of each group.
+    u : (3,) float64
+        Unit flow vector ``v_rel / |v_rel|``.
+
+    Returns
+    -------
+    (n_groups, 6) ndarray of float64
+        Force per unit area of the directed stream (3 columns) and of the thermal stream (3) [Pa].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> group_stresses(np.array([1.0]), np.array([[2.0, 0.0, 0.02, 0.0]]), np.array([[1.0, 0.0, 0.0]]),
+    ...     np.array([1.0, 0.0, 0.0])).round(3)
+    array([[-2.  ,  0.  ,  0.  , -0.02,  0.  ,  0.  ]])
     """
     out = np.empty((gamma.shape[0], 6))
     for g in range(gamma.shape[0]):

@@ -28,7 +28,7 @@ def summed_coefficients(
     temperature_K: float,
     flux_weights: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
-    """Coefficients of both streams summed over species with weights, for elements of few distinct laws.
+    """Sum the coefficients of both streams over species with weights, for elements of few distinct laws.
 
     The weighted sum over species ``k`` of :func:`~sunwind.forces.gas.laws.panel_coefficients`
     (``"directed"`` and ``"full"`` minus ``"directed"``), on parallel threads (rows do not depend on the
@@ -57,6 +57,25 @@ def summed_coefficients(
     (n, 4 + m) float64
         ``sum_k w_k (c_n, c_t)`` of the directed stream, the same of the thermal stream, and
         ``sum_k flux_weights[law, k] N_k / (n_k V)`` of the full stream.
+
+    Raises
+    ------
+    InputError
+        A speed ratio that is not a finite number > 0, or ``law`` and ``cos_incidence`` not (n,) arrays of
+        valid rows and finite values.
+
+    Examples
+    --------
+    Head-on at ``S = 7``, a fully accommodating Sentman plate and a mirror:
+
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+    >>> surfaces = GasSurfaces.of({"code": [MODEL_CODES["sentman"], MODEL_CODES["specular"]],
+    ...     "energy_accommodation": 1.0, "normal_accommodation": 1.0, "tangential_accommodation": 1.0,
+    ...     "wall_temperature_K": 300.0})
+    >>> summed_coefficients(surfaces, np.array([0, 1]), np.array([1.0, 1.0]), [7.0], [1.0], 1000.0).round(4)
+    array([[2.1387, 0.    , 0.0204, 0.    ],
+           [4.    , 0.    , 0.0408, 0.    ]])
     """
     ratios = np.atleast_1d(np.asarray(speed_ratios, dtype=np.float64))
     weight = np.broadcast_to(np.asarray(weights, dtype=np.float64), ratios.shape)
@@ -95,13 +114,38 @@ def summed_coefficients(
 def diffuse_emission(
     surfaces: GasSurfaces, speed_ratio: float, temperature_K: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Share of the incident molecules re-emitted diffusely (Lambertian) and their temperature [K],
-    each (n,), as the molecular exchange carries them
-    (:attr:`~sunwind.forces.gas.laws.Reemission.emission_share`): 1 (sentman, dria), ``sigma_n``
-    (schaaf-chambre), 0 (cll and specular, whose molecules the chains follow).
+    """Share of the incident molecules re-emitted diffusely (Lambertian), and their temperature.
 
+    As the molecular exchange carries them (:attr:`~sunwind.forces.gas.laws.Reemission.emission_share`): 1
+    (sentman, dria), ``sigma_n`` (schaaf-chambre), 0 (cll and specular, whose molecules the chains follow).
     For sentman, dria and schaaf-chambre the diffuse term of the laws' ``c_n`` is exactly
     ``share N m sqrt(pi k T_r / (2 m)) / q`` with ``N`` the incident number flux, for every stream.
+
+    Parameters
+    ----------
+    surfaces : GasSurfaces
+        Gas-surface parameters of ``n`` elements.
+    speed_ratio : float
+        ``S`` of the species [-], > 0.
+    temperature_K : float
+        Free-stream temperature ``T`` [K], > 0.
+
+    Returns
+    -------
+    share : (n,) ndarray of float64
+        Share of the incident molecules re-emitted diffusely [-].
+    temperature_K : (n,) ndarray of float64
+        Their temperature ``T_r`` [K] (0 where none are).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+    >>> surfaces = GasSurfaces.of({"code": [MODEL_CODES["sentman"], MODEL_CODES["specular"]],
+    ...     "energy_accommodation": 1.0, "normal_accommodation": 1.0, "tangential_accommodation": 1.0,
+    ...     "wall_temperature_K": 300.0})
+    >>> diffuse_emission(surfaces, 7.0, 1000.0)
+    (array([1., 0.]), array([300.,   0.]))
     """
     law = reemission(surfaces, speed_ratio, temperature_K)
     return law.emission_share, law.emission_temperature_K

@@ -67,6 +67,14 @@ class Arrival:
         Rays cast: the shadow pass's and the core's.
     core_half_angle : float
         ``psi_c`` [rad].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> zero = np.zeros((1, 3))
+    >>> one_side = Arrival(zero, zero, np.zeros((2, 1)), zero, rays=0, core_half_angle=0.3)
+    >>> one_side.force_N.shape
+    (1, 3)
     """
 
     force_N: NDArray[np.float64]
@@ -78,8 +86,36 @@ class Arrival:
 
 
 def model_sky(craft: Spacecraft, rays_per_side: int | None = None, cache_dir=None) -> OpenSky:
-    """The :class:`~sunwind.geometry.views.sky.OpenSky` of ``craft``: from its cache, else the disk cache,
-    else sampled (and kept in both)."""
+    """Sampled open sky of ``craft``: from its cache, else the disk cache, else sampled and kept in both.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    rays_per_side : int, optional
+        Sky rays per side; None for the default of :func:`sunwind.geometry.views.sky.open_sky`.
+    cache_dir : path, None or False, optional
+        Disk cache directory as for :class:`~sunwind.forces.reflection.settings.ReflectionSettings`:
+        None for the default directory, False for no disk cache.
+
+    Returns
+    -------
+    OpenSky
+        Each side's open-sky rays and which sides see the whole sky.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.gas.panel import gas_groups
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> groups = gas_groups(craft)
+    >>> sky = model_sky(craft, 16, cache_dir=False)
+    >>> sky.rays_per_side, model_sky(craft, 16, cache_dir=False) is sky
+    (16, True)
+    """
     return craft.cache.get(
         ("open sky", rays_per_side, str(cache_dir)),
         lambda: open_sky(craft, rays_per_side, SKY_SEED, cache_dir),
@@ -88,8 +124,33 @@ def model_sky(craft: Spacecraft, rays_per_side: int | None = None, cache_dir=Non
 
 @dataclass(frozen=True, eq=False)
 class StreamTables:
-    """What one free stream gives every attitude alike: its species and each law's answer, the
-    kernels per direction and the core cone (which depend on ``gamma``, not on the flow direction)."""
+    """Tables of one free stream that every attitude shares.
+
+    They hold the stream's species and each law's answer, the kernels per direction, and the core cone;
+    all depend on ``gamma = n . u``, not on the flow direction itself.
+
+    Parameters
+    ----------
+    laws : SpeciesLaws
+        The free stream by species and how each gas-surface law answers it.
+    directions : DirectionTables
+        The kernels of each law per direction of arrival.
+    cone : CoreCone
+        The core cone about the flow.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.gas.panel import gas_groups
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> groups = gas_groups(craft)
+    >>> tables = stream_tables(craft, groups.surfaces, air, 7500.0)
+    >>> tables.laws.speed_ratio.round(3), tables.cone.half_angle
+    (array([7.357]), 0.3)
+    """
 
     laws: SpeciesLaws
     directions: DirectionTables
@@ -99,12 +160,43 @@ class StreamTables:
 def stream_tables(
     craft: Spacecraft, surfaces: GasSurfaces, atmosphere: Atmosphere, speed_m_s: float
 ) -> StreamTables:
-    """The :class:`StreamTables` of the free stream ``atmosphere`` at ``speed_m_s`` on ``craft``'s laws
-    ``surfaces``; the last stream's are kept in the model's cache, so a sweep's attitudes share them.
+    """Stream tables of the free stream ``atmosphere`` at ``speed_m_s`` on ``craft``'s gas-surface laws.
 
-    They are made for the speed rounded to 13 significant digits, so that attitudes whose ``v_rel``
-    differ in length by round-off share them, and every attitude gets the same bits whichever came
-    first (a relative change below 5e-14)."""
+    The last stream's tables are kept in the model's cache, so the attitudes of a sweep share them. They
+    are made for the speed rounded to 13 significant digits: attitudes whose ``v_rel`` differ in length
+    by round-off share them, and every attitude gets the same bits whichever came first (a relative change
+    below 5e-14).
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model, whose cache keeps the tables.
+    surfaces : GasSurfaces
+        The model's distinct gas-surface laws (:attr:`GasGroups.surfaces
+        <sunwind.forces.gas.panel.GasGroups>`).
+    atmosphere : Atmosphere
+        Number densities and temperature of the free stream.
+    speed_m_s : float
+        Flow speed ``|v_rel|`` [m/s].
+
+    Returns
+    -------
+    StreamTables
+        The species and laws, the direction tables and the core cone.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.gas.panel import gas_groups
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> groups = gas_groups(craft)
+    >>> tables = stream_tables(craft, groups.surfaces, air, 7500.0)
+    >>> stream_tables(craft, groups.surfaces, air, 7500.0 * (1 + 1e-15)) is tables
+    True
+    """
     speed = float(f"{speed_m_s:.13g}")
     key = (speed, atmosphere.temperature_K, tuple(atmosphere.number_density_m3.items()))
     kept: dict = craft.cache.get("stream tables", dict)
@@ -117,8 +209,36 @@ def stream_tables(
 
 
 def cll_tables(craft: Spacecraft, laws: SpeciesLaws) -> dict[int, NDArray[np.float64]]:
-    """:func:`~sunwind.forces.gas.angular.cll_normal_table` of every CLL law, reaching the species'
-    largest ``S`` (rounded up to a whole number so that attitudes share it); kept in the model's cache."""
+    """CLL normal-momentum table of every CLL law of ``laws``, kept in the model's cache.
+
+    Each reaches the species' largest speed ratio rounded up to a whole number, so that attitudes share
+    it (:func:`~sunwind.forces.gas.angular.cll_normal_table`).
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model, whose cache keeps the tables.
+    laws : SpeciesLaws
+        The free stream by species and each law's answer; CLL laws have a finite ``cll_alpha_n``.
+
+    Returns
+    -------
+    dict of int to ndarray
+        Index of each CLL law to its table, (n_s, MU_POINTS); empty when no law is CLL.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.gas.panel import gas_groups
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> groups = gas_groups(craft)
+    >>> from sunwind.forces.gas.panel import species_laws
+    >>> cll_tables(craft, species_laws(groups.surfaces, air, 7500.0))
+    {}
+    """
     s_high = float(math.ceil(laws.speed_ratio.max()))
     out = {}
     for law in np.flatnonzero(np.isfinite(laws.cll_alpha_n)):
@@ -143,6 +263,7 @@ def arrival(
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     groups : GasGroups
         The model's sides grouped by law and normal.
     stream : (closed, tables)
@@ -155,7 +276,36 @@ def arrival(
     sky : OpenSky
         The model's sampled open sky.
     core_rays : int
-        Most rays of the core per attitude (:func:`core_sampling`).
+        Most rays of the core per attitude
+        (:func:`~sunwind.forces.gas.core_rays.core_sampling`).
+
+    Returns
+    -------
+    Arrival
+        Force, torque and first re-emission of every side, and the rays cast.
+
+    Examples
+    --------
+    A unit cube in a stream along +x:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.gas.panel import gas_groups
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=black, threads=1).craft
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
+    >>> groups = gas_groups(craft)
+    >>> from sunwind.forces.gas.panel import closed_loads, summed_laws
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> u = np.array([1.0, 0.0, 0.0])
+    >>> tables = stream_tables(craft, groups.surfaces, air, 7500.0)
+    >>> gamma = groups.normals @ u
+    >>> closed = closed_loads(groups, gamma, summed_laws(groups, gamma, tables.laws, 1000.0), u)
+    >>> flow = side_sampler(craft).illuminate(u, 4, None)
+    >>> sky = model_sky(craft, 16, cache_dir=False)
+    >>> result = arrival(craft, groups, (closed, tables), flow, np.zeros(3), sky, 1000)
+    >>> result.force_N.shape, result.emitted.shape
+    ((12, 3), (2, 12))
     """
     closed, tables = stream
     u = flow.direction

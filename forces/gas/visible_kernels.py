@@ -32,6 +32,17 @@ class LawTables(NamedTuple):
         Each law's ``a`` and ``c`` (:class:`~sunwind.forces.gas.angular.SpeciesLaws`).
     normals : (n_sides, 3) float64
         Outward unit normal of each side.
+
+    Examples
+    --------
+    One law whose momentum kernel is 1 in every direction, on one side of normal +x:
+
+    >>> import math
+    >>> import numpy as np
+    >>> tables = LawTables(channels=np.tile([1.0, 0.0, 0.0, 0.0], (1, 2, 1)), cll=None,
+    ...     pressure_scale=np.ones(1), shear_scale=np.ones(1), normals=np.array([[1.0, 0.0, 0.0]]))
+    >>> tables.channels.shape
+    (1, 2, 4)
     """
 
     channels: NDArray[np.float64]
@@ -52,6 +63,14 @@ class FlowLaw(NamedTuple):
         Unit flow direction.
     cos_core : float
         Cosine of the core cone's half-angle ``psi_c``.
+
+    Examples
+    --------
+    >>> import math
+    >>> import numpy as np
+    >>> flow_law = FlowLaw(side_law=np.array([0]), u=np.array([1.0, 0.0, 0.0]), cos_core=math.cos(0.3))
+    >>> round(flow_law.cos_core, 4)
+    0.9553
     """
 
     side_law: NDArray[np.int64]
@@ -70,6 +89,19 @@ class GroupLoads(NamedTuple):
         Its outward unit normal.
     closed : (n_groups, 5) float64
         Force per unit area [Pa] (3) and the two re-emission channels.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> zero = np.zeros((1, 3))
+    >>> groups = GroupLoads(law=np.array([0]), normals=np.array([[1.0, 0.0, 0.0]]),
+    ...     closed=np.array([[-2.0, 0.0, 0.0, 1.0, 1.0]]))
+    >>> geometry = SideGeometry(areas=np.array([0.5]), centroids=np.array([[1.0, 0.0, 0.0]]))
+    >>> core_parts = CoreParts(at_lit=np.ones(1), at_centroid=np.zeros(1),
+    ...     lit_centroid=np.array([[1.0, 0.0, 0.0]]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> sky = SkyParts(keeps_open=np.array([False]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> groups.closed.shape
+    (1, 5)
     """
 
     law: NDArray[np.int64]
@@ -78,7 +110,21 @@ class GroupLoads(NamedTuple):
 
 
 class SideGeometry(NamedTuple):
-    """Side areas (n_sides,) [m^2] and centroids (n_sides, 3) [m]."""
+    """Areas and centroids of the sides.
+
+    Attributes
+    ----------
+    areas : (n_sides,) float64
+        Area of each side [m^2].
+    centroids : (n_sides, 3) float64
+        Centroid of each side [m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> SideGeometry(areas=np.array([0.5]), centroids=np.zeros((1, 3))).areas
+    array([0.5])
+    """
 
     areas: NDArray[np.float64]
     centroids: NDArray[np.float64]
@@ -95,6 +141,19 @@ class CoreParts(NamedTuple):
         Lit centroids of the exact shadow along ``u`` [m].
     force, moment, emitted : (n_sides, 3), (n_sides, 3), (n_sides, 2) float64
         :func:`core_sums`'s corrections per unit area: force [Pa], moment [Pa m], re-emission.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> zero = np.zeros((1, 3))
+    >>> groups = GroupLoads(law=np.array([0]), normals=np.array([[1.0, 0.0, 0.0]]),
+    ...     closed=np.array([[-2.0, 0.0, 0.0, 1.0, 1.0]]))
+    >>> geometry = SideGeometry(areas=np.array([0.5]), centroids=np.array([[1.0, 0.0, 0.0]]))
+    >>> core_parts = CoreParts(at_lit=np.ones(1), at_centroid=np.zeros(1),
+    ...     lit_centroid=np.array([[1.0, 0.0, 0.0]]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> sky = SkyParts(keeps_open=np.array([False]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> core_parts.at_lit + core_parts.at_centroid
+    array([1.])
     """
 
     at_lit: NDArray[np.float64]
@@ -114,6 +173,19 @@ class SkyParts(NamedTuple):
         Whether the side's kept rays are its open ones (else its blocked ones).
     force, moment, emitted : (n_sides, 3), (n_sides, 3), (n_sides, 2) float64
         Their sums per unit area: force [Pa], moment about the centroid [Pa m], re-emission.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> zero = np.zeros((1, 3))
+    >>> groups = GroupLoads(law=np.array([0]), normals=np.array([[1.0, 0.0, 0.0]]),
+    ...     closed=np.array([[-2.0, 0.0, 0.0, 1.0, 1.0]]))
+    >>> geometry = SideGeometry(areas=np.array([0.5]), centroids=np.array([[1.0, 0.0, 0.0]]))
+    >>> core_parts = CoreParts(at_lit=np.ones(1), at_centroid=np.zeros(1),
+    ...     lit_centroid=np.array([[1.0, 0.0, 0.0]]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> sky = SkyParts(keeps_open=np.array([False]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> sky.keeps_open
+    array([False])
     """
 
     keeps_open: NDArray[np.bool_]
@@ -141,8 +213,10 @@ def core_samples(
     lo: int,
     hi: int,
 ) -> None:
-    """The core rays of ``sides[lo:hi]``: from each of ``P = level**2`` points of a side, ``J = strata[0]
-    strata[1]`` directions within the core cone.
+    """Make the core rays of ``sides[lo:hi]``: ``J`` directions within the cone from each of ``P`` points.
+
+    From each of ``P = level**2`` points of a side, ``J = strata[0] strata[1]`` directions within the core
+    cone.
 
     Row ``k P + p`` of the outputs belongs to point ``p`` of ``sides[k]``: ``origins`` (rows, 1, 3) in
     scene coordinates (``frame`` = centre, half-size, origin offset [m]) pushed off the surface, ``levers``
@@ -153,6 +227,56 @@ def core_samples(
     e2)`` (``axes`` = ``u, e1, e2``), ``psi`` from the inverse distribution ``quantiles`` at a stratified
     probability, ``phi`` stratified over the turn from a random start. Random numbers are counter hashes
     of ``(seed, side)``.
+
+    Parameters
+    ----------
+    sides : (n,) int64
+        Sides that cast core rays.
+    triangles : (n_facets, 3, 3) float64
+        Corners of each facet [m].
+    side_facet : (n_sides,) int64
+        Facet of each side.
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    level : int
+        Points per side along each edge of the grid (``P = level**2`` points).
+    frame : (centre, half_size, offset)
+        The scene's centre (3,) [m], half-size [m] and the distance [m] rays start off the surface.
+    axes : (3, 3) float64
+        Rows ``u``, ``e1``, ``e2``: the flow direction and two unit vectors normal to it and each other.
+    quantiles : (n_q,) float64
+        ``psi`` [rad] at evenly spaced probabilities of the cone's sampling distribution
+        (:attr:`~sunwind.forces.gas.core_cone.CoreCone.psi_quantiles`).
+    strata : (int, int)
+        Radial and azimuthal strata of the directions from each point.
+    seed : uint64
+        Seed of the random numbers.
+    origins : (n P, 1, 3) float32
+        Ray origins in scene coordinates; written.
+    levers : (n P, 3) float64
+        Each point minus its side's centroid [m]; written.
+    directions : (n P, J, 3) float32
+        Ray directions; written.
+    weights : (n P, J) float64
+        ``max(n . w, 0)`` of each direction; written.
+    lo, hi : int
+        The entries ``sides[lo:hi]`` to sample.
+
+    Examples
+    --------
+    One triangle facing +z, a cone of 0.1 rad about ``u = +z``, one point and two directions:
+
+    >>> import math
+    >>> import numpy as np
+    >>> triangle = np.array([[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    >>> axes = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    >>> origins, levers = np.empty((1, 1, 3), np.float32), np.empty((1, 3))
+    >>> directions, weights = np.empty((1, 2, 3), np.float32), np.empty((1, 2))
+    >>> core_samples(np.array([0]), triangle, np.array([0]), np.array([[0.0, 0.0, 1.0]]), 1,
+    ...     (np.zeros(3), 1.0, 0.0), axes, np.linspace(0.0, 0.1, 5), (1, 2), np.uint64(1),
+    ...     origins, levers, directions, weights, 0, 1)
+    >>> bool(np.all(weights >= math.cos(0.1)))
+    True
     """
     centre, half_size, offset = frame
     n_points, radial, around = level * level, strata[0], strata[1]
@@ -212,9 +336,10 @@ def core_sums(
     lo: int,
     hi: int,
 ) -> None:
-    """What the core adds to sides ``lo:hi`` of ``sides`` beyond ``f_u`` times its unobstructed integral
-    (rows ``k n_points + p`` of the core rays): per unit area, the force [Pa], its moment about the side
-    centroid [Pa m] and the two re-emission channels, into rows ``sides[k]``.
+    """Sum what the core adds to sides ``sides[lo:hi]`` beyond ``f_u`` times its unobstructed integral.
+
+    From rows ``k n_points + p`` of the core rays: per unit area, the force [Pa], its moment about the
+    side centroid [Pa m] and the two re-emission channels, into rows ``sides[k]``.
 
     With ``samples`` = directions ``w`` (rows, J, 3), weights ``mu = max(n . w, 0)`` and levers [m], ``B``
     whether a core ray met the model, ``B_u`` whether the ray along ``u`` from the same point did
@@ -229,6 +354,51 @@ def core_sums(
     is blocked (a shadow on one side of the cone turns the shear), and vanishes exactly where no ray
     meets the model and none along ``u`` would. ``flow_law`` = the law of each side, ``u``, and the
     cone's cosine; ``tables`` as :func:`sky_sums`.
+
+    Parameters
+    ----------
+    n_points : int
+        Points per side ``P``.
+    facing : (n,) bool
+        Whether each of ``sides`` faces ``u``.
+    control_blocked : (n P,) bool
+        Whether the ray along ``u`` from each point met the model.
+    blocked : (n P, J) bool
+        Whether each core ray met the model.
+    samples : (directions, weights, levers)
+        The core rays' directions (n P, J, 3) float32, ``mu`` weights (n P, J) and levers (n P, 3) [m]
+        (:func:`core_samples`).
+    sides : (n,) int64
+        Sides that cast core rays.
+    flow_law : FlowLaw
+        The law of each side, ``u`` and the cone's cosine.
+    tables : LawTables
+        Each law's kernels per direction, ``a``, ``c`` and the side normals.
+    normaliser : float
+        ``Z``, the cone's integral of ``k_P`` [Pa].
+    force, moment : (n_sides, 3) float64
+        Force [Pa] and its moment about the centroid [Pa m] per unit area; rows ``sides[lo:hi]`` written.
+    emitted : (n_sides, 2) float64
+        The two re-emission channels per unit area; rows ``sides[lo:hi]`` written.
+    lo, hi : int
+        The entries ``sides[lo:hi]`` to sum.
+
+    Examples
+    --------
+    A side facing the flow whose one core ray is blocked while the ray along ``u`` is clear loses that
+    ray's push:
+
+    >>> import math
+    >>> import numpy as np
+    >>> tables = LawTables(channels=np.tile([1.0, 0.0, 0.0, 0.0], (1, 2, 1)), cll=None,
+    ...     pressure_scale=np.ones(1), shear_scale=np.ones(1), normals=np.array([[1.0, 0.0, 0.0]]))
+    >>> flow_law = FlowLaw(side_law=np.array([0]), u=np.array([1.0, 0.0, 0.0]), cos_core=math.cos(0.3))
+    >>> samples = (np.array([[[1.0, 0.0, 0.0]]], np.float32), np.ones((1, 1)), np.zeros((1, 3)))
+    >>> force, moment, emitted = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros((1, 2))
+    >>> core_sums(1, np.array([True]), np.array([False]), np.array([[True]]), samples, np.array([0]),
+    ...     flow_law, tables, 2.0, force, moment, emitted, 0, 1)
+    >>> force
+    array([[2., 0., 0.]])
     """
     directions, mu_weights, levers = samples
     side_law, u = flow_law.side_law, flow_law.u
@@ -349,6 +519,43 @@ def sky_sums(
     ``weight`` (``pi / N``), its law's force [Pa], that force's moment about the side centroid ``lever x
     force`` [Pa m] and the two re-emission channels. Results go to rows ``sides[k]`` of ``force``,
     ``moment`` (n_sides, 3) and ``emitted`` (n_sides, 2).
+
+    Parameters
+    ----------
+    sides : (n,) int64
+        Sides with kept sky rays.
+    start : (n_sides + 1,) int64
+        Side ``s``'s kept rays are rows ``start[s]:start[s + 1]`` of ``rays``.
+    rays : (directions, levers)
+        Directions ``w`` (n_rays, 3) float32 and levers from the side centroid (n_rays, 3) float32 [m].
+    flow_law : FlowLaw
+        The law of each side, ``u`` and ``cos(psi_c)``.
+    tables : LawTables
+        Each law's kernels per direction, ``a``, ``c`` and the side normals.
+    weight : float
+        Weight of each ray, ``pi / N`` for ``N`` rays per side.
+    force, moment : (n_sides, 3) float64
+        Sums of force [Pa] and moment [Pa m] per unit area; rows ``sides[lo:hi]`` written.
+    emitted : (n_sides, 2) float64
+        Sums of the two re-emission channels; rows ``sides[lo:hi]`` written.
+    lo, hi : int
+        The entries ``sides[lo:hi]`` to sum.
+
+    Examples
+    --------
+    One ray along the normal of a side edge-on to the flow, outside the core:
+
+    >>> import math
+    >>> import numpy as np
+    >>> tables = LawTables(channels=np.tile([1.0, 0.0, 0.0, 0.0], (1, 2, 1)), cll=None,
+    ...     pressure_scale=np.ones(1), shear_scale=np.ones(1), normals=np.array([[1.0, 0.0, 0.0]]))
+    >>> flow_law = FlowLaw(side_law=np.array([0]), u=np.array([0.0, 1.0, 0.0]), cos_core=math.cos(0.3))
+    >>> rays = (np.array([[1.0, 0.0, 0.0]], np.float32), np.zeros((1, 3), np.float32))
+    >>> force, moment, emitted = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros((1, 2))
+    >>> sky_sums(np.array([0]), np.array([0, 1]), rays, flow_law, tables, math.pi, force, moment, emitted,
+    ...     0, 1)
+    >>> force.round(4)
+    array([[-3.1416,  0.    ,  0.    ]])
     """
     direction, lever = rays
     side_law, u, cos_core = flow_law.side_law, flow_law.u, flow_law.cos_core
@@ -412,6 +619,50 @@ def side_loads(
         visible = f_u K + c K + corrections + (closed - K - sky sums  |  sky sums of the open rays),
 
     so an unobstructed side gets ``closed`` exactly.
+
+    Parameters
+    ----------
+    side_group : (n_sides,) int64
+        Group of each side.
+    groups : GroupLoads
+        Each group's law, normal and closed-form loads.
+    core : (n_laws, 4, n_gamma) float64
+        The core cone's table (:attr:`~sunwind.forces.gas.core_cone.CoreCone.gamma_table`).
+    u : (3,) float64
+        Unit flow vector.
+    sides : SideGeometry
+        Side areas [m^2] and centroids [m].
+    core_parts : CoreParts
+        What the core brings each side.
+    sky : SkyParts
+        What each side's sampled sky rays give.
+    reference : (3,) float64
+        Torque reference point [m].
+    force, torque : (3, n_sides) float64
+        Force [N] and torque [N m] of each side; columns ``lo:hi`` written.
+    emitted : (2, n_sides) float64
+        First re-emission of each side; columns ``lo:hi`` written.
+    lo, hi : int
+        The sides to compute.
+
+    Examples
+    --------
+    A side that sees the whole sky takes its group's closed form times its area:
+
+    >>> import numpy as np
+    >>> zero = np.zeros((1, 3))
+    >>> groups = GroupLoads(law=np.array([0]), normals=np.array([[1.0, 0.0, 0.0]]),
+    ...     closed=np.array([[-2.0, 0.0, 0.0, 1.0, 1.0]]))
+    >>> geometry = SideGeometry(areas=np.array([0.5]), centroids=np.array([[1.0, 0.0, 0.0]]))
+    >>> core_parts = CoreParts(at_lit=np.ones(1), at_centroid=np.zeros(1),
+    ...     lit_centroid=np.array([[1.0, 0.0, 0.0]]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> sky = SkyParts(keeps_open=np.array([False]), force=zero, moment=zero, emitted=np.zeros((1, 2)))
+    >>> core = np.zeros((1, 4, 3))
+    >>> force, torque, emitted = np.empty((3, 1)), np.empty((3, 1)), np.empty((2, 1))
+    >>> side_loads(np.array([0]), groups, core, np.array([1.0, 0.0, 0.0]), geometry, core_parts, sky,
+    ...     np.zeros(3), force, torque, emitted, 0, 1)
+    >>> force.T, emitted.T
+    (array([[-1.,  0.,  0.]]), array([[0.5, 0.5]]))
     """
     group_law, group_normals, closed = groups.law, groups.normals, groups.closed
     areas, centroids = sides.areas, sides.centroids
@@ -492,8 +743,36 @@ def core_loads(
     u: NDArray[np.float64],
     out: NDArray[np.float64],
 ) -> None:
-    """``K`` of every side (:func:`_core_load`) into ``out`` (n_sides, 3) [Pa]: the force the core brings
-    one unit of the side's area that the shadow along ``u`` leaves lit."""
+    """Write ``K`` of every side (:func:`_core_load`) into ``out`` (n_sides, 3) [Pa].
+
+    ``K`` is the force the core brings one unit of the side's area that the shadow along ``u`` leaves lit.
+
+    Parameters
+    ----------
+    side_group : (n_sides,) int64
+        Group of each side.
+    group_law : (n_groups,) int64
+        Law of each group.
+    group_normals : (n_groups, 3) float64
+        Outward unit normal of each group.
+    core : (n_laws, 4, n_gamma) float64
+        The core cone's table (:attr:`~sunwind.forces.gas.core_cone.CoreCone.gamma_table`).
+    u : (3,) float64
+        Unit flow vector.
+    out : (n_sides, 3) float64
+        ``K`` of each side [Pa]; written.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> core = np.zeros((1, 4, 3))
+    >>> core[0, 0] = -2.0  # a normal force of -2 Pa at every gamma
+    >>> out = np.empty((1, 3))
+    >>> core_loads(np.array([0]), np.array([0]), np.array([[1.0, 0.0, 0.0]]), core, np.array([1.0, 0.0, 0.0]),
+    ...     out)
+    >>> out
+    array([[-2.,  0.,  0.]])
+    """
     for s in range(side_group.shape[0]):
         group = side_group[s]
         k0, k1, k2, _, _ = _core_load(core, group_law[group], group_normals[group], u)

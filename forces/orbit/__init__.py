@@ -30,6 +30,7 @@ Two minutes of a 700 km Sun-synchronous orbit, nadir pointing, SRP and drag on a
 
 from sunwind.forces.orbit.attitude import AttitudeLaw
 from sunwind.forces.orbit.clock import Epoch
+from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS, solar_fraction
 from sunwind.forces.orbit.ephemeris_csv import ephemeris_trajectory
 from sunwind.forces.orbit.flight import fly
@@ -45,6 +46,7 @@ __all__ = [
     "ECLIPSE_MODELS",
     "SERIES",
     "AttitudeLaw",
+    "EarthTerms",
     "Elements",
     "Epoch",
     "OrbitLoads",

@@ -46,7 +46,36 @@ _AXES = {"x": 0, "y": 1, "z": 2}
 
 @dataclass(frozen=True)
 class AttitudeLaw:
-    """An attitude law as given (``text``) and parsed (``kind``, ``values``, ``axes``, ``path``)."""
+    """An attitude law as given (``text``) and parsed (``kind``, ``values``, ``axes``, ``path``).
+
+    Made by :meth:`AttitudeLaw.parse` from the text of the module's table (``nadir``, ``lvlh:P,Y,R``,
+    ``sun[:A,B]``, ``inertial:W,X,Y,Z``, ``thrust-sun:X,Y,Z[:A,B]``, ``csv:FILE``).
+
+    Parameters
+    ----------
+    text : str
+        The law as written.
+    kind : str
+        One of ``LAWS``.
+    values : tuple of float
+        Pitch, yaw, roll [deg] for ``lvlh``; the quaternion (scalar first) for ``inertial``; the thrust
+        direction (GCRF) for ``thrust-sun``; else empty.
+    axes : (ndarray, ndarray) or None
+        The primary and secondary body axes, shape (3,) each, for ``sun`` and ``thrust-sun``.
+    path : str or None
+        The quaternion file of ``csv``.
+    interpolation : {"slerp", "hermite"}
+        How a quaternion file is interpolated between its rows.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> law = sw.orbit.AttitudeLaw.parse("lvlh:10,0,0")
+    >>> law.kind, law.values
+    ('lvlh', (10.0, 0.0, 0.0))
+    >>> sw.orbit.AttitudeLaw.parse("sun:+x,-y").axes
+    (array([1., 0., 0.]), array([ 0., -1.,  0.]))
+    """
 
     text: str
     kind: str
@@ -57,7 +86,38 @@ class AttitudeLaw:
 
     @classmethod
     def parse(cls, text: str, interpolation: str = "slerp") -> AttitudeLaw:
-        """The law of ``text`` (see the module's table)."""
+        """The law of ``text`` (see the module's table).
+
+        Parameters
+        ----------
+        text : str
+            ``nadir``, ``lvlh:P,Y,R``, ``sun[:A,B]``, ``inertial:W,X,Y,Z``, ``thrust-sun:X,Y,Z[:A,B]`` or
+            ``csv:FILE``; the law's name is case-blind.
+        interpolation : {"slerp", "hermite"}
+            How a ``csv`` file's quaternions are interpolated.
+
+        Returns
+        -------
+        AttitudeLaw
+            The parsed law (a ``csv`` file is read only when flown).
+
+        Raises
+        ------
+        InputError
+            An unknown law or interpolation, the wrong count of numbers, a quaternion not of unit length,
+            ``lvlh`` angles beyond 360 deg, a zero thrust direction, or axes that are not two different body
+            axes.
+
+        Examples
+        --------
+        >>> from sunwind.forces.orbit.attitude import AttitudeLaw
+        >>> AttitudeLaw.parse("thrust-sun:1,0,0").axes
+        (array([1., 0., 0.]), array([0., 0., 1.]))
+        >>> AttitudeLaw.parse("inertial:1,1,0,0")
+        Traceback (most recent call last):
+        ...
+        sunwind.geometry.errors.InputError: the inertial quaternion 1,1,0,0 is not of unit length...
+        """
         if interpolation not in INTERPOLATIONS:
             raise InputError(
                 f"interpolation {interpolation!r} is not one of {', '.join(INTERPOLATIONS)}",
@@ -106,8 +166,37 @@ class AttitudeLaw:
         return cls(text, kind, values)
 
     def body_to_eci(self, trajectory: Trajectory, sun_m: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Rotation matrices (n, 3, 3), body to GCRF, at the trajectory's steps (``sun_m``: the Sun's
-        geocentric position there [m])."""
+        """Rotation matrices, body to GCRF, at the trajectory's steps.
+
+        For every law but ``csv``, whose file :func:`quaternion_file_attitude` reads.
+
+        Parameters
+        ----------
+        trajectory : Trajectory
+            The spacecraft's states, n steps.
+        sun_m : ndarray of float64, shape (n, 3)
+            The Sun's geocentric position at the steps [m], GCRF.
+
+        Returns
+        -------
+        ndarray of float64, shape (n, 3, 3)
+            ``R`` with ``v_eci = R v_body``.
+
+        Examples
+        --------
+        With ``sun:+x,-y`` the body's +x points at the Sun (seen from the spacecraft):
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+        >>> path = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [0.0, 60.0], "kepler")
+        >>> sun = sw.orbit.sun_position(epoch, path.time_s)
+        >>> rotation = sw.orbit.AttitudeLaw.parse("sun:+x,-y").body_to_eci(path, sun)
+        >>> to_sun = sun - path.position_m
+        >>> to_sun /= np.linalg.norm(to_sun, axis=1, keepdims=True)
+        >>> rotation.shape, bool(np.allclose(rotation[:, :, 0], to_sun))
+        ((2, 3, 3), True)
+        """
         r, v = trajectory.position_m, trajectory.velocity_m_s
         n = len(r)
         if self.kind == "nadir":
@@ -125,7 +214,19 @@ class AttitudeLaw:
         return two_axis(primary, thrust, secondary, sun_m - r)
 
     def describe(self) -> str:
-        """The law in words, for the output."""
+        """The law in words, for the output.
+
+        Returns
+        -------
+        str
+            The law's text, with the interpolation for a ``csv`` law.
+
+        Examples
+        --------
+        >>> from sunwind.forces.orbit.attitude import AttitudeLaw
+        >>> AttitudeLaw.parse("csv:turn.csv", "hermite").describe()
+        'csv:turn.csv (hermite)'
+        """
         extra = f" ({self.interpolation})" if self.kind == "csv" else ""
         return self.text + extra
 
@@ -133,7 +234,50 @@ class AttitudeLaw:
 def quaternion_file_attitude(
     law: AttitudeLaw, epoch: Epoch, time_s: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """Rotation matrices (n, 3, 3) of a ``csv:FILE`` law at ``time_s`` [s] after ``epoch``."""
+    r"""Rotation matrices of a ``csv:FILE`` law at ``time_s`` [s] after ``epoch``.
+
+    Parameters
+    ----------
+    law : AttitudeLaw
+        A ``csv`` law: its file and interpolation (``slerp`` or ``hermite``).
+    epoch : Epoch
+        Time zero of the run.
+    time_s : ndarray of float64, shape (n,)
+        Seconds after ``epoch``, within the file's times.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 3, 3)
+        Body to GCRF, ``v_eci = R v_body``.
+
+    Raises
+    ------
+    InputError
+        A file :func:`read_quaternions` refuses, or a step outside the file's times.
+
+    References
+    ----------
+    .. [1] Shoemake, K. (1985). "Animating rotation with quaternion curves". *Computer Graphics
+       (Proceedings of SIGGRAPH '85)* 19(3), 245-254 (SLERP).
+
+    Examples
+    --------
+    Halfway through a quarter turn about z, body +x points 45 deg from GCRF +x:
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.orbit.attitude import AttitudeLaw, quaternion_file_attitude, read_quaternions
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = pathlib.Path(folder.name) / "turn.csv"  # a quarter turn about z in a minute
+    >>> _ = path.write_text("time_s,qw,qx,qy,qz\n0,1,0,0,0\n60,0.70710678,0,0,0.70710678\n")
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> law = AttitudeLaw.parse(f"csv:{path}")
+    >>> rotation = quaternion_file_attitude(law, epoch, np.array([0.0, 30.0]))
+    >>> (rotation[1] @ [1.0, 0.0, 0.0]).round(4)
+    array([0.7071, 0.7071, 0.    ])
+    >>> folder.cleanup()
+    """
     times, quaternions = read_quaternions(Path(law.path), epoch)
     outside = (time_s < times[0] - 1e-9) | (time_s > times[-1] + 1e-9)
     if np.any(outside):
@@ -151,8 +295,46 @@ def quaternion_file_attitude(
 
 
 def read_quaternions(path: Path, epoch: Epoch) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Times [s] after ``epoch`` and unit quaternions (scalar first, each on the same hemisphere as the
-    one before) of an attitude file."""
+    r"""The times and unit quaternions of an attitude file.
+
+    Parameters
+    ----------
+    path : Path
+        A CSV file with columns ``time`` (ISO 8601 UTC) or ``time_s`` (seconds after ``epoch``) and
+        ``qw, qx, qy, qz`` (scalar first, body to GCRF); lines starting ``#`` are skipped.
+    epoch : Epoch
+        Time zero of the run.
+
+    Returns
+    -------
+    time_s : ndarray of float64, shape (m,)
+        The rows' times [s] after ``epoch``, increasing.
+    quaternions : ndarray of float64, shape (m, 4)
+        Unit quaternions, scalar first, each on the same hemisphere as the one before (``q`` and ``-q``
+        are one rotation; the sign is chosen for interpolation).
+
+    Raises
+    ------
+    InputError
+        An unreadable file, fewer than two rows, missing columns or values, times not increasing, or a
+        quaternion whose length is more than ``UNIT_TOLERANCE`` from 1.
+
+    Examples
+    --------
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.orbit.attitude import AttitudeLaw, quaternion_file_attitude, read_quaternions
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = pathlib.Path(folder.name) / "turn.csv"  # a quarter turn about z in a minute
+    >>> _ = path.write_text("time_s,qw,qx,qy,qz\n0,1,0,0,0\n60,0.70710678,0,0,0.70710678\n")
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> times, quaternions = read_quaternions(path, epoch)
+    >>> times.tolist(), quaternions.round(4).tolist()
+    ([0.0, 60.0], [[1.0, 0.0, 0.0, 0.0], [0.7071, 0.0, 0.0, 0.7071]])
+    >>> folder.cleanup()
+    """
     try:
         with path.open(newline="", encoding="utf-8-sig") as handle:  # a byte-order mark is no column
             rows = list(csv.DictReader(row for row in handle if not row.lstrip().startswith("#")))
@@ -194,9 +376,39 @@ def read_quaternions(path: Path, epoch: Epoch) -> tuple[NDArray[np.float64], NDA
 def hermite_quaternions(
     times: NDArray[np.float64], quaternions: NDArray[np.float64], t: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """Unit quaternions at ``t`` from a cubic Hermite spline through the samples, componentwise, with
-    Catmull-Rom tangents (centred differences, one-sided at the ends), normalised: continuous angular
-    rate at the samples, where SLERP's rate jumps."""
+    """Unit quaternions at ``t`` from a cubic Hermite spline through the samples.
+
+    The spline runs componentwise with Catmull-Rom tangents (centred differences, one-sided at the ends),
+    then is normalised: the angular rate is continuous at the samples, where SLERP's jumps.
+
+    Parameters
+    ----------
+    times : ndarray of float64, shape (m,)
+        Sample times [s], increasing, m >= 2.
+    quaternions : ndarray of float64, shape (m, 4)
+        Unit quaternions at the samples, scalar first, on one hemisphere in turn.
+    t : ndarray of float64, shape (n,)
+        Times to interpolate at [s], within ``times``.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 4)
+        Unit quaternions, scalar first.
+
+    References
+    ----------
+    .. [1] Catmull, E., Rom, R. (1974). "A class of local interpolating splines". In *Computer Aided
+       Geometric Design*, 317-326. Academic Press.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.orbit.attitude import hermite_quaternions
+    >>> half = np.sqrt(0.5)
+    >>> samples = np.array([[1.0, 0.0, 0.0, 0.0], [half, 0.0, 0.0, half]])
+    >>> hermite_quaternions(np.array([0.0, 60.0]), samples, np.array([30.0])).round(4)
+    array([[0.9239, 0.    , 0.    , 0.3827]])
+    """
     q = quaternions
     tangents = np.empty_like(q)
     tangents[1:-1] = (q[2:] - q[:-2]) / (times[2:] - times[:-2])[:, None]
@@ -212,13 +424,56 @@ def hermite_quaternions(
 
 
 def quaternion_matrix(q: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Rotation matrices (n, 3, 3) of scalar-first quaternions (n, 4) or (4,), normalised here."""
+    """Rotation matrices of scalar-first quaternions, normalised here.
+
+    Parameters
+    ----------
+    q : array_like of float, shape (n, 4) or (4,)
+        Quaternions ``(w, x, y, z)``, scalar first; any non-zero length.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 3, 3)
+        The rotations ``v' = q v q*`` as matrices (n = 1 for a single quaternion).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.orbit.attitude import quaternion_matrix
+    >>> quaternion_matrix([np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)]).round(6) + 0.0  # 90 deg about z
+    array([[[ 0., -1.,  0.],
+            [ 1.,  0.,  0.],
+            [ 0.,  0.,  1.]]])
+    """
     q = np.atleast_2d(q)
     return Rotation.from_quat(np.roll(q / np.linalg.norm(q, axis=1, keepdims=True), -1, axis=1)).as_matrix()
 
 
 def lvlh(position_m: NDArray[np.float64], velocity_m_s: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The LVLH frame (columns x, y, z in GCRF): z to the Earth's centre, y along ``-(r x v)``."""
+    """The LVLH frame (columns x, y, z in GCRF): z to the Earth's centre, y along ``-(r x v)``.
+
+    Parameters
+    ----------
+    position_m : ndarray of float64, shape (n, 3)
+        Positions [m], GCRF.
+    velocity_m_s : ndarray of float64, shape (n, 3)
+        Velocities [m/s], GCRF.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 3, 3)
+        Rotations whose columns are the LVLH axes in GCRF (x = y x z, along the velocity on a circular
+        orbit): LVLH (body, for ``nadir``) to GCRF.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.orbit.attitude import lvlh
+    >>> lvlh(np.array([[7.0e6, 0.0, 0.0]]), np.array([[0.0, 7.5e3, 0.0]])) + 0.0
+    array([[[ 0.,  0., -1.],
+            [ 1.,  0.,  0.],
+            [ 0., -1.,  0.]]])
+    """
     z = -position_m / np.linalg.norm(position_m, axis=1, keepdims=True)
     h = np.cross(position_m, velocity_m_s)
     y = -h / np.linalg.norm(h, axis=1, keepdims=True)
@@ -231,8 +486,40 @@ def two_axis(
     secondary: NDArray[np.float64],
     toward: NDArray[np.float64],
 ) -> NDArray[np.float64]:
-    """Rotations (n, 3, 3) taking body axis ``primary`` onto ``target`` (n, 3) and body axis
-    ``secondary`` as close to ``toward`` (n, 3) as the first allows."""
+    """The rotations that point one body axis and bring a second as near a direction as it can come.
+
+    Body axis ``primary`` goes onto ``target`` and body axis ``secondary`` as close to ``toward`` as the
+    first allows. Where ``toward`` lies along ``target`` the roll about it is free: it is held at the
+    previous step's.
+
+    Parameters
+    ----------
+    primary : ndarray of float64, shape (3,)
+        The body axis to point.
+    target : ndarray of float64, shape (n, 3)
+        Where it points, GCRF (any length).
+    secondary : ndarray of float64, shape (3,)
+        A second body axis, not along ``primary``.
+    toward : ndarray of float64, shape (n, 3)
+        The direction it should come nearest, GCRF.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 3, 3)
+        Body to GCRF.
+
+    Examples
+    --------
+    Body +z to GCRF +x, body +x as near GCRF +y as it can be:
+
+    >>> import numpy as np
+    >>> from sunwind.forces.orbit.attitude import two_axis
+    >>> z, x = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+    >>> two_axis(z, np.array([[2.0, 0.0, 0.0]]), x, np.array([[1.0, 1.0, 0.0]])) + 0.0
+    array([[[0., 0., 1.],
+            [1., 0., 0.],
+            [0., 1., 0.]]])
+    """
     body = _triad(primary[None, :], secondary[None, :])[0]
     t = target / np.linalg.norm(target, axis=1, keepdims=True)
     w = toward - np.einsum("ij,ij->i", toward, t)[:, None] * t

@@ -33,7 +33,26 @@ EPOCH = "2024-06-21T00:00:00Z"
 
 @dataclass(frozen=True)
 class OrbitBenchReport:
-    """Milliseconds per step of each case (:data:`CASES`), the steps timed, and the machine."""
+    """Milliseconds per step of each case (:data:`CASES`), the steps timed, and the machine.
+
+    Attributes
+    ----------
+    triangles : int
+        Facets of the model timed.
+    steps : int
+        Steps timed per case (after two untimed ones).
+    ms_per_step : dict of str to float
+        Case name -> wall time per step [ms].
+    machine : str
+        Processor and core count.
+
+    Examples
+    --------
+    >>> from sunwind.forces.orbit.bench import OrbitBenchReport
+    >>> report = OrbitBenchReport(12, 2, {"LEO SRP": 3.5}, "x86_64, 2 cores")
+    >>> report.to_json()["ms_per_step"]
+    {'LEO SRP': 3.5}
+    """
 
     triangles: int
     steps: int
@@ -41,11 +60,45 @@ class OrbitBenchReport:
     machine: str
 
     def to_json(self) -> dict:
+        """The report as a JSON-ready dict, its keys the fields'.
+
+        Returns
+        -------
+        dict
+            ``triangles``, ``steps``, ``ms_per_step`` and ``machine``.
+        """
         return asdict(self)
 
 
 def orbit_benchmark(model: Model, steps: int = 40) -> OrbitBenchReport:
-    """Time ``steps`` steps of every case on ``model``."""
+    """Time ``steps`` steps of every case on ``model``.
+
+    Each case (:data:`CASES`: a Sun-synchronous orbit at 500 km with SRP and drag together and alone, a
+    GEO orbit with SRP) flies two steps first, untimed (compilation, caches), then ``steps`` steps nadir
+    pointing at the defaults of ``sunwind orbit``.
+
+    Parameters
+    ----------
+    model : Model
+        The spacecraft.
+    steps : int
+        Steps timed per case.
+
+    Returns
+    -------
+    OrbitBenchReport
+        Milliseconds per step of every case.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> from sunwind.forces.orbit.bench import orbit_benchmark
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> report = orbit_benchmark(cube, steps=2)
+    >>> report.triangles, list(report.ms_per_step)
+    (12, ['LEO SRP + drag', 'LEO SRP', 'LEO drag', 'GEO SRP'])
+    """
     epoch, nadir = Epoch.of(EPOCH), AttitudeLaw.parse("nadir")
     timings = {}
     for name, (elements, step, with_srp, with_drag) in CASES.items():

@@ -54,6 +54,26 @@ class EarthTerms:
         Cell size of the Earth's disc [deg].
     thermal : bool
         Each step's equilibrium temperatures and thermal recoil.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> from sunwind.forces.orbit.earth_terms import EarthTerms
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> earth = EarthTerms(SrpSetup(reflections="none"), thermal=True)
+    >>> list(earth.fields(n_parts=1))[-3:]
+    ['thermal_force_body_N', 'thermal_torque_body_Nm', 'part_temperature_K']
+    >>> painted = sw.Material("paint", reflectivity=0.0, specular_fraction=0.0, emissivity=0.9)
+    >>> cube = sw.load(sw.meshes.box(), uniform=painted, threads=1)
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> path = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [0.0, 60.0], "kepler")
+    >>> result = sw.fly(cube, path, sw.orbit.AttitudeLaw.parse("nadir"), sw.orbit.OrbitLoads(earth=earth))
+    >>> result.terms, result.part_names
+    (('albedo', 'infrared', 'thermal'), ('box',))
+    >>> EarthTerms(SrpSetup(), albedo=1.5)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: albedo 1.5 is outside [0, 1]...
     """
 
     surface: SrpSetup
@@ -68,24 +88,77 @@ class EarthTerms:
         check_cell_size(self.cell_deg)
 
     def fields(self, n_parts: int) -> dict[str, int]:
-        """Record name -> width of a step, for a model of ``n_parts`` parts."""
+        """Record name -> width of a step, for a model of ``n_parts`` parts.
+
+        Parameters
+        ----------
+        n_parts : int
+            The model's number of parts (the width of the per-part records).
+
+        Returns
+        -------
+        dict of str to int
+            :data:`BAND_FIELDS`, the per-part absorbed powers and, with ``thermal``, :data:`THERMAL_FIELDS`
+            and the part temperatures.
+        """
         out = dict(BAND_FIELDS) | {f"part_{source}_W": n_parts for source in PART_SOURCES}
         if self.thermal:
             out |= THERMAL_FIELDS | {"part_temperature_K": n_parts}
         return out
 
     def precompute(self, model: Model) -> None:
-        """Refuse a model without emissivities before the first step; view factors."""
+        """Refuse a model without emissivities before the first step; make the surface setup's view factors.
+
+        Parameters
+        ----------
+        model : Model
+            The model the steps will pose.
+
+        Raises
+        ------
+        MaterialError
+            A material without an emissivity.
+        """
         infrared_optics(model.craft)
         self.surface.precompute(model)
 
     def evaluate(
         self, model: Model, place: Place, sunlight_W_m2: float, julian_tt: float
     ) -> tuple[dict[str, NDArray[np.float64]], LoadsError | None]:
-        """One step's records, and the shadow passes' estimated error of its albedo and infrared loads
-        (:attr:`~sunwind.forces.earth.PlanetResult.shadow_error`): ``place`` (body frame; its solar
-        fraction the eclipse), the solar flux at the spacecraft's distance without eclipse [W/m^2], the
-        TT Julian date (Knocke's season)."""
+        """One step's records, and the shadow passes' estimated error of its albedo and infrared loads.
+
+        Parameters
+        ----------
+        model : Model
+            The model, posed at the step's hinge angles.
+        place : Place
+            Where the Earth and Sun are, body frame; its solar fraction is the eclipse.
+        sunlight_W_m2 : float
+            Solar flux at the spacecraft's distance, without eclipse [W/m^2].
+        julian_tt : float
+            TT Julian date (Knocke's season).
+
+        Returns
+        -------
+        records : dict of str to ndarray
+            The step's records (:meth:`fields`), body frame.
+        error : LoadsError or None
+            :attr:`~sunwind.forces.earth.PlanetResult.shadow_error`; None when the shadow pass gives none.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> from sunwind.forces.earth import Place
+        >>> from sunwind.forces.orbit.earth_terms import EarthTerms
+        >>> from sunwind.forces.tables.jobs import SrpSetup
+        >>> painted = sw.Material("paint", reflectivity=0.0, specular_fraction=0.0, emissivity=0.9)
+        >>> cube = sw.load(sw.meshes.box(), uniform=painted, threads=1)
+        >>> earth = EarthTerms(SrpSetup(reflections="none"))
+        >>> earth.precompute(cube)
+        >>> records, error = earth.evaluate(cube, Place([0, 0, 1], 700.0, [1, 0, 0]), 1361.0, 2460389.5)
+        >>> (records["infrared_force_body_N"] * 1e6).round(2) + 0.0  # micronewtons, away from the Earth (-z)
+        array([ 0.  ,  0.  , -1.02])
+        """
         light = PlanetLight.of(
             planet("earth"),
             sunlight_W_m2,
@@ -111,5 +184,11 @@ class EarthTerms:
         return out, result.shadow_error
 
     def describe(self) -> dict:
-        """JSON-ready settings."""
+        """JSON-ready settings.
+
+        Returns
+        -------
+        dict
+            The fields, the surface setup by its own ``describe``.
+        """
         return asdict(self) | {"surface": self.surface.describe()}

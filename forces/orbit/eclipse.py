@@ -23,9 +23,51 @@ def solar_fraction(
     model: str = "conical",
     moon_m: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
-    """Visible share of the solar disc (n,) at spacecraft positions ``position_m`` (n, 3) with the Sun
-    at ``sun_m`` (n, 3) and, if given, the Moon at ``moon_m`` (n, 3), all geocentric [m] in one
-    inertial frame."""
+    """Visible share of the solar disc at spacecraft positions, 0 (umbra) to 1 (full Sun).
+
+    The Earth (a sphere of its equatorial radius) and, if given, the Moon occult the Sun; their two
+    shares multiply.
+
+    Parameters
+    ----------
+    position_m : array_like of float, shape (n, 3)
+        Spacecraft positions relative to the Earth's centre [m].
+    sun_m : array_like of float, shape (n, 3)
+        Sun positions relative to the Earth's centre [m], same inertial frame.
+    model : {"conical", "cylindrical", "none"}
+        Shadow model: ``"conical"`` with the penumbra (overlap of the apparent discs), ``"cylindrical"``
+        (in or out of the shadow cylinder), ``"none"`` (always full Sun).
+    moon_m : array_like of float, shape (n, 3), optional
+        Moon positions relative to the Earth's centre [m]; ``None`` leaves the Moon out.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        The share of the solar disc in view.
+
+    Raises
+    ------
+    InputError
+        ``model`` is not one of :data:`ECLIPSE_MODELS`.
+
+    References
+    ----------
+    .. [1] Montenbruck, O., Gill, E. (2000). *Satellite Orbits: Models, Methods and Applications*,
+       sec. 3.4.2 (the conical shadow model). Springer.
+
+    Examples
+    --------
+    A spacecraft at 7000 km on the sunlit side, behind the Earth, and in the penumbra just past the
+    Earth's limb:
+
+    >>> import sunwind as sw
+    >>> sun = [[sw.orbit.AU_M, 0.0, 0.0]] * 3
+    >>> here = [[7.0e6, 0.0, 0.0], [-7.0e6, 0.0, 0.0], [-7.0e6, 6.38e6, 0.0]]
+    >>> sw.orbit.solar_fraction(here, sun).round(2)
+    array([1.  , 0.  , 0.53])
+    >>> sw.orbit.solar_fraction(here, sun, "cylindrical").tolist()
+    [1.0, 0.0, 1.0]
+    """
     if model not in ECLIPSE_MODELS:
         raise InputError(
             f"eclipse model {model!r} is not one of {', '.join(ECLIPSE_MODELS)}", parameters=("eclipse",)

@@ -26,8 +26,55 @@ _AXES = ("x", "y", "z")
 
 
 def read_ephemeris(path: str | Path, epoch: Epoch | None) -> tuple[Epoch, NDArray, NDArray, NDArray]:
-    """The file's epoch (the given one, else its first time), times [s] after it, positions [m] and
-    velocities [m/s]."""
+    r"""The contents of an ephemeris file, checked: epoch, times, positions and velocities.
+
+    Parameters
+    ----------
+    path : str or Path
+        A CSV file with a header naming ``time`` (ISO 8601 UTC) or ``time_s`` (seconds after ``epoch``),
+        ``x_m, y_m, z_m`` and ``vx_m_s, vy_m_s, vz_m_s`` (GCRF), or ``_km`` and ``_km_s`` columns; rows in
+        time order, lines starting ``#`` skipped.
+    epoch : Epoch or None
+        Time zero; ``None`` takes the file's first ``time``.
+
+    Returns
+    -------
+    epoch : Epoch
+        The given epoch, else the file's first time.
+    time_s : ndarray of float64, shape (m,)
+        The rows' times [s] after ``epoch``, increasing.
+    position_m : ndarray of float64, shape (m, 3)
+        Positions [m], GCRF.
+    velocity_m_s : ndarray of float64, shape (m, 3)
+        Velocities [m/s], GCRF.
+
+    Raises
+    ------
+    InputError
+        An unreadable file, fewer than two rows, missing or non-numeric columns, ``time_s`` without an
+        epoch, times not increasing, or a position inside the Earth.
+
+    Examples
+    --------
+    A file of three rows, a minute apart, from a two-body orbit:
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> truth = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [0.0, 60.0, 120.0], "kepler")
+    >>> lines = ["time,x_km,y_km,z_km,vx_km_s,vy_km_s,vz_km_s"] + [
+    ...     epoch.at(t).isoformat() + "," + ",".join(f"{x:.9f}" for x in [*r, *v])
+    ...     for t, r, v in zip(truth.time_s, truth.position_m / 1e3, truth.velocity_m_s / 1e3)
+    ... ]
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = pathlib.Path(folder.name) / "orbit.csv"
+    >>> _ = path.write_text("\n".join(lines) + "\n")
+    >>> start, times, position, velocity = sw.orbit.ephemeris_csv.read_ephemeris(path, None)
+    >>> start.iso(), times.tolist(), position.shape
+    ('2024-03-20T00:00:00.000Z', [0.0, 60.0, 120.0], (3, 3))
+    >>> folder.cleanup()
+    """
     path = Path(path)
     try:
         with path.open(newline="", encoding="utf-8-sig") as handle:  # a byte-order mark is no column
@@ -76,7 +123,55 @@ def read_ephemeris(path: str | Path, epoch: Epoch | None) -> tuple[Epoch, NDArra
 
 
 def ephemeris_trajectory(path: str | Path, epoch: Epoch | None, time_s: NDArray[np.float64]) -> Trajectory:
-    """States at ``time_s`` [s] after the epoch (the given one, else the file's first time)."""
+    r"""States at ``time_s`` [s] after the epoch, interpolated in an ephemeris file.
+
+    A cubic Hermite spline through the rows' positions and velocities gives the states between them.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ephemeris file, as :func:`read_ephemeris` reads it.
+    epoch : Epoch or None
+        Time zero; ``None`` takes the file's first ``time``.
+    time_s : ndarray of float64, shape (n,)
+        Seconds after the epoch, within the file's span.
+
+    Returns
+    -------
+    Trajectory
+        Positions [m] and velocities [m/s] in GCRF at ``time_s``.
+
+    Raises
+    ------
+    InputError
+        A file :func:`read_ephemeris` refuses, or a step outside the file's times.
+
+    Examples
+    --------
+    Between two rows a minute apart on a low orbit, the spline is some 0.3 m off:
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> truth = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [0.0, 60.0, 120.0], "kepler")
+    >>> lines = ["time,x_km,y_km,z_km,vx_km_s,vy_km_s,vz_km_s"] + [
+    ...     epoch.at(t).isoformat() + "," + ",".join(f"{x:.9f}" for x in [*r, *v])
+    ...     for t, r, v in zip(truth.time_s, truth.position_m / 1e3, truth.velocity_m_s / 1e3)
+    ... ]
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = pathlib.Path(folder.name) / "orbit.csv"
+    >>> _ = path.write_text("\n".join(lines) + "\n")
+    >>> between = sw.orbit.ephemeris_trajectory(path, None, np.array([90.0]))
+    >>> exact = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [90.0], "kepler")
+    >>> round(float(np.linalg.norm(between.position_m - exact.position_m)), 1)
+    0.3
+    >>> sw.orbit.ephemeris_trajectory(path, None, np.array([300.0]))
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: ...outside the ephemeris (0 to 120 s)...
+    >>> folder.cleanup()
+    """
     epoch, times, position, velocity = read_ephemeris(path, epoch)
     outside = (time_s < times[0] - 1e-9) | (time_s > times[-1] + 1e-9)
     if np.any(outside):

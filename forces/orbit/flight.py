@@ -161,7 +161,22 @@ def step_inputs(
 
 
 def check_height(height_km: NDArray[np.float64]) -> None:
-    """Refuse the Earth's radiation on an orbit that goes below the surface of the sphere."""
+    """Refuse the Earth's radiation on an orbit that goes below the surface of the sphere.
+
+    Parameters
+    ----------
+    height_km : ndarray, shape (n,)
+        Each step's height above the Earth's sphere [km].
+
+    Raises
+    ------
+    InputError
+        A step at or below the surface.
+
+    Examples
+    --------
+    >>> check_height(np.array([500.0, 510.0]))  # nothing to refuse
+    """
     low = float(height_km.min())
     if not low > 0:
         raise InputError(
@@ -172,7 +187,27 @@ def check_height(height_km: NDArray[np.float64]) -> None:
 
 
 def check_sun(sun_eci: NDArray[np.float64] | None, moon: bool) -> None:
-    """Refuse a fixed Sun direction that is not one, or one asked for together with the Moon."""
+    """Refuse a fixed Sun direction that is not one, or one asked for together with the Moon.
+
+    Parameters
+    ----------
+    sun_eci : (3,) array_like or None
+        The fixed Sun direction (GCRF), or None for the ephemeris.
+    moon : bool
+        Whether the Moon eclipses the Sun too.
+
+    Raises
+    ------
+    InputError
+        A direction that is not finite and non-zero, or given with ``moon``.
+
+    Examples
+    --------
+    >>> check_sun([0.0, 0.0, 0.0], False)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: sun_eci [0.0, 0.0, 0.0] must be a finite, non-zero direction
+    """
     if sun_eci is not None:
         direction = np.asarray(sun_eci, dtype=float)
         if direction.shape != (3,) or not np.all(np.isfinite(direction)) or not direction.any():
@@ -188,7 +223,25 @@ def check_sun(sun_eci: NDArray[np.float64] | None, moon: bool) -> None:
 
 def geodetic(trajectory: Trajectory) -> NDArray[np.float64]:
     """Altitude [km] above the WGS 84 ellipsoid, geodetic latitude and longitude [deg] at each step
-    (GCRF to ITRS by ERFA's IAU 2006/2000A ``c2t06a``, UT1 = UTC, no polar motion)."""
+    (GCRF to ITRS by ERFA's IAU 2006/2000A ``c2t06a``, UT1 = UTC, no polar motion).
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        The steps' times and GCRF positions.
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        Altitude, latitude, longitude of each step.
+
+    Examples
+    --------
+    >>> from sunwind.forces.orbit import Elements, Epoch, propagate
+    >>> path = propagate(Elements.circular(500, 0.0), Epoch.of("2024-03-20T00:00:00Z"), [0.0], "kepler")
+    >>> geodetic(path)[0, :2].round(0).tolist()  # on the equator
+    [500.0, 0.0]
+    """
     epoch, time_s = trajectory.epoch, trajectory.time_s
     rotation = erfa.c2t06a(*epoch.tt(time_s), *epoch.ut1(time_s), 0.0, 0.0)
     fixed = np.einsum("nij,nj->ni", rotation, trajectory.position_m)

@@ -10,8 +10,37 @@ from sunwind.forces.orbit.results import OrbitResult
 
 
 def plot_orbit(result: OrbitResult, path: str | Path) -> None:
-    """Write a PNG: body torque components (top) and ECI angular impulse (bottom) against time [h],
-    the shadow shaded in grey as deep as the Sun is hidden."""
+    r"""Write a PNG of an orbit run: body torque (top) and ECI angular impulse (bottom) against time.
+
+    Each panel draws the x, y, z components and the magnitude against hours from the epoch; the shadow
+    is shaded grey where the Sun is even partly hidden. Matplotlib is imported (``Agg`` backend) only
+    here.
+
+    Parameters
+    ----------
+    result : OrbitResult
+        The run, from :func:`~sunwind.forces.orbit.flight.fly`.
+    path : str or Path
+        The PNG file to write.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import sunwind as sw
+    >>> from sunwind.forces.orbit.plots import plot_orbit
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> path = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [0.0, 60.0], "kepler")
+    >>> nadir = sw.orbit.AttitudeLaw.parse("nadir")
+    >>> result = sw.fly(cube, path, nadir, sw.orbit.OrbitLoads(SrpSetup(reflections="none")))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     png = pathlib.Path(folder) / "orbit.png"
+    ...     plot_orbit(result, png)
+    ...     png.read_bytes()[:4]
+    b'\x89PNG'
+    """
     import matplotlib
 
     matplotlib.use("Agg")

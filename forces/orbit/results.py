@@ -1,5 +1,5 @@
 """The result of an orbit run: time series of the loads and the momentum they build, their summary,
-and the same names in JSON, netCDF and CSV (README "sunwind orbit").
+and the same names in JSON, netCDF and CSV (the orbit guide, docs/guides/orbit.md).
 
 Body-frame loads are about the model's reference point; ECI is GCRF. The angular impulse is the
 trapezoidal integral of the torque from the first step (zero there): in the body frame, of the
@@ -28,10 +28,10 @@ from sunwind.forces.orbit.steps import OrbitLoads
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
 from sunwind.forces.tables.dataset import attribute_text, model_provenance
+from sunwind.forces.vocabulary import COMPONENT, COMPONENTS
 from sunwind.geometry.rays.certificate import LoadsError
 
 #: The dimension vectors run along (as in sweep tables), and its coordinate.
-COMPONENT, COMPONENTS = "component", ("x", "y", "z")
 #: Time series of the output, in order, with their units (UDUNITS).
 SERIES = {
     "time_s": "s",
@@ -82,7 +82,23 @@ TERMS = ("srp", "drag", "albedo", "infrared", "thermal")
 class OrbitResult:
     """Loads along an orbit: ``series`` (name -> (n,) or (n, 3) float64, see :data:`SERIES`),
     ``body_to_eci`` (n, 3, 3), ``hinge_angles_deg`` (hinge glob -> (n,) angles used) and what the run
-    was."""
+    was; made by :func:`~sunwind.forces.orbit.flight.fly`.
+
+    Examples
+    --------
+    >>> from sunwind.forces import load
+    >>> from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, fly, propagate
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.meshes import box_wing
+    >>> model = load(box_wing(facet_size=0.5), uniform=Material("paint", 0.4, 0.5, 0.1), two_sided=["wing*"])
+    >>> path = propagate(Elements.circular(700, 98.2), Epoch.of("2024-03-20T00:00:00Z"), [0, 60], "kepler")
+    >>> result = fly(model, path, AttitudeLaw.parse("nadir"), OrbitLoads(SrpSetup(reflections="none")))
+    >>> result.summary()["steps"], result.to_json()["time_s"]
+    (2, [0.0, 60.0])
+    >>> result.to_dataset()["torque_body_Nm"].attrs["units"]
+    'N m'
+    """
 
     series: dict[str, NDArray[np.float64]]
     body_to_eci: NDArray[np.float64]

@@ -94,7 +94,7 @@ class SpaceWeather:
             raise InputError(
                 f"the orbit reaches {top:.0f} km, above {MSIS_MAX_ALTITUDE_KM:g} km where NRLMSIS cannot be "
                 "trusted",
-                hint="compute SRP alone, or give a fixed atmosphere",
+                hint="compute SRP alone (--srp), or give a fixed atmosphere (--density ...)",
                 parameters=("drag",),
             )
         for outside, what in (

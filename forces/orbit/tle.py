@@ -25,14 +25,44 @@ LINE_LENGTH = 69
 
 
 def read_tle(path: str | Path) -> tuple[str, str]:
-    """The two element lines of a TLE file (an optional name line before them is skipped), checked:
-    69 characters each, line 1 then line 2 of one satellite, each with its checksum (the last digit:
-    the sum of the line's digits, minus signs counting 1, modulo 10) and a readable epoch.
+    r"""The two element lines of a TLE file, checked.
+
+    An optional name line before them is skipped. Each line must have 69 characters and its checksum
+    (:func:`checksum`), line 1 then line 2 of one satellite, and line 1 a readable epoch.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TLE file (two-line or three-line format; the first element set is read).
+
+    Returns
+    -------
+    tuple of (str, str)
+        Line 1 and line 2, trailing blanks removed.
 
     Raises
     ------
     InputError
-        No element set, a truncated or altered line, or lines of two satellites.
+        An unreadable file, no element set, a truncated or altered line, or lines of two satellites.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from sunwind.forces.orbit.tle import read_tle
+    >>> l1 = "1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927"
+    >>> l2 = "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537"
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "iss.tle"
+    ...     _ = path.write_text(f"ISS (ZARYA)\n{l1}\n{l2}\n")
+    ...     read_tle(path) == (l1, l2)
+    True
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "typo.tle"
+    ...     _ = path.write_text(f"{l1}\n{l2[:-1]}8\n")
+    ...     read_tle(path)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: ...line 2 of the element set fails its checksum...
     """
     path = Path(path)
     try:
@@ -76,9 +106,27 @@ def read_tle(path: str | Path) -> tuple[str, str]:
 
 
 def checksum(line: str) -> int:
-    """The TLE checksum of a line: the sum of its first 68 characters' digits, each minus sign counting
-    1, modulo 10.
+    """The TLE checksum of a line.
 
+    The sum of its first 68 characters' digits, each minus sign counting 1, modulo 10.
+
+    Parameters
+    ----------
+    line : str
+        An element line (its 69th character, the checksum itself, is not counted).
+
+    Returns
+    -------
+    int
+        The checksum digit, 0 to 9.
+
+    References
+    ----------
+    .. [1] Hoots, F. R., Roehrich, R. L. (1980). *Models for Propagation of NORAD Element Sets*,
+       Spacetrack Report No. 3 (the element set's format).
+
+    Examples
+    --------
     >>> checksum("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927")
     7
     """
@@ -104,9 +152,27 @@ def _epoch_field(line1: str, path: Path) -> tuple[int, float]:
 
 
 def tle_period_s(line1: str, line2: str) -> float:
-    """The orbital period [s] of an element set: a day over its mean motion (revolutions per day,
-    columns 53-63 of line 2).
+    """The orbital period [s] of an element set: a day over its mean motion.
 
+    Parameters
+    ----------
+    line1 : str
+        Line 1 of the element set (not read; taken for symmetry with :func:`tle_epoch`).
+    line2 : str
+        Line 2; its columns 53-63 hold the mean motion [revolutions per day].
+
+    Returns
+    -------
+    float
+        ``86400 / mean motion`` [s].
+
+    Raises
+    ------
+    InputError
+        A mean motion that is not a positive number.
+
+    Examples
+    --------
     >>> round(tle_period_s("", "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537"), 1)
     5495.7
     """
@@ -122,7 +188,32 @@ def tle_period_s(line1: str, line2: str) -> float:
 
 
 def tle_epoch(line1: str, line2: str) -> Epoch:
-    """The epoch of the element set (UTC)."""
+    """The epoch of the element set (UTC).
+
+    Parameters
+    ----------
+    line1, line2 : str
+        The two element lines.
+
+    Returns
+    -------
+    Epoch
+        The instant the elements hold at, from line 1's year and day of year (two-digit years 57-99 are
+        1957-1999).
+
+    Raises
+    ------
+    InputError
+        Lines that SGP4's reader does not parse.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> l1 = "1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927"
+    >>> l2 = "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537"
+    >>> sw.orbit.tle_epoch(l1, l2).iso()
+    '2008-09-20T12:25:40.104Z'
+    """
     from sgp4.api import Satrec
     from sgp4.conveniences import sat_epoch_datetime
 
@@ -133,7 +224,50 @@ def tle_epoch(line1: str, line2: str) -> Epoch:
 
 
 def tle_trajectory(path: str | Path, epoch: Epoch, time_s: NDArray[np.float64]) -> Trajectory:
-    """States at ``time_s`` [s] after ``epoch`` from the TLE in ``path``, GCRF."""
+    r"""The states at ``time_s`` [s] after ``epoch`` from the TLE in ``path``, GCRF.
+
+    SGP4 gives position and velocity in TEME; :func:`teme_to_gcrf` turns them into GCRF.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TLE file, read by :func:`read_tle`.
+    epoch : Epoch
+        Time zero of the run (need not be the elements' epoch; SGP4's error grows away from it).
+    time_s : ndarray of float64, shape (n,)
+        Seconds after ``epoch``.
+
+    Returns
+    -------
+    Trajectory
+        Positions [m] and velocities [m/s] in GCRF, and a ``source`` naming the file and satellite.
+
+    Raises
+    ------
+    InputError
+        A file :func:`read_tle` refuses, elements SGP4 does not parse, or a step where SGP4 fails (a
+        decayed orbit or elements out of range).
+
+    References
+    ----------
+    .. [1] Vallado, D. A., Crawford, P., Hujsak, R., Kelso, T. S. (2006). "Revisiting Spacetrack Report
+       #3". AIAA Paper 2006-6753 (SGP4 as the ``sgp4`` package implements it).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> l1 = "1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927"
+    >>> l2 = "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537"
+    >>> epoch = sw.orbit.tle_epoch(l1, l2)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "iss.tle"
+    ...     _ = path.write_text(f"{l1}\n{l2}\n")
+    ...     iss = sw.orbit.tle_trajectory(path, epoch, np.array([0.0, 60.0]))
+    >>> iss.altitude_km.round(0), iss.source
+    (array([342., 342.]), 'sgp4: TLE iss.tle (catalogue number 25544)')
+    """
     from sgp4.api import Satrec
 
     line1, line2 = read_tle(path)
@@ -159,7 +293,41 @@ def tle_trajectory(path: str | Path, epoch: Epoch, time_s: NDArray[np.float64]) 
 
 
 def teme_to_gcrf(epoch: Epoch, time_s: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Rotation matrices (n, 3, 3) taking TEME vectors to GCRF at ``time_s`` [s] after ``epoch``."""
+    """Rotation matrices taking TEME vectors to GCRF at ``time_s`` [s] after ``epoch``.
+
+    ``r_GCRF = NPB^T R3(-Eq) r_TEME``: the equation of the equinoxes ``Eq`` (IAU 1994) takes TEME to the
+    true equator and equinox of date, and the IAU 1976/1980 precession-nutation matrix ``NPB`` takes that
+    to GCRF.
+
+    Parameters
+    ----------
+    epoch : Epoch
+        Time zero.
+    time_s : ndarray of float64, shape (n,)
+        Seconds after ``epoch``.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 3, 3)
+        One rotation per time: a TEME vector ``v`` becomes ``matrix @ v``.
+
+    References
+    ----------
+    .. [1] Vallado, D. A., Crawford, P., Hujsak, R., Kelso, T. S. (2006). "Revisiting Spacetrack Report
+       #3". AIAA Paper 2006-6753, sec. VI.
+    .. [2] IAU SOFA Board. *IAU SOFA Software Collection*, through ERFA (``eqeq94``, ``pnm80``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.orbit.clock import Epoch
+    >>> from sunwind.forces.orbit.tle import teme_to_gcrf
+    >>> rotation = teme_to_gcrf(Epoch.of("2008-09-20T12:25:40Z"), np.array([0.0]))
+    >>> rotation.shape, bool(np.allclose(rotation[0] @ rotation[0].T, np.eye(3)))
+    ((1, 3, 3), True)
+    >>> round(float(np.degrees(np.arccos(rotation[0, 0, 0]))), 2)  # about 8.7 years of precession
+    0.12
+    """
     tt1, tt2 = epoch.tt(time_s)
     equinoxes = erfa.eqeq94(tt1, tt2)
     c, s = np.cos(equinoxes), np.sin(equinoxes)

@@ -32,6 +32,10 @@ PROPAGATORS = ("kepler", "j2")
 class Trajectory:
     """Spacecraft states at the steps of a run.
 
+    Made by :func:`propagate`, :func:`~sunwind.forces.orbit.tle.tle_trajectory` or
+    :func:`~sunwind.forces.orbit.ephemeris_csv.ephemeris_trajectory`, and flown by
+    :func:`~sunwind.forces.orbit.flight.fly`.
+
     Attributes
     ----------
     epoch : Epoch
@@ -42,6 +46,19 @@ class Trajectory:
         Position [m] and velocity [m/s], GCRF (Earth-centred inertial).
     source : str
         How it was made, in words (for the output's provenance).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> path = sw.orbit.propagate(sw.orbit.Elements.circular(700, 98.2), epoch, [0.0, 60.0], "kepler")
+    >>> path.position_m.shape, path.altitude_km.round(3).tolist()
+    ((2, 3), [700.0, 700.0])
+    >>> round(path.period_s / 60, 2)  # minutes
+    98.77
+    >>> path.source
+    'kepler: a = 7078.137 km, e = 0, i = 98.2 deg, RAAN = 0 deg, argp = 0 deg, nu = 0 deg'
     """
 
     epoch: Epoch
@@ -66,13 +83,63 @@ class Trajectory:
 
 
 class TrajectoryWarning(UserWarning):
-    """A trajectory that runs but may not be what was meant (stale elements)."""
+    """A trajectory that runs but may not be what was meant (stale elements).
+
+    The command line warns with it when a run lies far from a TLE's epoch; a script can make it an error.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from sunwind.forces.orbit.trajectory import TrajectoryWarning
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("error", TrajectoryWarning)
+    ...     try:
+    ...         warnings.warn("elements 400 days old", TrajectoryWarning)
+    ...     except TrajectoryWarning as warning:
+    ...         print(warning)
+    elements 400 days old
+    """
 
 
 @dataclass(frozen=True)
 class Elements:
-    """Keplerian elements: semi-major axis [m], eccentricity, inclination, right ascension of the
-    ascending node, argument of perigee and true anomaly [deg]."""
+    """Keplerian elements of an orbit about the Earth: a size in metres, angles in degrees.
+
+    The elements are checked when made: a closed orbit (0 <= e < 1), its perigee above the Earth's
+    equatorial radius and its semi-major axis inside the Earth's sphere of influence.
+
+    Parameters
+    ----------
+    a_m : float
+        Semi-major axis [m], from the Earth's centre.
+    e : float
+        Eccentricity, 0 <= e < 1.
+    i_deg : float
+        Inclination [deg], 0 to 180.
+    raan_deg : float
+        Right ascension of the ascending node [deg], within [-360, 360].
+    argp_deg : float
+        Argument of perigee [deg], within [-360, 360].
+    nu_deg : float
+        True anomaly [deg], within [-360, 360].
+
+    Raises
+    ------
+    InputError
+        A non-finite value, an open orbit, an angle out of range, a semi-major axis beyond
+        ``MOST_SEMI_MAJOR_AXIS_M`` or a perigee inside the Earth.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> orbit = sw.orbit.Elements(7000e3, 0.001, 51.6, 10.0, 20.0, 30.0)
+    >>> round(orbit.period_s, 1)
+    5828.5
+    >>> sw.orbit.Elements(7000.0, 0.0, 51.6, 0.0, 0.0, 0.0)  # km given where metres are wanted
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: the perigee radius 7.0 km is inside the Earth (6378.137 km)...
+    """
 
     a_m: float
     e: float
@@ -125,19 +192,67 @@ class Elements:
     def circular(
         cls, altitude_km: float, inclination_deg: float, raan_deg: float = 0.0, arg_latitude_deg: float = 0.0
     ) -> Elements:
-        """A circular orbit at ``altitude_km`` above 6378.137 km, starting at argument of latitude
-        ``arg_latitude_deg`` (from the ascending node)."""
+        """A circular orbit at ``altitude_km`` above 6378.137 km.
+
+        Parameters
+        ----------
+        altitude_km : float
+            Height above the Earth's equatorial radius [km], positive.
+        inclination_deg : float
+            Inclination [deg], 0 to 180.
+        raan_deg : float
+            Right ascension of the ascending node [deg].
+        arg_latitude_deg : float
+            Argument of latitude at the epoch [deg], from the ascending node (the true anomaly, with the
+            argument of perigee zero).
+
+        Returns
+        -------
+        Elements
+            The elements, eccentricity zero.
+
+        Raises
+        ------
+        InputError
+            A non-positive or non-finite altitude, or an angle out of range.
+
+        Examples
+        --------
+        >>> from sunwind.forces.orbit.trajectory import Elements
+        >>> Elements.circular(500, 97.4, raan_deg=30.0)
+        Elements(a_m=6878137.0, e=0.0, i_deg=97.4, raan_deg=30.0, argp_deg=0.0, nu_deg=0.0)
+        """
         if not (math.isfinite(altitude_km) and altitude_km > 0):
             raise InputError(f"altitude {altitude_km} km must be a positive number", parameters=("altitude",))
         return cls(EARTH_RADIUS + altitude_km * 1e3, 0.0, inclination_deg, raan_deg, 0.0, arg_latitude_deg)
 
     @property
     def period_s(self) -> float:
-        """Two-body period [s]."""
+        """Two-body period [s]: ``2 pi sqrt(a^3 / GM)``."""
         return 2 * math.pi * math.sqrt(self.a_m**3 / EARTH_GM)
 
     def state(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Position [m] and velocity [m/s], GCRF, at the elements' true anomaly."""
+        """Position [m] and velocity [m/s], GCRF, at the elements' true anomaly.
+
+        Returns
+        -------
+        position : ndarray of float64, shape (3,)
+            Position [m].
+        velocity : ndarray of float64, shape (3,)
+            Velocity [m/s].
+
+        References
+        ----------
+        .. [1] Vallado, D. A. (2013). *Fundamentals of Astrodynamics and Applications*, 4th ed., ch. 2
+           (the COE2RV algorithm: state in the perifocal frame, then rotated). Microcosm Press.
+
+        Examples
+        --------
+        >>> from sunwind.forces.orbit.trajectory import Elements
+        >>> position, velocity = Elements.circular(700, 90.0).state()
+        >>> position.round(1).tolist(), velocity.round(1).tolist()
+        ([7078137.0, 0.0, 0.0], [0.0, 0.0, 7504.3])
+        """
         p = self.a_m * (1 - self.e**2)
         nu = math.radians(self.nu_deg)
         r = p / (1 + self.e * math.cos(nu))
@@ -148,13 +263,73 @@ class Elements:
         return rotation @ position, rotation @ velocity
 
     def perifocal_to_inertial(self) -> NDArray[np.float64]:
-        """The rotation from the perifocal frame (x to perigee, z along the orbit normal) to GCRF."""
+        """The rotation from the perifocal frame (x to perigee, z along the orbit normal) to GCRF.
+
+        Returns
+        -------
+        ndarray of float64, shape (3, 3)
+            ``R3(-RAAN) R1(-i) R3(-argp)``: a perifocal vector ``v`` becomes ``matrix @ v`` in GCRF.
+
+        References
+        ----------
+        .. [1] Vallado, D. A. (2013). *Fundamentals of Astrodynamics and Applications*, 4th ed., ch. 2
+           (the COE2RV algorithm). Microcosm Press.
+
+        Examples
+        --------
+        >>> from sunwind.forces.orbit.trajectory import Elements
+        >>> Elements.circular(700, 90.0, raan_deg=90.0).perifocal_to_inertial().round(6) + 0.0
+        array([[0., 0., 1.],
+               [1., 0., 0.],
+               [0., 1., 0.]])
+        """
         raan, i, argp = (math.radians(v) for v in (self.raan_deg, self.i_deg, self.argp_deg))
         return _rz(raan) @ _rx(i) @ _rz(argp)
 
 
 def propagate(elements: Elements, epoch: Epoch, time_s: NDArray[np.float64], propagator: str) -> Trajectory:
-    """States at ``time_s`` [s] after ``epoch``, the elements being those at the epoch."""
+    """The states at ``time_s`` [s] after ``epoch``, the elements being those at the epoch.
+
+    Parameters
+    ----------
+    elements : Elements
+        Osculating elements at the epoch.
+    epoch : Epoch
+        Time zero.
+    time_s : array_like of float, shape (n,)
+        Seconds after the epoch.
+    propagator : {"kepler", "j2"}
+        ``"kepler"`` solves Kepler's equation at every step; ``"j2"`` integrates two-body motion with the
+        Earth's J2 (SciPy's DOP853, relative tolerance 1e-11).
+
+    Returns
+    -------
+    Trajectory
+        Positions and velocities in GCRF, and a ``source`` line naming the elements.
+
+    Raises
+    ------
+    InputError
+        ``propagator`` is not one of ``PROPAGATORS``.
+
+    References
+    ----------
+    .. [1] Vallado, D. A. (2013). *Fundamentals of Astrodynamics and Applications*, 4th ed. Microcosm
+       Press: Kepler's equation (ch. 2) and the J2 acceleration (ch. 8).
+    .. [2] Hairer, E., Nørsett, S. P., Wanner, G. (1993). *Solving Ordinary Differential Equations I:
+       Nonstiff Problems*, 2nd ed. Springer (DOP853).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> elements = sw.orbit.Elements.circular(700, 98.2)
+    >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+    >>> kepler = sw.orbit.propagate(elements, epoch, np.arange(3) * 60.0, "kepler")
+    >>> j2 = sw.orbit.propagate(elements, epoch, np.arange(3) * 60.0, "j2")
+    >>> kepler.altitude_km.round(3), j2.altitude_km.round(3)
+    (array([700., 700., 700.]), array([700.   , 699.981, 699.925]))
+    """
     if propagator not in PROPAGATORS:
         raise InputError(
             f"propagator {propagator!r} is not one of {', '.join(PROPAGATORS)}", parameters=("propagator",)

@@ -153,7 +153,7 @@ class PlanetLight:
     @classmethod
     def of(
         cls,
-        body: Planet,
+        body: Planet | str,
         solar_flux_W_m2: float,
         *,
         albedo: float | None = None,
@@ -164,8 +164,8 @@ class PlanetLight:
 
         Parameters
         ----------
-        body : Planet
-            The planet.
+        body : Planet or str
+            The planet, or its name (:data:`PLANETS`).
         solar_flux_W_m2 : float
             Solar flux at the planet [W/m^2].
         albedo : float, optional
@@ -196,11 +196,13 @@ class PlanetLight:
 
         Examples
         --------
-        >>> light = PlanetLight.of(planet("moon"), 1361.0, albedo=0.1)
+        >>> light = PlanetLight.of("moon", 1361.0, albedo=0.1)
         >>> light.albedo.insolation_W_m2
         136.1
         """
         flux = solar_flux_W_m2
+        if isinstance(body, str):
+            body = planet(body)
         if albedo is not None and not (math.isfinite(albedo) and 0.0 <= albedo <= 1.0):
             raise InputError(f"albedo {albedo} is outside [0, 1]", hint="e.g. 0.30", parameters=("albedo",))
         if infrared_W_m2 is not None and not (math.isfinite(infrared_W_m2) and infrared_W_m2 >= 0.0):

@@ -50,13 +50,32 @@ MOST_CELLS = 20_000
 
 
 def check_cells(half_angle: float, step_deg: float) -> None:
-    """Refuse a cell size ``step_deg`` that cuts a cap of ``half_angle`` [rad] into more than
-    ``MOST_CELLS`` cells (about ``2 pi (1 - cos theta0) / step^2``), before any is made.
+    """Refuse a cell size that would cut the cap into more than ``MOST_CELLS`` cells.
+
+    The count is estimated before any cell is made, as the cap's solid angle
+    ``2 pi (1 - cos theta_0)`` over the square of the step.
+
+    Parameters
+    ----------
+    half_angle : float
+        The cap's half-angle ``theta_0`` [rad] (:attr:`Cap.half_angle`).
+    step_deg : float
+        The cell size asked for [deg].
 
     Raises
     ------
     InputError
-        Too fine a step, named as ``step_deg``.
+        Too fine a step (or a step that is not a number), named as ``step_deg``; the hint gives the
+        finest step accepted.
+
+    Examples
+    --------
+    >>> import math
+    >>> check_cells(math.radians(68.0), 10.0)  # the default step from 500 km: accepted
+    >>> check_cells(math.radians(68.0), 0.1)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: step_deg 0.1 cuts the planet's disc (68.0 deg half-angle) into ...
     """
     theta0 = half_angle
     solid = 2 * math.pi * (1 - math.cos(theta0))
@@ -73,8 +92,40 @@ def check_cells(half_angle: float, step_deg: float) -> None:
 
 @dataclass(frozen=True)
 class Radiance:
-    """``L = (uniform + insolation max(N . s, 0)) (q_0 + q_1 x + q_2 P_2(x)) / pi`` [W/(m^2 sr)],
-    ``x = N . pole``: exitances [W/m^2] and the latitude factor of one source."""
+    """The radiance law of one extended source on a planet's surface.
+
+    A surface point of outward unit normal ``N`` sends
+
+        L = (uniform + insolation max(N . s, 0)) (q_0 + q_1 x + q_2 P_2(x)) / pi   [W/(m^2 sr)],
+
+    with ``s`` the unit vector to the Sun, ``x = N . pole`` the sine of the geocentric latitude,
+    ``P_2(x) = (3 x^2 - 1) / 2`` and ``(q_0, q_1, q_2)`` = ``latitude``. The ``insolation`` term is
+    Lambertian reflection (albedo times solar flux) or re-emission that follows the Sun; the latitude
+    factor is Knocke's zonal expansion, ``(1, 0, 0)`` for a uniform planet.
+
+    Parameters
+    ----------
+    uniform_W_m2 : float
+        Exitance sent everywhere, day and night [W/m^2].
+    insolation_W_m2 : float
+        Exitance under an overhead Sun, scaled by the cosine of the Sun's zenith angle and zero on
+        the night side [W/m^2].
+    latitude : tuple of 3 float
+        ``(q_0, q_1, q_2)``, the Legendre coefficients of the latitude factor [-].
+
+    References
+    ----------
+    .. [1] Knocke, P. C., Ries, J. C., Tapley, B. D. (1988). "Earth radiation pressure effects on
+       satellites." AIAA/AAS Astrodynamics Conference, AIAA 88-4292.
+
+    Examples
+    --------
+    >>> albedo = Radiance(insolation_W_m2=0.3 * 1361.0)
+    >>> round(albedo.insolation_W_m2, 1), albedo.dark
+    (408.3, False)
+    >>> Radiance().dark
+    True
+    """
 
     uniform_W_m2: float = 0.0
     insolation_W_m2: float = 0.0
@@ -88,9 +139,46 @@ class Radiance:
 
 @dataclass(frozen=True, eq=False)
 class Cap:
-    """The visible cap of a planet of radius ``radius_m`` from a spacecraft ``distance_m`` from its
-    centre, the nadir ``nadir`` (unit, spacecraft to planet centre), Sun ``sun`` and pole ``pole``
-    (units, body frame), with radiance ``radiance``."""
+    """The visible cap of a spherical planet seen from the spacecraft, with its radiance.
+
+    Directions toward the planet fill a cone about the nadir of half-angle ``theta_0``,
+    ``sin(theta_0) = R / r``. :meth:`side_integrals` gives each side's exact integrals ``I_0, I_1,
+    I_2`` of the radiance over its share of the cap (see the module's docstring), and :meth:`patches`
+    cuts the cap into cells for the shadow passes. All vectors are in the body frame.
+
+    Parameters
+    ----------
+    nadir : (3,) float64
+        Unit vector from the spacecraft to the planet's centre.
+    sun : (3,) float64
+        Unit vector from the spacecraft (and the planet) to the Sun.
+    pole : (3,) float64
+        Unit vector along the planet's north pole (used by a latitude-dependent :class:`Radiance`).
+    distance_m : float
+        Distance of the spacecraft from the planet's centre [m]; above ``radius_m``.
+    radius_m : float
+        Radius of the planet [m].
+    radiance : Radiance
+        The radiance law of the source on the surface.
+
+    Examples
+    --------
+    A uniform emitter of 240 W/m^2 seen from 500 km: a plate facing the nadir receives
+    ``M sin^2(theta_0)``, and one facing away receives nothing.
+
+    >>> import math
+    >>> import numpy as np
+    >>> earth_m = 6_378_137.0
+    >>> cap = Cap(
+    ...     nadir=np.array([0.0, 0.0, -1.0]), sun=np.array([0.0, 0.0, 1.0]), pole=np.array([1.0, 0.0, 0.0]),
+    ...     distance_m=earth_m + 500e3, radius_m=earth_m, radiance=Radiance(uniform_W_m2=240.0),
+    ... )
+    >>> round(math.degrees(cap.half_angle), 2)
+    68.02
+    >>> i0, i1, i2 = cap.side_integrals(np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]]))
+    >>> np.round(i0, 3), round(240.0 * math.sin(cap.half_angle) ** 2, 3)
+    (array([206.375,   0.   ]), 206.375)
+    """
 
     nadir: NDArray[np.float64]
     sun: NDArray[np.float64]
@@ -101,13 +189,32 @@ class Cap:
 
     @cached_property
     def half_angle(self) -> float:
-        """``theta_0`` [rad], ``asin(R / r)``."""
+        """The cap's half-angle ``theta_0 = asin(R / r)`` [rad].
+
+        Examples
+        --------
+        >>> import math
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0]),
+        ...           2.0, 1.0, Radiance(uniform_W_m2=1.0))
+        >>> round(math.degrees(cap.half_angle), 6)
+        30.0
+        """
         return math.asin(self.radius_m / self.distance_m)
 
     @cached_property
     def frame(self) -> NDArray[np.float64]:
-        """Rows ``e, e_1, e_2``: the nadir and two unit vectors across it (``e_1`` toward the Sun where
-        the Sun is off the nadir line)."""
+        """The cap's frame, rows ``e, e_1, e_2`` (3, 3).
+
+        ``e`` is the nadir and ``e_1``, ``e_2`` two unit vectors across it, ``e_1`` toward the Sun where
+        the Sun is off the nadir line (else across the nadir's smallest component).
+
+        Examples
+        --------
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0),
+        ...           np.array([0.0, 1.0, 0.0]), 2.0, 1.0, Radiance(uniform_W_m2=1.0))
+        >>> cap.frame[1]
+        array([1., 0., 0.])
+        """
         e = self.nadir
         across = self.sun - (self.sun @ e) * e
         if np.linalg.norm(across) < 1e-9:
@@ -117,13 +224,52 @@ class Cap:
         return np.array([e, e1, np.cross(e, e1)])
 
     def directions(self, theta: NDArray, phi: NDArray) -> NDArray[np.float64]:
-        """Unit vectors at ``theta`` from the nadir and azimuth ``phi`` about it [rad], (..., 3)."""
+        """Unit vectors at polar angle ``theta`` from the nadir and azimuth ``phi`` about it.
+
+        Parameters
+        ----------
+        theta, phi : ndarray of float64
+            Angles [rad], of one shape; ``phi`` is measured from ``e_1`` of :attr:`frame` toward ``e_2``.
+
+        Returns
+        -------
+        ndarray of float64, shape (..., 3)
+            The unit vectors in the body frame.
+
+        Examples
+        --------
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]),
+        ...           2.0, 1.0, Radiance(uniform_W_m2=1.0))
+        >>> np.round(cap.directions(np.array([0.0, np.pi / 2]), np.array([0.0, 0.0])), 12) + 0.0
+        array([[ 0.,  0., -1.],
+               [ 1.,  0.,  0.]])
+        """
         e, e1, e2 = self.frame
         st = np.sin(theta)[..., None]
         return np.cos(theta)[..., None] * e + st * (np.cos(phi)[..., None] * e1 + np.sin(phi)[..., None] * e2)
 
     def radiance_along(self, w: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Radiance [W/(m^2 sr)] of the surface seen along unit vectors ``w`` (..., 3) inside the cap."""
+        """Radiance of the planet's surface seen along unit vectors inside the cap.
+
+        Parameters
+        ----------
+        w : ndarray of float64, shape (..., 3)
+            Unit vectors from the spacecraft, each within :attr:`half_angle` of the nadir.
+
+        Returns
+        -------
+        ndarray of float64, shape (...)
+            The :class:`Radiance` law at the point each ray meets the surface [W/(m^2 sr)].
+
+        Examples
+        --------
+        A Lambertian emitter of exitance ``M`` has radiance ``M / pi`` everywhere:
+
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0]),
+        ...           2.0, 1.0, Radiance(uniform_W_m2=np.pi))
+        >>> cap.radiance_along(np.array([[0.0, 0.0, -1.0], [0.3, 0.0, -np.sqrt(0.91)]]))
+        array([1., 1.])
+        """
         r, big_r, e = self.distance_m, self.radius_m, self.nadir
         cos_t = np.clip(w @ e, -1.0, 1.0)
         d = r * cos_t - np.sqrt(np.maximum(big_r**2 - r**2 * (1.0 - cos_t**2), 0.0))
@@ -132,7 +278,19 @@ class Cap:
 
     @cached_property
     def theta_breaks(self) -> NDArray[np.float64]:
-        """``0``, the ``theta`` where the terminator starts or stops cutting a ring, and ``theta_0``."""
+        """The polar angles where the integrand of :meth:`side_integrals` changes form (k,) [rad].
+
+        ``0``, each ``theta`` at which the terminator starts or stops cutting a ring (found by a scan and
+        Brent's method), and ``theta_0``, sorted. A source without an ``insolation`` term has only
+        ``0`` and ``theta_0``.
+
+        Examples
+        --------
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0]),
+        ...           2.0, 1.0, Radiance(uniform_W_m2=1.0))
+        >>> np.degrees(cap.theta_breaks).round(6)
+        array([ 0., 30.])
+        """
         breaks = [0.0, self.half_angle]
         if self.radiance.insolation_W_m2 != 0.0:
             rings = np.linspace(0.0, self.half_angle, _SCAN_RINGS + 1)[1:]
@@ -161,8 +319,37 @@ class Cap:
     def side_integrals(
         self, normals: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-        """``I_0`` (n,), ``I_1`` (n, 3), ``I_2`` (n,) [W/m^2] of sides with unit outward ``normals``
-        (n, 3), unshadowed. Sides with the same normal are integrated once."""
+        """The integrals ``I_0, I_1, I_2`` of the cap's radiance over each side's unshadowed share of it.
+
+        ``I_0 = int L (n . w)+ dw``, ``I_1 = int L (n . w)+ w dw`` and ``I_2 = int L (n . w)+^2 dw``
+        over the cap, by Gauss-Legendre on the pieces cut by the side's horizon and the terminator, so the
+        rule converges spectrally. Sides with the same normal are integrated once; the blocks of sides run
+        in parallel.
+
+        Parameters
+        ----------
+        normals : ndarray of float64, shape (n, 3)
+            Unit outward normals of the sides, body frame.
+
+        Returns
+        -------
+        i0 : ndarray of float64, shape (n,)
+            Irradiance on each side's plane [W/m^2].
+        i1 : ndarray of float64, shape (n, 3)
+            Its first moment over the directions of arrival [W/m^2].
+        i2 : ndarray of float64, shape (n,)
+            Its moment weighted once more by the cosine to the normal [W/m^2].
+
+        Examples
+        --------
+        The Sun on the horizon: half the cap is lit, and a plate facing the nadir takes its albedo.
+
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]),
+        ...           6_878_137.0, 6_378_137.0, Radiance(insolation_W_m2=0.3 * 1361.0))
+        >>> i0, i1, i2 = cap.side_integrals(np.array([[0.0, 0.0, -1.0]]))
+        >>> np.round(i0, 3), np.round(i1, 3) + 0.0, np.round(i2, 3)
+        (array([9.653]), array([[ 5.702,  0.   , -5.945]]), array([5.945]))
+        """
         unique, inverse = np.unique(normals, axis=0, return_inverse=True)
         inverse = inverse.reshape(-1)
         out = np.zeros((len(unique), 5))
@@ -186,9 +373,37 @@ class Cap:
         return values[:, 0], values[:, 1:4], values[:, 4]
 
     def patches(self, step_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """The cap cut into cells about ``step_deg`` across: each cell's mean direction (k, 3) (by solid
-        angle, so caps of one geometry share them) and the irradiance it sends on a surface normal to
-        that direction, ``int L dw`` [W/m^2] (k,)."""
+        """The cap cut into cells about ``step_deg`` across, for the shadow passes.
+
+        Rings of equal ``theta`` width are cut into sectors of about the same width; each cell's
+        direction is its mean by solid angle (so caps of one geometry share their cells), and its weight
+        is ``int L dw`` over it, the irradiance it sends on a surface normal to that direction.
+
+        Parameters
+        ----------
+        step_deg : float
+            Cell size [deg].
+
+        Returns
+        -------
+        directions : ndarray of float64, shape (k, 3)
+            Unit mean direction of each cell, body frame.
+        weights : ndarray of float64, shape (k,)
+            Irradiance each cell sends [W/m^2].
+
+        Raises
+        ------
+        InputError
+            A step that would make more than ``MOST_CELLS`` cells (:func:`check_cells`).
+
+        Examples
+        --------
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0]),
+        ...           2.0, 1.0, Radiance(uniform_W_m2=np.pi))
+        >>> directions, weights = cap.patches(20.0)  # a centre cell and a ring of seven
+        >>> directions.shape, round(float(weights.sum()), 6)  # int L dw = 2 pi (1 - cos 30 deg)
+        ((8, 3), 0.841787)
+        """
         theta0 = self.half_angle
         check_cells(theta0, step_deg)
         rings = max(1, math.ceil(math.degrees(theta0) / step_deg))

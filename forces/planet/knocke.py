@@ -51,7 +51,35 @@ YEAR_DAYS = 365.25
 
 
 class ZonalSeasonal(NamedTuple):
-    """Coefficients of ``mean + (p1 + p1_cos cos w(t - t0) + p1_sin sin w(t - t0)) P1 + p2 P2``."""
+    """Coefficients of a second-degree zonal expansion with an annual first-degree term.
+
+    The quantity is ``mean + (p1 + p1_cos cos w(t - t0) + p1_sin sin w(t - t0)) P1(sin phi) +
+    p2 P2(sin phi)``, ``w = 2 pi / YEAR_DAYS`` and ``t0 = REFERENCE_EPOCH_JD``
+    (:func:`zonal_seasonal`).
+
+    Parameters
+    ----------
+    mean : float
+        The global mean, the degree-0 term [-].
+    p1 : float
+        Constant part of the degree-1 coefficient [-].
+    p1_cos, p1_sin : float
+        Annual cosine and sine parts of the degree-1 coefficient [-].
+    p2 : float
+        The degree-2 coefficient [-].
+
+    References
+    ----------
+    .. [1] Knocke, P. C., Ries, J. C., Tapley, B. D. (1988). "Earth radiation pressure effects on
+       satellites." AIAA/AAS Astrodynamics Conference, AIAA 88-4292.
+
+    Examples
+    --------
+    >>> ALBEDO.mean, ALBEDO.p1_cos, ALBEDO.p2
+    (0.34, 0.1, 0.29)
+    >>> ZonalSeasonal(mean=0.3, p1=0.0, p1_cos=0.0, p1_sin=0.0, p2=0.0).mean
+    0.3
+    """
 
     mean: float
     p1: float
@@ -69,9 +97,38 @@ EMISSIVITY = ZonalSeasonal(mean=0.68, p1=0.0, p1_cos=-0.07, p1_sin=0.0, p2=-0.18
 def zonal_seasonal(
     coefficients: ZonalSeasonal, latitude_rad: ArrayLike, julian_date_tt: float
 ) -> NDArray[np.float64]:
-    """The expansion ``coefficients`` at geocentric latitudes ``latitude_rad`` [rad] and the TT Julian
-    date ``julian_date_tt`` (a float, or an array broadcasting with the latitudes); an array of the
-    broadcast shape."""
+    """Evaluate a :class:`ZonalSeasonal` expansion at given latitudes and date.
+
+    Parameters
+    ----------
+    coefficients : ZonalSeasonal
+        The expansion, e.g. :data:`ALBEDO` or :data:`EMISSIVITY`.
+    latitude_rad : array_like of float
+        Geocentric latitudes [rad].
+    julian_date_tt : float or array_like of float
+        Julian date in TT [days], broadcasting with ``latitude_rad``.
+
+    Returns
+    -------
+    ndarray of float64
+        The expansion at each latitude and date, of the broadcast shape [-].
+
+    References
+    ----------
+    .. [1] Knocke, P. C., Ries, J. C., Tapley, B. D. (1988). "Earth radiation pressure effects on
+       satellites." AIAA/AAS Astrodynamics Conference, AIAA 88-4292.
+
+    Examples
+    --------
+    Half a year after the northern winter solstice the southern pole is the brighter:
+
+    >>> import numpy as np
+    >>> poles = np.radians([-90.0, 90.0])
+    >>> zonal_seasonal(ALBEDO, poles, REFERENCE_EPOCH_JD).round(3)
+    array([0.53, 0.73])
+    >>> zonal_seasonal(ALBEDO, poles, REFERENCE_EPOCH_JD + YEAR_DAYS / 2).round(3)
+    array([0.73, 0.53])
+    """
     phase = 2.0 * np.pi * (np.asarray(julian_date_tt, dtype=float) - REFERENCE_EPOCH_JD) / YEAR_DAYS
     first = coefficients.p1 + coefficients.p1_cos * np.cos(phase) + coefficients.p1_sin * np.sin(phase)
     x = np.sin(np.asarray(latitude_rad, dtype=float))
@@ -79,12 +136,60 @@ def zonal_seasonal(
 
 
 def knocke_albedo(latitude_rad: NDArray, julian_date_tt: float) -> NDArray:
-    """Knocke's Earth albedo, a Lambertian reflectance in [0, 1], at geocentric latitudes
-    ``latitude_rad`` [rad] on the TT Julian date ``julian_date_tt`` (vectorised over both)."""
+    """The Earth albedo of Knocke's model, a Lambertian reflectance in [0, 1].
+
+    Parameters
+    ----------
+    latitude_rad : array_like of float
+        Geocentric latitudes [rad].
+    julian_date_tt : float or array_like of float
+        Julian date in TT [days], broadcasting with ``latitude_rad``.
+
+    Returns
+    -------
+    ndarray of float64
+        The albedo at each latitude and date [-]: a sunlit element leaves with exitance
+        ``a S cos(theta_s)``.
+
+    References
+    ----------
+    .. [1] Knocke, P. C., Ries, J. C., Tapley, B. D. (1988). "Earth radiation pressure effects on
+       satellites." AIAA/AAS Astrodynamics Conference, AIAA 88-4292.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> knocke_albedo(np.radians([-90.0, 0.0, 90.0]), REFERENCE_EPOCH_JD).round(3)
+    array([0.53 , 0.195, 0.73 ])
+    """
     return zonal_seasonal(ALBEDO, latitude_rad, julian_date_tt)
 
 
 def knocke_emissivity(latitude_rad: NDArray, julian_date_tt: float) -> NDArray:
-    """Knocke's Earth infrared emissivity in [0, 1], at geocentric latitudes ``latitude_rad`` [rad] on
-    the TT Julian date ``julian_date_tt`` (vectorised over both): the element emits ``e S / 4``."""
+    """The Earth infrared emissivity of Knocke's model, in [0, 1].
+
+    Parameters
+    ----------
+    latitude_rad : array_like of float
+        Geocentric latitudes [rad].
+    julian_date_tt : float or array_like of float
+        Julian date in TT [days], broadcasting with ``latitude_rad``.
+
+    Returns
+    -------
+    ndarray of float64
+        The emissivity at each latitude and date [-]: the element emits ``e S / 4`` as a Lambertian
+        exitance, day and night.
+
+    References
+    ----------
+    .. [1] Knocke, P. C., Ries, J. C., Tapley, B. D. (1988). "Earth radiation pressure effects on
+       satellites." AIAA/AAS Astrodynamics Conference, AIAA 88-4292.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> knocke_emissivity(np.radians([-90.0, 0.0, 90.0]), REFERENCE_EPOCH_JD).round(3)
+    array([0.57, 0.77, 0.43])
+    """
     return zonal_seasonal(EMISSIVITY, latitude_rad, julian_date_tt)

@@ -57,6 +57,22 @@ class Source:
         Whether mirror and transmitted beams are followed (the solar band with reflections).
     exchange : DiffuseExchange or None
         The diffuse balance in this band (``full`` reflections), else None.
+
+    Examples
+    --------
+    Sunlight is a source of one cell, the Sun, whose integrals are those of a parallel beam:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> up = np.array([0.0, 0.0, 1.0])
+    >>> cos = np.maximum(craft.side_normals @ up, 0.0)
+    >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
+    >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
+    ...              beams=False, exchange=None)
+    >>> float(sun.integrals[0].sum())  # both triangles of the top face, 1361 W/m^2 each
+    2722.0
     """
 
     name: str
@@ -74,6 +90,7 @@ class BandLoad:
     Attributes
     ----------
     name : str
+        The band: "solar", "albedo" or "infrared" (the :class:`Source`'s name).
     force_N, torque_Nm : (3,) float64
         Totals (torque about the reference point).
     direct_force_N, direct_torque_Nm : (3,) float64
@@ -97,6 +114,24 @@ class BandLoad:
         The shadow passes' estimated absolute error in the direct force [N] and torque [N m]: each
         cell's pass's (from its check and the cell's load per unit lit area), added over the cells; 0
         where no side can be shadowed; None with fixed sampling or without shadowing (plates).
+
+    Examples
+    --------
+    Made by :func:`band_loads`, as by :func:`~sunwind.forces.earth.planet_radiation` for each band:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> up = np.array([0.0, 0.0, 1.0])
+    >>> cos = np.maximum(craft.side_normals @ up, 0.0)
+    >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
+    >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
+    ...              beams=False, exchange=None)
+    >>> sampling = CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8)
+    >>> (load,), rays = band_loads(craft, [sun], up[None, :], np.zeros(3), sampling)
+    >>> load.name, round(load.power.incident_W, 6), round(load.power.absorbed_W, 6)
+    ('solar', 1361.0, 952.7)
     """
 
     name: str
@@ -115,7 +150,31 @@ class BandLoad:
     shadow_error: LoadsError | None = None
 
     def to_json(self) -> dict:
-        """Plain-JSON summary; keys carry their units."""
+        """A plain-JSON summary: the totals, the direct and reflected parts and the power balance.
+
+        Returns
+        -------
+        dict
+            ``force_N``, ``torque_Nm``, ``direct`` and ``reflected`` (each with ``force_N`` and
+            ``torque_Nm``) as lists, and ``power`` (:meth:`PowerBalance.to_json`); keys carry their units.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> up = np.array([0.0, 0.0, 1.0])
+        >>> cos = np.maximum(craft.side_normals @ up, 0.0)
+        >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
+        >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
+        ...              beams=False, exchange=None)
+        >>> sampling = CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8)
+        >>> (load,), _ = band_loads(craft, [sun], up[None, :], np.zeros(3), sampling)
+        >>> sorted(load.to_json())
+        ['direct', 'force_N', 'power', 'reflected', 'torque_Nm']
+        """
         return {
             "force_N": self.force_N.tolist(),
             "torque_Nm": self.torque_Nm.tolist(),
@@ -142,8 +201,28 @@ class _Running:
 
 @dataclass(frozen=True)
 class CellSampling:
-    """How each cell is shadowed and its beams followed: the shadow pass's ``samples`` and
-    ``tolerance``, the chains' power ``cutoff`` and ``depth``, and whether to shadow at all."""
+    """How each cell of a source is shadowed and its beams followed.
+
+    Parameters
+    ----------
+    samples : int or None
+        Fixed shadow-ray points per side, or None for the default, self-checking pass
+        (:class:`~sunwind.geometry.rays.sampling.ShadowSampling`).
+    tolerance : float
+        The default pass's tolerance, a share of a refined side's area, in [1e-6, 1).
+    cutoff : float
+        A reflected beam is dropped below this share of its chain's starting power, in [0, 1).
+    depth : int
+        A beam chain is dropped after meeting this many surfaces, >= 1.
+    shadows : bool, default True
+        Whether to shadow at all; False (plates) lets every side see the whole source and follows no
+        beam.
+
+    Examples
+    --------
+    >>> CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8).shadows
+    True
+    """
 
     samples: int | None
     tolerance: float
@@ -159,9 +238,60 @@ def band_loads(
     reference_m: NDArray[np.float64],
     sampling: CellSampling,
 ) -> tuple[list[BandLoad], int]:
-    """The :class:`BandLoad` of each source, whose cells lie along ``directions`` (k, 3), and the
-    shadow rays cast. One shadow pass per cell serves every source; none without ``sampling.shadows``
-    (every side sees the whole source, and no beam is followed)."""
+    """The load of each band of light on the spacecraft, one shadow pass per cell serving every band.
+
+    Each side starts from its exact unshadowed integrals; a shadow pass along each cell direction
+    takes off what the side's dark part misses of that cell (the parallel-beam law), and moves the lit
+    part's force to its lit centroid. Mirror and transmitted beams are followed for sources with
+    ``beams``, and diffuse light through each source's ``exchange``. A convex model, or
+    ``sampling.shadows`` False, casts no rays: every side sees the whole source.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The spacecraft.
+    sources : sequence of Source
+        The bands, their cells along ``directions`` (each ``weights`` of length k).
+    directions : ndarray of float64, shape (k, 3)
+        Unit direction of each cell from the spacecraft, body frame.
+    reference_m : ndarray of float64, shape (3,)
+        Torque reference point [m], body frame.
+    sampling : CellSampling
+        How cells are shadowed and their beams followed.
+
+    Returns
+    -------
+    loads : list of BandLoad
+        One per source, in order.
+    rays : int
+        Shadow rays cast (beam rays are in each load's ``rays``).
+
+    References
+    ----------
+    .. [1] Shmatov, S. I., Mordvinkin, A. S. (2013). Joint computation of the aerodynamic and radiation
+       force effects on spacecraft. *Vestnik NPO im. S. A. Lavochkina*; eq. (4), the law on a lit area.
+    .. [2] Rosborough, G. W., Antreasian, P. G. (1990). "Radiation force modeling for the
+       TOPEX/POSEIDON spacecraft." AIAA Paper 90-2895.
+
+    Examples
+    --------
+    Sunlight overhead on a grey cube, a parallel beam: the law of eq. (4) [1]_, with no ray cast on a
+    convex model.
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> up = np.array([0.0, 0.0, 1.0])
+    >>> cos = np.maximum(craft.side_normals @ up, 0.0)
+    >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
+    >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
+    ...              beams=False, exchange=None)
+    >>> sampling = CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8)
+    >>> (load,), rays = band_loads(craft, [sun], up[None, :], np.zeros(3), sampling)
+    >>> rays, np.round(load.force_N * 1e6, 4) + 0.0  # [uN], away from the Sun
+    (0, array([ 0.    ,  0.    , -5.4478]))
+    """
     samples, tolerance, cutoff, depth = sampling.samples, sampling.tolerance, sampling.cutoff, sampling.depth
     checked = sampling.shadows and samples is None  # the default pass estimates its error; 0 when convex
     running = [_Running(craft.n_sides, LoadsError(0.0, 0.0) if checked else None) for _ in sources]

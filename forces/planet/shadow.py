@@ -32,8 +32,48 @@ def sun_behind(
     radius_m: float,
     model: str,
 ) -> float:
-    """Visible share of the Sun (1 au away along ``sun_vector``) from a spacecraft ``altitude_km`` above a
-    sphere of ``radius_m`` whose centre lies along ``nadir`` (both directions in one frame)."""
+    """The visible share of the Sun from a spacecraft above a spherical planet.
+
+    The spacecraft is placed ``altitude_km`` above the sphere, whose centre lies along ``nadir``, and
+    the Sun 1 au from it along ``sun_vector``; both directions are in one (any) frame.
+
+    Parameters
+    ----------
+    nadir : (3,) float64
+        Direction from the spacecraft to the planet's centre (need not be unit).
+    altitude_km : float
+        Height above the sphere [km].
+    sun_vector : (3,) float64
+        Direction from the spacecraft to the Sun (need not be unit).
+    radius_m : float
+        Radius of the sphere [m].
+    model : str
+        One of :data:`ECLIPSE_MODELS`: ``"conical"``, ``"cylindrical"`` or ``"none"``.
+
+    Returns
+    -------
+    float
+        The share of the solar disc in view, 0 (umbra) to 1 (full Sun).
+
+    Raises
+    ------
+    InputError
+        A zero or non-finite ``nadir`` or ``sun_vector``.
+
+    References
+    ----------
+    .. [1] Montenbruck, O., Gill, E. (2000). *Satellite Orbits: Models, Methods and Applications*,
+       sec. 3.4.2. Springer.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> down = np.array([0.0, 0.0, -1.0])
+    >>> sun_behind(down, 500.0, -down, 6_378_137.0, "conical")  # the Sun overhead
+    1.0
+    >>> sun_behind(down, 500.0, down, 6_378_137.0, "conical")  # behind the Earth
+    0.0
+    """
     position = -(radius_m + altitude_km * 1e3) * unit_vector(nadir, "nadir")
     sun = position + AU_M * unit_vector(sun_vector, "sun_vector")
     return float(sphere_visible(position, sun, radius_m, model)[0])
@@ -42,8 +82,42 @@ def sun_behind(
 def sphere_visible(
     position_m: NDArray[np.float64], sun_m: NDArray[np.float64], radius_m: float, model: str = "conical"
 ) -> NDArray[np.float64]:
-    """Visible share of the solar disc (n,) at ``position_m`` (n, 3) with the Sun at ``sun_m`` (n, 3),
-    behind a sphere of ``radius_m`` at the origin (any planet), by ``model``."""
+    """The visible share of the solar disc at points behind a sphere at the origin.
+
+    Parameters
+    ----------
+    position_m : array_like of float, shape (n, 3) or (3,)
+        Positions of the spacecraft relative to the sphere's centre [m].
+    sun_m : array_like of float, shape (n, 3) or (3,)
+        Positions of the Sun in the same frame [m].
+    radius_m : float
+        Radius of the sphere [m] (any planet).
+    model : str, default "conical"
+        One of :data:`ECLIPSE_MODELS`.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        The share of the solar disc in view, 0 (umbra) to 1 (full Sun).
+
+    References
+    ----------
+    .. [1] Montenbruck, O., Gill, E. (2000). *Satellite Orbits: Models, Methods and Applications*,
+       sec. 3.4.2. Springer.
+
+    Examples
+    --------
+    Through the Earth's penumbra, 500 km up, the Sun along -x:
+
+    >>> import numpy as np
+    >>> r, angle = 6_878_137.0, np.radians([60.0, 67.9, 68.0, 68.1, 75.0])
+    >>> positions = r * np.stack([np.cos(angle), np.sin(angle), 0 * angle], axis=1)
+    >>> sun = [-AU_M, 0.0, 0.0]
+    >>> sphere_visible(positions, sun, 6_378_137.0).round(3)
+    array([0.   , 0.221, 0.45 , 0.686, 1.   ])
+    >>> sphere_visible(positions, sun, 6_378_137.0, "cylindrical")
+    array([0., 0., 0., 1., 1.])
+    """
     r = np.atleast_2d(np.asarray(position_m, dtype=float))
     if model == "none":
         return np.ones(len(r))
@@ -53,7 +127,44 @@ def sphere_visible(
 def unblocked(
     r: NDArray[np.float64], s: NDArray[np.float64], centre: NDArray[np.float64], radius: float, model: str
 ) -> NDArray[np.float64]:
-    """Share of the Sun a sphere of ``radius`` at ``centre`` leaves visible from ``r``."""
+    """The share of the Sun that a sphere anywhere leaves visible from each position.
+
+    ``"cylindrical"`` tests whether the point lies in the sphere's shadow cylinder along the Sun line;
+    any other model is ``"conical"``: the Sun's and the sphere's apparent discs and the area of their
+    overlap.
+
+    Parameters
+    ----------
+    r : ndarray of float64, shape (n, 3)
+        Positions of the spacecraft [m].
+    s : ndarray of float64, shape (n, 3)
+        Positions of the Sun [m].
+    centre : ndarray of float64, shape (n, 3)
+        Centres of the occulting sphere [m].
+    radius : float
+        Radius of the sphere [m].
+    model : str
+        ``"conical"`` or ``"cylindrical"``.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        The share of the solar disc in view, 0 to 1.
+
+    References
+    ----------
+    .. [1] Montenbruck, O., Gill, E. (2000). *Satellite Orbits: Models, Methods and Applications*,
+       sec. 3.4.2. Springer.
+
+    Examples
+    --------
+    The Moon at its mean distance in front of the Sun is too small to hide it: an annular eclipse.
+
+    >>> import numpy as np
+    >>> here, sun = np.zeros((1, 3)), np.array([[AU_M, 0.0, 0.0]])
+    >>> unblocked(here, sun, np.array([[3.844e8, 0.0, 0.0]]), 1.7374e6, "conical").round(3)
+    array([0.056])
+    """
     if model == "cylindrical":
         u = (s - centre) / np.linalg.norm(s - centre, axis=1, keepdims=True)
         relative = r - centre

@@ -61,11 +61,47 @@ def block_moments(
     side_block: NDArray[np.int64],
     n_blocks: int,
 ) -> NDArray[np.float64]:
-    """The moments of each block's sides, (n_blocks, MOMENT_SLOTS) (module docstring).
+    """Compute the moments of each block's sides (module docstring).
 
-    Per-side arrays as :func:`accumulate_forces` takes them; torques are about each block's area
-    centroid ``o`` (slots 0-2), with ``r = centroid - o``: ``R = sum A alpha r (x) n``,
-    ``H = sum A g (r x n) (x) n``, ``Q = sum A b (r x n) (x) n (x) n``.
+    Torques are about each block's area centroid ``o`` (slots 0-2), with ``r = centroid - o``:
+    ``R = sum A alpha r (x) n``, ``H = sum A g (r x n) (x) n``, ``Q = sum A b (r x n) (x) n (x) n``.
+
+    Parameters
+    ----------
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    areas : (n_sides,) float64
+        Area of each side [m^2].
+    optics : (n_sides, 3) float64
+        ``(rho, beta, sigma)`` of each side: reflectivity, specular share of it, transmissivity.
+    centroids : (n_sides, 3) float64
+        Centroid of each side [m].
+    side_block : (n_sides,) int64
+        Block of each side.
+    n_blocks : int
+        Number of blocks.
+
+    Returns
+    -------
+    (n_blocks, MOMENT_SLOTS) ndarray of float64
+        Block point, ``a``, ``G``, ``T``, ``R``, ``H``, ``Q``, area, projected and absorbed area vectors and
+        the number of sides, flattened.
+
+    References
+    ----------
+    Shmatov and Mordvinkin (2013), eq. (4), the force law whose block sums these are.
+
+    Examples
+    --------
+    A black unit plate facing +z: ``a`` is its normal times its area:
+
+    >>> import numpy as np
+    >>> normals, areas = np.array([[0.0, 0.0, 1.0]]), np.ones(1)
+    >>> optics, centroids = np.zeros((1, 3)), np.zeros((1, 3))  # black: rho = beta = sigma = 0
+    >>> side_block = np.zeros(1, dtype=np.int64)
+    >>> moments = block_moments(normals, areas, optics, centroids, side_block, 1)
+    >>> moments.shape, moments[0, 3:6]
+    ((1, 95), array([0., 0., 1.]))
     """
     rho, beta, sigma = optics.T
     rho_s = rho * beta
@@ -106,8 +142,35 @@ def weight_moments(
     side_block: NDArray[np.int64],
     n_blocks: int,
 ) -> NDArray[np.float64]:
-    """``W = sum A w (x) n`` over each block's sides for per-side ``weights`` (n_sides, k), flattened
-    to (n_blocks, 3 k): ``W[b, 3 j + d]`` (module docstring)."""
+    """Block moments ``W = sum A w (x) n`` of per-side ``weights`` over each block's sides.
+
+    Parameters
+    ----------
+    weights : (n_sides, k) float64
+        The weights ``w`` of each side.
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    areas : (n_sides,) float64
+        Area of each side [m^2].
+    side_block : (n_sides,) int64
+        Block of each side.
+    n_blocks : int
+        Number of blocks.
+
+    Returns
+    -------
+    (n_blocks, 3 k) ndarray of float64
+        ``W`` flattened: ``W[b, 3 j + d]`` for weight ``j`` and axis ``d`` [m^2].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> normals, areas = np.array([[0.0, 0.0, 1.0]]), np.ones(1)
+    >>> optics, centroids = np.zeros((1, 3)), np.zeros((1, 3))  # black: rho = beta = sigma = 0
+    >>> side_block = np.zeros(1, dtype=np.int64)
+    >>> weight_moments(np.array([[2.0]]), normals, areas, side_block, 1)
+    array([[0., 0., 2.]])
+    """
     terms = (areas[:, None, None] * weights[:, :, None] * normals[:, None, :]).reshape(len(areas), -1)
     out = np.zeros((n_blocks, terms.shape[1]))
     np.add.at(out, side_block, terms)
@@ -215,8 +278,9 @@ def accumulate_forces(
     block_weights: NDArray[np.float64] | None,
     partials: NDArray[np.float64],
 ) -> None:
-    """Sums of eq. (4) with ``P = 1`` over the facing ``sides``, with torque about ``reference_m``,
-    and of the ``side_weights`` times the direct power, per block.
+    """Sum eq. (4) with ``P = 1`` and the weights times the direct power over the facing sides, per block.
+
+    Torques are about ``reference_m``; the weights are ``side_weights``.
 
     ``lit_share[k]`` is the lit share of side ``sides[k]`` (float, or bool: lit or not). Per-side
     arrays are indexed by side: ``lit_centroid`` (n, 3) [m] where each side's force acts
@@ -232,6 +296,59 @@ def accumulate_forces(
     Summing the rows in order gives a total that does not depend on how the blocks were split
     between calls. (fastmath lets the compiler fuse multiply-adds; the sums keep their order, so
     results repeat from run to run.)
+
+    Parameters
+    ----------
+    sides : (m,) int64
+        The facing sides, ascending, a block's together.
+    lit_share : (m,) float64 or bool
+        Lit share of each of ``sides``.
+    lit_centroid : (n, 3) float64
+        Where each side's force acts [m].
+    side_centroid : (n, 3) float64
+        Centroid of each side [m].
+    normals : (n, 3) float64
+        Outward unit normal of each side.
+    areas : (n,) float64
+        Area of each side [m^2].
+    optics : (n, 3) float64
+        ``(rho, beta, sigma)`` of each side.
+    sun_vector : (3,) float64
+        Unit vector toward the Sun.
+    reference_m : (3,) float64
+        Torque reference point [m].
+    side_block : (n,) int64
+        Block of each side.
+    block_low, block_high : (n_blocks, 3) float64
+        Bounds of each block's side normals.
+    moments : (n_blocks, MOMENT_SLOTS) float64
+        :func:`block_moments` of the blocks.
+    side_weights : (n, k) float64 or None
+        Per-side weights of the reflection plan's channels; None for none.
+    block_weights : (n_blocks, 3 k) float64 or None
+        Their :func:`weight_moments`; None for none.
+    partials : (n_blocks, TOTALS + k) float64
+        Per-block sums; added to.
+
+    References
+    ----------
+    Shmatov and Mordvinkin (2013), eq. (4).
+
+    Examples
+    --------
+    A black unit plate facing the Sun, half lit, is pushed away by half the pressure:
+
+    >>> import numpy as np
+    >>> normals, areas = np.array([[0.0, 0.0, 1.0]]), np.ones(1)
+    >>> optics, centroids = np.zeros((1, 3)), np.zeros((1, 3))  # black: rho = beta = sigma = 0
+    >>> side_block = np.zeros(1, dtype=np.int64)
+    >>> moments = block_moments(normals, areas, optics, centroids, side_block, 1)
+    >>> partials = np.zeros((1, TOTALS))
+    >>> accumulate_forces(np.array([0]), np.array([0.5]), centroids, centroids, normals, areas, optics,
+    ...     np.array([0.0, 0.0, 1.0]), np.zeros(3), side_block, normals, normals, moments, None, None,
+    ...     partials)
+    >>> partials[0, FORCE : FORCE + 3], float(partials[0, LIT_AREA])
+    (array([ 0. ,  0. , -0.5]), 0.5)
     """
     u, ref = sun_vector, reference_m
     u0, u1, u2 = u[0], u[1], u[2]

@@ -2,7 +2,7 @@
 escape test, the diffuse balance and its adjoint, and what they add to the direct result
 (METHOD.md "Inter-reflection")."""
 
-from sunwind.forces.reflection.beams import BeamChainTotals, ChainTotals, follow_chains
+from sunwind.forces.reflection.beams import BeamChainTotals, follow_chains
 from sunwind.forces.reflection.diffuse import DiffuseExchange, DiffuseTotals, diffuse_exchange
 from sunwind.forces.reflection.plan import (
     PowerBalance,
@@ -18,7 +18,6 @@ __all__ = [
     "AUTO_THRESHOLD",
     "MODES",
     "BeamChainTotals",
-    "ChainTotals",
     "DiffuseExchange",
     "DiffuseTotals",
     "PowerBalance",

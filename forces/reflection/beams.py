@@ -96,10 +96,6 @@ class BeamChainTotals:
     depth: int
 
 
-#: The old name, kept until :mod:`sunwind.forces.planet.loads` imports :class:`BeamChainTotals`.
-ChainTotals = BeamChainTotals
-
-
 @dataclass(frozen=True)
 class ChainModel:
     """What the kernels of :mod:`sunwind.forces.reflection.beam_kernels` need of a spacecraft beyond its own

@@ -21,11 +21,38 @@ from sunwind.geometry.spacecraft import Spacecraft
 
 @dataclass(frozen=True)
 class EscapeTest:
-    """Patches of coplanar sides and a tree of facet boxes for
-    :func:`sunwind.forces.reflection.beam_kernels.escaping_patches`.
+    """Patches of coplanar sides and a tree of facet boxes, for the first mirror beams' escape test.
 
-    Patches hold up to ``_PATCH_SIDES`` sides of one plane, with their box [m] grown by ``_margin`` and
-    their plane; the tree's boxes are tight round the facets.
+    Read by :func:`sunwind.forces.reflection.beam_kernels.escaping_patches`. Patches hold up to
+    ``_PATCH_SIDES`` sides of one plane, with their box [m] grown by ``_margin`` and their plane; the
+    tree's boxes are tight round the facets.
+
+    Parameters
+    ----------
+    side_patch : (n_sides,) int64
+        Patch of each side, -1 for none.
+    patch_low, patch_high : (n_patches, 3) float64
+        Corners of each patch's grown box [m].
+    patch_normal : (n_patches, 3) float64
+        Unit normal of each patch's plane.
+    patch_offset : (n_patches,) float64
+        ``n . x`` of each patch's plane [m].
+    tree : BoxTree
+        Tree of the facets' boxes.
+    margin_m : float
+        Growth of the nodes' boxes for the sweep [m], as ``_margin``.
+    reach_m : float
+        A node reaches off a plane where its box does by more than this [m].
+
+    Examples
+    --------
+    The two triangles of each face of a cube make one patch:
+
+    >>> import sunwind as sw
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> test = escape_test(craft)
+    >>> len(test.patch_offset), sorted(test.side_patch.tolist()) == sorted(list(range(6)) * 2)
+    (6, True)
     """
 
     side_patch: NDArray[np.int64]  # (n_sides,) patch of each side, -1 for none
@@ -46,7 +73,25 @@ _FLAT, _REACH = 0.1, 0.5
 
 
 def escape_test(craft: Spacecraft) -> EscapeTest:
-    """The :class:`EscapeTest` of ``craft``, built once (~0.5 s for 10^5 facets) and kept in its cache."""
+    """Escape test of ``craft``, built once (~0.5 s for 10^5 facets) and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    EscapeTest
+        Its patches of coplanar sides and the tree of its facet boxes.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> escape_test(craft) is escape_test(craft)
+    True
+    """
     return craft.cache.get("beam escape test", lambda: _escape_test(craft))
 
 

@@ -23,8 +23,27 @@ from sunwind.geometry.views.view_factors import ViewFactors
 class PowerBalance:
     """Where the light that meets the spacecraft goes [W].
 
-    ``incident_W = absorbed_W + escaped_W + truncated_W`` up to round-off; ``truncated_W`` is beam
-    power dropped by the chain cutoff and depth (counted as staying on the spacecraft).
+    ``incident_W = absorbed_W + escaped_W + truncated_W`` up to round-off; ``truncated_W`` is beam power
+    dropped by the chain cutoff and depth (counted as staying on the spacecraft).
+
+    Parameters
+    ----------
+    incident_W : float
+        Power of the direct light meeting the lit sides [W].
+    absorbed_W : float
+        Power absorbed, directly and after reflection [W].
+    escaped_W : float
+        Power leaving the spacecraft (transmitted or reflected away) [W].
+    truncated_W : float, optional
+        Beam power dropped by the chains' cutoff and depth [W].
+
+    Examples
+    --------
+    >>> balance = PowerBalance(100.0, 60.0, 39.0, 0.5)
+    >>> round(balance.imbalance, 6)
+    0.005
+    >>> balance.to_json()["escaped_W"]
+    39.0
     """
 
     incident_W: float
@@ -41,6 +60,18 @@ class PowerBalance:
         return rest / self.incident_W
 
     def to_json(self) -> dict:
+        """Fields and :attr:`imbalance` as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``incident_W``, ``absorbed_W``, ``escaped_W``, ``truncated_W`` and ``imbalance``, floats.
+
+        Examples
+        --------
+        >>> sorted(PowerBalance(1.0, 0.5, 0.5).to_json())
+        ['absorbed_W', 'escaped_W', 'imbalance', 'incident_W', 'truncated_W']
+        """
         return {
             "incident_W": self.incident_W,
             "absorbed_W": self.absorbed_W,
@@ -52,7 +83,41 @@ class PowerBalance:
 
 @dataclass(frozen=True)
 class Reflected:
-    """What inter-reflection adds to the direct result of one attitude."""
+    """What inter-reflection adds to the direct result of one attitude.
+
+    Parameters
+    ----------
+    mode : str
+        The mode applied: ``none``, ``specular``, ``full`` or ``plates``.
+    force_N : (3,) float64
+        Force added to the direct force [N].
+    torque_Nm : (3,) float64
+        Torque added to the direct torque [N m].
+    power : PowerBalance
+        Where the light went.
+    chains : BeamChainTotals or None
+        The mirror beams' totals; None with ``none`` or ``plates``.
+    view : ViewFactors or None
+        The view factors used, if any.
+    k_is : float or None
+        The interference criterion, where view factors were computed.
+
+    Examples
+    --------
+    A white convex cube in ``specular`` mode: half the light is absorbed, the rest leaves and reflects
+    nothing back:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.radiation.direct import direct_pass
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> settings = ReflectionSettings("specular", cache_dir=False, rays_per_side=16)
+    >>> plan = reflection_plan(craft, settings)
+    >>> direct = direct_pass(craft, np.array([0.0, 0.6, 0.8]), np.zeros(3), None, 0.0, plan.weights)
+    >>> reflected = reflected_part(craft, direct, 1361.0, np.zeros(3), settings, plan)
+    >>> reflected.mode, reflected.force_N, round(reflected.power.escaped_W / reflected.power.incident_W, 6)
+    ('specular', array([0., 0., 0.]), 0.5)
+    """
 
     mode: str
     force_N: NDArray[np.float64]
@@ -74,9 +139,35 @@ PASSED, DIFFUSE, NET = 0, 1, 2
 class ReflectionPlan:
     """Inter-reflection of one model with one setting, resolved before an attitude is cast.
 
-    The direct light hands inter-reflection power on each lit side in proportion to the direct power
-    there: ``weights`` per watt, summed by the direct pass (None for ``none``). Channels:
-    :data:`PASSED`, :data:`DIFFUSE`, :data:`NET`.
+    The direct light hands inter-reflection power on each lit side in proportion to the direct power there:
+    ``weights`` per watt, summed by the direct pass (None for ``none``). Channels: :data:`PASSED`,
+    :data:`DIFFUSE`, :data:`NET`.
+
+    Parameters
+    ----------
+    mode : str
+        ``none``, ``specular``, ``full`` or ``plates``; ``auto`` resolved.
+    view : ViewFactors or None
+        The model's view factors, where the setting uses them.
+    k_is : float or None
+        The interference criterion, where view factors were computed.
+    exchange : DiffuseExchange or None
+        The diffuse exchange, with ``full``.
+    weights : ChannelWeights or None
+        Per-side channel weights for the direct pass; None with ``none`` or ``plates``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.radiation.direct import direct_pass
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> settings = ReflectionSettings("specular", cache_dir=False, rays_per_side=16)
+    >>> plan = reflection_plan(craft, settings)
+    >>> direct = direct_pass(craft, np.array([0.0, 0.6, 0.8]), np.zeros(3), None, 0.0, plan.weights)
+    >>> reflected = reflected_part(craft, direct, 1361.0, np.zeros(3), settings, plan)
+    >>> plan.mode, plan.weights.channels, plan.exchange is None
+    ('specular', 2, True)
     """
 
     mode: str  # none, specular, full or plates: auto resolved
@@ -92,12 +183,14 @@ def reflection_plan(craft: Spacecraft, settings: ReflectionSettings) -> Reflecti
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     settings : ReflectionSettings
         The mode (``auto`` resolved here by the model's ``K_IS``) and the view factors' sampling.
 
     Returns
     -------
     ReflectionPlan
+        The resolved mode, view factors, exchange and channel weights.
 
     Examples
     --------
@@ -144,12 +237,15 @@ def reflected_part(
     settings: ReflectionSettings,
     plan: ReflectionPlan,
 ) -> Reflected:
-    """Inter-reflection's correction to the direct force and torque of one attitude, and the power
-    balance, from the ``direct`` pass made with the ``plan``'s weights under ``flux_W_m2``.
+    """Compute inter-reflection's correction to the direct force and torque of one attitude.
+
+    With the power balance, from the ``direct`` pass made with the ``plan``'s weights under
+    ``flux_W_m2``.
 
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     direct : DirectTotals
         The direct pass of the attitude.
     flux_W_m2 : float
@@ -165,6 +261,21 @@ def reflected_part(
     Returns
     -------
     Reflected
+        Force and torque added to the direct result, and the power balance.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.radiation.direct import direct_pass
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> settings = ReflectionSettings("specular", cache_dir=False, rays_per_side=16)
+    >>> plan = reflection_plan(craft, settings)
+    >>> direct = direct_pass(craft, np.array([0.0, 0.6, 0.8]), np.zeros(3), None, 0.0, plan.weights)
+    >>> reflected = reflected_part(craft, direct, 1361.0, np.zeros(3), settings, plan)
+    >>> balance = reflected.power
+    >>> round(balance.absorbed_W, 6), abs(balance.imbalance) < 1e-9
+    (952.7, True)
     """
     light = direct.illumination
     power = direct.power(flux_W_m2)

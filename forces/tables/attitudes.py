@@ -47,7 +47,21 @@ QUATERNION_NORM_TOLERANCE = 1e-3
 
 @dataclass(frozen=True)
 class DirectionGrid:
-    """The regular azimuth/elevation grid of one direction (Sun or flow) [deg]."""
+    """The regular azimuth/elevation grid of one direction (Sun or flow) [deg].
+
+    Attributes
+    ----------
+    step_deg : float
+        Step of both angles [deg]; it divides 180 deg (:func:`direction_grid` checks it).
+
+    Examples
+    --------
+    >>> grid = DirectionGrid(45.0)
+    >>> grid.nodes, grid.vectors.shape, len(grid.distinct[0])  # the poles and az +-180 are shared
+    (45, (9, 5, 3), 26)
+    >>> grid.elevation_deg.tolist()
+    [-90.0, -45.0, 0.0, 45.0, 90.0]
+    """
 
     step_deg: float
 
@@ -95,6 +109,27 @@ def direction_grid(step_deg: float, name: str = "step_deg") -> DirectionGrid:
     ------
     InputError
         A step that is not positive or does not divide 180 deg.
+
+    Parameters
+    ----------
+    step_deg : float
+        Step of azimuth and elevation [deg].
+    name : str, optional
+        The parameter the error message names.
+
+    Returns
+    -------
+    DirectionGrid
+        The grid.
+
+    Examples
+    --------
+    >>> direction_grid(45.0).azimuth_deg.tolist()
+    [-180.0, -135.0, -90.0, -45.0, 0.0, 45.0, 90.0, 135.0, 180.0]
+    >>> direction_grid(7.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: step_deg 7 deg does not divide ...
     """
     if not math.isfinite(step_deg) or step_deg <= 0 or step_deg > 90:
         raise InputError(
@@ -114,9 +149,30 @@ def direction_grid(step_deg: float, name: str = "step_deg") -> DirectionGrid:
 
 
 def step_advice(step_deg: float, whole_degrees: bool = False) -> str:
-    """The grid steps [deg] nearest ``step_deg`` that a sweep grid takes (divisors of 180 deg, in half
-    degrees; with ``whole_degrees``, as SPAD files need, whole degrees), as a hint: every check of a grid
-    step gives this advice."""
+    """Suggest the grid steps [deg] nearest ``step_deg`` that a sweep grid takes, as a hint.
+
+    Steps are divisors of 180 deg in half degrees (with ``whole_degrees``, as SPAD files need, whole
+    degrees); every check of a grid step gives this advice.
+
+    Parameters
+    ----------
+    step_deg : float
+        The step asked for [deg].
+    whole_degrees : bool, optional
+        Suggest whole degrees only.
+
+    Returns
+    -------
+    str
+        ``"use a step that divides 180 deg, e.g. ..."``.
+
+    Examples
+    --------
+    >>> step_advice(7.0)
+    'use a step that divides 180 deg, e.g. 5, 6, 7.5, 9'
+    >>> step_advice(7.0, whole_degrees=True)
+    'use a whole number of degrees that divides 180 deg, e.g. 5, 6, 9, 10'
+    """
     unit = 1.0 if whole_degrees else 0.5
     steps = [180 / n for n in range(2, 361) if (180 / n / unit).is_integer()]
     near = sorted(steps, key=lambda s: abs(s - step_deg) if math.isfinite(step_deg) else abs(s - 10))[:4]
@@ -126,7 +182,7 @@ def step_advice(step_deg: float, whole_degrees: bool = False) -> str:
 
 @dataclass(frozen=True, eq=False)
 class AttitudeList:
-    """Attitudes read from a CSV file, one per row; body-frame unit vectors.
+    r"""Attitudes read from a CSV file, one per row; body-frame unit vectors.
 
     Attributes
     ----------
@@ -136,6 +192,17 @@ class AttitudeList:
         The rows' attitude quaternions ``(w, x, y, z)`` when the file gives them.
     source : str
         The file.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = os.path.join(folder, "attitudes.csv")
+    ...     with open(path, "w") as file:
+    ...         _ = file.write("sun_x,sun_y,sun_z\n0,0,2\n1,0,0\n")
+    ...     attitudes = read_attitude_csv(path)
+    >>> attitudes.directions("srp").tolist(), attitudes.flow_vectors
+    ([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]], None)
     """
 
     sun_vectors: NDArray[np.float64] | None
@@ -163,7 +230,7 @@ class AttitudeList:
 
 
 def read_attitude_csv(path: str | Path) -> AttitudeList:
-    """Read an attitude list (see the module notes for its columns).
+    r"""Read an attitude list (see the module notes for its columns).
 
     Raises
     ------
@@ -171,6 +238,27 @@ def read_attitude_csv(path: str | Path) -> AttitudeList:
         Missing or unreadable file (a UTF-8 byte-order mark is fine), a column name that is unknown or
         given twice, no direction columns, a column set given in part, a value that is not a finite
         number, a zero direction or quaternion.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+
+    Returns
+    -------
+    AttitudeList
+        Body-frame unit vectors of every row.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = os.path.join(folder, "attitudes.csv")
+    ...     with open(path, "w") as file:
+    ...         _ = file.write("sun_x,sun_y,sun_z\n0,0,2\n1,0,0\n")
+    ...     attitudes = read_attitude_csv(path)
+    >>> attitudes.sun_vectors.tolist()  # normalised
+    [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
     """
     path = Path(path)
     try:

@@ -36,64 +36,16 @@ from sunwind.forces.model import Model
 from sunwind.forces.results import FRAME
 from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid
 from sunwind.forces.tables.jobs import FIELDS, Records, Setup
+from sunwind.forces.vocabulary import (
+    COMMENTS,
+    COMPONENT,
+    COMPONENT_ATTRS,
+    COMPONENTS,
+    LONG_NAMES,
+    units_of,
+)
 from sunwind.geometry.errors import InputError
 
-#: Variable units (UDUNITS) by field name.
-UNITS = {
-    "force_N": "N",
-    "torque_Nm": "N m",
-    "direct_force_N": "N",
-    "direct_torque_Nm": "N m",
-    "reflected_force_N": "N",
-    "reflected_torque_Nm": "N m",
-    "lit_area_m2": "m2",
-    "projected_area_m2": "m2",
-    "CD": "1",
-    "CS": "1",
-    "CL": "1",
-    "CM": "1",
-    "albedo_force_N": "N",
-    "albedo_torque_Nm": "N m",
-    "infrared_force_N": "N",
-    "infrared_torque_Nm": "N m",
-    "thermal_force_N": "N",
-    "thermal_torque_Nm": "N m",
-    "solar_fraction": "1",
-    "error_estimate_force": "1",
-    "error_estimate_torque": "1",
-}
-#: Long names by field name.
-LONG_NAMES = {
-    "force_N": "force, body frame",
-    "torque_Nm": "torque about the reference point, body frame",
-    "direct_force_N": "force of the direct flux (panel law with shadowing)",
-    "direct_torque_Nm": "torque of the direct flux",
-    "reflected_force_N": "force added by inter-reflection (light) or re-emission exchange (molecules)",
-    "reflected_torque_Nm": "torque added by inter-reflection or re-emission exchange",
-    "lit_area_m2": "lit area (SRP), or area facing the flow and not shadowed from it (drag)",
-    "projected_area_m2": "lit area projected normal to the Sun vector (SRP) or the flow vector u (drag)",
-    "CD": "drag coefficient F.(-u)/(q A_ref)",
-    "CS": "side-force coefficient",
-    "CL": "lift coefficient",
-    "CM": "moment coefficients M/(q A_ref L_ref), body axes",
-    "albedo_force_N": "force of the sunlight the Earth reflects, body frame",
-    "albedo_torque_Nm": "torque of the Earth's albedo",
-    "infrared_force_N": "force of the Earth's infrared, body frame",
-    "infrared_torque_Nm": "torque of the Earth's infrared",
-    "thermal_force_N": "recoil of each side's infrared at radiative equilibrium, body frame",
-    "thermal_torque_Nm": "torque of the thermal recoil",
-    "solar_fraction": "share of the solar disc in view (0: the Earth hides the Sun)",
-    "error_estimate_force": "estimated relative error of the force left by the shadow pass",
-    "error_estimate_torque": "estimated relative error of the torque left by the shadow pass",
-}
-#: What the variables of some fields mean beyond their long names (attribute ``comment``).
-COMMENTS = {
-    "error_estimate_force": "|dF| / |F|: the shadow pass's check (rays at random points of a sample of "
-    "the sides) and each side's load per unit lit area give the absolute error dF; 0 where nothing can be "
-    "wrong; not written with fixed sampling (samples)",
-    "error_estimate_torque": "|dM| / max(|M|, 0.01 |F| L), L the diagonal of the model's bounding box: "
-    "against the torque, or where that is small against a torque the force could give",
-}
 #: Long names of an earth table's totals, without and with the thermal recoil.
 _EARTH_TOTALS = {
     False: {"force_N": "force, albedo + infrared, body frame", "torque_Nm": "torque, albedo + infrared"},
@@ -134,7 +86,6 @@ _TEXT = {
     "earth": "unit vector toward the Earth's centre (the Sun fixed in the body frame)",
 }
 #: Attributes of the coordinates every table has.
-_COMPONENT = {"long_name": "vector component along the body-frame axis"}
 
 
 def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[int, ...]) -> dict:
@@ -143,7 +94,7 @@ def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[
     for name, values in records.items():
         vector = values.ndim == 2
         data = values.reshape((*shape, 3) if vector else shape)
-        attrs = {"units": UNITS[name], "long_name": f"{_TITLES[kind]} {names[name]}"}
+        attrs = {"units": units_of(name), "long_name": f"{_TITLES[kind]} {names[name]}"}
         if name in COMMENTS:
             attrs["comment"] = COMMENTS[name]
         out[f"{kind}_{name}"] = xr.Variable((*dims, "component") if vector else dims, data, attrs)
@@ -160,7 +111,7 @@ def grid_table(
 ) -> xr.Dataset:
     """The grid table of sweep records: ``records[kind]`` of the distinct directions of
     ``grids[kind]``, in their order (:attr:`~sunwind.forces.tables.attitudes.DirectionGrid.distinct`)."""
-    variables, coords = {}, {"component": ("component", ["x", "y", "z"], _COMPONENT)}
+    variables, coords = {}, {COMPONENT: (COMPONENT, list(COMPONENTS), COMPONENT_ATTRS)}
     for kind, values in records.items():
         grid = grids[kind]
         az_dim, el_dim = GRID_DIMS[kind]
@@ -213,7 +164,7 @@ def list_table(
             np.arange(len(attitudes)),
             {"long_name": "row of the attitude list, from 0"},
         ),
-        "component": ("component", ["x", "y", "z"], _COMPONENT),
+        COMPONENT: (COMPONENT, list(COMPONENTS), COMPONENT_ATTRS),
     }
     return xr.Dataset(variables, coords=coords, attrs=_attributes({**attrs, "attitudes": attitudes.source}))
 

@@ -58,18 +58,16 @@ SLICE = (
 
 @dataclass(frozen=True)
 class EarthSetup(_Setup):
-    """Settings of every entry of an earth table (see :func:`~sunwind.forces.earth.planet_radiation`):
-    those of :class:`~sunwind.forces.tables.jobs._Setup` (``reference_point_m``, ``sampling``,
-    ``reflections``) and the slice's.
+    """Settings of every entry of an earth table.
+
+    Each entry is :func:`~sunwind.forces.earth.planet_radiation` at one Earth direction; the settings
+    are those of :class:`~sunwind.forces.tables.jobs._Setup` (``reference_point_m``, ``sampling``,
+    ``reflections``) and the slice's (``altitude_km`` and ``sun_vector`` are required).
 
     Parameters
     ----------
-    altitude_km : float
-        Height above the Earth's surface (WGS 84 equatorial radius) [km].
-    sun_vector : (3,) float
-        The Sun, fixed in the body frame (spacecraft to Sun); kept normalised.
     flux_W_m2 : float
-        Solar flux [W/m^2] at the Earth.
+        Solar flux [W/m^2] at the Earth; default 1 au.
     albedo : float, optional
         Bond albedo instead of the Earth's 0.30 (Lambertian).
     infrared_W_m2 : float, optional
@@ -79,12 +77,22 @@ class EarthSetup(_Setup):
     thermal : bool
         Each side's radiative-equilibrium temperature and the recoil of its infrared, added to the
         total and recorded apart (``thermal_force_N``, ``thermal_torque_Nm``).
+    reference_point_m : (3,) float, optional
+        Torque reference point [m]; default the model's.
+    sampling : ShadowSampling, optional
+        The shadow pass's sampling of every cell; None for its defaults.
+    reflections : str or ReflectionSettings
+        One of :data:`~sunwind.forces.reflection.settings.MODES`, or settings; default ``"auto"``.
+    altitude_km : float
+        Height above the Earth's surface (WGS 84 equatorial radius) [km].
+    sun_vector : (3,) float
+        The Sun, fixed in the body frame (spacecraft to Sun); kept normalised.
 
     Raises
     ------
     InputError
-        An altitude, Sun vector, flux, albedo, infrared exitance, cell size, sampling or reflections out
-        of range.
+        An altitude, Sun vector, flux, albedo, infrared exitance, cell size, sampling or reflections
+        out of range.
 
     Examples
     --------

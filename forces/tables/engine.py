@@ -142,7 +142,10 @@ def sweep(
             parameters=("srp", "drag", "earth"),
         )
     poses = hinge_poses(hinge_angles)
-    check_hinges(model.held(dict(poses[0])), drag is not None)
+    # a schedule has no time in a sweep; a Sun-tracking hinge has no Sun in a drag table (an SRP table
+    # turns it to each entry's Sun, an earth table to its one fixed Sun)
+    with_drag = drag is not None
+    model.held(dict(poses[0])).check_turnable("a drag table" if with_drag else "a table", sun=not with_drag)
     if attitudes is not None and step_deg is not None:
         raise InputError("give step_deg or attitudes, not both", parameters=("step_deg", "attitudes"))
     if attitudes is not None and earth is not None:
@@ -224,26 +227,6 @@ def by_hinge_angle(tables: list[xr.Dataset], poses: list[tuple[tuple[str, float]
 def hinge_dimension(glob: str) -> str:
     """The table dimension of the angles of the hinge ``glob``."""
     return f"hinge_deg[{glob}]"
-
-
-def check_hinges(model: Model, with_drag: bool) -> None:
-    """Refuse hinges a sweep cannot turn: a schedule (a sweep has no time), and a Sun-tracking hinge in
-    a drag table (it has no Sun); an SRP table turns a tracking hinge to each entry's Sun, an earth
-    table to its one fixed Sun."""
-    for hinge in model.hinges:
-        if hinge.law == "schedule" or (hinge.law == "track" and with_drag):
-            what, lacks = (
-                ("follows a schedule", "time") if hinge.law == "schedule" else ("tracks the Sun", "Sun")
-            )
-            elsewhere = (
-                "sunwind orbit flies schedules" if hinge.law == "schedule" else "or tabulate SRP alone"
-            )
-            raise InputError(
-                f'[articulation] "{hinge.pattern}" {what}: a {"drag " if lacks == "Sun" else ""}table has no '
-                f"{lacks} for it",
-                hint=f'hold it at an angle with articulate "{hinge.pattern}=DEG" ({elsewhere})',
-                parameters=("articulate",),
-            )
 
 
 def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]:

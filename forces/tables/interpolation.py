@@ -49,7 +49,14 @@ class GridAxes(NamedTuple):
 
 
 class InterpolatedLoads(NamedTuple):
-    """Interpolated force and torque, body frame; torque about the table's reference point."""
+    """Force [N] and torque [N m] interpolated in a table (:class:`TableInterpolator`), body frame;
+    torque about the table's reference point.
+
+    Attributes
+    ----------
+    force_N, torque_Nm : ndarray, shape (..., 3)
+        One vector per direction asked for.
+    """
 
     force_N: NDArray[np.float64]  # (..., 3)
     torque_Nm: NDArray[np.float64]  # (..., 3)

@@ -89,18 +89,65 @@ Records = dict[str, NDArray[np.float64]]
 
 
 def empty_records(fields: dict[str, int], n: int) -> Records:
-    """Records of ``n`` attitudes with ``fields`` (name -> width: 1 a number, else a row of that
-    many), not yet filled."""
+    """Unfilled records of some attitudes: one array per field, allocated.
+
+    Parameters
+    ----------
+    fields : dict of str to int
+        Field name -> width (1: a number per attitude, else a row of that many).
+    n : int
+        Number of attitudes.
+
+    Returns
+    -------
+    Records
+        One uninitialised float64 array per field, of :func:`record_shape`.
+
+    Examples
+    --------
+    >>> records = empty_records({"force_N": 3, "CD": 1}, 4)
+    >>> {name: values.shape for name, values in records.items()}
+    {'force_N': (4, 3), 'CD': (4,)}
+    """
     return {name: np.empty(record_shape(width, n)) for name, width in fields.items()}
 
 
 def record_shape(width: int, n: int) -> tuple[int, ...]:
-    """Shape of the records of ``n`` attitudes of a field of ``width``."""
+    """The shape of the records of ``n`` attitudes of a field of ``width``.
+
+    Parameters
+    ----------
+    width : int
+        1 for a number per attitude, else the length of its row.
+    n : int
+        Number of attitudes.
+
+    Returns
+    -------
+    tuple of int
+        ``(n,)`` for width 1, else ``(n, width)``.
+
+    Examples
+    --------
+    >>> record_shape(1, 5), record_shape(3, 5)
+    ((5,), (5, 3))
+    """
     return (n,) if width == 1 else (n, width)
 
 
 def estimate_records(estimates: Sequence[ErrorEstimate | None]) -> Records:
-    """The :data:`ESTIMATE_FIELDS` records of attitudes with these estimates (NaN for None).
+    """The :data:`ESTIMATE_FIELDS` records of attitudes with these error estimates.
+
+    Parameters
+    ----------
+    estimates : sequence of ErrorEstimate or None
+        Each attitude's estimate (None: none made).
+
+    Returns
+    -------
+    Records
+        ``error_estimate_force`` and ``error_estimate_torque``, (n,) float64 each, NaN where the
+        estimate is None.
 
     Examples
     --------
@@ -179,8 +226,24 @@ class _Setup:
 
 @dataclass(frozen=True)
 class SrpSetup(_Setup):
-    """Settings of every SRP attitude (see :func:`~sunwind.forces.srp.srp`): those of :class:`_Setup`
-    and the solar flux ``flux_W_m2`` [W/m^2] at the spacecraft (default 1 au).
+    """Settings of every SRP attitude of a sweep (see :func:`~sunwind.forces.srp.srp`).
+
+    Parameters
+    ----------
+    flux_W_m2 : float
+        Solar flux at the spacecraft [W/m^2]; default 1 au.
+    reference_point_m : (3,) float, optional
+        Torque reference point [m]; default the model's.
+    sampling : ShadowSampling, optional
+        The shadow pass's sampling (:class:`~sunwind.geometry.rays.sampling.ShadowSampling`); None
+        for its defaults.
+    reflections : str or ReflectionSettings
+        One of :data:`~sunwind.forces.reflection.settings.MODES`, or settings; default ``"auto"``.
+
+    Raises
+    ------
+    InputError
+        A flux, reference point, sampling or reflections out of range.
 
     Examples
     --------
@@ -228,10 +291,26 @@ class SrpSetup(_Setup):
 
 @dataclass(frozen=True)
 class GasOptions(_Setup):
-    """How every drag attitude is computed, whatever its flow: the settings of :class:`_Setup` (the
-    molecules' reflections) and ``gas_sampling``, the sampling of the open-sky integral and chains
-    (:class:`~sunwind.forces.gas.sampling.GasSampling`; None for its defaults), as
-    :func:`~sunwind.forces.drag.drag` takes them.
+    """How every drag attitude is computed, whatever its flow, as :func:`~sunwind.forces.drag.drag` takes it.
+
+    Parameters
+    ----------
+    reference_point_m : (3,) float, optional
+        Torque reference point [m]; default the model's.
+    sampling : ShadowSampling, optional
+        The shadow pass's sampling; None for its defaults.
+    reflections : str or ReflectionSettings
+        The molecules' reflections: one of :data:`~sunwind.forces.reflection.settings.MODES`, or
+        settings; default ``"auto"``.
+    gas_sampling : GasSampling, optional
+        Sampling of the open-sky integral and the chains
+        (:class:`~sunwind.forces.gas.sampling.GasSampling`); None for its defaults.
+
+    Raises
+    ------
+    InputError
+        ``gas_sampling`` that is not a :class:`~sunwind.forces.gas.sampling.GasSampling`, or the other
+        settings out of range.
 
     Examples
     --------
@@ -261,7 +340,41 @@ class GasOptions(_Setup):
 
 @dataclass(frozen=True)
 class DragSetup(GasOptions):
-    """Settings of every drag attitude (see :func:`~sunwind.forces.drag.drag`); ``v_rel = speed * u``."""
+    """Settings of every drag attitude of a sweep (see :func:`~sunwind.forces.drag.drag`).
+
+    Each attitude's flow direction ``u`` gives the velocity relative to the atmosphere
+    ``v_rel = speed_m_s * u``.
+
+    Parameters
+    ----------
+    reference_point_m : (3,) float, optional
+        Torque reference point [m]; default the model's.
+    sampling : ShadowSampling, optional
+        The shadow pass's sampling; None for its defaults.
+    reflections : str or ReflectionSettings
+        The molecules' reflections; default ``"auto"``.
+    gas_sampling : GasSampling, optional
+        Sampling of the open-sky integral and the chains; None for its defaults.
+    speed_m_s : float
+        Speed relative to the atmosphere [m/s].
+    atmosphere : Atmosphere
+        The free stream (:func:`sunwind.explicit_atmosphere`, :func:`sunwind.nrlmsis`).
+
+    Raises
+    ------
+    InputError
+        A speed that is not a number or out of range, or the other settings out of range.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> setup = DragSetup(speed_m_s=7600.0, atmosphere=air, reflections="none")
+    >>> setup.kind, sorted(setup.options())
+    ('drag', ['gas_sampling', 'reference_point_m', 'reflections', 'sampling'])
+    >>> setup.describe()["atmosphere"]["density_kg_m3"]
+    1e-12
+    """
 
     kind: ClassVar[str] = "drag"
     speed_m_s: float = field(kw_only=True)
@@ -380,8 +493,25 @@ class Tabulation(Protocol):
 
 @dataclass(frozen=True)
 class PosedSetup:
-    """A setup evaluated with hinges held at ``angles`` ((glob, deg) pairs): one pose of a sweep over
-    hinge angles, its records kept apart under kind ``"srp@K"`` / ``"drag@K"`` (``index`` K)."""
+    """A setup evaluated with hinges held at given angles: one pose of a sweep over hinge angles.
+
+    Its records are kept apart under kind ``"srp@K"`` / ``"drag@K"``, ``K`` the pose's ``index``.
+
+    Parameters
+    ----------
+    setup : SrpSetup or DragSetup
+        What every attitude computes.
+    angles : tuple of (str, float)
+        ``(glob, deg)`` pairs: each hinge the glob names held at that angle [deg].
+    index : int
+        The pose's number among the sweep's poses.
+
+    Examples
+    --------
+    >>> posed = PosedSetup(SrpSetup(reflections="none"), (("wing*", 30.0),), 1)
+    >>> posed.kind, posed.describe()["hinge_angles_deg"]
+    ('srp@1', {'wing*': 30.0})
+    """
 
     setup: Setup
     angles: tuple[tuple[str, float], ...]
@@ -389,23 +519,111 @@ class PosedSetup:
 
     @property
     def kind(self) -> str:
+        """The name the pose's records are kept under, ``"KIND@INDEX"``.
+
+        Examples
+        --------
+        >>> PosedSetup(SrpSetup(), (), 3).kind
+        'srp@3'
+        """
         return f"{self.setup.kind}@{self.index}"
 
     @property
     def fields(self) -> dict[str, int]:
+        """The records of an attitude, as the wrapped setup's: name -> width.
+
+        Examples
+        --------
+        >>> PosedSetup(SrpSetup(), (), 0).fields["force_N"]
+        3
+        """
         return self.setup.fields
 
     def pose(self, model: Model) -> Model:
-        """``model`` with the hinges held at this pose's angles."""
+        """The model with the hinges held at this pose's angles.
+
+        Parameters
+        ----------
+        model : Model
+            The loaded model, with the hinges the globs name.
+
+        Returns
+        -------
+        Model
+            The posed model.
+
+        Raises
+        ------
+        InputError
+            A glob that names no hinge of the model.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+        >>> PosedSetup(SrpSetup(), (), 0).pose(cube).craft.n_sides  # no hinges, nothing to turn
+        12
+        """
         return model.held(dict(self.angles))
 
     def precompute(self, model: Model) -> None:
+        """Make what every attitude of the pose reuses (the wrapped setup's), on the posed model.
+
+        Parameters
+        ----------
+        model : Model
+            The loaded model.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+        >>> PosedSetup(SrpSetup(reflections="none"), (), 0).precompute(cube)  # nothing to make
+        """
         self.setup.precompute(self.pose(model))
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
+        """The records of directions ``directions`` on the posed model.
+
+        Parameters
+        ----------
+        model : Model
+            The loaded model.
+        directions : (n, 3) float64
+            Unit Sun (SRP) or flow (drag) directions, body frame.
+
+        Returns
+        -------
+        Records
+            One array per field of :attr:`fields`, a row per direction.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+        >>> posed = PosedSetup(SrpSetup(reflections="none"), (), 0)
+        >>> records = posed.evaluate(cube, np.array([[0.0, 0.0, 1.0]]))  # the Sun overhead
+        >>> np.round(records["force_N"] * 1e6, 4) + 0.0  # [uN]
+        array([[ 0.    ,  0.    , -5.4478]])
+        """
         return self.setup.evaluate(self.pose(model), directions)
 
     def describe(self) -> dict:
+        """JSON-ready settings: the wrapped setup's, and the hinge angles.
+
+        Returns
+        -------
+        dict
+            :meth:`SrpSetup.describe` or :meth:`DragSetup.describe` with ``hinge_angles_deg``.
+
+        Examples
+        --------
+        >>> PosedSetup(SrpSetup(), (("wing*", -15.0),), 2).describe()["hinge_angles_deg"]
+        {'wing*': -15.0}
+        """
         return self.setup.describe() | {"hinge_angles_deg": dict(self.angles)}
 
 

@@ -51,6 +51,17 @@ def plot_table(table: xr.Dataset, directory: str | Path, name: str) -> list[Path
     ------
     InputError
         The table has no SRP, drag or Earth force or torque.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     [path.name for path in plot_table(table, folder, "cube")]
+    ['cube.srp_force_N.png', 'cube.srp_torque_Nm.png']
     """
     variables = [
         (f"{kind}_{quantity}", prefix)
@@ -130,6 +141,17 @@ def map_title(table: xr.Dataset, name: str) -> str:
     -------
     str
         The title, its lines joined by a newline.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> print(map_title(table, "srp_force_N"))
+    SRP force, body frame [N]
+    flux 1361 W/m^2
     """
     variable = table[name]
     what = variable.attrs.get("long_name", name)
@@ -168,8 +190,10 @@ def _conditions(attrs: dict, prefix: str) -> str:
 
 
 def atmosphere_text(air: Atmosphere) -> str:
-    """An atmosphere in a few words: NRLMSIS with its place, date and indices, or an explicit one's
-    density, temperature and mole fractions (which have no date).
+    """Describe an atmosphere in a few words.
+
+    NRLMSIS with its place, date and indices, or an explicit one's density, temperature and mole
+    fractions (which have no date).
 
     Parameters
     ----------
@@ -181,6 +205,12 @@ def atmosphere_text(air: Atmosphere) -> str:
     str
         One line, e.g. ``NRLMSIS 2.1 at 400 km, lat 0, lon 0, 2024-01-01T00:00:00Z, F10.7 150 (81-day
         150), Ap 4``.
+
+    Examples
+    --------
+    >>> from sunwind.forces.gas.atmosphere import Atmosphere
+    >>> atmosphere_text(Atmosphere({"O": 1e15}, 1000.0, "atomic oxygen"))
+    'explicit atmosphere (no date): 2.657e-11 kg/m^3, 1000 K, mole fractions O 1'
     """
     inputs = air.inputs
     if "time_utc" in inputs:

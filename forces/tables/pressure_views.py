@@ -44,8 +44,9 @@ def plot_facet_pressure(
     *,
     view_azel: tuple[float, float] | None = None,
 ) -> Path:
-    """Write a 3-D view of the spacecraft with each facet coloured by its pressure, and a colour bar
-    (the figure of :func:`pressure_figure`).
+    """Write a 3-D view of the spacecraft with each facet coloured by its pressure, and a colour bar.
+
+    The figure is that of :func:`pressure_figure`.
 
     Parameters
     ----------
@@ -73,6 +74,19 @@ def plot_facet_pressure(
     InputError
         ``pressure_Pa`` not one finite value per facet, a zero direction, or a ``view_azel`` that is not
         two finite angles with the elevation within [-90, 90].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> import os, tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     target = os.path.join(folder, "p.png")
+    ...     path = plot_facet_pressure(cube.craft, np.ones(12), [0.0, 0.0, 1.0], target)
+    ...     path.name, path.exists()
+    ('p.png', True)
     """
     out = Path(path)
     pressure_figure(craft, pressure_Pa, direction, label, view_azel=view_azel).savefig(out, dpi=110)
@@ -97,8 +111,16 @@ def pressure_figure(
 
     Parameters
     ----------
-    craft, pressure_Pa, direction, label, view_azel
-        As :func:`plot_facet_pressure` takes them.
+    craft : Spacecraft
+        The model, body frame.
+    pressure_Pa : (n_facets,) float
+        Pressure on each facet [Pa].
+    direction : (3,) float
+        Sun vector or flow vector ``u``, body frame.
+    label : str, optional
+        What ``direction`` is, in the title and on its arrow.
+    view_azel : (float, float), optional
+        The camera's azimuth and elevation [deg]; default from ``direction``.
 
     Returns
     -------
@@ -110,6 +132,16 @@ def pressure_figure(
     ------
     InputError
         What :func:`plot_facet_pressure` refuses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> figure = pressure_figure(cube.craft, np.ones(12), [0.0, 0.0, 1.0])
+    >>> len(figure.axes)  # the model, the colour bar, the axes inset
+    3
     """
     triangles = craft.triangles
     pressure = np.asarray(pressure_Pa, dtype=np.float64)
@@ -156,8 +188,29 @@ def pressure_figure(
 
 
 def view_box(triangles: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The limits [m] of a 3-D view of ``triangles`` (n, 3, 3): their bounding box, every side at least
-    10 % of the largest (a flat sheet), about the same centre."""
+    """The limits [m] of a 3-D view of ``triangles``: their bounding box, made at least 10 % deep.
+
+    Every side is at least 10 % of the largest, so a flat sheet gets some depth; the box keeps about
+    the same centre.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) float64
+        Corners of the facets [m].
+
+    Returns
+    -------
+    low : (3,) float64
+        Lower corner of the view [m].
+    high : (3,) float64
+        Upper corner of the view [m].
+
+    Examples
+    --------
+    >>> low, high = view_box(np.array([[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]))
+    >>> low.tolist(), high.tolist()
+    ([0.0, 0.0, -0.05], [1.0, 1.0, 0.05])
+    """
     points = triangles.reshape(-1, 3)
     low, high = points.min(axis=0), points.max(axis=0)
     size = float(np.max(high - low)) or 1.0
@@ -224,6 +277,30 @@ def view_model(table: xr.Dataset) -> Model:
     InputError
         The mesh file is not there, or it is not the mesh the table was made from (its SHA-256 differs
         from the table's ``mesh_sha256``; likewise for the materials file).
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sweep table made from a model loaded from files.
+
+    Returns
+    -------
+    Model
+        The model, loaded again with the table's settings.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> from sunwind.geometry.io.obj import write_obj
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "cube.obj"
+    ...     write_obj(sw.meshes.box(), path)
+    ...     table = sw.sweep(sw.load(path, uniform=black, threads=1), srp=sw.SrpSetup(), step_deg=90.0)
+    ...     view_model(table).craft.n_facets
+    12
     """
     mesh = str(table.attrs["mesh"])
     if not Path(mesh).exists():
@@ -255,18 +332,49 @@ def plot_pressure_views(
     model: Model | None = None,
     view_azel: tuple[float, float] | None = None,
 ) -> list[Path]:
-    """3-D views of the table's model coloured by facet pressure ``|F_facet| / A``, one per quantity
-    (SRP, drag; none of the Earth's radiation), each at ``direction`` (a unit Sun or flow vector),
+    """Write 3-D views of the table's model coloured by facet pressure ``|F_facet| / A``, one per quantity.
+
+    SRP and drag (none of the Earth's radiation), each at ``direction`` (a unit Sun or flow vector),
     default where that quantity's force is largest, seen from ``view_azel`` (camera azimuth and
-    elevation [deg]), default from that direction: from the Sun, or from upstream (:func:`pressure_figure`).
-    ``model`` defaults to :func:`view_model`. PNGs ``NAME.KIND.pressure_azAZ_elEL.png``, AZ EL those of
-    the direction.
+    elevation [deg]), default from that direction: from the Sun, or from upstream
+    (:func:`pressure_figure`).
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sweep table (one pose).
+    directory : str or Path
+        Where the PNGs go.
+    name : str
+        The table's name: files are ``NAME.KIND.pressure_azAZ_elEL.png``, AZ EL those of the direction.
+    direction : (3,) float64, optional
+        The Sun or flow vector to draw, body frame.
+    model : Model, optional
+        The table's model; default :func:`view_model`.
+    view_azel : (float, float), optional
+        Camera azimuth and elevation [deg].
+
+    Returns
+    -------
+    list of Path
+        The files written.
 
     Raises
     ------
     InputError
         What :func:`view_model` refuses, or a ``view_azel`` that
         :func:`~sunwind.geometry.directions.checked_azel` refuses.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     [path.name for path in plot_pressure_views(table, folder, "cube", model=cube)]
+    ['cube.srp.pressure_az+0_el-90.png']
     """
     model = view_model(table) if model is None else model
     return [

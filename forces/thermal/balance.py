@@ -73,11 +73,37 @@ class InfraredBalance:
     Parameters
     ----------
     craft : Spacecraft
+        The spacecraft.
     emissivity : (n_sides,) float64
         ``eps_i`` [-], in [0, 1].
     exchange : DiffuseExchange or None
         The diffuse balance made with the infrared optics ``(1 - eps, 0, 0)``; None: every side's
         emission escapes.
+
+    Attributes
+    ----------
+    emitting_area : (n_sides,) float64
+        ``eps_i A_i`` [m^2].
+    arriving : sparse matrix or None
+        ``E^T``, a transposed view of the exchange factors; None without an exchange.
+
+    Raises
+    ------
+    InputError
+        An exchange of another model, or one not made with the infrared optics; too little memory.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> balance = InfraredBalance(craft, np.full(craft.n_sides, 0.8), None)  # a convex cube: no exchange
+    >>> round(float(balance.emitting_area.sum()), 12)  # 0.8 of the cube's 6 m^2
+    4.8
+    >>> emitted = np.full(craft.n_sides, 10.0)
+    >>> float(balance.leaving(emitted).sum()), float(balance.arrival(emitted).sum())
+    (120.0, 0.0)
     """
 
     def __init__(
@@ -110,13 +136,56 @@ class InfraredBalance:
         self.arriving = None if exchange is None else exchange.factors.matrix.T
 
     def arrival(self, leaving_W: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``G = E^T W`` [W], (n_sides,): infrared arriving at each side of infrared ``W`` leaving them."""
+        """The infrared arriving at each side, ``G = E^T W``.
+
+        Parameters
+        ----------
+        leaving_W : (n_sides,) float64
+            Infrared ``W`` leaving each side [W].
+
+        Returns
+        -------
+        (n_sides,) float64
+            Infrared arriving at each side [W]; zeros without an exchange.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> balance = InfraredBalance(craft, np.full(craft.n_sides, 0.8), None)  # a convex cube: no exchange
+        >>> float(balance.arrival(np.ones(craft.n_sides)).max())  # nothing comes back to a convex body
+        0.0
+        """
         if self.arriving is None:
             return np.zeros_like(leaving_W)
         return self.arriving @ leaving_W
 
     def leaving(self, emitted_W: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``W`` [W], (n_sides,): infrared leaving each side, its emission ``e`` and what it reflects."""
+        """The infrared leaving each side, ``W``: its emission ``e`` and what it reflects.
+
+        Parameters
+        ----------
+        emitted_W : (n_sides,) float64
+            Emission ``e_i`` of each side [W].
+
+        Returns
+        -------
+        (n_sides,) float64
+            Infrared leaving each side [W], the solution of ``W = e + diag(1 - eps) E^T W``; a copy of
+            ``emitted_W`` without an exchange.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> balance = InfraredBalance(craft, np.full(craft.n_sides, 0.8), None)  # a convex cube: no exchange
+        >>> balance.leaving(np.arange(12.0))[-3:]
+        array([ 9., 10., 11.])
+        """
         if self.exchange is None:
             return np.array(emitted_W, dtype=np.float64)
         return self.exchange.solve(emitted_W)
@@ -135,6 +204,7 @@ def solve_joined(
     Parameters
     ----------
     balance : InfraredBalance
+        The infrared band (``eps``, ``E^T``).
     side_node : (n_sides,) int64
         Node of each side (the map ``P``).
     node_matrix : (n_nodes, n_nodes) sparse
@@ -152,6 +222,33 @@ def solve_joined(
         Infrared leaving each side [W].
     Y : (n_nodes,) float64
         The node unknowns.
+
+    Raises
+    ------
+    InputError
+        The iteration did not converge (a closed cavity that can lose no heat).
+
+    References
+    ----------
+    .. [1] Saad, Y., Schultz, M. H. (1986). "GMRES: a generalized minimal residual algorithm for
+       solving nonsymmetric linear systems." *SIAM J. Sci. Stat. Comput.* 7(3), 856-869.
+
+    Examples
+    --------
+    The steady state of an isothermal grey cube absorbing 952.7 W: one node, ``b = 1``,
+    ``H = sum eps A`` and ``r`` the absorbed power give ``Y = sigma T^4``.
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> balance = InfraredBalance(craft, np.full(craft.n_sides, 0.8), None)  # a convex cube: no exchange
+    >>> import scipy.sparse
+    >>> one_node = np.zeros(craft.n_sides, dtype=np.int64)
+    >>> h = scipy.sparse.diags([balance.emitting_area.sum()])
+    >>> leaving, y = solve_joined(balance, one_node, h, np.ones(1), np.array([952.7]), np.zeros(12))
+    >>> round(float((y[0] / STEFAN_BOLTZMANN) ** 0.25), 2)  # [K]
+    243.23
     """
     solve_nodes = _node_solver(node_matrix)
     n_nodes = node_matrix.shape[0]

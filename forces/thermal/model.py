@@ -72,14 +72,38 @@ SLOPE_FLOOR_K = 1.0
 def infrared_exchange(
     craft: Spacecraft, reflections: str | ReflectionSettings = "full"
 ) -> DiffuseExchange | None:
-    """The infrared :class:`DiffuseExchange` of ``craft``: the view factors of ``reflections`` with the
-    infrared optics ``(1 - eps, 0, 0)``; None for ``reflections="none"`` (every side's emission escapes).
-    Any other mode gives the full diffuse balance (no mirrors in the infrared). Kept in the model's cache.
+    """The infrared :class:`DiffuseExchange` of a model, or None when no infrared is exchanged.
+
+    The view factors of ``reflections`` with the infrared optics ``(1 - eps, 0, 0)``. Any mode but
+    ``"none"`` gives the full diffuse balance (there are no mirrors in the infrared). Kept in the
+    model's cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The spacecraft; every side's material needs an emissivity.
+    reflections : str or ReflectionSettings, default "full"
+        The inter-reflection settings whose view factors are used; ``"none"``: no exchange.
+
+    Returns
+    -------
+    DiffuseExchange or None
+        The infrared balance; None for ``reflections="none"`` (every side's emission escapes).
 
     Raises
     ------
     MaterialError
         A side's material has no emissivity.
+    InputError
+        Reflection settings out of range.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> infrared_exchange(craft, "none") is None
+    True
     """
     settings = ReflectionSettings.of(reflections)
     if settings.mode == "none":
@@ -108,12 +132,38 @@ class ThermalModel:
     rules : tuple of ThermalRule, optional
         Node rules (:func:`~sunwind.forces.thermal.nodes.thermal_nodes`); default ``craft.thermal``.
 
+    Attributes
+    ----------
+    nodes : ThermalNodes
+        The nodes and their links.
+    infrared : InfraredBalance
+        The infrared band.
+    node_emitting_area_m2 : (n_nodes,) float64
+        ``sum_{i in k} eps_i A_i`` of each node [m^2].
+
     Raises
     ------
     MaterialError
         A side's material has no emissivity.
     InputError
         ``exchange`` is not made with the infrared optics; a bad rule; too little memory.
+
+    Examples
+    --------
+    A grey cube at one temperature with the Sun overhead absorbs 952.7 W and, in equilibrium, emits it
+    all from ``0.8 * 6 m^2``: ``T = (952.7 / (4.8 sigma))^(1/4)``.
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.geometry.materials import ThermalRule
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> one_node = (ThermalRule("*", isothermal=True, heat_capacity_J_K=900.0),)
+    >>> thermal = ThermalModel(craft, None, rules=one_node)
+    >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+    >>> state = thermal.equilibrium(sunlit)
+    >>> state.node_names.tolist(), state.node_temperature_K.round(2)
+    (['box'], array([243.23]))
     """
 
     def __init__(
@@ -128,18 +178,59 @@ class ThermalModel:
 
     @property
     def exchange(self) -> DiffuseExchange | None:
+        """The infrared exchange the model was made with (None: every side's emission escapes).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.geometry.materials import ThermalRule
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> one_node = (ThermalRule("*", isothermal=True, heat_capacity_J_K=900.0),)
+        >>> thermal = ThermalModel(craft, None, rules=one_node)
+        >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+        >>> thermal.exchange is None
+        True
+        """
         return self.infrared.exchange
 
     def equilibrium(
         self, absorbed_W: NDArray[np.float64], reference_m: NDArray[np.float64] | None = None
     ) -> ThermalState:
-        """The steady state for external power ``absorbed_W`` [W] (n_sides,) absorbed by each side;
-        torque about ``reference_m`` [m] (default: the model's reference point).
+        """The steady state under a given external power absorbed by each side.
+
+        Parameters
+        ----------
+        absorbed_W : (n_sides,) float64
+            External power each side absorbs [W], finite and >= 0.
+        reference_m : (3,) float64, optional
+            Torque reference point [m]; default the model's reference point.
+
+        Returns
+        -------
+        ThermalState
+            Temperatures, the infrared exchanged and its recoil, with ``stored_W`` 0.
 
         Raises
         ------
         InputError
-            ``absorbed_W`` is not (n_sides,) finite and >= 0; a group of nodes that cannot emit.
+            ``absorbed_W`` is not (n_sides,) finite and >= 0; a group of nodes that cannot emit; Newton's
+            method did not converge.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.geometry.materials import ThermalRule
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> one_node = (ThermalRule("*", isothermal=True, heat_capacity_J_K=900.0),)
+        >>> thermal = ThermalModel(craft, None, rules=one_node)
+        >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+        >>> state = thermal.equilibrium(sunlit)
+        >>> round(state.escaped_W, 6), abs(state.imbalance) < 1e-12
+        (952.7, True)
         """
         q = self._absorbed(absorbed_W)
         rate = np.zeros(self.nodes.n_nodes)
@@ -153,14 +244,48 @@ class ThermalModel:
         dt_s: float,
         reference_m: NDArray[np.float64] | None = None,
     ) -> ThermalState:
-        """The state ``dt_s`` [s] after ``state`` with the external power ``absorbed_W`` [W] (n_sides,)
-        over the step (backward Euler); nodes without heat capacity in equilibrium.
+        """The state one backward-Euler step of ``dt_s`` after ``state``.
+
+        Nodes without heat capacity are in equilibrium at the new time.
+
+        Parameters
+        ----------
+        state : ThermalState
+            The state at the start of the step, of this model's nodes.
+        absorbed_W : (n_sides,) float64
+            External power each side absorbs over the step [W].
+        dt_s : float
+            Time step [s], > 0.
+        reference_m : (3,) float64, optional
+            Torque reference point [m]; default the model's reference point.
+
+        Returns
+        -------
+        ThermalState
+            The state at the end of the step; ``stored_W`` is the heat the nodes took up, per second.
 
         Raises
         ------
         InputError
-            ``dt_s`` not finite and > 0; ``state`` of another model; bad ``absorbed_W``; a group of
-            nodes that can neither emit nor store heat.
+            ``dt_s`` not finite and > 0; ``state`` of another model; bad ``absorbed_W``; a group of nodes
+            that can neither emit nor store heat; Newton's method did not converge.
+
+        Examples
+        --------
+        A cold cube of 900 J/K in sunlight warms toward its 243 K equilibrium:
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.geometry.materials import ThermalRule
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> one_node = (ThermalRule("*", isothermal=True, heat_capacity_J_K=900.0),)
+        >>> thermal = ThermalModel(craft, None, rules=one_node)
+        >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+        >>> start = thermal.state_at(np.array([200.0]), sunlit)
+        >>> later = thermal.step(start, sunlit, 60.0)
+        >>> later.node_temperature_K.round(2), later.stored_W > 0
+        (array([220.57]), True)
         """
         if not (np.isfinite(dt_s) and dt_s > 0):
             raise InputError(
@@ -180,9 +305,47 @@ class ThermalModel:
         reference_m: NDArray[np.float64] | None = None,
         stored_W: float = 0.0,
     ) -> ThermalState:
-        """The state at given node temperatures [K] (n_nodes,): emission, its infrared exchange and
-        recoil, and the power balance with ``absorbed_W`` [W] (n_sides,) and ``stored_W`` [W] (the
-        imbalance says how far the temperatures are from a balance). A start for :meth:`step`."""
+        """The state at given node temperatures, balanced or not.
+
+        The emission, its infrared exchange and recoil, and the power balance with ``absorbed_W`` and
+        ``stored_W`` (the ``imbalance`` says how far the temperatures are from a balance). A start for
+        :meth:`step`.
+
+        Parameters
+        ----------
+        node_temperature_K : (n_nodes,) float64
+            Temperature of each node [K], finite and >= 0.
+        absorbed_W : (n_sides,) float64
+            External power each side absorbs [W].
+        reference_m : (3,) float64, optional
+            Torque reference point [m]; default the model's reference point.
+        stored_W : float, default 0.0
+            Heat the nodes take up [W].
+
+        Returns
+        -------
+        ThermalState
+            The state.
+
+        Raises
+        ------
+        InputError
+            Node temperatures or ``absorbed_W`` of the wrong shape, not finite or negative.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.geometry.materials import ThermalRule
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> one_node = (ThermalRule("*", isothermal=True, heat_capacity_J_K=900.0),)
+        >>> thermal = ThermalModel(craft, None, rules=one_node)
+        >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+        >>> state = thermal.state_at(np.array([300.0]), sunlit)
+        >>> round(state.emitted_W_total, 1), bool(state.imbalance < 0)  # too hot: it emits more
+        (2204.6, True)
+        """
         temperature = self._node_temperatures(node_temperature_K)
         q = self._absorbed(absorbed_W)
         craft, infrared = self.craft, self.infrared
@@ -341,13 +504,44 @@ class ThermalModel:
 
 
 def thermal_model(craft: Spacecraft, reflections: str | ReflectionSettings = "full") -> ThermalModel:
-    """The :class:`ThermalModel` of ``craft`` with the node rules of its materials file and the infrared
-    balance of ``reflections`` (:func:`infrared_exchange`); kept in the model's cache.
+    """The :class:`ThermalModel` of a model, with its materials file's node rules; cached.
+
+    The node rules are ``craft.thermal`` and the infrared balance is that of ``reflections``
+    (:func:`infrared_exchange`). The model is kept in the spacecraft's cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The spacecraft; every side's material needs an emissivity.
+    reflections : str or ReflectionSettings, default "full"
+        The inter-reflection settings of the infrared exchange; ``"none"``: no exchange.
+
+    Returns
+    -------
+    ThermalModel
+        The thermal model (the same object on a second call with the same settings).
 
     Raises
     ------
     MaterialError
         A side's material has no emissivity.
+    InputError
+        Reflection settings out of range, or a bad ``[thermal]`` rule.
+
+    Examples
+    --------
+    Without rules each side is its own node; with the Sun overhead only the top two are warm:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> thermal = thermal_model(craft, "none")
+    >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+    >>> thermal.equilibrium(sunlit).temperature_K.round(1)
+    array([  0. ,   0. ,   0. ,   0. ,   0. ,   0. ,   0. ,   0. ,   0. ,   0. , 380.7, 380.7])
+    >>> thermal_model(craft, "none") is thermal
+    True
     """
     settings = ReflectionSettings.of(reflections)
     return craft.cache.get(

@@ -62,6 +62,16 @@ class ThermalNodes:
         ``h A`` of each link [W/K].
     heat_capacity_J_K : (n_nodes,) float64
         Heat capacity of each node [J/K]; 0 for a node held in steady state.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> nodes = thermal_nodes(craft)  # no rules: each of the cube's 12 triangles is a node
+    >>> nodes.n_nodes, str(nodes.names[0]), len(nodes.links)
+    (12, 'box/facet 0', 0)
     """
 
     side_node: NDArray[np.int64]
@@ -73,19 +83,84 @@ class ThermalNodes:
 
     @property
     def n_nodes(self) -> int:
+        """The number of nodes.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> nodes = thermal_nodes(craft)  # no rules: each of the cube's 12 triangles is a node
+        >>> nodes.n_nodes
+        12
+        """
         return len(self.area_m2)
 
     def gather(self, node_values: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Per-side values (n_sides,) of per-node ``node_values`` (n_nodes,)."""
+        """Per-side values of per-node values.
+
+        Parameters
+        ----------
+        node_values : (n_nodes,) array_like
+            One value per node.
+
+        Returns
+        -------
+        (n_sides,) ndarray
+            Each side's node's value.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> nodes = thermal_nodes(craft)  # no rules: each of the cube's 12 triangles is a node
+        >>> nodes.gather(np.arange(12.0))[:3]
+        array([0., 1., 2.])
+        """
         return np.asarray(node_values)[self.side_node]
 
     def sum_sides(self, side_values: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Per-node sums (n_nodes,) of per-side ``side_values`` (n_sides,) (``P^T v``)."""
+        """Per-node sums of per-side values, ``P^T v``.
+
+        Parameters
+        ----------
+        side_values : (n_sides,) float64
+            One value per side.
+
+        Returns
+        -------
+        (n_nodes,) float64
+            The sum over each node's sides.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> nodes = thermal_nodes(craft)  # no rules: each of the cube's 12 triangles is a node
+        >>> nodes.sum_sides(craft.side_areas)[:3]
+        array([0.5, 0.5, 0.5])
+        """
         return np.bincount(self.side_node, weights=side_values, minlength=self.n_nodes)
 
     @cached_property
     def laplacian(self) -> scipy.sparse.csr_matrix:
-        """``L`` (n_nodes, n_nodes) [W/K]: conduction brings ``-L T`` into the nodes."""
+        """The conduction matrix ``L`` (n_nodes, n_nodes) [W/K]: conduction brings ``-L T`` into the nodes.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> nodes = thermal_nodes(craft)  # no rules: each of the cube's 12 triangles is a node
+        >>> nodes.laplacian.shape, nodes.laplacian.nnz  # no links, no conduction
+        ((12, 12), 0)
+        """
         a, b = self.links.T
         g = self.link_conductance_W_K
         n = self.n_nodes
@@ -96,7 +171,18 @@ class ThermalNodes:
 
     @cached_property
     def components(self) -> NDArray[np.int64]:
-        """Index of the group of nodes joined by links that each node belongs to, (n_nodes,)."""
+        """The group of linked nodes each node belongs to, (n_nodes,) int64.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> nodes = thermal_nodes(craft)  # no rules: each of the cube's 12 triangles is a node
+        >>> nodes.components[:4]
+        array([0, 1, 2, 3])
+        """
         if len(self.links) == 0:
             return np.arange(self.n_nodes)
         _, labels = scipy.sparse.csgraph.connected_components(self.laplacian, directed=False)
@@ -104,19 +190,38 @@ class ThermalNodes:
 
 
 def thermal_nodes(craft: Spacecraft, rules: tuple | None = None) -> ThermalNodes:
-    """The :class:`ThermalNodes` of ``craft`` under its ``[thermal]`` rules.
+    """The :class:`ThermalNodes` of a model under its ``[thermal]`` rules.
 
     Parameters
     ----------
     craft : Spacecraft
+        The spacecraft.
     rules : tuple of ThermalRule, optional
         Rules in order (first match wins); default ``craft.thermal``.
+
+    Returns
+    -------
+    ThermalNodes
+        The nodes, their names, areas, links and heat capacities (the module docstring gives the
+        rules).
 
     Raises
     ------
     InputError
         A rule with ``heat_capacity_J_K`` that is not isothermal, a negative heat capacity or
         conductance.
+
+    Examples
+    --------
+    An isothermal rule makes the whole part one node, with the rule's heat capacity:
+
+    >>> import sunwind as sw
+    >>> from sunwind.geometry.materials import ThermalRule
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> nodes = thermal_nodes(craft, (ThermalRule("box", isothermal=True, heat_capacity_J_K=900.0),))
+    >>> nodes.names.tolist(), nodes.area_m2, nodes.heat_capacity_J_K
+    (['box'], array([6.]), array([900.]))
     """
     rules = tuple(craft.thermal if rules is None else rules)
     for rule in rules:

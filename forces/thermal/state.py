@@ -48,6 +48,22 @@ class ThermalState:
     imbalance : float
         ``(absorbed - escaped - lost - stored) / max(absorbed, escaped + lost)`` [-]: 0 to round-off
         when every node is balanced.
+
+    Examples
+    --------
+    Made by :class:`~sunwind.forces.thermal.model.ThermalModel`:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.thermal import thermal_model
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+    >>> state = thermal_model(craft, "none").equilibrium(sunlit)
+    >>> round(state.absorbed_W, 6), round(state.escaped_W, 6)
+    (952.7, 952.7)
+    >>> np.round(state.force_N * 1e6, 3) + 0.0  # [uN]: the hot top face's infrared pushes down
+    array([ 0.   ,  0.   , -2.119])
     """
 
     temperature_K: NDArray[np.float64]
@@ -66,7 +82,26 @@ class ThermalState:
     imbalance: float
 
     def to_json(self) -> dict:
-        """Plain-JSON summary; keys carry their units. Node temperatures by node name."""
+        """A plain-JSON summary; keys carry their units, node temperatures by node name.
+
+        Returns
+        -------
+        dict
+            The frame, force, torque, reference point, the power balance, the lowest and highest
+            temperature and ``node_temperature_K`` (a dict of node name to temperature).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.thermal import thermal_model
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> state = thermal_model(craft, "none").state_at(np.full(12, 290.0), np.zeros(12))
+        >>> summary = state.to_json()
+        >>> summary["temperature_max_K"], summary["node_temperature_K"]["box/facet 0"]
+        (290.0, 290.0)
+        """
         temperature = self.node_temperature_K
         return {
             "frame": FRAME,

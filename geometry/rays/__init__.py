@@ -4,6 +4,7 @@ hull clearance that proves rays meet nothing, and the shadow pass that lights th
 
 from sunwind.geometry.rays.box_tree import BoxTree
 from sunwind.geometry.rays.hull import Clearance, clearance
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.scene import BruteForceScene, RayScene
 from sunwind.geometry.rays.shadows import (
     DEFAULT_TOLERANCE,
@@ -20,6 +21,7 @@ __all__ = [
     "Clearance",
     "Illumination",
     "RayScene",
+    "ShadowSampling",
     "SideSampler",
     "check_sampling",
     "clearance",

@@ -35,6 +35,13 @@ class BoxTree:
         The triangles under node ``k`` are ``order[span[k, 0]:span[k, 1]]``.
     depth : int
         Most edges from the root to a leaf.
+
+    Examples
+    --------
+    >>> from sunwind.meshes import box
+    >>> tree = box_tree(box().vertices[box().faces], leaf_triangles=4)
+    >>> tree.first_child[:3].tolist(), tree.depth, tree.span[0].tolist()
+    ([1, 3, -1], 4, [0, 12])
     """
 
     low: NDArray[np.float64]
@@ -46,8 +53,31 @@ class BoxTree:
 
 
 def box_tree(triangles: NDArray[np.float64], leaf_triangles: int = LEAF_TRIANGLES) -> BoxTree:
-    """The :class:`BoxTree` of ``triangles`` (n, 3, 3) [m] (n >= 1), leaves of at most
-    ``leaf_triangles``."""
+    """Build the :class:`BoxTree` of a set of triangles.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) ndarray of float64
+        Triangle corners [m], ``n >= 1``.
+    leaf_triangles : int, optional
+        Most triangles in a leaf.
+
+    Returns
+    -------
+    BoxTree
+        The tree; node 0 is the root and holds every triangle.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.meshes import box
+    >>> tree = box_tree(box().vertices[box().faces], leaf_triangles=4)
+    >>> tree.low[0], tree.high[0]
+    (array([-0.5, -0.5, -0.5]), array([0.5, 0.5, 0.5]))
+    >>> leaves = tree.first_child == -1
+    >>> int((tree.span[leaves, 1] - tree.span[leaves, 0]).max())
+    4
+    """
     low, high, first_child, order, span, depth = _build(
         np.ascontiguousarray(triangles.min(axis=1)),
         np.ascontiguousarray(triangles.max(axis=1)),

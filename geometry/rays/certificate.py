@@ -58,7 +58,20 @@ _QUARTERS = np.array(
 
 @dataclass(frozen=True)
 class LoadsError:
-    """Estimated error of a force and torque summed over the lit parts of the sides (absolute)."""
+    """Estimated error of a force and torque summed over the lit parts of the sides (absolute).
+
+    Attributes
+    ----------
+    force_N : float
+        Error of the force [N].
+    torque_Nm : float
+        Error of the torque [N m].
+
+    Examples
+    --------
+    >>> LoadsError(force_N=1e-9, torque_Nm=2e-9)
+    LoadsError(force_N=1e-09, torque_Nm=2e-09)
+    """
 
     force_N: float
     torque_Nm: float
@@ -85,6 +98,20 @@ class ShadowCheck:
         Rays the check cast, those resolving sides again included.
     wrong : int
         Sides found wrong and resolved again, in all rounds.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> check = side_sampler(craft).illuminate(direction).check
+    >>> len(check.sides), check.rays, check.wrong  # 29 sides checked, none found wrong
+    (29, 268, 0)
     """
 
     sides: NDArray[np.int64]
@@ -98,7 +125,27 @@ class ShadowCheck:
 
     @property
     def needed(self) -> NDArray[np.int64]:
-        """The sides whose loads :meth:`loads_error` reads: the sample's and the chords'."""
+        """The sides whose loads :meth:`loads_error` reads: the sample's and the chords'.
+
+        Returns
+        -------
+        (k,) ndarray of int64
+            The union of :attr:`sides` and :attr:`band_sides`, ascending.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> from sunwind.geometry.rays.shadows import side_sampler
+        >>> check = side_sampler(craft).illuminate(direction).check
+        >>> bool(np.array_equal(check.needed, np.union1d(check.sides, check.band_sides)))
+        True
+        """
         return np.union1d(self.sides, self.band_sides)
 
     def loads_error(
@@ -107,13 +154,42 @@ class ShadowCheck:
         load_per_area: NDArray[np.float64],
         reference_m: NDArray[np.float64],
     ) -> LoadsError:
-        """Estimated error [N, N m] of a force and torque summed over the lit parts of the sides, for
-        ``load_per_area`` (n_sides, 3) [N/m^2] the force on a unit lit area of each side and torques
-        about ``reference_m``: ``sum |y| / p + SPREAD * sqrt(sum ((1 - p) / p^2 + 1 / p) |y|^2)`` over
-        the last round's sample, ``y`` the errors its points found (the first term an unbiased estimate
-        of the sum of the sides' error magnitudes that the rounds before it left, which bounds their
-        sum and which its own repairs only lessen), plus the chords' bands times the load on them
-        (their resolution)."""
+        """Estimate the error of a force and torque summed over the lit parts of the sides.
+
+        The estimate is ``sum |y| / p + SPREAD * sqrt(sum ((1 - p) / p^2 + 1 / p) |y|^2)`` over the last
+        round's sample, ``y`` the errors its points found (the first term an unbiased estimate of the sum of
+        the sides' error magnitudes that the rounds before it left, which bounds their sum and which its own
+        repairs only lessen), plus the chords' bands times the load on them (their resolution).
+
+        Parameters
+        ----------
+        craft : Spacecraft
+            The model the pass ran on.
+        load_per_area : (n_sides, 3) ndarray of float64
+            Force on a unit lit area of each side [N/m^2]; only rows :attr:`needed` are read.
+        reference_m : (3,) ndarray of float64
+            Point the torques are about [m].
+
+        Returns
+        -------
+        LoadsError
+            Absolute error estimates [N, N m].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> from sunwind.geometry.rays.shadows import side_sampler
+        >>> check = side_sampler(craft).illuminate(direction).check
+        >>> load = np.tile([0.0, 0.0, -4.5e-6], (craft.n_sides, 1))
+        >>> check.loads_error(craft, load, np.zeros(3))
+        LoadsError(force_N=0.0, torque_Nm=0.0)
+        """
         f = load_per_area[self.sides]
         force = self.area_m2[:, None] * f
         torque = np.cross(self.moment_m3 - self.area_m2[:, None] * reference_m, f)
@@ -139,12 +215,51 @@ def check_pass(
     segments: Segments,
     tolerance: float,
 ) -> tuple[Leaves, ShadowCheck]:
-    """Check the pass's lit shares ``fraction`` (by side; uniform sides 0 or 1, the sides of ``leaves``
-    by their leaves) of the ``facing`` sides with rays at random points of an area-weighted sample of
-    them, resolve the sides found wrong again (and check their neighbours), in ``CHECK_ROUNDS``
-    independent rounds; return the leaves with the sides found wrong replaced and what the last
-    round's sample found. The samples cast about ``CHECK_SHARE`` of the rays the pass did
-    (``caster.rays`` so far)."""
+    """Check the shadow pass with rays at random points of an area-weighted sample of the facing sides.
+
+    The sides found wrong are resolved again (and their neighbours checked), in ``CHECK_ROUNDS``
+    independent rounds. The samples cast about ``CHECK_SHARE`` of the rays the pass did
+    (``caster.rays`` so far).
+
+    Parameters
+    ----------
+    caster : Caster
+        Casts the rays and counts them.
+    leaves : Leaves
+        The leaves of the sides the pass refined.
+    facing : (n_facing,) ndarray of int64
+        The sides facing the source.
+    fraction : (n_sides,) ndarray of float64
+        The pass's lit shares by side: uniform sides 0 or 1, the sides of ``leaves`` by their leaves.
+    segments : Segments
+        The outline segments.
+    tolerance : float
+        Share of a side's area a side resolved again is found to.
+
+    Returns
+    -------
+    leaves : Leaves
+        ``leaves`` with the sides found wrong replaced.
+    check : ShadowCheck
+        What the last round's sample found.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster, Leaves, Segments
+    >>> facing = np.flatnonzero(craft.side_normals @ direction > 0)
+    >>> all_lit = np.where(craft.side_normals @ direction > 0, 1.0, 0.0)  # a pass that missed every shadow
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves, check = check_pass(Caster(craft, direction), Leaves.empty(), facing, all_lit, none, 1e-2)
+    >>> check.wrong, leaves.sides[:4]  # the shaded sides found and resolved again
+    (14, array([24, 26, 28, 30]))
+    """
     craft = caster.craft
     budget = max(LEAST_CHECKED, int(CHECK_SHARE * caster.rays / CHECK_POINTS / CHECK_ROUNDS))
     start_rays = caster.rays

@@ -61,16 +61,50 @@ def may_be_blocked(
     lo: int,
     hi: int,
 ) -> None:
-    """Whether the rays from sides ``lo:hi`` may meet the model, into ``out`` (n, m, p): False where a
-    ray provably meets nothing (:class:`sunwind.geometry.rays.hull.Clearance`).
+    """Write whether the rays from sides ``lo:hi`` may meet the model: False where one provably meets nothing.
 
     Ray ``(k, j, p)`` leaves side ``sides[k]`` from ``origins[k, p]`` (scene coordinates) along
-    ``directions[k, j]``, or ``directions[0, j]`` when ``directions`` (n or 1, m, 3) has one row. It is
-    clear when it leaves the side's plane (``n . d > _GRAZING`` in float32) and the side is on the
-    model's hull, or on its part's hull with the ray missing the box of every other part that reaches
-    in front of the side. ``clearance`` holds ``open_sky``, ``own_part_clear``, ``blockers``,
-    ``box_low``, ``box_high``. Directions shared by every side first test each box by its
-    :func:`_box_shadows`, which decides most misses in four comparisons.
+    ``directions[k, j]``, or ``directions[0, j]`` when ``directions`` has one row. It is clear when it
+    leaves the side's plane (``n . d > _GRAZING`` in float32) and the side is on the model's hull, or on
+    its part's hull with the ray missing the box of every other part that reaches in front of the side
+    (:class:`sunwind.geometry.rays.hull.Clearance`). Directions shared by every side first test each box by
+    its :func:`_box_shadows`, which decides most misses in four comparisons.
+
+    Parameters
+    ----------
+    sides : (n,) ndarray of int64
+        The sides the rays leave.
+    origins : (n, p, 3) ndarray of float32
+        Ray origins of each side, scene coordinates.
+    directions : (n, m, 3) or (1, m, 3) ndarray of float32
+        Unit ray directions, per side or shared by all.
+    normals : (n_sides, 3) ndarray of float64
+        Outward normal of every side of the model.
+    clearance : tuple
+        ``open_sky, own_part_clear, blockers, box_low, box_high``
+        (:attr:`~sunwind.geometry.rays.hull.Clearance.arrays`).
+    out : (n, m, p) ndarray of bool
+        Written: True where the ray must be cast.
+    lo, hi : int
+        Rows of ``sides`` to do.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.rays.hull import clearance
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> sides = np.array([0, 8])  # the bus's -x and +x faces
+    >>> origins = craft.scene.origins(craft.side_centroids[sides], craft.side_normals[sides])[:, None]
+    >>> along = np.array([[[-1.0, 0, 0], [1.0, 0, 0]]], dtype=np.float32)
+    >>> out = np.empty((2, 2, 1), dtype=bool)
+    >>> may_be_blocked(sides, origins, along, craft.side_normals, clearance(craft).arrays, out, 0, 2)
+    >>> out[..., 0]  # a ray out of its face meets nothing; one into it must be cast
+    array([[False,  True],
+           [ True, False]])
     """
     open_sky, own_part_clear, blockers, box_low, box_high = clearance
     rows, m, points = directions.shape[0], directions.shape[1], origins.shape[1]
@@ -128,16 +162,52 @@ def cone_may_be_blocked(
     lo: int,
     hi: int,
 ) -> None:
-    """Whether any ray leaving sides ``lo:hi`` of ``sides`` within ``half_angle`` [rad] of the unit
-    ``axis`` may meet the model, into ``out``: False where the side is on the model's hull, or on its
-    own part's hull with the cone from the side missing every other part's box in front of it (each box
-    taken as its bounding sphere, the side as ``spheres`` (n_sides, 4): centre and radius round its
-    corners, scene coordinates).
+    """Write whether any ray leaving each side within a cone about an axis may meet the model.
+
+    False where the side is on the model's hull, or on its own part's hull with the cone from the side
+    missing every other part's box in front of it (each box taken as its bounding sphere, the side as
+    ``spheres``: centre and radius round its corners, scene coordinates).
 
     A sphere of radius ``r`` (both spheres' radii) whose centre lies at ``t`` from the side's, ``D =
     |t| > r``, is missed when ``t`` lies more than ``half_angle + asin(r / D)`` off the axis: ``t . axis
     < cos(half_angle) sqrt(D^2 - r^2) - sin(half_angle) r`` (``half_angle <= pi / 2``, so that the
-    cone and the sphere's cone, under ``pi / 2``, never span the sky)."""
+    cone and the sphere's cone, under ``pi / 2``, never span the sky).
+
+    Parameters
+    ----------
+    sides : (n,) ndarray of int64
+        The sides the rays leave.
+    spheres : (n_sides, 4) ndarray of float64
+        Centre and radius of a sphere round each side of the model, scene coordinates.
+    axis : (3,) ndarray of float64
+        Unit axis of the cone.
+    half_angle : float
+        Half-angle of the cone [rad], at most ``pi / 2``.
+    clearance : tuple
+        ``open_sky, own_part_clear, blockers, box_low, box_high``
+        (:attr:`~sunwind.geometry.rays.hull.Clearance.arrays`).
+    out : (n,) ndarray of bool
+        Written: True where a ray of the cone may be blocked.
+    lo, hi : int
+        Rows of ``sides`` to do.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.rays.hull import clearance
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> centres = craft.scene.to_scene(craft.side_centroids).astype(np.float64)
+    >>> spheres = np.column_stack([centres, np.full(craft.n_sides, 0.1)])
+    >>> out = np.empty(2, dtype=bool)
+    >>> cone_may_be_blocked(np.array([0, 8]), spheres, np.array([-1.0, 0, 0]), 0.3, clearance(craft).arrays,
+    ...     out, 0, 2)
+    >>> out  # both on the model's hull: nothing can block them
+    array([False, False])
+    """
     open_sky, own_part_clear, blockers, box_low, box_high = clearance
     n_boxes = box_low.shape[0]
     box_centre, box_radius = np.empty((n_boxes, 3)), np.empty(n_boxes)

@@ -56,6 +56,21 @@ class Crossings:
         Which edges of ``other`` no facet wholly in front of the facet's plane continues (the facets
         across each dip behind it too, or there are none): seen from the facet, the crossing facet's
         shadow may end at such an edge, which need be no silhouette edge.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> a = box()
+    >>> b = MeshData(a.vertices + 0.5, a.faces, a.face_part, ["other"], a.face_material)  # sunk into a
+    >>> craft = build_spacecraft(MeshData.concatenate([a, b]),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> lines = crossings(craft)
+    >>> int(lines.start[-1]), lines.segments[0], int(lines.other[0]), len(lines.cover)
+    (12, array([[0. , 0.5],
+           [0.5, 0.5]]), 20, 0)
     """
 
     start: NDArray[np.int64]
@@ -66,13 +81,64 @@ class Crossings:
     cover: NDArray[np.float64]
 
     def covered(self, facets: NDArray[np.int64], points: NDArray[np.float64]) -> NDArray[np.bool_]:
-        """Whether each point ``points`` (n, 2) of facet ``facets`` (n,) lies under a coplanar facet that
-        covers it."""
+        """Test whether points of facets lie under a coplanar facet that covers them.
+
+        Parameters
+        ----------
+        facets : (n,) ndarray of int64
+            Facet of each point.
+        points : (n, 2) ndarray of float64
+            Points ``(w1, w2)`` in their facet's coordinates.
+
+        Returns
+        -------
+        (n,) ndarray of bool
+            True where a later coplanar facet lies on the point.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.mesh_data import MeshData
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import plate
+        >>> sheet = plate(divisions=1)
+        >>> craft = build_spacecraft(MeshData.concatenate([sheet, sheet]), two_sided=["plate"],
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> lines = crossings(craft)
+        >>> lines.covered(np.array([0, 2]), np.array([[0.2, 0.2], [0.2, 0.2]]))  # the first copy lies under
+        array([ True, False])
+        """
         return _covered(self.cover_start, self.cover, facets, np.ascontiguousarray(points, dtype=np.float64))
 
 
 def crossings(craft: Spacecraft) -> Crossings:
-    """The :class:`Crossings` of ``craft``, made once and kept in its cache."""
+    """Find the lines where the facets of a model cross; made once and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    Crossings
+        The lines on each facet, and the coplanar facets that cover it.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> a = box()
+    >>> b = MeshData(a.vertices + 0.5, a.faces, a.face_part, ["other"], a.face_material)  # sunk into a
+    >>> craft = build_spacecraft(MeshData.concatenate([a, b]),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> lines = crossings(craft)
+    >>> lines is crossings(craft), int(lines.start[-1])  # 6 facet pairs cross, a line on each facet
+    (True, 12)
+    """
 
     def make() -> Crossings:
         triangles = craft.triangles

@@ -25,8 +25,31 @@ _MARGIN = 1e-9
 def boundary_sides(
     corner_ids: NDArray[np.int64], facing: NDArray[np.int64], lit: NDArray[np.bool_], n_ids: int
 ) -> NDArray[np.int64]:
-    """The sides of ``facing`` (lit flag ``lit`` of each) that share a corner with a facing side of the
-    other flag; ``corner_ids[s]`` numbers side ``s``'s corners (a back side's apart from the front's)."""
+    """Find the facing sides that share a corner with a facing side of the other lit flag.
+
+    Parameters
+    ----------
+    corner_ids : (n_sides, 3) ndarray of int64
+        Corner numbers of each side (a back side's apart from the front's).
+    facing : (n_facing,) ndarray of int64
+        The sides facing the source.
+    lit : (n_facing,) ndarray of bool
+        Lit flag of each facing side (its centroid ray's).
+    n_ids : int
+        Number of corner numbers.
+
+    Returns
+    -------
+    (k,) ndarray of int64
+        The sides of ``facing`` on a border between lit and dark sides, ascending.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corner_ids = np.array([[0, 1, 2], [1, 2, 3], [4, 5, 6]])
+    >>> boundary_sides(corner_ids, np.array([0, 1, 2]), np.array([True, False, True]), 7)
+    array([0, 1])
+    """
     seen = np.zeros((n_ids, 2), dtype=np.bool_)
     for k in range(facing.shape[0]):
         for c in range(3):
@@ -55,9 +78,55 @@ def node_origins(
     offset_m: float,
     inset: float,
 ) -> NDArray[np.float32]:
-    """Ray origins of side points ``points`` (n, 2) of sides ``node_side`` (n,): drawn ``inset`` of the
-    way toward the side's centroid (a corner or edge point is not cast from exactly on an edge),
-    pushed ``offset_m`` along the normal, in float32 scene coordinates, (n, 3)."""
+    """Make the ray origins of points of sides, in float32 scene coordinates.
+
+    Each point is drawn ``inset`` of the way toward its side's centroid (a corner or edge point is not
+    cast from exactly on an edge) and pushed ``offset_m`` along the normal.
+
+    Parameters
+    ----------
+    triangles : (n_facets, 3, 3) ndarray of float64
+        Facet corners [m].
+    side_facet : (n_sides,) ndarray of int64
+        Facet of each side.
+    normals : (n_sides, 3) ndarray of float64
+        Outward normal of each side.
+    node_side : (n,) ndarray of int64
+        Side of each point.
+    points : (n, 2) ndarray of float64
+        Points ``(w1, w2)`` in side coordinates.
+    centre : (3,) ndarray of float64
+        Centre of the scene frame [m].
+    half_size : float
+        Half-size of the scene frame [m].
+    offset_m : float
+        Push along the normal [m].
+    inset : float
+        Share of the way toward the centroid.
+
+    Returns
+    -------
+    (n, 3) ndarray of float32
+        The origins.
+
+    Examples
+    --------
+    The public way in is :meth:`~sunwind.geometry.rays.quadtree.Caster.lit`, which casts from them:
+
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> scene = craft.scene
+    >>> o = node_origins(craft.triangles, craft.side_facet, craft.side_normals, np.array([8]),
+    ...     np.array([[0.0, 0.0]]), scene.centre, scene.half_size, scene.offset_m, INSET)
+    >>> corner = craft.triangles[craft.side_facet[8], 0]
+    >>> bool(np.allclose(o * scene.half_size + scene.centre, corner, atol=1e-4))
+    True
+    """
     out = np.empty((points.shape[0], 3), dtype=np.float32)
     keep = 1.0 - inset
     for k in range(points.shape[0]):
@@ -136,12 +205,61 @@ def outline_segments(
     id_sides: NDArray[np.int64],
     is_facing: NDArray[np.bool_],
 ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """The shadows of silhouette edges on the sides they cross, in side coordinates: each edge's from
-    the sides its probes landed on (``seed_side``, ``seed_edge``, grouped by edge; ``edge_ends`` (m, 2, 3)
-    the edge of each seed) outward over the facing sides sharing a corner with a side it crosses, so a
-    shadow stretched across many small or grazing sides is found on all of them. ``id_start`` and
-    ``id_sides`` list the sides at each corner number of ``corner_ids``. Returns the sides and their
-    segments (k, 2, 2), in the order found."""
+    """Carry the shadows of silhouette edges over the facing sides they cross, in side coordinates.
+
+    Each edge's shadow is followed from the sides its probes landed on outward over the facing sides
+    sharing a corner with a side it crosses, so a shadow stretched across many small or grazing sides is
+    found on all of them.
+
+    Parameters
+    ----------
+    triangles : (n_facets, 3, 3) ndarray of float64
+        Facet corners [m].
+    side_facet : (n_sides,) ndarray of int64
+        Facet of each side.
+    normals : (n_sides, 3) ndarray of float64
+        Outward normal of each side.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source.
+    seed_side : (m,) ndarray of int64
+        Sides the probes landed on, grouped by edge.
+    seed_edge : (m,) ndarray of int64
+        The silhouette edge of each seed.
+    edge_ends : (m, 2, 3) ndarray of float64
+        End points of the edge of each seed [m].
+    corner_ids : (n_sides, 3) ndarray of int64
+        Corner numbers of each side.
+    id_start : (n_ids + 1,) ndarray of int64
+        The sides at corner ``i`` are ``id_sides[id_start[i]:id_start[i + 1]]``.
+    id_sides : ndarray of int64
+        Sides, grouped by corner.
+    is_facing : (n_sides,) ndarray of bool
+        Whether each side faces the source.
+
+    Returns
+    -------
+    sides : (k,) ndarray of int64
+        Side of each segment, in the order found.
+    segments : (k, 2, 2) ndarray of float64
+        End points in side coordinates.
+
+    Examples
+    --------
+    Called by :func:`~sunwind.geometry.rays.shadow_edges.outline_of`:
+
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster
+    >>> from sunwind.geometry.rays.shadow_edges import outline_of
+    >>> facing = np.flatnonzero(craft.side_normals @ direction > 0)
+    >>> outline_of(craft, direction, facing, Caster(craft, direction)).side[:4]
+    array([24, 24, 26, 26])
+    """
     mark = np.full(normals.shape[0], -1, dtype=np.int64)
     whole = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
     capacity = max(16, 4 * seed_side.shape[0])
@@ -195,11 +313,48 @@ def crossing_outlines(
     other: NDArray[np.int64],
     open_edges: NDArray[np.bool_],
 ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """The shadows on each of ``side`` of the edges of the facet ``other`` that passes through it and
-    that nothing in front of the side continues (``open_edges`` (k, 3)), their parts in front of the
-    side's plane: what lies behind the side's plane shades it not, so such an edge may bound the
-    crossing facet's shadow, fold or not. Returns the sides and segments (k, 2, 2) in side
-    coordinates."""
+    """Find the shadows on sides of the open edges of the facets that pass through them.
+
+    The edges are those of facet ``other`` that nothing in front of the side continues; their parts in
+    front of the side's plane are projected onto it. What lies behind the side's plane shades it not, so
+    such an edge may bound the crossing facet's shadow, fold or not.
+
+    Parameters
+    ----------
+    triangles : (n_facets, 3, 3) ndarray of float64
+        Facet corners [m].
+    side_facet : (n_sides,) ndarray of int64
+        Facet of each side.
+    normals : (n_sides, 3) ndarray of float64
+        Outward normal of each side.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source.
+    side : (k,) ndarray of int64
+        The crossed sides.
+    other : (k,) ndarray of int64
+        The facet crossing each.
+    open_edges : (k, 3) ndarray of bool
+        Which edges of ``other`` nothing in front of the side continues.
+
+    Returns
+    -------
+    sides : (j,) ndarray of int64
+        Side of each segment.
+    segments : (j, 2, 2) ndarray of float64
+        End points in side coordinates.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> triangles = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]],   # a floor
+    ...                       [[0.2, 0.2, -1], [0.2, 0.2, 1], [0.6, 0.2, 1]]])  # a fin through it
+    >>> normals = np.array([[0.0, 0, 1], [0, -1, 0]])
+    >>> sides, segments = crossing_outlines(triangles, np.array([0, 1]), normals,
+    ...     np.array([0.0, -0.6, 0.8]), np.array([0]), np.array([1]), np.array([[True, True, True]]))
+    >>> sides, segments[0]  # the first runs up the floor from the foot of the fin's leading edge
+    (array([0, 0, 0]), array([[0.2 , 0.2 ],
+           [0.2 , 0.95]]))
+    """
     out_side = np.empty(3 * side.shape[0], dtype=np.int64)
     out_segment = np.empty((3 * side.shape[0], 2, 2))
     ends = np.empty((2, 3))
@@ -218,8 +373,28 @@ def crossing_outlines(
 
 @numba.njit(cache=True, nogil=True)
 def through(corners: NDArray[np.float64], p: NDArray[np.float64], q: NDArray[np.float64]) -> int:
-    """How segment ``p``-``q`` meets triangle ``corners`` (3, 2): 0 not at all, 1 with an end inside,
-    2 passing through (both ends outside). Cyrus-Beck clipping of the segment by the three edges."""
+    """Tell how a segment meets a triangle, by Cyrus-Beck clipping of the segment by the three edges.
+
+    Parameters
+    ----------
+    corners : (3, 2) ndarray of float64
+        The triangle.
+    p, q : (2,) ndarray of float64
+        Ends of the segment.
+
+    Returns
+    -------
+    int
+        0 not at all, 1 with an end inside, 2 passing through (both ends outside).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> tri = np.array([[0.0, 0], [1, 0], [0, 1]])
+    >>> through(tri, np.array([-1.0, 0.2]), np.array([2.0, 0.2])), through(tri, np.array([0.1, 0.1]),
+    ...     np.array([2.0, 0.1])), through(tri, np.array([2.0, 2]), np.array([3.0, 3]))
+    (2, 1, 0)
+    """
     orient = (corners[1, 0] - corners[0, 0]) * (corners[2, 1] - corners[0, 1]) - (
         corners[1, 1] - corners[0, 1]
     ) * (corners[2, 0] - corners[0, 0])
@@ -244,7 +419,25 @@ def through(corners: NDArray[np.float64], p: NDArray[np.float64], q: NDArray[np.
 
 @numba.njit(cache=True, nogil=True)
 def line_through(p: NDArray[np.float64], q: NDArray[np.float64]) -> tuple[float, float, float]:
-    """``(a, b, c)`` of the line through ``p`` and ``q``, positive on the left of ``p -> q``."""
+    """Find the line through two points, positive on the left of ``p -> q``.
+
+    Parameters
+    ----------
+    p, q : (2,) ndarray of float64
+        Two distinct points.
+
+    Returns
+    -------
+    tuple of float
+        ``(a, b, c)``: the line ``a x + b y + c = 0``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a, b, c = line_through(np.array([0.0, 0.0]), np.array([1.0, 0.0]))
+    >>> a * 0.5 + b * 1.0 + c  # a point on the left: positive
+    1.0
+    """
     a, b = -(q[1] - p[1]), q[0] - p[0]
     return a, b, -(a * p[0] + b * p[1])
 
@@ -257,9 +450,31 @@ def clip_moments(
     scratch: NDArray[np.float64],
     out: NDArray[np.float64],
 ) -> None:
-    """Write ``(area, area * w1, area * w2)`` of the part of triangle ``corners`` (3, 2) where the
-    first ``n_lines`` of ``lines`` (., 3) are all positive into ``out`` (3,), by Sutherland-Hodgman
-    clipping in ``scratch`` (2, 3 + n_lines or more, 2)."""
+    """Write the area and first moments of the part of a triangle where some lines are all positive.
+
+    Sutherland-Hodgman clipping of the triangle by each line in turn.
+
+    Parameters
+    ----------
+    corners : (3, 2) ndarray of float64
+        The triangle.
+    lines : (k, 3) ndarray of float64
+        Lines ``(a, b, c)``, positive where ``a x + b y + c > 0``.
+    n_lines : int
+        How many of ``lines`` to clip by.
+    scratch : (2, 3 + n_lines or more, 2) ndarray of float64
+        Work space.
+    out : (3,) ndarray of float64
+        Written: ``(area, area * w1, area * w2)`` of the clipped part.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> tri, out = np.array([[0.0, 0], [1, 0], [0, 1]]), np.zeros(3)
+    >>> clip_moments(tri, np.array([[1.0, 0.0, -0.5]]), 1, np.zeros((2, 8, 2)), out)  # keep x > 0.5
+    >>> out.round(4)
+    array([0.125 , 0.0833, 0.0208])
+    """
     polygon, clipped = scratch[0], scratch[1]
     polygon[:3] = corners
     count = 3

@@ -53,6 +53,17 @@ class Clearance:
         The boxes of other parts that reach in front of the side's plane: only these can block it.
     box_low, box_high : (n_boxes, 3) float64
         Corners of each part's box, scene coordinates, widened by ``BOX_MARGIN``.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> clear = clearance(craft)
+    >>> int(clear.open_sky.sum()), int(clear.own_part_clear.sum()), clear.blockers.shape
+    (32, 144, (144, 3))
     """
 
     open_sky: NDArray[np.bool_]
@@ -63,12 +74,50 @@ class Clearance:
 
     @property
     def arrays(self) -> tuple[NDArray, ...]:
-        """The arrays in the order :func:`~sunwind.geometry.rays.clear_kernels.may_be_blocked` takes them."""
+        """The arrays in the order :func:`~sunwind.geometry.rays.clear_kernels.may_be_blocked` takes them.
+
+        Returns
+        -------
+        tuple of ndarray
+            ``open_sky, own_part_clear, blockers, box_low, box_high``.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> [a.shape for a in clearance(craft).arrays]
+        [(144,), (144,), (144, 3), (3, 3), (3, 3)]
+        """
         return self.open_sky, self.own_part_clear, self.blockers, self.box_low, self.box_high
 
 
 def clearance(craft: Spacecraft) -> Clearance:
-    """The :class:`Clearance` of ``craft``, made once and kept in its cache."""
+    """Find what can block a ray leaving each side of a model; made once and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    Clearance
+        Its hull tests and part boxes.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> clear = clearance(craft)
+    >>> clear is clearance(craft), clear.blockers.sum(axis=1)[[0, 16, 48]].tolist()
+    (True, [0, 1, 2])
+    """
     return craft.cache.get("hull clearance", lambda: _clearance(craft))
 
 
@@ -128,22 +177,31 @@ def supporting_planes(
     normals: NDArray[np.float64],
     anchors: NDArray[np.float64],
 ) -> NDArray[np.bool_]:
-    """Whether no point lies more than ``tolerance`` in front of each plane.
+    """Test whether no point lies more than ``tolerance`` in front of each plane.
 
     Parameters
     ----------
-    points : (n_points, 3) float64
+    points : (n_points, 3) ndarray of float64
         The point set [m], at least three points not on one line.
     tolerance : float
         Height [m] above a plane that still counts as on it.
-    normals : (n_planes, 3) float64
+    normals : (n_planes, 3) ndarray of float64
         Unit normal of each plane, pointing to its front.
-    anchors : (n_planes, 3) float64
+    anchors : (n_planes, 3) ndarray of float64
         A point of each plane [m].
 
     Returns
     -------
-    (n_planes,) bool
+    (n_planes,) ndarray of bool
+        True where the plane supports the points' convex hull.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.meshes import box
+    >>> normals = np.array([[1.0, 0, 0], [1.0, 0, 0]])
+    >>> supporting_planes(box().vertices, 1e-9, normals, np.array([[0.5, 0, 0], [0.0, 0, 0]]))
+    array([ True, False])
     """
     try:
         hull = ConvexHull(points)

@@ -33,7 +33,24 @@ DARK, LIT, EITHER = 0, 1, 2
 
 @numba.njit(cache=True, nogil=True)
 def lone_corner(lit: NDArray[np.bool_]) -> int:
-    """The corner of a node with disagreeing corner flags ``lit`` (3,) whose flag the other two share not."""
+    """Find the corner of a node whose flag the other two do not share.
+
+    Parameters
+    ----------
+    lit : (3,) ndarray of bool
+        Corner flags, not all alike.
+
+    Returns
+    -------
+    int
+        0, 1 or 2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> lone_corner(np.array([True, False, True]))
+    1
+    """
     return 2 if lit[0] == lit[1] else (1 if lit[0] == lit[2] else 0)
 
 
@@ -44,9 +61,43 @@ def start_chords(
     mid_lit: NDArray[np.bool_],
     started: NDArray[np.bool_],
 ) -> tuple:
-    """Chords of nodes with disagreeing corners: apex, its state, and each mixed edge's bracket
-    (lit end, dark end; (n, 2, 2) each). Where ``started``, the edge midpoints' flags ``mid_lit`` (n, 3)
-    are the first bisection step."""
+    """Start the chords of nodes whose corners disagree.
+
+    Where ``started``, the edge midpoints' flags ``mid_lit`` are the first bisection step.
+
+    Parameters
+    ----------
+    corners : (n, 3, 2) ndarray of float64
+        Each node, in side coordinates.
+    lit : (n, 3) ndarray of bool
+        Corner flags, not all alike.
+    mid_lit : (n, 3) ndarray of bool
+        Flags of the edge midpoints, read where ``started``.
+    started : (n,) ndarray of bool
+        Whether the midpoints were cast.
+
+    Returns
+    -------
+    apex : (n, 2) ndarray of float64
+        The lone corner (:func:`lone_corner`) of each node.
+    apex_lit : (n,) ndarray of bool
+        Its flag.
+    lit_end : (n, 2, 2) ndarray of float64
+        The lit end of the bracket on each of the chord's two edges.
+    dark_end : (n, 2, 2) ndarray of float64
+        The dark end of each bracket.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])
+    >>> lit = np.array([[True, False, False]])  # corner 0 lit, the others dark
+    >>> apex, apex_lit, lit_end, dark_end = start_chords(corners, lit, np.zeros((1, 3), bool),
+    ...     np.array([False]))
+    >>> apex, apex_lit, dark_end
+    (array([[0., 0.]]), array([ True]), array([[[1., 0.],
+            [0., 1.]]]))
+    """
     n = corners.shape[0]
     apex = np.empty((n, 2))
     apex_lit = np.empty(n, dtype=np.bool_)
@@ -74,8 +125,37 @@ def start_chords(
 def chord_trials(
     lit_end: NDArray[np.float64], dark_end: NDArray[np.float64], steps: NDArray[np.float64]
 ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """The chords still being located (``steps > 0``) and their next points: ``BISECTION_POINTS``
-    evenly inside the bracket of each of their two edges, (m * 2 * BISECTION_POINTS, 2)."""
+    """Find the chords still being located and their next trial points.
+
+    Parameters
+    ----------
+    lit_end : (n, 2, 2) ndarray of float64
+        The lit end of the bracket on each of the chord's two edges.
+    dark_end : (n, 2, 2) ndarray of float64
+        The dark end of each bracket.
+    steps : (n,) ndarray of float64
+        Bisection steps each chord has to go.
+
+    Returns
+    -------
+    trying : (m,) ndarray of int64
+        The chords with ``steps > 0``.
+    points : (m * 2 * BISECTION_POINTS, 2) ndarray of float64
+        ``BISECTION_POINTS`` points evenly inside the bracket of each of their two edges.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])
+    >>> lit = np.array([[True, False, False]])  # corner 0 lit, the others dark
+    >>> apex, apex_lit, lit_end, dark_end = start_chords(corners, lit, np.zeros((1, 3), bool),
+    ...     np.array([False]))
+    >>> trying, points = chord_trials(lit_end, dark_end, np.array([2.0]))
+    >>> trying, points[:3]
+    (array([0]), array([[0.25, 0.  ],
+           [0.5 , 0.  ],
+           [0.75, 0.  ]]))
+    """
     trying = np.flatnonzero(steps > 0)
     points = np.empty((trying.shape[0] * 2 * BISECTION_POINTS, 2))
     row = 0
@@ -96,7 +176,36 @@ def chord_update(
     trying: NDArray[np.int64],
     lit: NDArray[np.bool_],
 ) -> None:
-    """Narrow the brackets of chords ``trying`` in place from the flags ``lit`` of their trial points."""
+    """Narrow the brackets of chords in place from the flags of their trial points.
+
+    Parameters
+    ----------
+    lit_end : (n, 2, 2) ndarray of float64
+        The lit end of the bracket on each of the chord's two edges.
+    dark_end : (n, 2, 2) ndarray of float64
+        The dark end of each bracket.
+    steps : (n,) ndarray of float64
+        Bisection steps to go; lowered by ``BITS_PER_ROUND``.
+    trying : (m,) ndarray of int64
+        The chords tried (:func:`chord_trials`).
+    lit : (m * 2 * BISECTION_POINTS,) ndarray of bool
+        Flags of their trial points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])
+    >>> lit = np.array([[True, False, False]])  # corner 0 lit, the others dark
+    >>> apex, apex_lit, lit_end, dark_end = start_chords(corners, lit, np.zeros((1, 3), bool),
+    ...     np.array([False]))
+    >>> steps = np.array([2.0])
+    >>> trying, points = chord_trials(lit_end, dark_end, steps)
+    >>> chord_update(lit_end, dark_end, steps, trying, points.sum(axis=1) < 0.4)  # lit below w1 + w2 = 0.4
+    >>> lit_end[0], dark_end[0], steps
+    (array([[0.25, 0.  ],
+           [0.  , 0.25]]), array([[0.5, 0. ],
+           [0. , 0.5]]), array([0.]))
+    """
     row = 0
     for k in trying:
         for e in range(2):
@@ -119,9 +228,45 @@ def chord_leaves(
     lit_end: NDArray[np.float64],
     dark_end: NDArray[np.float64],
 ) -> tuple:
-    """Each chord as a leaf: the line through the middles of its two brackets, positive on the lit
-    side (lines (n, MAX_LINES, 3), one each; lit mask 0b10), and its band: the wider bracket's length.
-    Both crossings at the apex: a uniform leaf of the other corners' state (no line)."""
+    """Make each chord a leaf: a line through the middles of its two brackets, and its band.
+
+    The line is positive on the lit side (one line each; lit mask 0b10) and the band is the wider
+    bracket's length. With both crossings at the apex, the leaf is uniform, of the other corners' state
+    (no line).
+
+    Parameters
+    ----------
+    apex : (n, 2) ndarray of float64
+        The lone corner of each chord's node.
+    apex_lit : (n,) ndarray of bool
+        Its flag.
+    lit_end : (n, 2, 2) ndarray of float64
+        The lit end of the bracket on each of the chord's two edges.
+    dark_end : (n, 2, 2) ndarray of float64
+        The dark end of each bracket.
+
+    Returns
+    -------
+    lines : (n, MAX_LINES, 3) ndarray of float64
+        The chord's line in row 0.
+    n_lines : (n,) ndarray of int64
+        1, or 0 for a uniform leaf.
+    mask : (n,) ndarray of uint64
+        Lit cells.
+    band : (n,) ndarray of float64
+        Bracket width [side coordinates].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])
+    >>> lit = np.array([[True, False, False]])  # corner 0 lit, the others dark
+    >>> apex, apex_lit, lit_end, dark_end = start_chords(corners, lit, np.zeros((1, 3), bool),
+    ...     np.array([False]))
+    >>> lines, n_lines, mask, band = chord_leaves(apex, apex_lit, lit_end, dark_end)
+    >>> lines[0, 0] / lines[0, 0, 0], n_lines, mask, band  # w1 + w2 = 0.5, lit below it
+    (array([ 1. ,  1. , -0.5]), array([1]), array([2], dtype=uint64), array([1.]))
+    """
     n = apex.shape[0]
     lines = np.zeros((n, MAX_LINES, 3))
     n_lines = np.ones(n, dtype=np.int64)
@@ -152,9 +297,40 @@ def chord_checks(
     lit_end: NDArray[np.float64],
     dark_end: NDArray[np.float64],
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """Where each located chord is checked: a point on its lit side and one on its dark side,
-    ``CHECK_BANDS`` bands off the middle of the chord (n, 2, 2); False where there is no line to check
-    (both crossings at the apex)."""
+    """Place the two check points of each located chord.
+
+    One point lies on its lit side and one on its dark side, ``CHECK_BANDS`` bands off the middle of the
+    chord.
+
+    Parameters
+    ----------
+    apex : (n, 2) ndarray of float64
+        The lone corner of each chord's node.
+    apex_lit : (n,) ndarray of bool
+        Its flag.
+    lit_end : (n, 2, 2) ndarray of float64
+        The lit end of the bracket on each of the chord's two edges.
+    dark_end : (n, 2, 2) ndarray of float64
+        The dark end of each bracket.
+
+    Returns
+    -------
+    points : (n, 2, 2) ndarray of float64
+        The lit-side and dark-side points.
+    needed : (n,) ndarray of bool
+        False where there is no line to check (both crossings at the apex).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])
+    >>> lit = np.array([[True, False, False]])  # corner 0 lit, the others dark
+    >>> apex, apex_lit, lit_end, dark_end = start_chords(corners, lit, np.zeros((1, 3), bool),
+    ...     np.array([False]))
+    >>> points, needed = chord_checks(apex, apex_lit, lit_end, dark_end)
+    >>> points.shape, needed
+    ((1, 2, 2), array([ True]))
+    """
     n = apex.shape[0]
     points = np.zeros((n, 2, 2))
     needed = np.ones(n, dtype=np.bool_)
@@ -175,8 +351,29 @@ def chord_checks(
 
 @numba.njit(cache=True, nogil=True)
 def pattern_of(lines: NDArray[np.float64], count: int, x: float, y: float) -> int:
-    """The sign pattern of point (x, y) on ``lines[:count]`` (bit ``j`` set where line ``j`` is
-    positive), -1 where it lies on a line (to round-off)."""
+    """Find the sign pattern of a point on some lines.
+
+    Parameters
+    ----------
+    lines : (k, 3) ndarray of float64
+        Lines ``(a, b, c)``.
+    count : int
+        How many of ``lines`` to use.
+    x, y : float
+        The point.
+
+    Returns
+    -------
+    int
+        Bit ``j`` set where line ``j`` is positive; -1 where the point lies on a line (to round-off).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> lines = np.array([[1.0, 0, -0.5], [0, 1.0, -0.25]])
+    >>> pattern_of(lines, 2, 0.6, 0.1), pattern_of(lines, 2, 0.6, 0.3), pattern_of(lines, 1, 0.5, 0.2)
+    (1, 3, -1)
+    """
     p = 0
     for j in range(count):
         value = lines[j, 0] * x + lines[j, 1] * y + lines[j, 2]
@@ -196,8 +393,46 @@ def leaf_moments(
     mask: NDArray[np.uint64],
     n_roots: int,
 ) -> NDArray[np.float64]:
-    """Lit area and its first moments ``(a, a w1, a w2)`` of each root (side), summed over the lit
-    cells of its leaves, (n_roots, 3), in side coordinates (the whole side has area 1/2)."""
+    """Sum the lit area and its first moments of each side over the lit cells of its leaves.
+
+    Parameters
+    ----------
+    root : (m,) ndarray of int64
+        Side (root) index of each leaf.
+    corners : (m, 3, 2) ndarray of float64
+        Each leaf's node, in side coordinates.
+    lines : (m, MAX_LINES, 3) ndarray of float64
+        Lines cutting each leaf.
+    n_lines : (m,) ndarray of int64
+        How many lines each leaf has.
+    mask : (m,) ndarray of uint64
+        Lit cells of each leaf, by sign pattern.
+    n_roots : int
+        Number of sides.
+
+    Returns
+    -------
+    (n_roots, 3) ndarray of float64
+        ``(a, a w1, a w2)`` in side coordinates (the whole side has area 1/2).
+
+    Examples
+    --------
+    Called by :meth:`~sunwind.geometry.rays.quadtree.Leaves.moments`:
+
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster, Segments, resolve_sides
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+    ...     np.zeros(2, np.int8), 0, none, 1e-2)
+    >>> leaves.moments()[:, 0].round(4)
+    array([0.0501, 0.2035])
+    """
     moments = np.zeros((n_roots, 3))
     scratch = np.empty((2, 3 + MAX_LINES, 2))
     oriented = np.empty((MAX_LINES, 3))
@@ -228,9 +463,52 @@ def leaf_states(
     query_root: NDArray[np.int64],
     query_point: NDArray[np.float64],
 ) -> NDArray[np.int8]:
-    """What the leaves say of each query point ``query_point`` (q, 2) of root ``query_root`` (q,):
-    ``LIT``, ``DARK``, or ``EITHER`` on a line or within a chord's band of it (or in no leaf). The
-    leaves of root ``r`` are rows ``start[r]:start[r + 1]``."""
+    """Say what the leaves make of query points: ``LIT``, ``DARK`` or ``EITHER``.
+
+    ``EITHER`` is on a line or within a chord's band of it, or in no leaf.
+
+    Parameters
+    ----------
+    start : (k + 1,) ndarray of int64
+        The leaves of root ``r`` are rows ``start[r]:start[r + 1]``.
+    corners : (m, 3, 2) ndarray of float64
+        Each leaf's node.
+    lines : (m, MAX_LINES, 3) ndarray of float64
+        Lines cutting each leaf.
+    n_lines : (m,) ndarray of int64
+        How many lines each leaf has.
+    mask : (m,) ndarray of uint64
+        Lit cells of each leaf.
+    band : (m,) ndarray of float64
+        Each leaf's chord band.
+    query_root : (q,) ndarray of int64
+        Root of each query point.
+    query_point : (q, 2) ndarray of float64
+        The points, in side coordinates.
+
+    Returns
+    -------
+    (q,) ndarray of int8
+        ``LIT``, ``DARK`` or ``EITHER`` for each point.
+
+    Examples
+    --------
+    Called by :meth:`~sunwind.geometry.rays.quadtree.Leaves.states`:
+
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster, Segments, resolve_sides
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+    ...     np.zeros(2, np.int8), 0, none, 1e-2)
+    >>> leaves.states(np.array([0, 0]), np.array([[0.1, 0.1], [0.1, 0.8]])).tolist() == [DARK, LIT]
+    True
+    """
     out = np.full(query_root.shape[0], EITHER, dtype=np.int8)
     for q in range(query_root.shape[0]):
         x, y = query_point[q, 0], query_point[q, 1]

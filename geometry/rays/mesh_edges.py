@@ -47,6 +47,16 @@ class MeshEdges:
         Facets on each edge, grouped by edge.
     way : (n_incidences,) int8
         +1 where the facet runs its edge from end 0 to end 1 (right-hand rule of its normal), else -1.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> craft = build_spacecraft(box(), uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> edges = mesh_edges(craft)
+    >>> edges.n_corners, edges.n_edges, edges.facet_edges.shape
+    (8, 18, (12, 3))
     """
 
     corner: NDArray[np.int64]
@@ -59,21 +69,94 @@ class MeshEdges:
 
     @property
     def n_edges(self) -> int:
+        """Number of edges.
+
+        Returns
+        -------
+        int
+            ``len(ends)``.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box
+        >>> craft = build_spacecraft(box(), uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> mesh_edges(craft).n_edges  # 12 of the cube and a diagonal on each of its 6 faces
+        18
+        """
         return len(self.ends)
 
     def edge_facet_count(self) -> NDArray[np.int64]:
-        """Number of facets on each edge, (n_edges,)."""
+        """Count the facets on each edge.
+
+        Returns
+        -------
+        (n_edges,) ndarray of int64
+            1 for a border, 2 for an edge between two facets, more for a fin or a duplicate layer.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box
+        >>> craft = build_spacecraft(box(), uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> set(mesh_edges(craft).edge_facet_count().tolist())
+        {2}
+        """
         return np.diff(self.start)
 
 
 def mesh_edges(craft: Spacecraft) -> MeshEdges:
-    """The :class:`MeshEdges` of ``craft``, made once and kept in its cache."""
+    """Find the edges and corners of a model by position; made once and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    MeshEdges
+        Its welded corners and edges.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> craft = build_spacecraft(box(), uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> edges = mesh_edges(craft)
+    >>> edges is mesh_edges(craft), edges.way[:4].tolist()
+    (True, [1, -1, -1, 1])
+    """
     return craft.cache.get("mesh edges", lambda: _build(craft.vertices, craft.faces))
 
 
 def welded_corners(vertices: NDArray[np.float64], share: float = WELD_SHARE) -> NDArray[np.int64]:
-    """Number the vertices so that vertices closer than ``share`` of the half-size of their bounding
-    box get one number (chains of close vertices join), numbered 0, 1, ... in order of first vertex."""
+    """Number the vertices so that vertices that coincide get one number.
+
+    Vertices closer than ``share`` of the half-size of their bounding box are one corner (chains of close
+    vertices join); corners are numbered 0, 1, ... in order of their first vertex.
+
+    Parameters
+    ----------
+    vertices : (n, 3) ndarray of float64
+        Vertex positions [m].
+    share : float, optional
+        Weld distance as a share of the half-size.
+
+    Returns
+    -------
+    (n,) ndarray of int64
+        Corner number of each vertex.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> welded_corners(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1e-9, 0]]))
+    array([0, 1, 1])
+    """
     if not len(vertices):
         return np.zeros(0, dtype=np.int64)
     half = float(np.ptp(vertices, axis=0).max()) / 2
@@ -116,10 +199,35 @@ def _build(vertices: NDArray[np.float64], faces: NDArray[np.int64]) -> MeshEdges
 
 
 def side_corners(craft: Spacecraft) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
-    """Corner numbers of each side, (n_sides, 3): its welded corners (:mod:`.mesh_edges`: vertices that
-    coincide are one corner, whatever their numbers, the facets' winding or part); and the sides at
-    each corner number ``i``, ``sides[start[i]:start[i + 1]]``. A sheet's front and back share corners,
-    but never both face the source. Made once and kept in the model's cache."""
+    """Find the welded corners of each side and the sides at each corner; made once and kept in the cache.
+
+    Vertices that coincide are one corner, whatever their numbers, the facets' winding or part
+    (:func:`mesh_edges`). A sheet's front and back share corners, but never both face the source.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    ids : (n_sides, 3) ndarray of int64
+        Corner numbers of each side.
+    start : (n_corners + 1,) ndarray of int64
+        The sides at corner ``i`` are ``sides[start[i]:start[i + 1]]``.
+    sides : (3 * n_sides,) ndarray of int64
+        Sides, grouped by corner.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> craft = build_spacecraft(box(), uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> ids, start, sides = side_corners(craft)
+    >>> ids[0].tolist(), sides[start[0]:start[1]].tolist()
+    ([3, 2, 0], [0, 1, 4, 5, 8, 9])
+    """
 
     def make() -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
         ids = mesh_edges(craft).corner[craft.faces[craft.side_facet]]

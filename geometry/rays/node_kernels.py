@@ -51,23 +51,61 @@ def classify_nodes(
     segments: NDArray[np.float64],
     depths: NDArray[np.int64],
 ) -> tuple:
-    """What becomes of each node (``LEAF`` ... ``SPLIT``), the lines cutting it, and the points it casts.
+    """Decide what becomes of each node (``LEAF`` ... ``SPLIT``), the lines cutting it and its points.
 
-    ``segments`` (m, 2, 2) are the outline segments on the sides ``segment_side`` (ascending); ``floor``
-    is the depth each node is split to before anything else (0 but in the fallback); ``depths`` =
-    (uniform, mixed, most): a node crossed by more lines than ``MAX_LINES`` is split below depth
-    ``most``; a node not cut along lines whose corners disagree is checked at its edge midpoints below
-    ``mixed`` and cut along a chord at the limit; a whole side whose corners agree is checked at its
-    edge midpoints; a node whose corners agree is otherwise a uniform leaf.
+    A node crossed by more lines than ``MAX_LINES`` is split below depth ``most``; a node not cut along
+    lines whose corners disagree is checked at its edge midpoints below ``mixed`` and cut along a chord
+    at the limit; a whole side whose corners agree is checked at its edge midpoints; a node whose corners
+    agree is otherwise a uniform leaf.
+
+    Parameters
+    ----------
+    node_side : (n,) ndarray of int64
+        Side of each node.
+    corners : (n, 3, 2) ndarray of float64
+        Each node, in side coordinates.
+    lit : (n, 3) ndarray of bool
+        Corner flags.
+    depth : (n,) ndarray of int64
+        Depth of each node.
+    flags : (n,) ndarray of int8
+        Node flags (``TRUST``, ``CENTRE_DIFFERS``, ``SUSPECT``).
+    floor : (n,) ndarray of int64
+        Depth each node is split to before anything else (0 but in the fallback).
+    segment_side : (m,) ndarray of int64
+        Side of each outline segment, ascending.
+    segments : (m, 2, 2) ndarray of float64
+        The outline segments, in side coordinates.
+    depths : (3,) ndarray of int64
+        ``(uniform, mixed, most)`` (:func:`~.quadtree.depths`).
 
     Returns
     -------
-    action : (n,) int8
-    lines : (n, MAX_LINES, 3) float64 and n_lines (n,) int64
+    action : (n,) ndarray of int8
+        ``LEAF``, ``ARRANGE``, ``CHECK``, ``BISECT`` or ``SPLIT``.
+    lines : (n, MAX_LINES, 3) ndarray of float64
         The distinct lines of the outline segments crossing an ``ARRANGE`` node.
-    points : (n, MOST_POINTS, 2) float64 and n_points (n,) int64
-        Points to cast: a point inside each cell of an ``ARRANGE`` node (its sign pattern in
-        ``pattern`` (n, MOST_POINTS) int64), or the edge midpoints of a ``SPLIT`` or ``CHECK`` node.
+    n_lines : (n,) ndarray of int64
+        How many.
+    points : (n, MOST_POINTS, 2) ndarray of float64
+        Points to cast: a point inside each cell of an ``ARRANGE`` node, or the edge midpoints of a
+        ``SPLIT`` or ``CHECK`` node.
+    pattern : (n, MOST_POINTS) ndarray of int64
+        Sign pattern of the cell of each point.
+    n_points : (n,) ndarray of int64
+        How many points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])  # a whole side
+    >>> lit = np.array([[False, True, True]])  # corner 0 in shadow
+    >>> outline = np.array([[[0.5, -0.1], [-0.1, 0.5]]])  # one outline segment across it, on side 7
+    >>> zero, one, trust = np.zeros(1, np.int64), np.ones(1, np.int64), np.full(1, TRUST, np.int8)
+    >>> action, lines, n_lines, points, pattern, n_points = classify_nodes(np.array([7]), corners, lit,
+    ...     one, trust, zero, np.array([7]), outline, np.array([5, 5, 10]))
+    >>> action.tolist() == [ARRANGE], n_lines, n_points, pattern[0, :2]
+    (True, array([1]), array([2]), array([0, 1]))
     """
     n = node_side.shape[0]
     action = np.empty(n, dtype=np.int8)
@@ -178,14 +216,52 @@ def resolve_nodes(
     n_points: NDArray[np.int64],
     cast: NDArray[np.bool_],
 ) -> tuple:
-    """What the rays at the nodes' points (``cast`` (n, MOST_POINTS), as :func:`classify_nodes` laid them
-    out) make of each node: ``kind`` (n,) int8, 0 a leaf with the lit cells ``mask`` (n,) uint64 (bit
-    ``p`` set where the cell of sign pattern ``p`` is lit; a node without lines has the one pattern 0),
-    1 split into four children (from its midpoints), 2 kept for the next round no longer trusting the
-    outline (a corner disagrees with its cell), 3 a chord (its midpoints its first bisection step where
-    it has them cast: a ``CHECK`` node).
+    """Read the rays cast at the nodes' points and decide each node.
 
-    Returns kind, mask, and the children (root, corners, lit, depth, flags) in node order.
+    Parameters
+    ----------
+    root : (n,) ndarray of int64
+        Root (side) index of each node.
+    corners : (n, 3, 2) ndarray of float64
+        Each node, in side coordinates.
+    lit : (n, 3) ndarray of bool
+        Corner flags.
+    depth : (n,) ndarray of int64
+        Depth of each node.
+    flags : (n,) ndarray of int8
+        Node flags.
+    action, lines, n_lines, pattern, n_points : ndarray
+        As :func:`classify_nodes` returned them.
+    cast : (n, MOST_POINTS) ndarray of bool
+        Lit flags of the points, as :func:`classify_nodes` laid them out.
+
+    Returns
+    -------
+    kind : (n,) ndarray of int8
+        0 a leaf; 1 split into four children (from its midpoints); 2 kept for the next round no longer
+        trusting the outline (a corner disagrees with its cell); 3 a chord (its midpoints its first
+        bisection step where it has them cast: a ``CHECK`` node).
+    mask : (n,) ndarray of uint64
+        For a leaf, bit ``p`` set where the cell of sign pattern ``p`` is lit (a node without lines has
+        the one pattern 0).
+    children : tuple of ndarray
+        Root, corners, lit, depth and flags of the children, in node order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> corners = np.array([[[0.0, 0], [1, 0], [0, 1]]])  # a whole side
+    >>> lit = np.array([[False, True, True]])  # corner 0 in shadow
+    >>> outline = np.array([[[0.5, -0.1], [-0.1, 0.5]]])  # one outline segment across it, on side 7
+    >>> zero, one, trust = np.zeros(1, np.int64), np.ones(1, np.int64), np.full(1, TRUST, np.int8)
+    >>> action, lines, n_lines, points, pattern, n_points = classify_nodes(np.array([7]), corners, lit,
+    ...     one, trust, zero, np.array([7]), outline, np.array([5, 5, 10]))
+    >>> cast = np.zeros((1, MOST_POINTS), dtype=bool)
+    >>> cast[0, 0] = True  # the cell away from corner 0 is lit, the one at it is not
+    >>> kind, mask, children = resolve_nodes(zero, corners, lit, one, trust, action, lines, n_lines,
+    ...     pattern, n_points, cast)
+    >>> kind, mask, len(children[0])  # a leaf, lit in the cell of pattern 0
+    (array([0], dtype=int8), array([1], dtype=uint64), 0)
     """
     n = root.shape[0]
     kind = np.zeros(n, dtype=np.int8)

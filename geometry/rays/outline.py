@@ -44,8 +44,35 @@ EDGE_ON = 1e-12
 
 
 def probe_counts(craft: Spacecraft, edges: MeshEdges) -> NDArray[np.int64]:
-    """Probe points on each edge: the edge's length over the probe spacing, at least ``LEAST_POINTS``, at most
-    ``MAX_POINTS_PER_EDGE``, the spacing widened until all fit the budget. Made once per model."""
+    """Count the probe points on each edge of a model; made once per model and kept in its cache.
+
+    Each edge gets its length over the probe spacing, at least ``LEAST_POINTS``, at most
+    ``MAX_POINTS_PER_EDGE``, the spacing widened until all fit the budget.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    edges : MeshEdges
+        Its edges (:func:`~.mesh_edges.mesh_edges`).
+
+    Returns
+    -------
+    (n_edges,) ndarray of int64
+        Probe points per edge.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.rays.mesh_edges import mesh_edges
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> counts = probe_counts(craft, mesh_edges(craft))
+    >>> counts[:4], int(counts.sum())
+    (array([6, 6, 9, 6]), 1104)
+    """
 
     def make() -> NDArray[np.int64]:
         ends = craft.vertices[edges.ends]
@@ -79,6 +106,19 @@ class Outline:
         End points [m] of that edge.
     rays : int
         Rays cast to find them.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> found = outline(craft, direction, np.flatnonzero(craft.side_normals @ direction > 0))
+    >>> found.sides[:4], found.edges[:4], found.ends.shape
+    (array([69, 71, 24, 28]), array([ 85,  85, 100, 100]), (14, 2, 3))
     """
 
     sides: NDArray[np.int64]
@@ -88,20 +128,72 @@ class Outline:
 
 
 def silhouette(craft: Spacecraft, direction: NDArray[np.float64]) -> NDArray[np.int8]:
-    """Which way each edge of the model casts an outline seen from ``direction``: +1 or -1 toward
-    ``±direction x (end 1 - end 0)`` (away from its facets), 0 where it casts none, (n_edges,)."""
+    """Find which way each edge of a model casts an outline seen from a direction.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source, body frame.
+
+    Returns
+    -------
+    (n_edges,) ndarray of int8
+        +1 or -1 toward ``±direction x (end 1 - end 0)`` (away from its facets), 0 where it casts none.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> away = silhouette(craft, direction)
+    >>> int((away != 0).sum()), away[10:13]
+    (44, array([ 0,  1, -1], dtype=int8))
+    """
     edges = mesh_edges(craft)
     return _silhouette(edges.start, edges.facet, edges.way, craft.facet_normals @ direction)
 
 
 def outline(craft: Spacecraft, direction: NDArray[np.float64], facing: NDArray[np.int64]) -> Outline:
-    """The facing sides that shadow outlines of the model land on, for a source along unit
-    ``direction`` (``facing``: the sides facing it), and the silhouette edge of each.
+    """Find the facing sides that shadow outlines land on, and the silhouette edge of each.
 
     Each probe point of a silhouette edge casts a ray away from the source, started just beyond the
     edge as seen from the source: the first side it meets is where the edge's shadow lands, unless it
     is a facet on the edge itself; and then one toward the source: the shadow is an outline only where
-    the edge is lit."""
+    the edge is lit.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source, body frame.
+    facing : (n_facing,) ndarray of int64
+        The sides facing it.
+
+    Returns
+    -------
+    Outline
+        The (side, edge) pairs found and the rays cast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> found = outline(craft, direction, np.flatnonzero(craft.side_normals @ direction > 0))
+    >>> found.rays, sorted(set(found.sides.tolist()))[:5]
+    (302, [24, 26, 28, 30, 54])
+    """
     edges = mesh_edges(craft)
     scene = craft.scene
     away = silhouette(craft, direction)

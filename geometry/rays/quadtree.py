@@ -46,13 +46,70 @@ _WHOLE_SIDE = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
 
 
 class Caster:
-    """Casts rays toward the source from points of sides, counting them."""
+    """Cast rays toward the source from points of sides, counting them.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source, body frame.
+
+    Attributes
+    ----------
+    craft : Spacecraft
+        The model.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source.
+    rays : int
+        Rays cast so far; others add theirs (the outline's probes) too.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> caster = Caster(craft, direction)
+    >>> caster.lit(np.array([24, 24]), np.array([[0.1, 0.1], [0.1, 0.8]])), caster.rays
+    (array([False,  True]), 2)
+    """
 
     def __init__(self, craft: Spacecraft, direction: NDArray[np.float64]) -> None:
         self.craft, self.direction, self.rays = craft, direction, 0
 
     def lit(self, sides: NDArray[np.int64], points: NDArray[np.float64]) -> NDArray[np.bool_]:
-        """Lit flag of each point ``points`` (n, 2) of ``sides`` (n,)."""
+        """Cast a ray toward the source from each of some points of sides.
+
+        Points a coplanar facet covers count as dark (:func:`uncovered`).
+
+        Parameters
+        ----------
+        sides : (n,) ndarray of int64
+            Side of each point.
+        points : (n, 2) ndarray of float64
+            Points ``(w1, w2)`` in their side's coordinates.
+
+        Returns
+        -------
+        (n,) ndarray of bool
+            True where the point is lit.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> Caster(craft, direction).lit(np.array([8, 24]), np.array([[0.3, 0.3], [0.1, 0.1]]))
+        array([ True, False])
+        """
         craft, scene = self.craft, self.craft.scene
         origins = node_origins(
             craft.triangles,
@@ -75,8 +132,39 @@ class Caster:
 def uncovered(
     craft: Spacecraft, sides: NDArray[np.int64], points: NDArray[np.float64], lit: NDArray[np.bool_]
 ) -> NDArray[np.bool_]:
-    """``lit`` (n,) with the points ``points`` (n, 2) of ``sides`` that a coplanar facet covers made dark
-    (:class:`~.crossings.Crossings`: a duplicate layer is lit once, on top)."""
+    """Darken the points of sides that a coplanar facet covers.
+
+    A duplicate layer is lit once, on top (:class:`~.crossings.Crossings`).
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    sides : (n,) ndarray of int64
+        Side of each point.
+    points : (n, 2) ndarray of float64
+        Points ``(w1, w2)`` in their side's coordinates.
+    lit : (n,) ndarray of bool
+        Lit flag of each point by its ray; changed in place.
+
+    Returns
+    -------
+    (n,) ndarray of bool
+        ``lit``, False where a coplanar facet covers the point.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import plate
+    >>> sheet = plate(divisions=1)
+    >>> craft = build_spacecraft(MeshData.concatenate([sheet, sheet]), two_sided=["plate"],
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> uncovered(craft, np.array([0, 2]), np.array([[0.2, 0.2], [0.2, 0.2]]), np.array([True, True]))
+    array([False,  True])
+    """
     lines = crossings(craft)
     if not len(lines.cover):
         return lit
@@ -89,13 +177,49 @@ def uncovered(
 
 @dataclass(frozen=True)
 class Segments:
-    """Outline segments on sides: ``side`` (m,) ascending and ``ends`` (m, 2, 2) in side coordinates."""
+    """Outline segments on sides, in side coordinates.
+
+    Attributes
+    ----------
+    side : (m,) ndarray of int64
+        The side of each segment, ascending.
+    ends : (m, 2, 2) ndarray of float64
+        End points ``(w1, w2)`` of each segment.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> segments = Segments.of(np.array([5, 2]), np.array([[[0, 0], [1, 0]], [[0, 0], [0, 1]]], float))
+    >>> segments.side, segments.ends[0]
+    (array([2, 5]), array([[0., 0.],
+           [0., 1.]]))
+    """
 
     side: NDArray[np.int64]
     ends: NDArray[np.float64]
 
     @classmethod
     def of(cls, side: NDArray[np.int64], ends: NDArray[np.float64]) -> Segments:
+        """Make segments sorted by side.
+
+        Parameters
+        ----------
+        side : (m,) ndarray of int64
+            The side of each segment, in any order.
+        ends : (m, 2, 2) ndarray of float64
+            End points of each segment in its side's coordinates.
+
+        Returns
+        -------
+        Segments
+            The segments, stably sorted by side.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> Segments.of(np.array([5, 2]), np.zeros((2, 2, 2))).side
+        array([2, 5])
+        """
         order = np.argsort(side, kind="stable")
         return cls(np.ascontiguousarray(side[order]), np.ascontiguousarray(ends[order]))
 
@@ -120,6 +244,21 @@ class Leaves:
     band : (m,) float64
         A chord's bracket [side coordinates], where its line and the shadow's true edge may differ; 0
         for leaves cut exactly or uniform.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+    ...     np.zeros(2, np.int8), 0, none, 1e-2)
+    >>> leaves.sides, leaves.start  # side 24 is one leaf cut along a chord, side 26 seven
+    (array([24, 26]), array([0, 1, 8]))
     """
 
     sides: NDArray[np.int64]
@@ -132,24 +271,108 @@ class Leaves:
 
     @classmethod
     def empty(cls) -> Leaves:
+        """Make leaves of no side.
+
+        Returns
+        -------
+        Leaves
+            Empty arrays of the right shapes.
+
+        Examples
+        --------
+        >>> Leaves.empty().sides, Leaves.empty().corners.shape
+        (array([], dtype=int64), (0, 3, 2))
+        """
         return cls.of(np.zeros(0, np.int64), np.zeros(0, np.int64), _no_leaves())
 
     @classmethod
     def of(cls, sides: NDArray[np.int64], root: NDArray[np.int64], parts: tuple) -> Leaves:
-        """Leaves of ``sides`` from rows ``parts`` (corners, lines, n_lines, mask, band) of
-        roots ``root`` (index into ``sides``), in any order."""
+        """Gather the leaves of sides from rows given in any order.
+
+        Parameters
+        ----------
+        sides : (k,) ndarray of int64
+            The sides, ascending.
+        root : (m,) ndarray of int64
+            Index into ``sides`` of each row's side.
+        parts : tuple of ndarray
+            ``corners, lines, n_lines, mask, band`` of each row (see the attributes).
+
+        Returns
+        -------
+        Leaves
+            The rows grouped by side.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.rays.edge_kernels import MAX_LINES
+        >>> whole = np.array([[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]])
+        >>> parts = (whole, np.zeros((1, MAX_LINES, 3)), np.zeros(1, np.int64), np.ones(1, np.uint64),
+        ...     np.zeros(1))
+        >>> leaves = Leaves.of(np.array([7]), np.array([0]), parts)  # side 7, wholly lit
+        >>> leaves.start, leaves.moments().round(4)
+        (array([0, 1]), array([[0.5   , 0.1667, 0.1667]]))
+        """
         order = np.argsort(root, kind="stable")
         start = np.searchsorted(root[order], np.arange(len(sides) + 1)).astype(np.int64)
         return cls(sides, start, *(np.ascontiguousarray(p[order]) for p in parts))
 
     def moments(self) -> NDArray[np.float64]:
-        """Lit area and first moments ``(a, a w1, a w2)`` of each side in side coordinates (the whole
-        side has area 1/2), (k, 3)."""
+        """Compute the lit area and its first moments of each side, in side coordinates.
+
+        Returns
+        -------
+        (k, 3) ndarray of float64
+            ``(a, a w1, a w2)``; the whole side has area 1/2.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+        >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+        ...     np.zeros(2, np.int8), 0, none, 1e-2)
+        >>> leaves.moments().round(4)  # lit shares 2 a: 0.1 and 0.4
+        array([[0.0501, 0.0053, 0.0395],
+               [0.2035, 0.0955, 0.0843]])
+        """
         root = np.repeat(np.arange(len(self.sides)), np.diff(self.start))
         return leaf_moments(root, self.corners, self.lines, self.n_lines, self.mask, len(self.sides))
 
     def find(self, sides: NDArray[np.int64]) -> NDArray[np.int64]:
-        """Index of each of ``sides`` in :attr:`sides`, -1 where it has no leaves."""
+        """Find the index of sides in :attr:`sides`.
+
+        Parameters
+        ----------
+        sides : (n,) ndarray of int64
+            Sides to look up.
+
+        Returns
+        -------
+        (n,) ndarray of int64
+            Index of each, -1 where it has no leaves.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+        >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+        ...     np.zeros(2, np.int8), 0, none, 1e-2)
+        >>> leaves.find(np.array([26, 0]))
+        array([ 1, -1])
+        """
         index = np.searchsorted(self.sides, sides)
         inside = index < len(self.sides)
         found = np.zeros(len(sides), dtype=bool)
@@ -157,8 +380,35 @@ class Leaves:
         return np.where(found, index, -1)
 
     def states(self, index: NDArray[np.int64], points: NDArray[np.float64]) -> NDArray[np.int8]:
-        """What the leaves say of ``points`` (q, 2) of sides ``self.sides[index]``: ``LIT``, ``DARK`` or
-        ``EITHER`` (:mod:`.leaf_kernels`)."""
+        """Say what the leaves make of points of their sides.
+
+        Parameters
+        ----------
+        index : (q,) ndarray of int64
+            Index into :attr:`sides` of each point's side.
+        points : (q, 2) ndarray of float64
+            Points ``(w1, w2)`` in side coordinates.
+
+        Returns
+        -------
+        (q,) ndarray of int8
+            ``LIT``, ``DARK`` or ``EITHER`` (:mod:`.leaf_kernels`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+        >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+        ...     np.zeros(2, np.int8), 0, none, 1e-2)
+        >>> leaves.states(np.array([0, 0]), np.array([[0.1, 0.1], [0.1, 0.8]]))  # DARK, LIT
+        array([0, 1], dtype=int8)
+        """
         return leaf_states(
             self.start,
             self.corners,
@@ -171,13 +421,62 @@ class Leaves:
         )
 
     def band_share(self) -> NDArray[np.float64]:
-        """Share of each side's area within its chords' bands, (k,): where a chord may be wrong."""
+        """Find the share of each side's area within its chords' bands, where a chord may be wrong.
+
+        Returns
+        -------
+        (k,) ndarray of float64
+            Share of each side's area.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+        >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+        ...     np.zeros(2, np.int8), 0, none, 1e-2)
+        >>> leaves.band_share().round(4)
+        array([0.0313, 0.0322])
+        """
         edge = np.linalg.norm(self.corners - np.roll(self.corners, 1, axis=1), axis=2).max(axis=1)
         root = np.repeat(np.arange(len(self.sides)), np.diff(self.start))
         return 2.0 * np.bincount(root, weights=self.band * edge, minlength=len(self.sides))
 
     def replaced(self, other: Leaves) -> Leaves:
-        """These leaves with every side of ``other`` taken from ``other`` instead."""
+        """Replace the leaves of the sides of another set by theirs.
+
+        Parameters
+        ----------
+        other : Leaves
+            Leaves of some sides, which replace these leaves' of the same sides.
+
+        Returns
+        -------
+        Leaves
+            Leaves of the union of the sides; these leaves when ``other`` is empty.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+        >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+        ...     np.zeros(2, np.int8), 0, none, 1e-2)
+        >>> more = resolve_sides(Caster(craft, direction), np.array([26, 28]), np.array([False, True]),
+        ...     np.zeros(2, np.int8), 0, none, 1e-2)
+        >>> leaves.replaced(more).sides, leaves.replaced(Leaves.empty()) is leaves
+        (array([24, 26, 28]), True)
+        """
         if not len(other.sides):
             return self
         keep = ~np.isin(self.sides, other.sides)
@@ -204,8 +503,25 @@ def _no_leaves() -> tuple:
 
 
 def depths(tolerance: float) -> NDArray[np.int64]:
-    """Split depths (uniform, mixed, most) of :func:`~.node_kernels.classify_nodes` for ``tolerance``:
-    a node at depth ``d`` holds ``4**-d`` of its side."""
+    """Find the split depths (uniform, mixed, most) of :func:`~.node_kernels.classify_nodes` for a tolerance.
+
+    A node at depth ``d`` holds ``4**-d`` of its side.
+
+    Parameters
+    ----------
+    tolerance : float
+        Share of a side's area its lit part is found to, in (0, 1).
+
+    Returns
+    -------
+    (3,) ndarray of int64
+        Depths ``d, d, d + MOST_EXTRA_DEPTH`` with ``d = max(1, ceil(log4(1 / tolerance)))``.
+
+    Examples
+    --------
+    >>> depths(1e-3), depths(0.5)
+    (array([ 5,  5, 10]), array([1, 1, 6]))
+    """
     depth = max(1, math.ceil(math.log(1 / tolerance, 4)))
     return np.array([depth, depth, depth + MOST_EXTRA_DEPTH], dtype=np.int64)
 
@@ -219,12 +535,47 @@ def resolve_sides(
     segments: Segments,
     tolerance: float,
 ) -> Leaves:
-    """The :class:`Leaves` of ``sides`` (ascending), each resolved to ``tolerance`` of its area.
+    """Resolve the lit part of sides into :class:`Leaves`, each to ``tolerance`` of its area.
 
-    ``centre_lit`` is the state of each side's centroid ray, ``flags`` each root's node flags
-    (:mod:`.node_kernels`), ``floor`` the depth every side is split to before anything else (0 but in
-    the fallback), ``segments`` the outline segments. Each round casts one batch: the points of the
-    nodes being decided and the next bisection points of every chord still being located.
+    Each round casts one batch: the points of the nodes being decided and the next bisection points of
+    every chord still being located.
+
+    Parameters
+    ----------
+    caster : Caster
+        Casts the rays and counts them.
+    sides : (n,) ndarray of int64
+        The sides, ascending.
+    centre_lit : (n,) ndarray of bool
+        State of each side's centroid ray.
+    flags : (n,) ndarray of int8
+        Node flags of each root (:mod:`.node_kernels`).
+    floor : int
+        Depth every side is split to before anything else (0 but in the fallback).
+    segments : Segments
+        The outline segments.
+    tolerance : float
+        Share of a side's area its lit part is found to.
+
+    Returns
+    -------
+    Leaves
+        The leaves of ``sides``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> caster = Caster(craft, direction)
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves = resolve_sides(caster, np.array([24]), np.array([False]), np.zeros(1, np.int8), 0, none, 1e-2)
+    >>> round(2 * float(leaves.moments()[0, 0]), 3), caster.rays  # lit share of side 24, rays cast
+    (0.1, 26)
     """
     n = len(sides)
     corners = np.broadcast_to(_WHOLE_SIDE, (n, 3, 2)).copy()

@@ -11,8 +11,9 @@ from sunwind.geometry.rays.shadows import DEFAULT_TOLERANCE, check_sampling
 
 @dataclass(frozen=True)
 class ShadowSampling:
-    """How the shadow pass finds the lit share of each side (:meth:`~sunwind.geometry.rays.shadows.
-    SideSampler.illuminate`), checked when made.
+    """How the shadow pass finds the lit share of each side, checked when made.
+
+    The pass is :meth:`~sunwind.geometry.rays.shadows.SideSampler.illuminate`.
 
     Parameters
     ----------

@@ -23,7 +23,31 @@ _HITS_PER_CHUNK = 1_024
 
 
 class SceneFrame:
-    """The affine map between metres (body frame) and float32 scene coordinates."""
+    """Map between metres (body frame) and float32 scene coordinates.
+
+    The model is recentred on its bounding-box centre and divided by its half-size.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) ndarray of float64
+        Triangle corners [m], body frame.
+
+    Attributes
+    ----------
+    centre : (3,) ndarray of float64
+        Centre of the bounding box [m].
+    half_size : float
+        Half the largest extent of the bounding box [m].
+    offset_m : float
+        How far ray origins are pushed off their surface [m]: ``ORIGIN_OFFSET * half_size``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> frame = SceneFrame(np.array([[[0.0, 0, 0], [4, 0, 0], [0, 2, 0]]]))
+    >>> frame.centre, frame.half_size, frame.offset_m
+    (array([2., 1., 0.]), 2.0, 2e-06)
+    """
 
     def __init__(self, triangles: NDArray[np.float64]) -> None:
         lo = triangles.reshape(-1, 3).min(axis=0)
@@ -33,23 +57,74 @@ class SceneFrame:
         self.offset_m = ORIGIN_OFFSET * self.half_size
 
     def to_scene(self, points_m: NDArray[np.float64]) -> NDArray[np.float32]:
-        """Points [m] (..., 3) to scene coordinates, float32."""
+        """Convert points [m] to scene coordinates.
+
+        Parameters
+        ----------
+        points_m : (..., 3) ndarray of float64
+            Points [m], body frame.
+
+        Returns
+        -------
+        (..., 3) ndarray of float32
+            ``(points_m - centre) / half_size``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> frame = SceneFrame(np.array([[[0.0, 0, 0], [4, 0, 0], [0, 2, 0]]]))
+        >>> frame.to_scene(np.array([4.0, 1.0, 0.0]))
+        array([1., 0., 0.], dtype=float32)
+        """
         return ((points_m - self.centre) / self.half_size).astype(np.float32)
 
     def origins(self, points_m: NDArray[np.float64], normals: NDArray[np.float64]) -> NDArray[np.float32]:
-        """Ray origins in scene coordinates: ``points_m`` pushed off their surface along ``normals``."""
+        """Make ray origins in scene coordinates: points pushed off their surface along its normal.
+
+        Parameters
+        ----------
+        points_m : (n, 3) ndarray of float64
+            Points on the surface [m].
+        normals : (n, 3) ndarray of float64
+            Unit normal of the surface at each point, toward the side the rays leave.
+
+        Returns
+        -------
+        (n, 3) ndarray of float32
+            ``to_scene(points_m + offset_m * normals)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> frame = SceneFrame(np.array([[[0.0, 0, 0], [4, 0, 0], [0, 2, 0]]]))
+        >>> frame.origins(np.array([[2.0, 1.0, 0.0]]), np.array([[0.0, 0.0, 1.0]]))
+        array([[0.e+00, 0.e+00, 1.e-06]], dtype=float32)
+        """
         return self.to_scene(points_m + self.offset_m * normals)
 
 
 class RayScene(SceneFrame):
     """Embree scene of a triangle set, built once; batched occlusion and first-hit queries.
 
+    Large batches are split over the threads of :mod:`sunwind.geometry.parallel`.
+
     Parameters
     ----------
-    triangles : (n, 3, 3) float64
+    triangles : (n, 3, 3) ndarray of float64
         Triangle corners [m], body frame.
 
-    Large batches are split over the threads of :mod:`sunwind.geometry.parallel`.
+    Examples
+    --------
+
+    >>> import numpy as np
+    >>> from sunwind.meshes import box
+    >>> scene = RayScene(box().vertices[box().faces])
+    >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+    >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+    >>> scene.n_triangles, scene.half_size
+    (12, 0.5)
+    >>> scene.occluded(origins, toward)
+    array([ True, False])
     """
 
     def __init__(self, triangles: NDArray[np.float64]) -> None:
@@ -71,27 +146,92 @@ class RayScene(SceneFrame):
         return parts[0] if len(parts) == 1 else np.concatenate(parts)
 
     def occluded(self, origins: NDArray[np.float32], directions: NDArray[np.float32]) -> NDArray[np.bool_]:
-        """Whether each ray hits any triangle.
+        """Test whether each ray hits any triangle.
 
         Parameters
         ----------
         origins : (n, 3) float32
-            Ray origins in scene coordinates (see :meth:`origins`).
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
         directions : (n, 3) float32
             Unit directions, body frame.
+
+        Returns
+        -------
+        (n,) ndarray of bool
+            True where the ray hits a triangle.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = RayScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> scene.occluded(origins, toward)
+        array([ True, False])
         """
         if not len(origins):
             return np.zeros(0, dtype=bool)
         return self._run(origins, directions, "OCCLUDED") != -1
 
     def clear(self, origins: NDArray[np.float32], directions: NDArray[np.float32]) -> NDArray[np.bool_]:
-        """Whether each ray meets no triangle: the opposite of :meth:`occluded`."""
+        """Test whether each ray meets no triangle: the opposite of :meth:`occluded`.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        (n,) ndarray of bool
+            True where the ray escapes.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = RayScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> scene.clear(origins, toward)
+        array([False,  True])
+        """
         if not len(origins):
             return np.zeros(0, dtype=bool)
         return self._run(origins, directions, "OCCLUDED") == -1
 
     def first_hit(self, origins: NDArray[np.float32], directions: NDArray[np.float32]) -> NDArray[np.int32]:
-        """Index of the first triangle each ray hits, -1 where the ray escapes."""
+        """Find the first triangle each ray hits.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        (n,) ndarray of int32
+            Index of the triangle, -1 where the ray escapes.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = RayScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> hit = scene.first_hit(origins, toward)
+        >>> int(hit[1]), bool(np.allclose(scene.to_scene(box().vertices)[box().faces[hit[0]], 0], 1.0))
+        (-1, True)
+        """
         if not len(origins):
             return np.zeros(0, dtype=np.int32)
         return self._run(origins, directions, "INTERSECT").astype(np.int32, copy=False)
@@ -99,8 +239,35 @@ class RayScene(SceneFrame):
     def intersect(
         self, origins: NDArray[np.float32], directions: NDArray[np.float32]
     ) -> tuple[NDArray[np.int32], NDArray[np.float32]]:
-        """First triangle each ray hits (-1 where it escapes) and the distance to it in scene units
-        (multiply by ``half_size`` for metres; meaningless where the ray escapes)."""
+        """Find the first triangle each ray hits and the distance to it.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        facets : (n,) ndarray of int32
+            Index of the triangle hit, -1 where the ray escapes.
+        distance : (n,) ndarray of float32
+            Distance to it in scene units (multiply by ``half_size`` for metres); meaningless where the ray
+            escapes.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = RayScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> facets, distance = scene.intersect(origins, toward)
+        >>> round(float(distance[0] * scene.half_size), 4)
+        1.5149
+        """
         if not len(origins):
             return np.zeros(0, dtype=np.int32), np.zeros(0, dtype=np.float32)
         parts = map_ranges(
@@ -113,10 +280,27 @@ class RayScene(SceneFrame):
 
 
 class BruteForceScene(SceneFrame):
-    """The same queries as :class:`RayScene` by testing every ray against every triangle in numpy.
+    """Answer the queries of :class:`RayScene` by testing every ray against every triangle in numpy.
 
     For tests on small meshes: it shares no code with Embree, so agreement is a real check.
     Möller-Trumbore intersection, in float64 on the same scene coordinates.
+
+    Parameters
+    ----------
+    triangles : (n, 3, 3) ndarray of float64
+        Triangle corners [m], body frame.
+
+    Examples
+    --------
+
+    >>> import numpy as np
+    >>> from sunwind.meshes import box
+    >>> scene = BruteForceScene(box().vertices[box().faces])
+    >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+    >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+    >>> bool(np.array_equal(scene.occluded(origins, toward), RayScene(box().vertices[box().faces]).occluded(
+    ...     origins, toward)))
+    True
     """
 
     def __init__(self, triangles: NDArray[np.float64]) -> None:
@@ -146,19 +330,118 @@ class BruteForceScene(SceneFrame):
         return np.where(hit, t, np.inf)
 
     def occluded(self, origins: NDArray, directions: NDArray) -> NDArray[np.bool_]:
-        """Whether each ray hits any triangle."""
+        """Test whether each ray hits any triangle.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        (n,) ndarray of bool
+            True where the ray hits a triangle.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = BruteForceScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> scene.occluded(origins, toward)
+        array([ True, False])
+        """
         return np.isfinite(self._distances(origins, directions)).any(axis=1)
 
     def clear(self, origins: NDArray, directions: NDArray) -> NDArray[np.bool_]:
-        """Whether each ray meets no triangle."""
+        """Test whether each ray meets no triangle.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        (n,) ndarray of bool
+            True where the ray escapes.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = BruteForceScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> scene.clear(origins, toward)
+        array([False,  True])
+        """
         return ~self.occluded(origins, directions)
 
     def first_hit(self, origins: NDArray, directions: NDArray) -> NDArray[np.int32]:
-        """Index of the first triangle each ray hits, -1 where the ray escapes."""
+        """Find the first triangle each ray hits.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        (n,) ndarray of int32
+            Index of the triangle, -1 where the ray escapes.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = BruteForceScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> int(scene.first_hit(origins, toward)[1])
+        -1
+        """
         return self.intersect(origins, directions)[0]
 
     def intersect(self, origins: NDArray, directions: NDArray) -> tuple[NDArray[np.int32], NDArray]:
-        """First triangle each ray hits (-1 where it escapes) and the distance to it, scene units."""
+        """Find the first triangle each ray hits and the distance to it, in scene units.
+
+        Parameters
+        ----------
+        origins : (n, 3) float32
+            Ray origins in scene coordinates (see :meth:`SceneFrame.origins`).
+        directions : (n, 3) float32
+            Unit directions, body frame.
+
+        Returns
+        -------
+        facets : (n,) ndarray of int32
+            Index of the triangle hit, -1 where the ray escapes.
+        distance : (n,) ndarray of float64
+            Distance to it in scene units; inf where the ray escapes.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> from sunwind.meshes import box
+        >>> scene = BruteForceScene(box().vertices[box().faces])
+        >>> origins = scene.to_scene(np.array([[2.0, 0.0, 0.0], [2.0, 2.0, 0.0]]))
+        >>> toward = (np.array([[-1.0, 0.1, 0.1]] * 2) / np.linalg.norm([-1.0, 0.1, 0.1])).astype(np.float32)
+        >>> facets, distance = scene.intersect(origins, toward)
+        >>> (distance * scene.half_size).round(4)
+        array([1.5149,    inf])
+        """
         t = self._distances(origins, directions)
         nearest = np.argmin(t, axis=1).astype(np.int32)
         distance = t.min(axis=1)

@@ -39,7 +39,35 @@ SPILL_POINTS = 8
 
 @dataclass(frozen=True, eq=False)
 class Refined:
-    """What the shadow-edge pass found: the leaves of every side it refined, and the rays it cast."""
+    """What the shadow-edge pass found: the leaves of every side it refined, and the rays it cast.
+
+    Attributes
+    ----------
+    leaves : Leaves
+        Leaves of the refined sides.
+    rays : int
+        Rays cast, the check's included.
+    check : ShadowCheck
+        What the pass's check found (:mod:`.certificate`).
+
+    Examples
+    --------
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> facing = np.flatnonzero(craft.side_normals @ direction > 0)
+    >>> centre_lit = side_sampler(craft).illuminate(direction, samples=1).lit_fraction[facing] > 0.5
+    >>> fraction, centroid = np.zeros(craft.n_sides), craft.side_centroids.copy()
+    >>> fraction[facing] = centre_lit
+    >>> refined = refine_edges(craft, direction, facing, centre_lit, fraction, centroid, 1e-3)
+    >>> isinstance(refined, Refined), len(refined.leaves.sides)
+    (True, 21)
+    """
 
     leaves: Leaves
     rays: int
@@ -49,9 +77,43 @@ class Refined:
 def outline_of(
     craft: Spacecraft, direction: NDArray[np.float64], facing: NDArray[np.int64], caster: Caster
 ) -> Segments:
-    """The outline segments on the facing sides: the shadows of the silhouette edges whose probes
-    landed there (:mod:`.outline`), carried over the facing sides they cross, and the lines where other
-    facets pass through them (:mod:`.crossings`)."""
+    """Find the outline segments on the facing sides.
+
+    These are the shadows of the silhouette edges whose probes landed there (:mod:`.outline`), carried
+    over the facing sides they cross, and the lines where other facets pass through them
+    (:mod:`.crossings`).
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source, body frame.
+    facing : (n_facing,) ndarray of int64
+        The sides facing it.
+    caster : Caster
+        Counts the outline's probe rays.
+
+    Returns
+    -------
+    Segments
+        The segments, in side coordinates.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster
+    >>> facing = np.flatnonzero(craft.side_normals @ direction > 0)
+    >>> segments = outline_of(craft, direction, facing, Caster(craft, direction))
+    >>> segments.side[:6], segments.ends.shape
+    (array([24, 24, 26, 26, 26, 26]), (17, 2, 2))
+    """
     lines = outline(craft, direction, facing)
     caster.rays += lines.rays
     corner_ids, id_start, id_sides = side_corners(craft)
@@ -83,15 +145,51 @@ def refine_edges(
     centroid: NDArray[np.float64],
     tolerance: float,
 ) -> Refined:
-    """Replace the centroid-ray answers ``fraction`` (lit share) and ``centroid`` (lit centroid [m]) of
-    the sides a shadow edge crosses by their lit polygons, in place; return their leaves and the rays
-    cast.
+    """Replace the centroid-ray answers of the sides a shadow edge crosses by their lit polygons, in place.
 
-    ``facing`` are the sides facing ``direction`` and ``centre_lit`` the answer of each one's centroid
-    ray; ``tolerance`` is the share of a side's area that the lit part of each refined side is found to.
     The sides refined are those sharing a corner with a side whose centroid ray has the other answer,
     those an outline segment crosses, and then, round by round, every facing side across an edge of a
     refined side whose leaves change state along that edge, where the side's own answer is uniform.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source, body frame.
+    facing : (n_facing,) ndarray of int64
+        The sides facing it.
+    centre_lit : (n_facing,) ndarray of bool
+        The answer of each facing side's centroid ray.
+    fraction : (n_sides,) ndarray of float64
+        Lit share of each side; the refined sides' are written.
+    centroid : (n_sides, 3) ndarray of float64
+        Lit centroid of each side [m]; the refined sides' are written.
+    tolerance : float
+        Share of a side's area that the lit part of each refined side is found to.
+
+    Returns
+    -------
+    Refined
+        The leaves, the rays cast and the check.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> facing = np.flatnonzero(craft.side_normals @ direction > 0)
+    >>> centre_lit = side_sampler(craft).illuminate(direction, samples=1).lit_fraction[facing] > 0.5
+    >>> fraction, centroid = np.zeros(craft.n_sides), craft.side_centroids.copy()
+    >>> fraction[facing] = centre_lit
+    >>> refined = refine_edges(craft, direction, facing, centre_lit, fraction, centroid, 1e-3)
+    >>> refined.rays, fraction[[24, 26]].round(3)
+    (689, array([0.1, 0.4]))
     """
     caster = Caster(craft, direction)
     state = np.zeros(craft.n_sides, dtype=bool)
@@ -117,8 +215,37 @@ def refine_edges(
 def write_leaves(
     craft: Spacecraft, leaves: Leaves, fraction: NDArray[np.float64], centroid: NDArray[np.float64]
 ) -> None:
-    """Write the lit share and lit centroid [m] of the sides of ``leaves`` into ``fraction`` and
-    ``centroid`` (indexed by side), in place."""
+    """Write the lit share and lit centroid of the sides of some leaves, in place.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    leaves : Leaves
+        Leaves of some sides.
+    fraction : (n_sides,) ndarray of float64
+        Lit share by side; the leaves' sides are written.
+    centroid : (n_sides, 3) ndarray of float64
+        Lit centroid by side [m]; the leaves' sides are written (their centroid where nothing is lit).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster, Segments, resolve_sides
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+    ...     np.zeros(2, np.int8), 0, none, 1e-2)
+    >>> fraction, centroid = np.ones(craft.n_sides), craft.side_centroids.copy()
+    >>> write_leaves(craft, leaves, fraction, centroid)
+    >>> fraction[[24, 26]].round(3), centroid[24].round(3)
+    (array([0.1  , 0.407]), array([-0.105,  0.5  , -0.053]))
+    """
     sides = leaves.sides
     if not len(sides):
         return
@@ -139,9 +266,49 @@ def spilled(
     state: NDArray[np.bool_],
     facing: NDArray[np.int64],
 ) -> NDArray[np.int64]:
-    """The facing sides, not yet in ``leaves``, across an edge of a side of ``latest`` along which that
-    side's leaves have a state other than their own (``state``, their centroid ray's): a shadow edge
-    that runs on over the edge into them. ``SPILL_POINTS`` points on each edge are asked."""
+    """Find the facing sides a shadow edge runs on into, across an edge of a newly refined side.
+
+    These are the facing sides, not yet in ``leaves``, across an edge of a side of ``latest`` along
+    which that side's leaves have a state other than their own (``state``, their centroid ray's).
+    ``SPILL_POINTS`` points on each edge are asked.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    leaves : Leaves
+        Leaves of every side refined so far.
+    latest : Leaves
+        Leaves of the sides refined in the last round.
+    state : (n_sides,) ndarray of bool
+        Centroid-ray state of each side.
+    facing : (n_facing,) ndarray of int64
+        The sides facing the source.
+
+    Returns
+    -------
+    (k,) ndarray of int64
+        The sides to refine next, ascending.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.quadtree import Caster, Segments, resolve_sides
+    >>> none = Segments.of(np.zeros(0, np.int64), np.zeros((0, 2, 2)))
+    >>> leaves = resolve_sides(Caster(craft, direction), np.array([24, 26]), np.array([False, False]),
+    ...     np.zeros(2, np.int8), 0, none, 1e-2)
+    >>> facing = np.flatnonzero(craft.side_normals @ direction > 0)
+    >>> lit = np.zeros(craft.n_sides, dtype=bool)
+    >>> lit[facing] = True
+    >>> spilled(craft, leaves, leaves, lit, facing)
+    array([28, 30])
+    """
     k = len(latest.sides)
     if not k:
         return np.zeros(0, dtype=np.int64)

@@ -22,10 +22,49 @@ def facing_origins(
     first: int,
     last: int,
 ) -> tuple[NDArray[np.int64], NDArray[np.float32]]:
-    """Sides of ``order[first * BLOCK:last * BLOCK]`` with ``normals . direction > 0``, and their
-    origins (``ordered_origins[k]`` belongs to side ``order[k]``). The bounds of each block's normal
-    components bound ``n . direction`` over it: a block that cannot face is skipped unread, one that
-    must face is copied whole without reading normals."""
+    """Gather the sides of some blocks that face a direction, with their kept ray origins.
+
+    The bounds of each block's normal components bound ``n . direction`` over it: a block that cannot
+    face is skipped unread, one that must face is copied whole without reading normals.
+
+    Parameters
+    ----------
+    normals : (n_sides, 3) ndarray of float64
+        Outward normal of each side.
+    direction : (3,) ndarray of float64
+        Unit vector toward the source.
+    ordered_origins : (n_sides, p, 3) ndarray of float32
+        Origins in the balanced order: row ``k`` belongs to side ``order[k]``.
+    order : (n_sides,) ndarray of int64
+        The balanced order of the sides.
+    block_low, block_high : (n_blocks, 3) ndarray of float64
+        Bounds of each block's normal components.
+    first, last : int
+        The blocks to do: ``order[first * BLOCK:last * BLOCK]``.
+
+    Returns
+    -------
+    sides : (n_facing,) ndarray of int64
+        The facing sides.
+    origins : (n_facing, p, 3) ndarray of float32
+        Their origins.
+
+    Examples
+    --------
+    Called by :meth:`~sunwind.geometry.rays.shadows.SideSampler.facing_rays`:
+
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> sides, origins = side_sampler(craft).facing_rays(direction, 1)
+    >>> sides.shape, origins.shape
+    ((72,), (72, 1, 3))
+    """
     d0, d1, d2 = direction[0], direction[1], direction[2]
     start, stop = first * BLOCK, min(last * BLOCK, order.shape[0])
     width = ordered_origins.shape[1] * 3  # float32 values per side
@@ -70,8 +109,47 @@ def sample_origins(
     half_size: float,
     offset_m: float,
 ) -> NDArray[np.float32]:
-    """Sample points of ``sides`` pushed ``offset_m`` along their normals, in float32 scene
-    coordinates ``(p - centre) / half_size``, (len(sides), n_points, 3)."""
+    """Make the sample points of sides, pushed off along their normals, in float32 scene coordinates.
+
+    Parameters
+    ----------
+    triangles : (n_facets, 3, 3) ndarray of float64
+        Facet corners [m].
+    side_facet : (n_sides,) ndarray of int64
+        Facet of each side.
+    normals : (n_sides, 3) ndarray of float64
+        Outward normal of each side.
+    sides : (n,) ndarray of int64
+        The sides to sample.
+    barycentric : (p, 3) ndarray of float64
+        Barycentric coordinates of the points.
+    centre : (3,) ndarray of float64
+        Centre of the scene frame [m].
+    half_size : float
+        Half-size of the scene frame [m].
+    offset_m : float
+        Push along the normal [m].
+
+    Returns
+    -------
+    (n, p, 3) ndarray of float32
+        ``(point + offset_m * normal - centre) / half_size``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> scene = craft.scene
+    >>> o = sample_origins(craft.triangles, craft.side_facet, craft.side_normals, np.array([8]),
+    ...     np.array([[1 / 3, 1 / 3, 1 / 3]]), scene.centre, scene.half_size, scene.offset_m)
+    >>> bool(np.allclose(o[0, 0], scene.origins(craft.side_centroids[8:9], craft.side_normals[8:9])[0]))
+    True
+    """
     points = barycentric.shape[0]
     out = np.empty((sides.shape[0], points, 3), dtype=np.float32)
     for k in range(sides.shape[0]):
@@ -87,7 +165,24 @@ def sample_origins(
 
 @numba.njit(cache=True, nogil=True)
 def lit_shares(lit: NDArray[np.bool_]) -> NDArray[np.float64]:
-    """Share of each row of lit flags (n, points) that is lit, (n,)."""
+    """Find the share of each row of lit flags that is lit.
+
+    Parameters
+    ----------
+    lit : (n, p) ndarray of bool
+        Lit flags of each side's points.
+
+    Returns
+    -------
+    (n,) ndarray of float64
+        Lit share of each row.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> lit_shares(np.array([[True, False, True, True], [False, False, False, False]]))
+    array([0.75, 0.  ])
+    """
     n, points = lit.shape
     share = np.empty(n)
     for k in range(n):
@@ -107,8 +202,36 @@ def lit_centroids(
     side_facet: NDArray[np.int64],
     centroid: NDArray[np.float64],
 ) -> None:
-    """Write the mean of the lit points of each part-lit side of ``sides`` (lit flags (n, points) of
-    its points at ``barycentric``) into ``centroid[s]``: the triangle at their mean barycentric."""
+    """Write the mean of the lit points of each partly lit side into its row of ``centroid``.
+
+    The mean is the triangle's point at the mean barycentric of the lit points.
+
+    Parameters
+    ----------
+    sides : (n,) ndarray of int64
+        The sides.
+    lit : (n, p) ndarray of bool
+        Lit flags of each side's points.
+    barycentric : (p, 3) ndarray of float64
+        Barycentric coordinates of the points.
+    triangles : (n_facets, 3, 3) ndarray of float64
+        Facet corners [m].
+    side_facet : (n_sides,) ndarray of int64
+        Facet of each side.
+    centroid : (n_sides, 3) ndarray of float64
+        Written at the partly lit sides [m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> triangles = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
+    >>> centroid = np.zeros((1, 3))
+    >>> bary = np.array([[1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]])
+    >>> lit = np.array([[True, True, False]])  # the first two corners lit
+    >>> lit_centroids(np.array([0]), lit, bary, triangles, np.array([0]), centroid)
+    >>> centroid
+    array([[0.5, 0. , 0. ]])
+    """
     n, points = lit.shape
     for k in range(n):
         count = 0

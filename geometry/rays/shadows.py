@@ -96,6 +96,19 @@ class Illumination:
         What the default pass's check found (:mod:`.certificate`), from which
         :meth:`ShadowCheck.loads_error` estimates the error of any load summed over the lit sides; None
         for fixed sampling.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> light = side_sampler(craft).illuminate(direction)
+    >>> light.sampling, light.level, round(float(light.lit_fraction.sum()), 3)
+    ('shadow edges located, tolerance 0.001', None, 61.847)
     """
 
     direction: NDArray[np.float64]
@@ -110,22 +123,98 @@ class Illumination:
 
     @cached_property
     def cos_incidence(self) -> NDArray[np.float64]:
-        """``n_out . direction`` of each side, (n_sides,); computed on first use."""
+        """Cosine of the incidence on each side, ``n_out . direction``; computed on first use.
+
+        Returns
+        -------
+        (n_sides,) ndarray of float64
+            Positive on the sides facing the source.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> light = side_sampler(craft).illuminate(direction)
+        >>> light.cos_incidence[:2].round(4)
+        array([-0.2996, -0.2996])
+        """
         return self.side_normals @ self.direction
 
     @cached_property
     def facing(self) -> NDArray[np.int64]:
-        """Sides facing the source, (n_facing,)."""
+        """Sides facing the source, joined from :attr:`facing_runs` on first use.
+
+        Returns
+        -------
+        (n_facing,) ndarray of int64
+            The sides with ``cos_incidence > 0``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> light = side_sampler(craft).illuminate(direction)
+        >>> len(light.facing), bool((light.cos_incidence[light.facing] > 0).all())
+        (72, True)
+        """
         return _joined(self.facing_runs)
 
     @cached_property
     def facing_share(self) -> NDArray[np.float64]:
-        """Lit share of each of :attr:`facing`, (n_facing,)."""
+        """Lit share of each of :attr:`facing`, joined from :attr:`share_runs` on first use.
+
+        Returns
+        -------
+        (n_facing,) ndarray of float64
+            Share of each facing side's area that is lit, in [0, 1].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> light = side_sampler(craft).illuminate(direction)
+        >>> light.facing_share[:3]
+        array([1., 1., 1.])
+        """
         return _joined(self.share_runs).astype(np.float64, copy=False)
 
     @cached_property
     def lit_fraction(self) -> NDArray[np.float64]:
-        """Lit share of every side, (n_sides,), 0 for sides facing away; made on first use."""
+        """Lit share of every side, 0 for sides facing away; made on first use.
+
+        Returns
+        -------
+        (n_sides,) ndarray of float64
+            Share of each side's area that is lit.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> light = side_sampler(craft).illuminate(direction)
+        >>> light.lit_fraction[[0, 8, 24, 26]].round(3)  # facing away, lit, partly shaded twice
+        array([0. , 1. , 0.1, 0.4])
+        """
         fraction = np.zeros(len(self.side_normals))
         fraction[self.facing] = self.facing_share
         return fraction
@@ -136,12 +225,27 @@ def _joined(runs: tuple[NDArray, ...]) -> NDArray:
 
 
 def level_for_samples(samples: int) -> int:
-    """Subdivision level whose ``level**2`` points per side are at least ``samples``.
+    """Find the subdivision level whose ``level**2`` points per side are at least ``samples``.
+
+    Parameters
+    ----------
+    samples : int
+        Points wanted per side.
+
+    Returns
+    -------
+    int
+        The smallest such level, at least 1.
 
     Raises
     ------
     InputError
         ``samples`` is not a whole number >= 1.
+
+    Examples
+    --------
+    >>> level_for_samples(1), level_for_samples(10), level_for_samples(16)
+    (1, 4, 4)
     """
     if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
         raise InputError(
@@ -173,12 +277,61 @@ def check_sampling(samples: int | None, tolerance: float) -> None:
 
 
 def side_sampler(craft: Spacecraft) -> SideSampler:
-    """The :class:`SideSampler` of ``craft``, made once and kept in its cache with the origins it keeps."""
+    """Get the :class:`SideSampler` of a model, made once and kept in its cache with the origins it keeps.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    SideSampler
+        Its sampler.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> side_sampler(craft) is side_sampler(craft)
+    True
+    """
     return craft.cache.get("side sampler", lambda: SideSampler(craft))
 
 
 class SideSampler:
-    """Shadow-ray sampling of one spacecraft's sides, with per-level ray origins kept for reuse."""
+    """Sample one spacecraft's sides with shadow rays, keeping the ray origins of each level for reuse.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Attributes
+    ----------
+    craft : Spacecraft
+        The model.
+    scene : RayScene
+        Its ray scene.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+    >>> sampler = SideSampler(craft)
+    >>> sampler.illuminate(direction, samples=16).rays  # 72 facing sides, 16 points each
+    1152
+    """
 
     def __init__(self, craft: Spacecraft) -> None:
         self.craft = craft
@@ -187,8 +340,36 @@ class SideSampler:
         self._sized: set[int] = set()
 
     def check_memory(self, level: int) -> None:
-        """Refuse fixed sampling at ``level`` before allocating when its peak memory (the sample points,
-        a batch of rays, the lit flags of every side) exceeds :func:`sunwind.geometry.memory.require`."""
+        """Refuse fixed sampling at a level before allocating, when its peak memory is too large.
+
+        The peak is that of the sample points, a batch of rays and the lit flags of every side, checked by
+        :func:`sunwind.geometry.memory.require`.
+
+        Parameters
+        ----------
+        level : int
+            Subdivision level: ``level**2`` points per side.
+
+        Raises
+        ------
+        InputError
+            When the memory needed exceeds the limit.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> side_sampler(craft).check_memory(4)
+        >>> side_sampler(craft).check_memory(10**6)
+        Traceback (most recent call last):
+        ...
+        sunwind.geometry.errors.InputError: not enough memory: needs ... for 1e+12 points per side x 144 ...
+        """
         if level in self._sized:
             return
         n, points = self.craft.n_sides, level**2
@@ -207,7 +388,30 @@ class SideSampler:
         self._sized.add(level)
 
     def origins(self, level: int) -> NDArray[np.float32]:
-        """Ray origins of every side at ``level`` in scene coordinates, (n_sides, level**2, 3)."""
+        """Make the ray origins of every side at a level, in scene coordinates.
+
+        Parameters
+        ----------
+        level : int
+            Subdivision level: ``level**2`` points per side.
+
+        Returns
+        -------
+        (n_sides, level**2, 3) ndarray of float32
+            The origins, pushed off their sides along the normals.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> side_sampler(craft).origins(2).shape
+        (144, 4, 3)
+        """
         return self._origins_of(np.arange(self.craft.n_sides), level)
 
     def _kept_origins(self, level: int) -> NDArray[np.float32]:
@@ -243,8 +447,40 @@ class SideSampler:
     def facing_rays(
         self, direction: NDArray[np.float64], level: int
     ) -> tuple[NDArray[np.int64], NDArray[np.float32] | None]:
-        """The sides facing ``direction`` and their ray origins at ``level`` (n_facing, level**2, 3)
-        when kept for reuse, else None."""
+        """Find the sides facing a direction and their ray origins at a level.
+
+        Parameters
+        ----------
+        direction : (3,) ndarray of float64
+            Unit vector toward the source, body frame.
+        level : int
+            Subdivision level: ``level**2`` points per side.
+
+        Returns
+        -------
+        sides : (n_facing,) ndarray of int64
+            The sides facing ``direction``.
+        origins : (n_facing, level**2, 3) ndarray of float32 or None
+            Their origins when kept for reuse, else None.
+
+        Raises
+        ------
+        InputError
+            When the memory needed exceeds the limit.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> sides, origins = side_sampler(craft).facing_rays(direction, 2)
+        >>> sides.shape, origins.shape
+        ((72,), (72, 4, 3))
+        """
         self.check_memory(level)
         if not self._keeps(level):
             return np.flatnonzero(self.craft.side_normals @ direction > 0), None
@@ -279,8 +515,28 @@ class SideSampler:
 
     @cached_property
     def block_normal_bounds(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Smallest and largest normal components over each block, (n_blocks, 3) each: a block
-        whose bound on ``n . u`` is not positive has no side facing ``u`` and is skipped whole."""
+        """Bound the normal components over each block of sides.
+
+        A block whose bound on ``n . u`` is not positive has no side facing ``u`` and is skipped whole.
+
+        Returns
+        -------
+        low, high : (n_blocks, 3) ndarray of float64
+            Smallest and largest normal components of each block.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> low, high = side_sampler(craft).block_normal_bounds
+        >>> low.tolist(), high.tolist()
+        ([[-1.0, -1.0, -1.0]], [[1.0, 1.0, 1.0]])
+        """
         normals = self.craft.side_normals[self._balanced_order]
         padded = np.concatenate([normals, np.repeat(normals[-1:], self.n_blocks * BLOCK - len(normals), 0)])
         blocks = padded.reshape(self.n_blocks, BLOCK, 3)
@@ -288,13 +544,50 @@ class SideSampler:
 
     @property
     def n_blocks(self) -> int:
-        """Number of blocks in :attr:`side_block`."""
+        """Number of blocks in :attr:`side_block`.
+
+        Returns
+        -------
+        int
+            ``ceil(n_sides / BLOCK)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> side_sampler(craft).n_blocks
+        1
+        """
         return -(-self.craft.n_sides // BLOCK)
 
     @cached_property
     def side_block(self) -> NDArray[np.int64]:
-        """The block of the balanced order each side belongs to, (n_sides,): a fixed grouping for
-        sums whose result must not depend on how work was split over threads."""
+        """Give the block of the balanced order each side belongs to.
+
+        A fixed grouping for sums whose result must not depend on how work was split over threads.
+
+        Returns
+        -------
+        (n_sides,) ndarray of int64
+            Block of each side, read-only.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> set(side_sampler(craft).side_block.tolist())
+        {0}
+        """
         block = np.empty(self.craft.n_sides, dtype=np.int64)
         block[self._balanced_order] = np.arange(self.craft.n_sides) // BLOCK
         block.flags.writeable = False
@@ -332,13 +625,49 @@ class SideSampler:
         tolerance: float = DEFAULT_TOLERANCE,
         reduce: Reduction | None = None,
     ) -> Illumination:
-        """Lit share and lit centroid of every side for a source along unit vector ``direction``.
+        """Find the lit share and lit centroid of every side for a source along a direction.
 
         ``samples`` fixes the points per side (rounded up to a square, ``level**2``); None casts one
         ray per side and finds the lit part of each side a shadow edge crosses to ``tolerance`` of its
-        area (:mod:`.shadow_edges`). ``reduce``, if given, is called
-        on the facing sides once their lit shares are final (see ``Reduction``), in the worker
-        threads where possible.
+        area (:mod:`.shadow_edges`). ``reduce``, if given, is called on the facing sides once their lit
+        shares are final (see ``Reduction``), in the worker threads where possible.
+
+        Parameters
+        ----------
+        direction : (3,) ndarray of float64
+            Unit vector toward the source, body frame.
+        samples : int or None, optional
+            Points per side for fixed sampling; None for the shadow-edge pass.
+        tolerance : float, optional
+            Share of a refined side's area its lit part is found to (shadow-edge pass only).
+        reduce : callable or None, optional
+            ``reduce(sides, lit_share, lit_centroid)``, called on whole blocks of facing sides.
+
+        Returns
+        -------
+        Illumination
+            Lit shares, lit centroids, rays cast and, for the shadow-edge pass, its check.
+
+        Raises
+        ------
+        InputError
+            ``samples`` not a whole number >= 1, or too many points for the memory.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> direction = np.array([0.3, 0.95, 0.1]) / np.linalg.norm([0.3, 0.95, 0.1])  # the bus shades a wing
+        >>> sampler = side_sampler(craft)
+        >>> edges, fixed = sampler.illuminate(direction), sampler.illuminate(direction, samples=16)
+        >>> edges.rays, round(float(edges.lit_fraction.sum()), 3), edges.check is not None
+        (761, 61.847, True)
+        >>> fixed.rays, fixed.level, round(float(fixed.lit_fraction.sum()), 3)
+        (1152, 4, 61.75)
         """
         craft = self.craft
         fixed = samples is not None

@@ -40,23 +40,66 @@ T = TypeVar("T")
 
 
 class CacheEntryError(Exception):
-    """A cache entry that cannot be used; ``str()`` says why: "was corrupt (...)", "was stale (...)" or
-    "could not be read (...)"."""
+    """A cache entry that cannot be used.
+
+    ``str()`` says why: "was corrupt (...)", "was stale (...)" or "could not be read (...)".
+
+    Examples
+    --------
+    >>> str(CacheEntryError("was stale (made for other geometry or settings)"))
+    'was stale (made for other geometry or settings)'
+    """
 
 
 class CacheWarning(UserWarning):
-    """A cache entry could not be used and was rebuilt (the answer is the computed one)."""
+    """A cache entry could not be used and was rebuilt (the answer is the computed one).
+
+    Examples
+    --------
+    >>> issubclass(CacheWarning, UserWarning)
+    True
+    """
 
 
 def default_cache_dir() -> Path:
-    """``$SUNWIND_CACHE_DIR``, else ``$XDG_CACHE_HOME/sunwind``, else ``~/.cache/sunwind``."""
+    """Find the default cache directory.
+
+    Returns
+    -------
+    Path
+        ``$SUNWIND_CACHE_DIR``, else ``$XDG_CACHE_HOME/sunwind``, else ``~/.cache/sunwind``.
+
+    Examples
+    --------
+    >>> import os
+    >>> os.environ[CACHE_ENV] = "/tmp/sunwind-cache"
+    >>> default_cache_dir()
+    PosixPath('/tmp/sunwind-cache')
+    >>> del os.environ[CACHE_ENV]
+    """
     if os.environ.get(CACHE_ENV):
         return Path(os.environ[CACHE_ENV])
     return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "sunwind"
 
 
 def cache_directory(cache_dir: str | os.PathLike | bool | None) -> Path | None:
-    """The directory ``cache_dir`` asks for: None or True -> :func:`default_cache_dir`, False -> None."""
+    """Find the directory a ``cache_dir`` argument asks for.
+
+    Parameters
+    ----------
+    cache_dir : str or os.PathLike or bool or None
+        None or True for :func:`default_cache_dir`, False for no cache, else the directory.
+
+    Returns
+    -------
+    Path or None
+        The directory, or None for no cache.
+
+    Examples
+    --------
+    >>> cache_directory(False) is None, cache_directory("here")
+    (True, PosixPath('here'))
+    """
     if cache_dir is False:
         return None
     if cache_dir is None or cache_dir is True:
@@ -65,10 +108,33 @@ def cache_directory(cache_dir: str | os.PathLike | bool | None) -> Path | None:
 
 
 def geometry_key(craft: Spacecraft, settings: Mapping[str, object]) -> str:
-    """SHA-256 (hex) of ``FORMAT_VERSION``, the model's geometry and ``settings`` (JSON-serialisable).
+    """Hash ``FORMAT_VERSION``, a model's geometry and some settings into a cache key.
 
     The geometry is the facet corners (float64), facet kinds, and each side's facet and sign, in fixed
     little-endian dtypes so the key is the same on every machine.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model; its materials do not enter.
+    settings : mapping of str to object
+        The caller's settings, JSON-serialisable.
+
+    Returns
+    -------
+    str
+        SHA-256, hex.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box
+    >>> craft = build_spacecraft(box(),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> key = geometry_key(craft, {"rays_per_side": 64})
+    >>> len(key), key == geometry_key(craft, {"rays_per_side": 128})
+    (64, False)
     """
     digest = hashlib.sha256()
     digest.update(json.dumps({"format": FORMAT_VERSION, **settings}, sort_keys=True).encode())
@@ -95,7 +161,19 @@ def _checksum(arrays: Mapping[str, NDArray]) -> str:
 
 
 def read_entry(path: Path, key: str) -> dict[str, NDArray]:
-    """The arrays of the entry at ``path``, checked against ``key`` and its stored checksum.
+    """Read the arrays of the entry at ``path``, checked against ``key`` and its stored checksum.
+
+    Parameters
+    ----------
+    path : Path
+        The ``.npz`` file.
+    key : str
+        The key the entry must have been made for.
+
+    Returns
+    -------
+    dict of str to ndarray
+        The arrays stored, without the key and checksum.
 
     Raises
     ------
@@ -104,6 +182,22 @@ def read_entry(path: Path, key: str) -> dict[str, NDArray]:
     CacheEntryError
         The file is truncated or altered ("was corrupt ..."), was made for other inputs ("was stale
         ..."), or cannot be opened ("could not be read ...").
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = Path(folder.name) / "entry.npz"
+    >>> write_entry(path, "abc", {"x": np.arange(3)})
+    >>> read_entry(path, "abc")
+    {'x': array([0, 1, 2])}
+    >>> read_entry(path, "other")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.views.disk_cache.CacheEntryError: was stale (made for other geometry or settings)
+    >>> folder.cleanup()
     """
     if not path.is_file():
         raise FileNotFoundError(path)
@@ -125,12 +219,33 @@ def read_entry(path: Path, key: str) -> dict[str, NDArray]:
 
 
 def write_entry(path: Path, key: str, arrays: Mapping[str, NDArray]) -> None:
-    """Store ``arrays`` under ``key`` at ``path`` atomically, creating the directory.
+    """Store arrays under a key at ``path`` atomically, creating the directory.
+
+    Parameters
+    ----------
+    path : Path
+        The ``.npz`` file to write.
+    key : str
+        The key the entry is made for.
+    arrays : mapping of str to ndarray
+        The arrays to store.
 
     Raises
     ------
     OSError
         The directory cannot be created or written; nothing is left behind.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = Path(folder.name) / "entry.npz"
+    >>> write_entry(path, "abc", {"x": np.ones(2)})
+    >>> sorted(np.load(path).files)
+    ['checksum', 'key', 'x']
+    >>> folder.cleanup()
     """
     path.parent.mkdir(parents=True, exist_ok=True)
     content = {_KEY: np.array(key), **arrays}
@@ -153,11 +268,57 @@ def kept_on_disk(
     encode: Callable[[T], Mapping[str, NDArray]],
     decode: Callable[[Mapping[str, NDArray], str], T],
 ) -> T:
-    """The value the entry ``name-KEY.npz`` in ``directory`` holds (``decode(arrays, origin)``), else
-    ``compute()``, stored there (``encode(value)``). ``origin`` says what happened: "cache <path>",
-    "computed (stored in cache <path>)", or "computed (...)" naming a corrupt or stale entry that was
-    rebuilt or a cache that could not be written; cache trouble is never an error (``value`` is a
-    dataclass with an ``origin`` field)."""
+    """Read a value from its disk entry, or compute it and store it there.
+
+    The entry is ``name-KEY.npz`` in ``directory``. The value's ``origin`` says what happened: "cache
+    <path>", "computed (stored in cache <path>)", or "computed (...)" naming a corrupt or stale entry
+    that was rebuilt or a cache that could not be written; cache trouble is never an error.
+
+    Parameters
+    ----------
+    directory : Path
+        The cache directory.
+    name : str
+        What the entry holds, the start of its file name.
+    key : str
+        Its key (:func:`geometry_key`).
+    compute : callable
+        ``compute()`` makes the value: a dataclass with an ``origin`` field.
+    encode : callable
+        ``encode(value)`` gives the arrays to store.
+    decode : callable
+        ``decode(arrays, origin)`` makes the value from stored arrays.
+
+    Returns
+    -------
+    object
+        The value, with its ``origin`` set.
+
+    Warns
+    -----
+    CacheWarning
+        An entry that is corrupt or stale, rebuilt.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from dataclasses import dataclass
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> @dataclass
+    ... class Value:
+    ...     x: np.ndarray
+    ...     origin: str = ""
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> def keep():
+    ...     return kept_on_disk(Path(folder.name), "demo", "k" * 64, lambda: Value(np.arange(2)),
+    ...         lambda v: {"x": v.x}, lambda arrays, origin: Value(arrays["x"], origin))
+    >>> keep().origin
+    'computed (stored in cache .../demo-kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk.npz)'
+    >>> keep().origin
+    'cache .../demo-kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk.npz'
+    >>> folder.cleanup()
+    """
     path = directory / f"{name}-{key[:32]}.npz"
     notes = []
     try:
@@ -179,8 +340,33 @@ def kept_on_disk(
 def factor_arrays(
     factors: object, columns: Mapping[str, int], numbers: tuple[str, ...]
 ) -> dict[str, NDArray]:
-    """The arrays of a set of factors (its sparse ``matrix``, the per-side ``columns`` of widths 1 or 3,
-    and the ``numbers``) for :func:`write_entry`."""
+    """Collect the arrays of a set of factors for :func:`write_entry`.
+
+    Parameters
+    ----------
+    factors : object
+        Has a sparse ``matrix`` and the attributes named by ``columns`` and ``numbers``.
+    columns : mapping of str to int
+        Per-side arrays to store, with their widths (1 or 3).
+    numbers : tuple of str
+        Scalars to store.
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``data``, ``indices``, ``indptr`` of the matrix, the columns and the numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import scipy.sparse
+    >>> from types import SimpleNamespace
+    >>> factors = SimpleNamespace(matrix=scipy.sparse.csr_matrix(np.array([[0.0, 0.5], [0.25, 0.0]])),
+    ...     escape=np.array([0.5, 0.75]), rays=64)
+    >>> arrays = factor_arrays(factors, {"escape": 1}, ("rays",))
+    >>> sorted(arrays)
+    ['data', 'escape', 'indices', 'indptr', 'rays']
+    """
     matrix = factors.matrix  # type: ignore[attr-defined]
     arrays = {"data": matrix.data, "indices": matrix.indices, "indptr": matrix.indptr}
     arrays |= {column: getattr(factors, column) for column in columns}
@@ -190,15 +376,48 @@ def factor_arrays(
 def factor_fields(
     arrays: Mapping[str, NDArray], n_sides: int, columns: Mapping[str, int], numbers: tuple[str, ...]
 ) -> dict[str, object]:
-    """The fields :func:`factor_arrays` stored, checked to fit ``n_sides`` sides: ``matrix`` (CSR), the
-    columns, and the numbers as Python scalars. Every value must be finite, the matrix's entries,
-    the numbers and the columns of width 1 (shares: escape, blind, truncated) not negative, and the
-    shares at most 1 (within :data:`VALUE_TOLERANCE`).
+    """Rebuild and check the fields :func:`factor_arrays` stored.
+
+    Every value must be finite; the matrix's entries, the numbers and the columns of width 1 (shares:
+    escape, blind, truncated) not negative, and the shares at most 1 (within :data:`VALUE_TOLERANCE`).
+
+    Parameters
+    ----------
+    arrays : mapping of str to ndarray
+        The arrays read.
+    n_sides : int
+        Sides of the model they must fit.
+    columns : mapping of str to int
+        Per-side arrays stored, with their widths.
+    numbers : tuple of str
+        Scalars stored.
+
+    Returns
+    -------
+    dict of str to object
+        ``matrix`` (CSR), the columns, and the numbers as Python scalars.
 
     Raises
     ------
     CacheEntryError
         A missing array, one of the wrong shape, or values out of range.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import scipy.sparse
+    >>> from types import SimpleNamespace
+    >>> factors = SimpleNamespace(matrix=scipy.sparse.csr_matrix(np.array([[0.0, 0.5], [0.25, 0.0]])),
+    ...     escape=np.array([0.5, 0.75]), rays=64)
+    >>> arrays = factor_arrays(factors, {"escape": 1}, ("rays",))
+    >>> fields = factor_fields(arrays, 2, {"escape": 1}, ("rays",))
+    >>> fields["matrix"].toarray(), fields["rays"]
+    (array([[0.  , 0.5 ],
+           [0.25, 0.  ]]), 64)
+    >>> factor_fields(arrays, 3, {"escape": 1}, ("rays",))
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.views.disk_cache.CacheEntryError: was corrupt (arrays of the wrong shape)
     """
     try:
         indptr, indices, data = arrays["indptr"], arrays["indices"], arrays["data"]
@@ -242,7 +461,26 @@ def _check_values(
 
 
 def check_balance(error: NDArray[np.float64]) -> None:
-    """Raise :class:`CacheEntryError` if a row's balance ``error`` (n_sides,) exceeds
-    :data:`VALUE_TOLERANCE` or is not finite."""
+    """Refuse rows whose balance error exceeds :data:`VALUE_TOLERANCE` or is not finite.
+
+    Parameters
+    ----------
+    error : (n_sides,) ndarray of float64
+        Each row's departure from balance.
+
+    Raises
+    ------
+    CacheEntryError
+        When any row is off.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> check_balance(np.array([0.0, 1e-15]))
+    >>> check_balance(np.array([0.0, 0.01]))
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.views.disk_cache.CacheEntryError: was corrupt (rows do not balance: off by up to 0.01)
+    """
     if not np.all(np.isfinite(error)) or np.any(error > VALUE_TOLERANCE):
         raise CacheEntryError(f"was corrupt (rows do not balance: off by up to {np.nanmax(error):.3g})")

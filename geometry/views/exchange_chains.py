@@ -15,8 +15,51 @@ from sunwind.geometry.views.hemisphere import emission_rays, side_key, uniform
 
 
 class ChainTables(NamedTuple):
-    """What the kernels read: per-side arrays (contiguous), each side's onward weight and the
-    settings."""
+    """Hold what the chain kernels read: per-side arrays (contiguous), onward weights and the settings.
+
+    Attributes
+    ----------
+    optics : (n_sides, 3) ndarray of float64
+        ``rho, beta, sigma`` of each side.
+    onward : (n_sides,) ndarray of float64
+        Share each side sends on.
+    solid : (n_sides,) ndarray of bool
+        Sides of closed bodies.
+    normals : (n_sides, 3) ndarray of float64
+        Outward normals.
+    centroids : (n_sides, 3) ndarray of float64
+        Side centroids [m].
+    onward_weight : (n_sides,) ndarray of float64
+        ``q_i = sum_j F_ij onward_j``.
+    offset_m : float
+        Ray origins are pushed this far off their surface [m].
+    half_size : float
+        Scene unit [m].
+    cutoff : float
+        A chain ends below this share of its first weight.
+    depth : int
+        A chain ends after meeting this many surfaces.
+    seed : numpy.uint64
+        Seed of the rays.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> from sunwind.geometry.sides import SOLID
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> view = compute_view_factors(craft, rays_per_side=64)
+    >>> onward = craft.side_optics[:, 0] * craft.side_optics[:, 1] + craft.side_optics[:, 2]
+    >>> tables = ChainTables(craft.side_optics, onward, craft.facet_kind[craft.side_facet] == SOLID,
+    ...     craft.side_normals, craft.side_centroids, np.asarray(view.matrix @ onward), craft.scene.offset_m,
+    ...     craft.scene.half_size, 1e-6, 256, np.uint64(view.seed))
+    >>> tables.depth, round(float(tables.onward[0]), 3)
+    (256, 0.25)
+    """
 
     optics: NDArray[np.float64]  # (n_sides, 3) rho, beta, sigma
     onward: NDArray[np.float64]  # (n_sides,) share sent on
@@ -44,16 +87,47 @@ class _Tallies(NamedTuple):
 def trace_chains(
     craft: Spacecraft, t: ChainTables, sides: NDArray[np.int64], grid: int
 ) -> tuple[NDArray, ...]:
-    """Follow the emission rays of ``sides`` beyond their first surface; per-side tallies.
+    """Follow the emission rays of some sides beyond their first surface, tallying per side.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    t : ChainTables
+        Per-side arrays and settings.
+    sides : (count,) ndarray of int64
+        The emitting sides.
+    grid : int
+        Strata per axis: ``grid**2`` rays per side.
 
     Returns
     -------
-    rows, cols, weights : (k,) int64, int64, float64
+    rows, cols, weights : (k,) ndarray of int64, int64, float64
         Arrivals after the first surface: position in ``sides``, receiving side, summed weight.
-    escape, vector, moment, blind, truncated
-        The batch's :class:`_Tallies`.
-    chains : (1,) int64
+    escape, vector, moment, blind, truncated : ndarray
+        The batch's :class:`_Tallies`: per-side sums of escaping weight, its direction and moment, blind
+        and truncated weight.
+    chains : (1,) ndarray of int64
         Rays cast beyond the first surface.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> from sunwind.geometry.sides import SOLID
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> view = compute_view_factors(craft, rays_per_side=64)
+    >>> onward = craft.side_optics[:, 0] * craft.side_optics[:, 1] + craft.side_optics[:, 2]
+    >>> tables = ChainTables(craft.side_optics, onward, craft.facet_kind[craft.side_facet] == SOLID,
+    ...     craft.side_normals, craft.side_centroids, np.asarray(view.matrix @ onward), craft.scene.offset_m,
+    ...     craft.scene.half_size, 1e-6, 256, np.uint64(view.seed))
+    >>> rows, cols, weights, escape, *rest, chains = trace_chains(craft, tables, np.array([16, 17]), 8)
+    >>> escape.shape, int(chains[0]), bool((weights > 0).all())
+    ((2,), 13, True)
     """
     scene = craft.scene
     count = len(sides)

@@ -117,6 +117,21 @@ class ExchangeFactors:
         Time the computation took [s] (the original time when loaded from cache).
     origin : str
         "view factors" (nothing sends light on), "computed ..." or "cache <path>".
+
+    Examples
+    --------
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> view = compute_view_factors(craft, rays_per_side=64)
+    >>> exchange = compute_exchange_factors(craft, view)  # half of what is reflected goes on
+    >>> exchange.origin, exchange.chains, exchange.matrix.shape
+    ('computed', 163, (144, 144))
+    >>> round(float(view.escape_fraction[16]), 4), round(float(exchange.escape_fraction[16]), 4)
+    (0.8906, 0.918)
     """
 
     matrix: scipy.sparse.csr_matrix
@@ -133,7 +148,31 @@ class ExchangeFactors:
 
     @classmethod
     def of_view(cls, view: ViewFactors) -> ExchangeFactors:
-        """``E = F``: the exchange factors of a model no side of which sends arriving light on."""
+        """Make the exchange factors ``E = F`` of a model no side of which sends arriving light on.
+
+        Parameters
+        ----------
+        view : ViewFactors
+            The model's view factors.
+
+        Returns
+        -------
+        ExchangeFactors
+            The view factors' arrays, nothing truncated, ``origin`` "view factors".
+
+        Examples
+        --------
+        >>> from sunwind.geometry.views.view_factors import compute_view_factors
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> view = compute_view_factors(craft, rays_per_side=64)
+        >>> plain = ExchangeFactors.of_view(view)
+        >>> plain.matrix is view.matrix, plain.chains, plain.origin
+        (True, 0, 'view factors')
+        """
         return cls(
             matrix=view.matrix,
             escape_fraction=view.escape_fraction,
@@ -149,14 +188,56 @@ class ExchangeFactors:
         )
 
     def row_sum_error(self, onward: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``|sum_j E_ij (1 - onward_j) + f_esc,i + f_blind,i + f_truncated,i - 1|`` per side, with
-        ``onward`` (n_sides,) the share each side sends on (:func:`onward_share`)."""
+        """Measure how far each side's emission is from balancing.
+
+        Parameters
+        ----------
+        onward : (n_sides,) ndarray of float64
+            The share each side sends on (:func:`onward_share`).
+
+        Returns
+        -------
+        (n_sides,) ndarray of float64
+            ``|sum_j E_ij (1 - onward_j) + f_esc,i + f_blind,i + f_truncated,i - 1|``.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.views.view_factors import compute_view_factors
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> view = compute_view_factors(craft, rays_per_side=64)
+        >>> exchange = compute_exchange_factors(craft, view)  # half of what is reflected goes on
+        >>> float(exchange.row_sum_error(onward_share(craft.side_optics)).max()) < 1e-12
+        True
+        """
         stays = self.matrix @ (1.0 - onward)
         return np.abs(stays + self.escape_fraction + self.blind_fraction + self.truncated_fraction - 1)
 
     @property
     def nbytes(self) -> int:
-        """Memory held by the arrays [bytes]."""
+        """Memory held by the arrays [bytes].
+
+        Returns
+        -------
+        int
+            Bytes of the sparse matrix and the per-side arrays.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.views.view_factors import compute_view_factors
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> view = compute_view_factors(craft, rays_per_side=64)
+        >>> exchange = compute_exchange_factors(craft, view)  # half of what is reflected goes on
+        >>> exchange.nbytes
+        12496
+        """
         m = self.matrix
         arrays = (
             self.escape_fraction,
@@ -169,8 +250,24 @@ class ExchangeFactors:
 
 
 def onward_share(optics: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``rho beta + sigma`` of each side of ``optics`` (n_sides, 3): the share of arriving light it sends
-    on as a ray."""
+    """Find the share of arriving light each side sends on as a ray: ``rho beta + sigma``.
+
+    Parameters
+    ----------
+    optics : (n_sides, 3) ndarray of float64
+        ``rho, beta, sigma`` of each side.
+
+    Returns
+    -------
+    (n_sides,) ndarray of float64
+        The onward share.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> onward_share(np.array([[0.5, 0.5, 0.0], [0.2, 0.0, 0.3]]))
+    array([0.25, 0.3 ])
+    """
     rho, beta, sigma = optics.T
     return rho * beta + sigma
 
@@ -185,20 +282,42 @@ def compute_exchange_factors(
     depth: int = EXCHANGE_DEPTH,
     optics: NDArray[np.float64] | None = None,
 ) -> ExchangeFactors:
-    """Exchange factors of ``craft`` from its view factors ``view`` (see the module docstring).
+    """Compute the exchange factors of a model from its view factors (see the module docstring).
 
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     view : ViewFactors
         View factors of ``craft``; their rays (at most :data:`CHAIN_RAYS` per side) are cast again.
-    optics : (n_sides, 3) float64, optional
-        ``rho, beta, sigma`` of every side; default ``craft.side_optics`` (sunlight's). Molecules give
-        their own (:mod:`sunwind.forces.gas.exchange`).
     cutoff : float
         A chain ends below this share of its first weight.
     depth : int
         A chain ends after meeting this many surfaces.
+    optics : (n_sides, 3) ndarray of float64, optional
+        ``rho, beta, sigma`` of every side; default ``craft.side_optics`` (sunlight's). Molecules give
+        their own (:mod:`sunwind.forces.gas.exchange`).
+
+    Returns
+    -------
+    ExchangeFactors
+        ``E``, escape, blind and truncated shares; ``origin`` "computed".
+
+    Examples
+    --------
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> view = compute_view_factors(craft, rays_per_side=64)
+    >>> exchange = compute_exchange_factors(craft, view)  # half of what is reflected goes on
+    >>> bool((exchange.matrix - view.matrix).min() >= 0)  # E = F + C, C the later arrivals
+    True
+    >>> black = np.zeros((craft.n_sides, 3))  # nothing sends light on: E = F
+    >>> compute_exchange_factors(craft, view, optics=black).chains
+    0
     """
     start = time.perf_counter()
     optics = np.ascontiguousarray(craft.side_optics if optics is None else optics, dtype=np.float64)
@@ -306,19 +425,45 @@ def exchange_factors(
     cache_dir: str | os.PathLike | bool | None = False,
     optics: NDArray[np.float64] | None = None,
 ) -> ExchangeFactors:
-    """:func:`compute_exchange_factors`, kept on disk and read back when geometry, optics and view
-    factors match; ``E = F`` at no cost where no side sends light on.
+    """Compute the exchange factors as :func:`compute_exchange_factors`, kept on disk when asked.
+
+    They are read back when geometry, optics and view factors match; ``E = F`` at no cost where no side
+    sends light on. ``origin`` says what happened, as for the view factors. Cache trouble is never an
+    error.
 
     Parameters
     ----------
-    craft, view, optics
+    craft : Spacecraft
+        The model.
+    view : ViewFactors
         As for :func:`compute_exchange_factors`.
     cache_dir : path, bool or None
-        Directory of the cache as for :func:`sunwind.geometry.views.view_factors.view_factors` (None or True:
-        the
-        default directory); False (the default): no disk cache.
+        Directory of the cache as for :func:`sunwind.geometry.views.view_factors.view_factors` (None or
+        True: the default directory); False (the default): no disk cache.
+    optics : (n_sides, 3) ndarray of float64, optional
+        As for :func:`compute_exchange_factors`.
 
-    ``origin`` says what happened, as for the view factors. Cache trouble is never an error.
+    Returns
+    -------
+    ExchangeFactors
+        The factors, from the cache or computed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> view = compute_view_factors(craft, rays_per_side=64)
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> exchange_factors(craft, view, cache_dir=folder.name).origin
+    'computed (stored in cache .../exchange_factors-....npz)'
+    >>> exchange_factors(craft, view, cache_dir=folder.name).origin
+    'cache .../exchange_factors-....npz'
+    >>> folder.cleanup()
     """
     directory = cache_directory(cache_dir)
     optics = np.ascontiguousarray(craft.side_optics if optics is None else optics, dtype=np.float64)

@@ -36,11 +36,31 @@ T = TypeVar("T")
 
 
 def map_side_batches(function: Callable[[int, int], T], n: int, rays_per_side: int) -> list[T]:
-    """``[function(lo, hi) for each batch]`` over ``range(n)`` in batches of about ``_BATCH_RAYS`` rays
-    (``rays_per_side`` per item), made, cast and tallied in turn by one thread; results in order. Each
-    batch done advances the running progress step (:mod:`sunwind.geometry.progress`).
+    """Call ``function(lo, hi)`` on batches of ``range(n)`` of about ``_BATCH_RAYS`` rays; results in order.
 
-    Batch boundaries follow the thread count: ``function`` must treat every item on its own.
+    Each batch is made, cast and tallied in turn by one thread, and each batch done advances the
+    running progress step (:mod:`sunwind.geometry.progress`). Batch boundaries follow the thread count:
+    ``function`` must treat every item on its own.
+
+    Parameters
+    ----------
+    function : callable
+        ``function(lo, hi)`` does items ``lo`` to ``hi - 1``.
+    n : int
+        Number of items (sides).
+    rays_per_side : int
+        Rays per item.
+
+    Returns
+    -------
+    list
+        The batches' results, in item order.
+
+    Examples
+    --------
+    >>> batches = map_side_batches(lambda lo, hi: (lo, hi), 10, 2**17)  # two sides a batch
+    >>> [side for lo, hi in batches for side in range(lo, hi)] == list(range(10))
+    True
     """
     per_batch = max(1, _BATCH_RAYS // rays_per_side)
 
@@ -55,7 +75,25 @@ def map_side_batches(function: Callable[[int, int], T], n: int, rays_per_side: i
 
 
 def batch_bytes(n: int, rays_per_side: int) -> int:
-    """Peak bytes of the batches :func:`map_side_batches` holds at once over ``n`` items [bytes]."""
+    """Estimate the peak bytes of the batches :func:`map_side_batches` holds at once.
+
+    Parameters
+    ----------
+    n : int
+        Number of items (sides).
+    rays_per_side : int
+        Rays per item.
+
+    Returns
+    -------
+    int
+        Peak bytes, one batch per thread at work.
+
+    Examples
+    --------
+    >>> batch_bytes(10, 256)  # a batch holds up to 1024 sides of 256 rays: the 10 fit in one
+    18350080
+    """
     per_batch = max(1, _BATCH_RAYS // rays_per_side)
     at_once = min(thread_count(), -(-n // per_batch))
     return _RAY_BYTES * per_batch * rays_per_side * max(1, at_once)
@@ -64,9 +102,43 @@ def batch_bytes(n: int, rays_per_side: int) -> int:
 def emission_rays(
     craft: Spacecraft, sides: NDArray[np.int64], grid: int, seed: int
 ) -> tuple[NDArray[np.float32], NDArray[np.float32], NDArray[np.float64]]:
-    """The ``grid**2`` emission rays of each of ``sides`` with ``seed``: origins (scene coordinates,
-    float32), directions (float32) and levers (surface point minus side centroid [m]), ray ``r`` of
-    ``sides[k]`` at row ``k grid**2 + r`` (see the module docstring and :func:`_emission_rays`)."""
+    """Make the ``grid**2`` cosine-weighted emission rays of each of some sides.
+
+    Ray ``r`` of ``sides[k]`` is at row ``k grid**2 + r`` (see the module docstring and
+    :func:`_emission_rays`); the rays of a side are the same bits whatever else is asked.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    sides : (n,) ndarray of int64
+        The emitting sides.
+    grid : int
+        Strata per axis: ``grid**2`` rays per side.
+    seed : int
+        Seed of the random numbers, in [0, 2**64).
+
+    Returns
+    -------
+    origins : (n * grid**2, 3) ndarray of float32
+        Scene coordinates, pushed off the surface.
+    directions : (n * grid**2, 3) ndarray of float32
+        Unit, body frame, cosine-weighted about the side normal.
+    levers : (n * grid**2, 3) ndarray of float64
+        Surface point minus side centroid [m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> origins, directions, levers = emission_rays(craft, np.array([0, 1]), 2, seed=7)
+    >>> origins.shape, bool((directions[:4] @ craft.side_normals[0] > 0).all())
+    ((8, 3), True)
+    """
     scene = craft.scene
     return _emission_rays(
         craft.triangles,
@@ -91,13 +163,53 @@ def _mix(z: np.uint64) -> np.uint64:
 
 @numba.njit(cache=True, nogil=True)
 def side_key(seed: np.uint64, side: int) -> np.uint64:
-    """Key of the random numbers of ``side``'s rays under ``seed``."""
+    """Make the key of the random numbers of a side's rays under a seed.
+
+    Parameters
+    ----------
+    seed : numpy.uint64
+        The seed.
+    side : int
+        The side.
+
+    Returns
+    -------
+    numpy.uint64
+        A hash of both.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> side_key(np.uint64(7), 3) == side_key(np.uint64(7), 3), side_key(np.uint64(7), 3) == side_key(
+    ...     np.uint64(7), 4)
+    (True, False)
+    """
     return _mix(seed ^ _mix(np.uint64(side) + _GOLDEN))
 
 
 @numba.njit(cache=True, nogil=True)
 def uniform(key: np.uint64, index: int) -> float:
-    """Random number in [0, 1), a hash of ``key`` and ``index``."""
+    """Draw a random number in [0, 1) as a hash of a key and an index.
+
+    Parameters
+    ----------
+    key : numpy.uint64
+        The key (:func:`side_key`).
+    index : int
+        Which number of the key's.
+
+    Returns
+    -------
+    float
+        The number, 53 random bits.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> key = side_key(np.uint64(7), 3)
+    >>> round(uniform(key, 0), 6), uniform(key, 0) == uniform(key, 0)
+    (0.189562, True)
+    """
     return float(_mix(key + np.uint64(index + 1) * _GOLDEN) >> np.uint64(11)) * 2.0**-53
 
 
@@ -116,7 +228,25 @@ def _disk(a: float, b: float) -> tuple[float, float]:
 
 @numba.njit(cache=True, nogil=True)
 def square_to_triangle(a: float, b: float) -> tuple[float, float]:
-    """Low-distortion area-preserving map (Heitz 2019) of the unit square onto barycentrics (b1, b2)."""
+    """Map the unit square onto a triangle's barycentrics, area-preserving and with low distortion.
+
+    The map of Heitz (2019).
+
+    Parameters
+    ----------
+    a, b : float
+        A point of the unit square.
+
+    Returns
+    -------
+    tuple of float
+        Barycentrics ``(b1, b2)``, with ``b1 + b2 <= 1``.
+
+    Examples
+    --------
+    >>> square_to_triangle(0.5, 0.25), square_to_triangle(0.25, 0.5)
+    ((0.375, 0.125), (0.125, 0.375))
+    """
     if b > a:
         a *= 0.5
         return a, b - a

@@ -33,7 +33,33 @@ CONCAVE_TOLERANCE = 1e-7
 
 
 def concave_pairs(craft: Spacecraft) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Edge-adjacent sides ``(a, b)``, a < b, each with the other's centroid in front of its plane."""
+    """Find the edge-adjacent sides that each have the other's centroid in front of their plane.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    a : (k,) ndarray of int64
+        The first side of each pair.
+    b : (k,) ndarray of int64
+        The second, ``a < b``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> corners = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    >>> fold = MeshData(corners, [[0, 1, 2], [0, 3, 1]], [0, 0], ["fold"], [-1, -1])  # a floor and a wall
+    >>> craft = build_spacecraft(fold, two_sided=["fold"],
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> concave_pairs(craft)  # the floor's and the wall's fronts face each other
+    (array([0]), array([1]))
+    """
     a, b = craft.side_neighbours
     centroid, normal, size = craft.side_centroids, craft.side_normals, np.sqrt(craft.side_areas)
     gap = centroid[b] - centroid[a]
@@ -63,20 +89,29 @@ def _near_rule() -> tuple[NDArray[np.float64], ...]:
 def edge_pair_view_factors(
     emitters: NDArray[np.float64], normals: NDArray[np.float64], receivers: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """Unoccluded view factor from each emitting triangle to its receiver, which lies in front of it.
+    """Integrate the unoccluded view factor from each emitting triangle to its receiver, in front of it.
 
     Parameters
     ----------
-    emitters : (n, 3, 3) float64
+    emitters : (n, 3, 3) ndarray of float64
         Corners ``(A, B, C)`` [m], ``AB`` the edge shared with the receiver (the rule is graded toward it).
-    normals : (n, 3) float64
+    normals : (n, 3) ndarray of float64
         Unit normal of each emitter's side, toward the receiver.
-    receivers : (n, 3, 3) float64
+    receivers : (n, 3, 3) ndarray of float64
         Receiver corners [m].
 
     Returns
     -------
-    (n,) float64
+    (n,) ndarray of float64
+        ``F`` from each emitter to its receiver.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> floor = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
+    >>> wall = np.array([[[0.0, 0, 0], [1, 0, 0], [0, 0, 1]]])
+    >>> edge_pair_view_factors(floor, np.array([[0.0, 0, 1]]), wall).round(6)
+    array([0.211325])
     """
     u, wu, v, wv = _near_rule()
     out = np.empty(len(emitters))
@@ -150,12 +185,41 @@ def _oriented_emitters(craft: Spacecraft, a: NDArray[np.int64], b: NDArray[np.in
 def with_near_field(
     craft: Spacecraft, matrix: scipy.sparse.csr_matrix
 ) -> tuple[scipy.sparse.csr_matrix, NDArray[np.float64]]:
-    """``matrix`` with its concave edge-neighbour entries integrated, and the factor (n_sides,) that
-    escape and blind shares are to be multiplied by.
+    """Replace the concave edge-neighbour entries of sampled view factors by integrated ones.
 
     Row i's near entries (sampled sum ``s_i``) get the integrated values (sum ``a_i``, scaled to 1 if
     it exceeds 1); the rest of the row is multiplied by ``(1 - a_i) / (1 - s_i)``, so the row still
     sums to one. A row whose rays all met near neighbours (``s_i = 1``) keeps its sampled values.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    matrix : (n_sides, n_sides) scipy.sparse.csr_matrix
+        Sampled view factors.
+
+    Returns
+    -------
+    matrix : (n_sides, n_sides) scipy.sparse.csr_matrix
+        The factors with the near entries integrated.
+    scale : (n_sides,) ndarray of float64
+        The factor escape and blind shares are to be multiplied by.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> import numpy as np
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.mesh_data import MeshData
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> corners = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    >>> fold = MeshData(corners, [[0, 1, 2], [0, 3, 1]], [0, 0], ["fold"], [-1, -1])  # a floor and a wall
+    >>> craft = build_spacecraft(fold, two_sided=["fold"],
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> sampled = compute_view_factors(craft, 64, near_field=False).matrix
+    >>> matrix, scale = with_near_field(craft, sampled)
+    >>> round(float(sampled[0, 1]), 3), round(float(matrix[0, 1]), 4), scale.round(4)
+    (0.266, 0.2113, array([1.0739, 0.9524, 1.    , 1.    ]))
     """
     n = craft.n_sides
     a, b = concave_pairs(craft)

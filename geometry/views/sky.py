@@ -73,6 +73,17 @@ class OpenSky:
         Time the sampling took [s] (the original time when read from the disk cache).
     origin : str
         "computed ..." or "cache <path>".
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> sky = compute_open_sky(craft, rays_per_side=16)
+    >>> sky.rays_per_side, sky.blocked_fraction[:3], int(sky.start[-1])  # the bus's -x face sees only sky
+    (16, array([0., 0., 0.]), 41)
     """
 
     blocked_fraction: NDArray[np.float64]
@@ -87,22 +98,89 @@ class OpenSky:
 
     @property
     def nbytes(self) -> int:
-        """Memory held by the arrays [bytes]."""
+        """Memory held by the arrays [bytes].
+
+        Returns
+        -------
+        int
+            Bytes of the per-side arrays and the kept rays.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> sky = compute_open_sky(craft, rays_per_side=16)
+        >>> sky.nbytes
+        3440
+        """
         arrays = (self.blocked_fraction, self.keeps_open, self.start, self.direction, self.lever)
         return sum(a.nbytes for a in arrays)
 
     def to_json(self) -> dict:
-        """Rays per side, where the sampling came from and its time [s], JSON-ready."""
+        """Describe the sampling, JSON-ready: rays per side, where it came from and its time [s].
+
+        Returns
+        -------
+        dict
+            ``rays_per_side``, ``origin`` and ``seconds``.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> sky = compute_open_sky(craft, rays_per_side=16)
+        >>> sorted(sky.to_json().items())[:2]
+        [('origin', 'computed'), ('rays_per_side', 16)]
+        """
         return {"rays_per_side": self.rays_per_side, "origin": self.origin, "seconds": self.seconds}
 
     @property
     def partly_open(self) -> NDArray[np.int64]:
-        """Sides some but not all of whose rays meet the model."""
+        """Sides some but not all of whose rays meet the model.
+
+        Returns
+        -------
+        (k,) ndarray of int64
+            The sides, ascending.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> sky = compute_open_sky(craft, rays_per_side=16)
+        >>> len(sky.partly_open), sky.partly_open[:3]
+        (31, array([16, 17, 18]))
+        """
         return np.flatnonzero((self.blocked_fraction > 0) & (self.blocked_fraction < 1))
 
 
 def default_sky_rays(n_casting: int) -> int:
-    """``max(MIN_RAYS, min(MAX_RAYS, TOTAL_RAYS // n_casting))`` rounded down to a square."""
+    """Choose the default sky rays per side when ``n_casting`` sides cast.
+
+    Parameters
+    ----------
+    n_casting : int
+        Sides not on the model's hull.
+
+    Returns
+    -------
+    int
+        ``max(MIN_RAYS, min(MAX_RAYS, TOTAL_RAYS // n_casting))`` rounded down to a square.
+
+    Examples
+    --------
+    >>> default_sky_rays(100), default_sky_rays(10**6)
+    (4096, 36)
+    """
     return math.isqrt(max(MIN_RAYS, min(MAX_RAYS, TOTAL_RAYS // max(n_casting, 1)))) ** 2
 
 
@@ -112,10 +190,32 @@ def compute_open_sky(craft: Spacecraft, rays_per_side: int | None = None, seed: 
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     rays_per_side : int, optional
         Rays per side, rounded up to a square; default :func:`default_sky_rays`.
     seed : int
         Seed of the rays.
+
+    Returns
+    -------
+    OpenSky
+        The sampled sky, ``origin`` "computed".
+
+    Raises
+    ------
+    InputError
+        A bad ``rays_per_side``, or too many rays for the memory.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> sky = compute_open_sky(craft, rays_per_side=10)
+    >>> sky.rays_per_side, sky.origin
+    (16, 'computed')
     """
     start_time = time.perf_counter()
     casting = np.flatnonzero(~clearance(craft).open_sky)
@@ -241,8 +341,48 @@ def open_sky(
     seed: int = SKY_SEED,
     cache_dir: str | os.PathLike | bool | None = None,
 ) -> OpenSky:
-    """:func:`compute_open_sky`, kept on disk and read back when geometry and settings match (as
-    :func:`sunwind.geometry.views.view_factors.view_factors`; ``cache_dir`` False: no disk cache)."""
+    """Sample the open sky as :func:`compute_open_sky`, kept on disk and read back when it matches.
+
+    As :func:`sunwind.geometry.views.view_factors.view_factors`: ``origin`` of the result says whether
+    it was read or computed, and cache trouble is never an error.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    rays_per_side : int, optional
+        As for :func:`compute_open_sky`.
+    seed : int
+        As for :func:`compute_open_sky`.
+    cache_dir : path, bool or None
+        Directory of the cache; None (or True) the default (:func:`~.disk_cache.default_cache_dir`);
+        False: no disk cache.
+
+    Returns
+    -------
+    OpenSky
+        The sampled sky, from the cache or computed.
+
+    Raises
+    ------
+    InputError
+        A bad ``rays_per_side``, or too many rays for the memory.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> open_sky(craft, 16, cache_dir=folder.name).origin
+    'computed (stored in cache .../open_sky-....npz)'
+    >>> open_sky(craft, 16, cache_dir=folder.name).origin
+    'cache .../open_sky-....npz'
+    >>> folder.cleanup()
+    """
     directory = cache_directory(cache_dir)
     if directory is None:
         return compute_open_sky(craft, rays_per_side, seed)

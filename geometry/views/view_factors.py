@@ -90,11 +90,26 @@ class ViewFactors:
     blind_fraction : (n_sides,) float64
         Share that strikes a side the model does not have (absorbed there).
     rays_per_side : int
+        Rays each side cast.
     seed : int
+        Seed of the rays.
     seconds : float
         Time the computation took [s] (the original time when loaded from cache).
     origin : str
         "computed ..." or "cache <path>".
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> view = compute_view_factors(craft, rays_per_side=64)
+    >>> view.matrix.shape, view.escape_fraction[[0, 16]].round(3)  # the bus's -x face sees sky only
+    ((144, 144), array([1.   , 0.891]))
+    >>> view.escape_vector[0].round(4) + 0.0
+    array([-0.6667,  0.    ,  0.    ])
     """
 
     matrix: scipy.sparse.csr_matrix
@@ -108,15 +123,53 @@ class ViewFactors:
     origin: str
 
     def row_sum_error(self) -> NDArray[np.float64]:
-        """``|sum_j F_ij + f_esc,i + f_blind,i - 1|`` of each side, (n_sides,)."""
+        """Measure how far each side's shares are from summing to one.
+
+        Returns
+        -------
+        (n_sides,) ndarray of float64
+            ``|sum_j F_ij + f_esc,i + f_blind,i - 1|``.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> view = compute_view_factors(craft, rays_per_side=64)
+        >>> float(view.row_sum_error().max()) < 1e-12
+        True
+        """
         rows = np.asarray(self.matrix.sum(axis=1)).ravel()
         return np.abs(rows + self.escape_fraction + self.blind_fraction - 1)
 
     def reciprocity_error(self, areas: NDArray[np.float64]) -> float:
-        """``sum |A_i F_ij - A_j F_ji| / sum A_i F_ij`` over all pairs; 0 where no side sees another.
+        """Measure the departure from reciprocity: ``sum |A_i F_ij - A_j F_ji| / sum A_i F_ij`` over pairs.
 
-        ``areas`` : (n_sides,) side areas [m^2]. Sampling noise sets its size: about ``1 / sqrt(hits)``
-        of a typical pair, so it is large for fine meshes whose pairs get few hits each.
+        Sampling noise sets its size: about ``1 / sqrt(hits)`` of a typical pair, so it is large for fine
+        meshes whose pairs get few hits each.
+
+        Parameters
+        ----------
+        areas : (n_sides,) ndarray of float64
+            Side areas [m^2].
+
+        Returns
+        -------
+        float
+            The relative error; 0 where no side sees another.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> view = compute_view_factors(craft, rays_per_side=64)
+        >>> round(view.reciprocity_error(craft.side_areas), 3)  # 64 rays a side: noisy
+        1.141
         """
         exchange = scipy.sparse.diags(np.asarray(areas, dtype=np.float64)) @ self.matrix
         total = exchange.sum()
@@ -124,20 +177,75 @@ class ViewFactors:
 
     @property
     def nbytes(self) -> int:
-        """Memory held by the arrays [bytes]."""
+        """Memory held by the arrays [bytes].
+
+        Returns
+        -------
+        int
+            Bytes of the sparse matrix and the per-side arrays.
+
+        Examples
+        --------
+        >>> from sunwind.geometry.materials import Material
+        >>> from sunwind.geometry.spacecraft import build_spacecraft
+        >>> from sunwind.meshes import box_wing
+        >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+        ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+        >>> view = compute_view_factors(craft, rays_per_side=64)
+        >>> view.nbytes
+        11344
+        """
         m = self.matrix
         arrays = (self.escape_fraction, self.escape_vector, self.escape_moment, self.blind_fraction)
         return m.data.nbytes + m.indices.nbytes + m.indptr.nbytes + sum(a.nbytes for a in arrays)
 
 
 def default_rays_per_side(n_sides: int) -> int:
-    """``max(MIN_RAYS, min(MAX_RAYS, TOTAL_RAYS // n_sides))`` rounded down to a square."""
+    """Choose the default rays per side for a model of ``n_sides`` sides.
+
+    Parameters
+    ----------
+    n_sides : int
+        Sides of the model.
+
+    Returns
+    -------
+    int
+        ``max(MIN_RAYS, min(MAX_RAYS, TOTAL_RAYS // n_sides))`` rounded down to a square.
+
+    Examples
+    --------
+    >>> default_rays_per_side(144), default_rays_per_side(10**6)
+    (16384, 256)
+    """
     return math.isqrt(max(MIN_RAYS, min(MAX_RAYS, TOTAL_RAYS // max(n_sides, 1)))) ** 2
 
 
 def resolve_rays_per_side(rays_per_side: int | None, n_sides: int) -> int:
-    """Rays per side to cast: the default for None, else ``rays_per_side`` (a whole number from 1 to
-    :data:`MAX_RAYS_PER_SIDE`) rounded up to a square."""
+    """Find the rays per side to cast: the default for None, else the number given rounded up to a square.
+
+    Parameters
+    ----------
+    rays_per_side : int or None
+        Rays per side asked for, a whole number from 1 to :data:`MAX_RAYS_PER_SIDE`; None for the default.
+    n_sides : int
+        Sides of the model, for the default.
+
+    Returns
+    -------
+    int
+        A square number of rays.
+
+    Raises
+    ------
+    InputError
+        ``rays_per_side`` not a whole number in range.
+
+    Examples
+    --------
+    >>> resolve_rays_per_side(None, 144), resolve_rays_per_side(10, 144)
+    (16384, 16)
+    """
     if rays_per_side is None:
         return default_rays_per_side(n_sides)
     check_rays_per_side(rays_per_side)
@@ -145,8 +253,28 @@ def resolve_rays_per_side(rays_per_side: int | None, n_sides: int) -> int:
 
 
 def check_rays_per_side(rays_per_side: int, name: str = "rays_per_side") -> None:
-    """Refuse anything but a whole number of rays per side from 1 to :data:`MAX_RAYS_PER_SIDE`;
-    ``name`` is the parameter that gave it."""
+    """Refuse anything but a whole number of rays per side from 1 to :data:`MAX_RAYS_PER_SIDE`.
+
+    Parameters
+    ----------
+    rays_per_side : int
+        The number given.
+    name : str, optional
+        The parameter that gave it, for the message.
+
+    Raises
+    ------
+    InputError
+        When it is not such a number.
+
+    Examples
+    --------
+    >>> check_rays_per_side(4096)
+    >>> check_rays_per_side(0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: rays_per_side 0 must be a whole number from 1 to 65536 ...
+    """
     integer = isinstance(rays_per_side, (int, np.integer)) and not isinstance(rays_per_side, bool)
     if not integer or not 1 <= rays_per_side <= MAX_RAYS_PER_SIDE:
         raise InputError(
@@ -163,11 +291,12 @@ def check_rays_per_side(rays_per_side: int, name: str = "rays_per_side") -> None
 def compute_view_factors(
     craft: Spacecraft, rays_per_side: int | None = None, seed: int = VIEW_SEED, *, near_field: bool = True
 ) -> ViewFactors:
-    """Sample view factors, escape fractions, escape vectors and moments of every side.
+    """Sample the view factors, escape fractions, escape vectors and moments of every side.
 
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     rays_per_side : int, optional
         Rays per side, rounded up to a square; default :func:`default_rays_per_side`.
     seed : int
@@ -175,6 +304,27 @@ def compute_view_factors(
     near_field : bool
         Integrate ``F_ij`` of concave edge-adjacent pairs (see the module notes); False keeps the
         sampled values (for comparison).
+
+    Returns
+    -------
+    ViewFactors
+        The factors, ``origin`` "computed".
+
+    Raises
+    ------
+    InputError
+        A bad ``rays_per_side`` or ``seed``, or too many rays for the memory.
+
+    Examples
+    --------
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> view = compute_view_factors(craft, rays_per_side=60)
+    >>> view.rays_per_side, view.origin, view.matrix.nnz
+    (64, 'computed', 129)
     """
     start = time.perf_counter()
     rays = resolve_rays_per_side(rays_per_side, craft.n_sides)
@@ -303,20 +453,49 @@ def view_factors(
     seed: int = VIEW_SEED,
     cache_dir: str | os.PathLike | bool | None = None,
 ) -> ViewFactors:
-    """:func:`compute_view_factors`, kept on disk and read back when the geometry and settings match.
-
-    Parameters
-    ----------
-    craft, rays_per_side, seed
-        As for :func:`compute_view_factors`.
-    cache_dir : path, bool or None
-        Directory of the cache; None (or True): ``$SUNWIND_CACHE_DIR``, else ``~/.cache/sunwind``
-        (``$XDG_CACHE_HOME`` if set); False: no disk cache.
+    """Compute the view factors as :func:`compute_view_factors`, kept on disk and read back when they match.
 
     ``origin`` of the result says what happened: "cache <path>", "computed (stored in cache <path>)",
     or "computed (...)" naming a corrupt or stale entry that was rebuilt, or a cache that could not be
     written. Cache trouble is never an error and never gives a wrong result: an entry whose values are
     not finite, out of [0, 1] or whose rows do not sum to 1 is rebuilt, with a ``CacheWarning``.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    rays_per_side : int, optional
+        As for :func:`compute_view_factors`.
+    seed : int
+        As for :func:`compute_view_factors`.
+    cache_dir : path, bool or None
+        Directory of the cache; None (or True): ``$SUNWIND_CACHE_DIR``, else ``~/.cache/sunwind``
+        (``$XDG_CACHE_HOME`` if set); False: no disk cache.
+
+    Returns
+    -------
+    ViewFactors
+        The factors, from the cache or computed.
+
+    Raises
+    ------
+    InputError
+        A bad ``rays_per_side`` or ``seed``, or too many rays for the memory.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from sunwind.geometry.materials import Material
+    >>> from sunwind.geometry.spacecraft import build_spacecraft
+    >>> from sunwind.meshes import box_wing
+    >>> craft = build_spacecraft(box_wing(facet_size=0.5),
+    ...     uniform=Material("m", reflectivity=0.5, specular_fraction=0.5))
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> view_factors(craft, 64, cache_dir=folder.name).origin
+    'computed (stored in cache .../view_factors-....npz)'
+    >>> view_factors(craft, 64, cache_dir=folder.name).origin
+    'cache .../view_factors-....npz'
+    >>> folder.cleanup()
     """
     directory = cache_directory(cache_dir)
     if directory is None:

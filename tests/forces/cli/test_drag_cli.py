@@ -190,7 +190,7 @@ def bad_drag_inputs(tmp_path, mesh):
         (["drag", mesh, *velocity, "--corotating", *EXPLICIT_AIR, *SPHERE_ARGS], ["--corotating"]),
         (["drag", mesh, *velocity, *EXPLICIT_AIR, *SPHERE_ARGS, "--ref-area", "0"], ["--ref-area"]),
         (
-            ["drag", mesh, *velocity, *EXPLICIT_AIR, *SPHERE_ARGS, "--reflections", "specular"],
+            ["drag", mesh, *velocity, *EXPLICIT_AIR, *SPHERE_ARGS, "--reflections", "mirror"],
             ["--reflections"],
         ),
         (["forces", mesh, *velocity, *EXPLICIT_AIR, *SPHERE_ARGS], ["--sun"]),

@@ -213,7 +213,7 @@ def test_library_refusals(painted, folder, tmp_path):
     for bad, match in (
         ({"altitude_km": 0.0}, "altitude_km 0.0 is not in"),
         ({"sun_vector": (0, 0, 0)}, "sun_vector .* has zero length"),
-        ({"step_deg": 95.0}, r"step_deg 95.0 is not in \(0, 90\]"),
+        ({"cell_deg": 95.0}, r"cell_deg 95.0 is not in \(0, 90\]"),
         ({"albedo": 1.5}, "albedo 1.5 is outside"),
     ):
         with pytest.raises(InputError, match=match):

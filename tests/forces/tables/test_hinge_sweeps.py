@@ -11,6 +11,7 @@ import xarray as xr
 from helpers.runs import stopped_then_resumed
 from helpers.shapes import hinged_box_wing
 from sunwind.forces import explicit, load, srp, sweep
+from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.tables.jobs import DragSetup, SrpSetup
 from sunwind.geometry.directions import azel_to_vector
 
@@ -31,7 +32,9 @@ def model(files):
 def test_each_listed_angle_is_a_pose_and_each_entry_the_call_at_that_pose(model):
     """The wings (which track the Sun in the file) are held at each listed angle, for SRP and drag."""
     air = explicit(3e-12, 900.0, "O:1")
-    drag_setup = DragSetup(speed_m_s=7600.0, atmosphere=air, reflections="none", sky_rays=36)
+    drag_setup = DragSetup(
+        speed_m_s=7600.0, atmosphere=air, reflections="none", gas_sampling=GasSampling(sky_rays=36)
+    )
     table = sweep(
         model,
         srp=SrpSetup(reflections="none"),
