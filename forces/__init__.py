@@ -7,13 +7,19 @@ the direct pass), :mod:`~sunwind.forces.reflection` (beam chains and the diffuse
 :mod:`~sunwind.forces.tables` (attitudes, sweeps, interpolation), :mod:`~sunwind.forces.export`
 (netCDF, CSV, SPAD, Basilisk, Tudat) and :mod:`~sunwind.forces.cli` (the ``sunwind`` command).
 
+The user's names are gathered in the top-level namespace, ``import sunwind as sw``; this package holds
+them where they are made.
+
 >>> from sunwind.forces import load, srp
->>> model = load("meshes/data/sample_spacecraft.usda")  # doctest: +SKIP
->>> srp(model, [0.3, -0.5, 0.8]).force_N  # doctest: +SKIP
+>>> from sunwind.meshes import sample_materials_path, sample_path
+>>> model = load(sample_path(), sample_materials_path(), threads=1)
+>>> srp(model, [0.3, -0.5, 0.8], reflections="none").force_N.shape
+(3,)
 """
 
 from sunwind.forces.batches import DragBatch, ResultBatch, SrpBatch
 from sunwind.forces.drag import drag
+from sunwind.forces.earth import Place, PlanetResult, planet_radiation
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import (
     Atmosphere,
@@ -32,6 +38,7 @@ from sunwind.forces.radiation import (
     surface_forces,
 )
 from sunwind.forces.reflection import PowerBalance, ReflectionSettings, model_view_factors
+from sunwind.forces.result_base import Result
 from sunwind.forces.results import AttitudeResult, DragResult, SrpResult
 from sunwind.forces.srp import srp
 from sunwind.forces.tables import DragSetup, SrpSetup, SweepRun, sweep
@@ -47,8 +54,11 @@ __all__ = [
     "ErrorEstimate",
     "Model",
     "ModelSource",
+    "Place",
+    "PlanetResult",
     "PowerBalance",
     "ReflectionSettings",
+    "Result",
     "ResultBatch",
     "SrpBatch",
     "SrpResult",
@@ -62,6 +72,7 @@ __all__ = [
     "load",
     "model_view_factors",
     "nrlmsis",
+    "planet_radiation",
     "radiation_pressure",
     "solar_flux",
     "srp",

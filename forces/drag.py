@@ -236,9 +236,16 @@ def _plate_result(
     area, length = model.reference_sizes
     n = craft.n_sides
     sky = OpenSky(
-        np.zeros(n), np.ones(n, bool), np.zeros(n + 1, np.int64), np.zeros((0, 3), np.float32),
-        np.zeros((0, 3), np.float32), 0, 0, 0.0, "plates: every side sees the whole sky",
-    )  # fmt: skip
+        blocked_fraction=np.zeros(n),
+        keeps_open=np.ones(n, bool),
+        start=np.zeros(n + 1, np.int64),
+        direction=np.zeros((0, 3), np.float32),
+        lever=np.zeros((0, 3), np.float32),
+        rays_per_side=0,
+        seed=0,
+        seconds=0.0,
+        origin="plates: every side sees the whole sky",
+    )
     return DragResult(
         force_N=force,
         torque_Nm=torque,

@@ -315,12 +315,7 @@ def check_cells_at(altitude_km: float, cell_deg: float) -> None:
     sunwind.geometry.errors.InputError: cell_deg 0.1 cuts the planet's disc (68.0 deg half-angle) into ...
     """
     radius = planet("earth").radius_m
-    try:
-        check_cells(math.asin(radius / (radius + altitude_km * 1e3)), cell_deg)
-    except InputError as error:  # the cap names its cell size step_deg
-        raise InputError(
-            error.message.replace("step_deg", "cell_deg"), hint=error.hint, parameters=("cell_deg",)
-        ) from None
+    check_cells(math.asin(radius / (radius + altitude_km * 1e3)), cell_deg)
 
 
 @dataclass(frozen=True, eq=False)
@@ -459,14 +454,17 @@ def planet_radiation(
         directions = cells[0][0]
         sources = [
             Source(
-                name, cap.side_integrals(craft.side_normals), weights, optics,
+                name=name,
+                integrals=cap.side_integrals(craft.side_normals),
+                weights=weights,
+                optics=optics,
                 beams=name == "albedo" and plan.mode in BEAM_MODES,
                 exchange=_exchange(craft, plan, settings, name),
             )
             for name, cap, (_, weights), optics in zip(
                 ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
-        ]  # fmt: skip
+        ]
         loads, rays = band_loads(craft, sources, directions, reference, cell_sampling)
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
@@ -508,6 +506,10 @@ def _sunlight(
     cos = np.maximum(craft.side_normals @ u_sun, 0.0)
     i0 = flux * cos
     return Source(
-        "solar", (i0, i0[:, None] * u_sun, i0 * cos), np.array([flux]), craft.side_optics,
-        beams=plan.mode in BEAM_MODES and flux > 0, exchange=_exchange(craft, plan, settings, "solar"),
-    )  # fmt: skip
+        name="solar",
+        integrals=(i0, i0[:, None] * u_sun, i0 * cos),
+        weights=np.array([flux]),
+        optics=craft.side_optics,
+        beams=plan.mode in BEAM_MODES and flux > 0,
+        exchange=_exchange(craft, plan, settings, "solar"),
+    )

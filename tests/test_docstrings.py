@@ -14,7 +14,7 @@ import sunwind
 
 #: Modules whose public names are documented elsewhere: the click commands (the CLI reference is
 #: generated from their help) and ``python -m sunwind``.
-ELSEWHERE = ("sunwind.__main__", "sunwind.forces.cli")
+ELSEWHERE = ("sunwind.__main__",)
 
 
 def public_modules() -> list[str]:

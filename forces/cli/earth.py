@@ -280,9 +280,17 @@ def earth_below(request: EarthRequest, where: FreeStream) -> Below:
         )
     check_earth_step(where.altitude_km, request.cell_deg)
     return Below(
-        request.nadir, where.altitude_km, "earth", request.albedo, request.albedo_model, where.time,
-        request.pole, request.earth_ir, "conical", request.cell_deg,
-    )  # fmt: skip
+        nadir=request.nadir,
+        altitude_km=where.altitude_km,
+        planet="earth",
+        albedo=request.albedo,
+        albedo_model=request.albedo_model,
+        epoch=where.time,
+        pole=request.pole,
+        earth_ir=request.earth_ir,
+        eclipse="conical",
+        cell_deg=request.cell_deg,
+    )
 
 
 def earth_document(result: PlanetResult, state: ThermalState | None) -> dict:

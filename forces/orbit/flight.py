@@ -37,7 +37,7 @@ def fly(
     moon: bool = False,
     run: SweepRun | None = None,
 ) -> OrbitResult:
-    """Forces and torques at every step of ``trajectory`` with the spacecraft held by ``attitude``.
+    """Compute the forces and torques at every step of ``trajectory``, the spacecraft held by ``attitude``.
 
     Parameters
     ----------
@@ -108,17 +108,30 @@ def step_inputs(
     eclipse: str = "conical",
     moon: bool = False,
 ) -> StepInputs:
-    """Each step's inputs: the Sun from the ephemeris (or fixed), the eclipse, the attitude, ``v_rel``
-    against the air turning with the Earth and, with drag, the geodetic place of the atmosphere.
+    """Each step's inputs, put together before the steps run.
+
+    The Sun from the ephemeris (or fixed), the eclipse, the attitude, ``v_rel`` against the air turning
+    with the Earth and, with drag, the geodetic place of the atmosphere.
 
     Parameters
     ----------
-    trajectory, attitude, loads, sun_eci, eclipse, moon
-        As for :func:`fly`.
+    trajectory : Trajectory
+        Times, GCRF positions and velocities.
+    attitude : AttitudeLaw
+        Body-to-GCRF rotation at each step.
+    loads : OrbitLoads
+        What the steps compute: its flux at 1 au, and whether drag needs the geodetic place.
+    sun_eci : (3,) array_like, optional
+        A fixed Sun direction (GCRF, at 1 au) instead of the ephemeris.
+    eclipse : str
+        ``conical`` (penumbra), ``cylindrical`` or ``none``.
+    moon : bool
+        The Moon eclipses the Sun too.
 
     Returns
     -------
     StepInputs
+        One row per step of the trajectory.
 
     Examples
     --------
@@ -222,8 +235,10 @@ def check_sun(sun_eci: NDArray[np.float64] | None, moon: bool) -> None:
 
 
 def geodetic(trajectory: Trajectory) -> NDArray[np.float64]:
-    """Altitude [km] above the WGS 84 ellipsoid, geodetic latitude and longitude [deg] at each step
-    (GCRF to ITRS by ERFA's IAU 2006/2000A ``c2t06a``, UT1 = UTC, no polar motion).
+    """Altitude [km] above the WGS 84 ellipsoid, geodetic latitude and longitude [deg] at each step.
+
+    GCRF is turned to ITRS by ERFA's IAU 2006/2000A ``c2t06a`` (UT1 = UTC, no polar motion), then
+    ``gc2gd`` gives the geodetic place.
 
     Parameters
     ----------

@@ -31,7 +31,6 @@ from sunwind.forces.tables.dataset import attribute_text, model_provenance
 from sunwind.forces.vocabulary import COMPONENT, COMPONENTS
 from sunwind.geometry.rays.certificate import LoadsError
 
-#: The dimension vectors run along (as in sweep tables), and its coordinate.
 #: Time series of the output, in order, with their units (UDUNITS).
 SERIES = {
     "time_s": "s",
@@ -80,9 +79,31 @@ TERMS = ("srp", "drag", "albedo", "infrared", "thermal")
 
 @dataclass(frozen=True)
 class OrbitResult:
-    """Loads along an orbit: ``series`` (name -> (n,) or (n, 3) float64, see :data:`SERIES`),
-    ``body_to_eci`` (n, 3, 3), ``hinge_angles_deg`` (hinge glob -> (n,) angles used) and what the run
-    was; made by :func:`~sunwind.forces.orbit.flight.fly`.
+    """Loads along an orbit, the momentum they build, and what the run was.
+
+    Made by :func:`~sunwind.forces.orbit.flight.fly` (through :meth:`OrbitResult.of`).
+
+    Attributes
+    ----------
+    series : dict of str to ndarray
+        Name -> (n,) or (n, 3) float64 (``part_*``: (n, n_parts)); the output's names are :attr:`names`
+        (see :data:`SERIES`, :data:`EARTH_SERIES`, :data:`ESTIMATE_SERIES`), and the series also hold
+        ``srp_flux_W_m2`` and ``v_rel_body_m_s`` for the summary.
+    body_to_eci : ndarray of float64, shape (n, 3, 3)
+        Body-to-GCRF rotation at every step.
+    hinge_angles_deg : dict of str to ndarray
+        Hinge glob -> (n,) angles used [deg]; empty for a model without hinges.
+    attributes : dict of str to object
+        What the run was: frame, epoch, trajectory, attitude, terms, reference point, settings and the
+        model's provenance.
+    period_s : float
+        Two-body period of the orbit at its first step [s] (inf when not bound).
+    flux_1au_W_m2 : float
+        Solar flux at 1 au [W/m^2].
+    terms : tuple of str
+        The terms computed, of :data:`TERMS`.
+    part_names : tuple of str
+        Columns of the ``part_*`` series (with the Earth's radiation; else empty).
 
     Examples
     --------
@@ -204,14 +225,51 @@ class OrbitResult:
         return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms, parts)
 
     def summary(self, mass_kg: float | None = None) -> dict[str, object]:
-        """Orbit averages, the eclipses (their start and end [s], and the seconds of full shadow the
-        loss of sunlight amounts to), the largest torque, the momentum built per orbit and, for drag
-        and SRP, the effective areas ``C_D A`` and ``C_R A`` [m^2] (per kg with ``mass_kg``).
+        """Orbit averages, eclipses, the largest torque, the momentum per orbit and the effective areas.
 
         ``C_D A = sum(-F_drag . v_rel_hat) / sum(q)`` over the steps (q the dynamic pressure: the
         coefficient that gives the run's mean drag along the flow); ``C_R A = sum(-F_srp . s) / sum(P)``
-        (``s`` the Sun direction, ``P`` the pressure of the visible Sun at the spacecraft). The momentum
-        per orbit is the ECI angular impulse at the end scaled to one two-body period.
+        (``s`` the Sun direction, ``P`` the pressure of the visible Sun at the spacecraft). The momentum per
+        orbit is the ECI angular impulse at the end scaled to one two-body period. Means are trapezoidal
+        time averages.
+
+        Parameters
+        ----------
+        mass_kg : float, optional
+            Spacecraft mass [kg]: adds ``mass_kg`` and the areas per kg, ``ballistic_coefficient_m2_kg``
+            (``C_D A / m``) and ``srp_coefficient_m2_kg`` (``C_R A / m``).
+
+        Returns
+        -------
+        dict of str to object
+            JSON-ready: ``steps``, ``duration_s``, ``period_s``, ``sunlit_fraction``, ``shadow_equivalent_s``
+            (the seconds of full shadow the loss of sunlight amounts to), ``eclipses_s`` (``[start, end]`` of
+            each stretch short of the whole Sun, to the step), ``mean_force_body_N``, ``mean_force_eci_N``,
+            ``mean_torque_body_Nm``, ``max_torque_Nm``, ``max_torque_time_s``, ``angular_impulse_body_Nms``,
+            ``angular_impulse_eci_Nms`` (at the end); as they apply, ``momentum_per_orbit_Nms`` [N m s],
+            ``drag_area_m2``, ``srp_area_m2``, the mean albedo, infrared and thermal loads,
+            ``error_estimate_worst`` and ``parts`` (per part: mean absorbed powers [W], temperatures [K]).
+
+        Examples
+        --------
+        A black 1 m cube on a 700 km orbit, the Sun fixed along GCRF -x:
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.tables.jobs import SrpSetup
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+        >>> orbit = sw.orbit.Elements.circular(700, 98.2)
+        >>> path = sw.orbit.propagate(orbit, epoch, np.arange(4) * 600.0, "kepler")
+        >>> fixed = sw.orbit.AttitudeLaw.parse("inertial:1,0,0,0")
+        >>> loads = sw.orbit.OrbitLoads(SrpSetup(reflections="none"))
+        >>> result = sw.fly(cube, path, fixed, loads, sun_eci=[-1.0, 0.0, 0.0])  # starts behind the Earth
+        >>> summary = result.summary(mass_kg=10.0)
+        >>> summary["eclipses_s"], summary["sunlit_fraction"]
+        ([[0.0, 1200.0]], 0.5)
+        >>> round(summary["srp_area_m2"], 3), round(summary["srp_coefficient_m2_kg"], 4)  # black: C_R A = A
+        (1.0, 0.1)
         """
         s, t = self.series, self.series["time_s"]
         magnitude = np.linalg.norm(s["torque_body_Nm"], axis=1)
@@ -287,9 +345,38 @@ class OrbitResult:
         return out
 
     def to_json(self, mass_kg: float | None = None) -> dict[str, object]:
-        """One object: every series (one row per step) by its name, ``part_names`` (the columns of the
-        ``part_*`` series) with the Earth's radiation, ``hinge_angles_deg`` (by glob), the run's
-        attributes and the ``summary``."""
+        """One JSON-ready object of the run: every series, the attributes and the summary.
+
+        Parameters
+        ----------
+        mass_kg : float, optional
+            Spacecraft mass [kg], passed to :meth:`summary`.
+
+        Returns
+        -------
+        dict of str to object
+            Every series of :attr:`names` (one row per step) by its name, ``part_names`` (the columns of the
+            ``part_*`` series) with the Earth's radiation, ``hinge_angles_deg`` (by glob) with hinges, then
+            ``attributes`` and ``summary``.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.tables.jobs import SrpSetup
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+        >>> orbit = sw.orbit.Elements.circular(700, 98.2)
+        >>> path = sw.orbit.propagate(orbit, epoch, np.arange(4) * 600.0, "kepler")
+        >>> fixed = sw.orbit.AttitudeLaw.parse("inertial:1,0,0,0")
+        >>> loads = sw.orbit.OrbitLoads(SrpSetup(reflections="none"))
+        >>> result = sw.fly(cube, path, fixed, loads, sun_eci=[-1.0, 0.0, 0.0])  # starts behind the Earth
+        >>> out = result.to_json()
+        >>> out["solar_fraction"], out["attributes"]["terms"]
+        ([0.0, 0.0, 1.0, 1.0], 'srp')
+        """
         out: dict[str, object] = {name: self.series[name].tolist() for name in self.names}
         if self.part_names:
             out["part_names"] = list(self.part_names)
@@ -300,8 +387,12 @@ class OrbitResult:
         return out
 
     def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
-        """The series as an xarray Dataset on dimensions ``time``, ``component`` (x, y, z, as in sweep
-        tables) and ``part``, units (UDUNITS) in attributes.
+        """The series as an xarray Dataset on dimensions ``time``, ``component`` (x, y, z, as in sweep tables)
+        and ``part``, units (UDUNITS) in attributes.
+
+        The ``time`` coordinate is seconds since the epoch (CF units); the run's attributes and the summary
+        (``summary_*``) are the dataset's attributes, and each hinge's angles a ``hinge_angle_deg[GLOB]``
+        variable.
 
         Parameters
         ----------
@@ -311,6 +402,25 @@ class OrbitResult:
         Returns
         -------
         xarray.Dataset
+            One variable per series of :attr:`names`.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.tables.jobs import SrpSetup
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+        >>> orbit = sw.orbit.Elements.circular(700, 98.2)
+        >>> path = sw.orbit.propagate(orbit, epoch, np.arange(4) * 600.0, "kepler")
+        >>> fixed = sw.orbit.AttitudeLaw.parse("inertial:1,0,0,0")
+        >>> loads = sw.orbit.OrbitLoads(SrpSetup(reflections="none"))
+        >>> result = sw.fly(cube, path, fixed, loads, sun_eci=[-1.0, 0.0, 0.0])  # starts behind the Earth
+        >>> table = result.to_dataset()
+        >>> table["force_eci_N"].dims, table["time"].attrs["units"]
+        (('time', 'component'), 'seconds since 2024-03-20T00:00:00.000Z')
         """
         variables, units = {}, SERIES | EARTH_SERIES | dict.fromkeys(ESTIMATE_SERIES, "1")
         for name in self.names:
@@ -341,8 +451,40 @@ class OrbitResult:
         return xr.Dataset(variables, coords=coords, attrs=attrs | summary)
 
     def write_csv(self, path: Path) -> None:
-        """One row per step, vectors as ``name_x``, ``name_y``, ``name_z`` columns, per-part series as
-        ``name[PART]``."""
+        """Write the series as CSV: one row per step, the attributes as ``#`` comment lines above the header.
+
+        Vectors are ``name_x``, ``name_y``, ``name_z`` columns, per-part series ``name[PART]`` and hinge
+        angles ``hinge_angle_deg[GLOB]``.
+
+        Parameters
+        ----------
+        path : Path
+            The file to write (replaced if it exists).
+
+        Examples
+        --------
+        >>> import pathlib, tempfile
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.tables.jobs import SrpSetup
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> epoch = sw.orbit.Epoch.of("2024-03-20T00:00:00Z")
+        >>> orbit = sw.orbit.Elements.circular(700, 98.2)
+        >>> path = sw.orbit.propagate(orbit, epoch, np.arange(4) * 600.0, "kepler")
+        >>> fixed = sw.orbit.AttitudeLaw.parse("inertial:1,0,0,0")
+        >>> loads = sw.orbit.OrbitLoads(SrpSetup(reflections="none"))
+        >>> result = sw.fly(cube, path, fixed, loads, sun_eci=[-1.0, 0.0, 0.0])  # starts behind the Earth
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     csv_path = pathlib.Path(folder) / "orbit.csv"
+        ...     result.write_csv(csv_path)
+        ...     lines = csv_path.read_text().splitlines()
+        >>> lines[0]
+        '# frame: body loads in the body frame, ECI = GCRF'
+        >>> header = next(line for line in lines if not line.startswith("#"))
+        >>> header.split(",")[:4]
+        ['time_s', 'position_eci_m_x', 'position_eci_m_y', 'position_eci_m_z']
+        """
         columns, header = [], []
         for name in self.names:
             values = self.series[name]

@@ -43,8 +43,9 @@ from sunwind.geometry.rays.certificate import LoadsError
 
 @dataclass(frozen=True)
 class SpaceWeather:
-    """NRLMSIS's inputs besides place and time (see :func:`~sunwind.forces.gas.msis.nrlmsis`), its
-    defaults those of :mod:`sunwind.forces.gas.msis`.
+    """NRLMSIS's inputs besides place and time (see :func:`~sunwind.forces.gas.msis.nrlmsis`).
+
+    Its defaults are those of :mod:`sunwind.forces.gas.msis`.
 
     Attributes
     ----------
@@ -149,8 +150,10 @@ class SpaceWeather:
 
 @dataclass(frozen=True)
 class OrbitLoads:
-    """What an orbit run computes at every step: the sweep engine's
-    :class:`~sunwind.forces.tables.jobs.Tabulation` of the steps (:class:`StepInputs`).
+    """What an orbit run computes at every step.
+
+    It is the sweep engine's :class:`~sunwind.forces.tables.jobs.Tabulation` of the steps
+    (:class:`StepInputs`).
 
     Attributes
     ----------

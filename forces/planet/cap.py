@@ -49,7 +49,7 @@ _BLOCK_SIDES = 2048
 MOST_CELLS = 20_000
 
 
-def check_cells(half_angle: float, step_deg: float) -> None:
+def check_cells(half_angle: float, cell_deg: float) -> None:
     """Refuse a cell size that would cut the cap into more than ``MOST_CELLS`` cells.
 
     The count is estimated before any cell is made, as the cap's solid angle
@@ -59,13 +59,13 @@ def check_cells(half_angle: float, step_deg: float) -> None:
     ----------
     half_angle : float
         The cap's half-angle ``theta_0`` [rad] (:attr:`Cap.half_angle`).
-    step_deg : float
+    cell_deg : float
         The cell size asked for [deg].
 
     Raises
     ------
     InputError
-        Too fine a step (or a step that is not a number), named as ``step_deg``; the hint gives the
+        Too fine a cell size (or one that is not a positive number), named as ``cell_deg``; the hint gives the
         finest step accepted.
 
     Examples
@@ -75,18 +75,18 @@ def check_cells(half_angle: float, step_deg: float) -> None:
     >>> check_cells(math.radians(68.0), 0.1)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    sunwind.geometry.errors.InputError: step_deg 0.1 cuts the planet's disc (68.0 deg half-angle) into ...
+    sunwind.geometry.errors.InputError: cell_deg 0.1 cuts the planet's disc (68.0 deg half-angle) into ...
     """
     theta0 = half_angle
     solid = 2 * math.pi * (1 - math.cos(theta0))
-    cells = solid / math.radians(step_deg) ** 2  # about
+    cells = solid / math.radians(cell_deg) ** 2 if cell_deg > 0 else math.inf  # about
     if not cells <= MOST_CELLS:
         least = math.degrees(math.sqrt(solid / MOST_CELLS))
         raise InputError(
-            f"step_deg {step_deg:g} cuts the planet's disc ({math.degrees(theta0):.1f} deg half-angle) "
+            f"cell_deg {cell_deg:g} cuts the planet's disc ({math.degrees(theta0):.1f} deg half-angle) "
             f"into about {cells:.3g} cells, more than {MOST_CELLS}: each is a batch of rays per side",
             hint=f"give a step of at least {least:.2g} deg (10 by default; 2 resolves the terminator)",
-            parameters=("step_deg",),
+            parameters=("cell_deg",),
         )
 
 
@@ -372,8 +372,8 @@ class Cap:
         values = out[inverse]
         return values[:, 0], values[:, 1:4], values[:, 4]
 
-    def patches(self, step_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """The cap cut into cells about ``step_deg`` across, for the shadow passes.
+    def patches(self, cell_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The cap cut into cells about ``cell_deg`` across, for the shadow passes.
 
         Rings of equal ``theta`` width are cut into sectors of about the same width; each cell's
         direction is its mean by solid angle (so caps of one geometry share their cells), and its weight
@@ -381,7 +381,7 @@ class Cap:
 
         Parameters
         ----------
-        step_deg : float
+        cell_deg : float
             Cell size [deg].
 
         Returns
@@ -405,14 +405,14 @@ class Cap:
         ((8, 3), 0.841787)
         """
         theta0 = self.half_angle
-        check_cells(theta0, step_deg)
-        rings = max(1, math.ceil(math.degrees(theta0) / step_deg))
+        check_cells(theta0, cell_deg)
+        rings = max(1, math.ceil(math.degrees(theta0) / cell_deg))
         edges = np.linspace(0.0, theta0, rings + 1)
         v, wv = np.polynomial.legendre.leggauss(8)
         directions, weights = [], []
         for lo, hi in itertools.pairwise(edges):
             middle = 0.5 * (lo + hi)
-            sectors = max(1, round(2 * math.pi * math.sin(middle) / math.radians(step_deg))) if lo > 0 else 1
+            sectors = max(1, round(2 * math.pi * math.sin(middle) / math.radians(cell_deg))) if lo > 0 else 1
             theta = lo + (hi - lo) * (v + 1) / 2
             for k in range(sectors):
                 phi = 2 * math.pi * (k + (v + 1) / 2) / sectors

@@ -147,15 +147,72 @@ def escaping_patches(
     margin_m: float,
     reach_m: float,
 ) -> NDArray[np.bool_]:
-    """Which patches of coplanar sides send mirror (column 0) and transmitted (column 1) first beams
-    known to escape, (n_patches, 2).
+    """Which patches of coplanar sides send first beams known to escape: mirror (column 0), transmitted (1).
 
-    Sides of patch ``side_patch[s]`` (-1 for none) lie in the plane ``patch_normal . x =
-    patch_offset`` and inside the box ``patch_low`` .. ``patch_high``, grown by more than a ray's origin
-    offset. A first beam of the patch leaves that box along one direction (all its sides share their
-    normal), away from the plane, so it can meet only facets reaching off the plane on its side. Where
-    the box swept along the beam misses all of those in the tree ``node_low`` .. ``node_high`` (see
-    :func:`_swept_box_escapes`; ``tree_depth`` its depth), every first beam of the patch escapes.
+    Sides of patch ``side_patch[s]`` (-1 for none) lie in the plane ``patch_normal . x = patch_offset`` and
+    inside the box ``patch_low`` .. ``patch_high``, grown by more than a ray's origin offset. A first beam
+    of the patch leaves that box along one direction (all its sides share their normal), away from the
+    plane, so it can meet only facets reaching off the plane on its side. Where the box swept along the
+    beam misses all of those in the tree ``node_low`` .. ``node_high`` (see :func:`_swept_box_escapes`;
+    ``tree_depth`` its depth), every first beam of the patch escapes.
+
+    Parameters
+    ----------
+    facing : (m,) int64
+        Sides facing the source.
+    lit_fraction : (n_sides,) float64
+        Lit share of each side.
+    side_normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    side_optics : (n_sides, 3) float64
+        ``(rho, beta, sigma)`` of each side.
+    side_sheet : (n_sides,) bool
+        Whether each side belongs to a sheet.
+    toward_source : (3,) float64
+        Unit vector toward the light source.
+    side_patch : (n_sides,) int64
+        Patch of each side, -1 for none.
+    patch_low, patch_high : (n_patches, 3) float64
+        Corners of each patch's grown box [m].
+    patch_normal : (n_patches, 3) float64
+        Unit normal of each patch's plane.
+    patch_offset : (n_patches,) float64
+        ``n . x`` of each patch's plane [m].
+    node_low, node_high : (n_nodes, 3) float64
+        Corners of the boxes of the facet tree's nodes [m].
+    first_child : (n_nodes,) int64
+        First child of each node, -1 for a leaf.
+    tree_depth : int
+        Depth of the tree.
+    margin_m : float
+        Growth of the nodes' boxes for the sweep [m].
+    reach_m : float
+        A node reaches off a plane where its box does by more than this [m].
+
+    Returns
+    -------
+    (n_patches, 2) ndarray of bool
+        Whether the patch's mirror and transmitted first beams all escape.
+
+    Examples
+    --------
+    A mirrored cube lit along ``(0, 0.6, 0.8)``: the mirror beams of its two lit faces escape:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.reflection.beams import chain_model
+    >>> from sunwind.forces.reflection.escape import escape_test
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> mirror = sw.Material("mirror", reflectivity=1.0, specular_fraction=1.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=mirror, threads=1).craft
+    >>> light = side_sampler(craft).illuminate(np.array([0.0, 0.6, 0.8]), 4, None)
+    >>> test, sheet = escape_test(craft), chain_model(craft).side_sheet
+    >>> escapes = escaping_patches(light.facing, light.lit_fraction, craft.side_normals, craft.side_optics,
+    ...     sheet, light.direction, test.side_patch, test.patch_low, test.patch_high, test.patch_normal,
+    ...     test.patch_offset, test.tree.low, test.tree.high, test.tree.first_child, test.tree.depth,
+    ...     test.margin_m, test.reach_m)
+    >>> int(escapes[:, 0].sum()), bool(escapes[:, 1].any())
+    (2, False)
     """
     n_patches = patch_low.shape[0]
     escapes = np.zeros((n_patches, 2), dtype=np.bool_)
@@ -212,13 +269,75 @@ def emitters(
     NDArray[np.float64],
     float,
 ]:
-    """The first beams lit sides send: the mirror beam of every side with ``rho beta > 0``, then the
-    beam every sheet with ``sigma > 0`` transmits, each in the order of ``facing``. Beams of the
-    patches ``escapes`` marks (:func:`escaping_patches`; ``side_patch`` the patch of each side, -1 for
-    none; both None to leave none out) are left out and their power summed instead.
+    """First beams the lit sides send, those known to escape left out.
 
-    Returns the side, the lit centroid [m] (n, 3), direction (n, 3), lift (n, 3: the unit vector off
-    the surface on the beam's side) and power [W] of each beam, and the power of the beams left out.
+    The mirror beam of every side with ``rho beta > 0``, then the beam every sheet with ``sigma > 0``
+    transmits, each in the order of ``facing``. Beams of the patches ``escapes`` marks
+    (:func:`escaping_patches`) are left out and their power summed instead.
+
+    Parameters
+    ----------
+    facing : (m,) int64
+        Sides facing the source.
+    lit_fraction : (n_sides,) float64
+        Lit share of each side.
+    lit_centroid : (n_sides, 3) float64
+        Centroid of each side's lit part [m].
+    side_areas : (n_sides,) float64
+        Area of each side [m^2].
+    side_normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    side_optics : (n_sides, 3) float64
+        ``(rho, beta, sigma)`` of each side.
+    side_sheet : (n_sides,) bool
+        Whether each side belongs to a sheet.
+    toward_source : (3,) float64
+        Unit vector toward the light source.
+    flux_W_m2 : float
+        Flux of the source [W/m^2].
+    side_patch : (n_sides,) int64 or None
+        Patch of each side, -1 for none; None to leave no beam out.
+    escapes : (n_patches, 2) bool or None
+        :func:`escaping_patches`; None to leave no beam out.
+
+    Returns
+    -------
+    side : (n,) int64
+        Side sending each beam.
+    origin : (n, 3) ndarray of float64
+        The lit centroid it leaves from [m].
+    direction : (n, 3) ndarray of float64
+        Its unit direction.
+    lift : (n, 3) ndarray of float64
+        Unit vector off the surface on the beam's side.
+    power : (n,) ndarray of float64
+        Its power [W].
+    escaping : float
+        Power of the beams left out [W].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.reflection.beams import chain_model
+    >>> from sunwind.forces.reflection.escape import escape_test
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> mirror = sw.Material("mirror", reflectivity=1.0, specular_fraction=1.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=mirror, threads=1).craft
+    >>> light = side_sampler(craft).illuminate(np.array([0.0, 0.6, 0.8]), 4, None)
+    >>> test, sheet = escape_test(craft), chain_model(craft).side_sheet
+    >>> escapes = escaping_patches(light.facing, light.lit_fraction, craft.side_normals, craft.side_optics,
+    ...     sheet, light.direction, test.side_patch, test.patch_low, test.patch_high, test.patch_normal,
+    ...     test.patch_offset, test.tree.low, test.tree.high, test.tree.first_child, test.tree.depth,
+    ...     test.margin_m, test.reach_m)
+    >>> side, origin, direction, lift, power, escaping = emitters(light.facing, light.lit_fraction,
+    ...     light.lit_centroid, craft.side_areas, craft.side_normals, craft.side_optics, sheet,
+    ...     light.direction, 1000.0, None, None)
+    >>> side, power, escaping
+    (array([ 6,  7, 10, 11]), array([300., 300., 400., 400.]), 0.0)
+    >>> emitters(light.facing, light.lit_fraction, light.lit_centroid, craft.side_areas, craft.side_normals,
+    ...     craft.side_optics, sheet, light.direction, 1000.0, test.side_patch, escapes)[5]
+    1400.0
     """
     m = facing.shape[0]
     sends = np.zeros((2, m), dtype=np.bool_)
@@ -274,8 +393,40 @@ def scene_rays(
     half_size: float,
     offset_m: float,
 ) -> tuple[NDArray[np.float32], NDArray[np.float32]]:
-    """Ray origins ``origin_m + offset_m lift`` and directions in float32 scene coordinates
-    (:class:`sunwind.geometry.rays.scene.SceneFrame`)."""
+    """Ray origins ``origin_m + offset_m lift`` and directions in float32 scene coordinates.
+
+    The scene frame is :class:`sunwind.geometry.rays.scene.SceneFrame`'s: centred on ``centre`` and scaled
+    by ``half_size``.
+
+    Parameters
+    ----------
+    origin_m : (n, 3) float64
+        Where each ray starts on the surface [m].
+    lift : (n, 3) float64
+        Unit vector off the surface on the ray's side.
+    direction : (n, 3) float64
+        Unit direction of each ray.
+    centre : (3,) float64
+        Centre of the scene [m].
+    half_size : float
+        Half-size of the scene [m].
+    offset_m : float
+        How far off the surface rays start [m].
+
+    Returns
+    -------
+    origins : (n, 3) ndarray of float32
+        Origins in scene coordinates.
+    directions : (n, 3) ndarray of float32
+        The directions.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> up = np.array([[0.0, 0.0, 1.0]])
+    >>> scene_rays(np.zeros((1, 3)), up, up, np.zeros(3), 2.0, 0.01)
+    (array([[0.   , 0.   , 0.005]], dtype=float32), array([[0., 0., 1.]], dtype=float32))
+    """
     n = origin_m.shape[0]
     origins = np.empty((n, 3), dtype=np.float32)
     directions = np.empty((n, 3), dtype=np.float32)
@@ -297,12 +448,49 @@ def strike(
     facet_offsets: NDArray[np.float64],
     facet_sides: NDArray[np.int64],
 ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """The side each ray from ``origin_m + offset_m lift`` along ``direction`` strikes on the facet
-    it first hits (-1 where it escapes), and where [m] (zero where it strikes no side).
+    """Side each ray strikes on the facet it first hits, and where.
 
-    Sides as :meth:`sunwind.geometry.spacecraft.Spacecraft.struck_sides` gives them: the front side where the
-    ray travels against the facet normal, else the back; ``BLIND`` where the facet has no such side.
-    The point is where the ray crosses the facet's plane ``n . x = c``, in float64.
+    Sides as :meth:`sunwind.geometry.spacecraft.Spacecraft.struck_sides` gives them: the front side where
+    the ray travels against the facet normal, else the back; ``BLIND`` where the facet has no such side.
+    The point is where the ray from ``origin_m + offset_m lift`` crosses the facet's plane ``n . x = c``,
+    in float64.
+
+    Parameters
+    ----------
+    facets : (n,) int32
+        Facet each ray first hits, negative where it escapes.
+    origin_m : (n, 3) float64
+        Where each ray starts on the surface [m].
+    lift : (n, 3) float64
+        Unit vector off the surface on the ray's side.
+    direction : (n, 3) float64
+        Unit direction of each ray.
+    offset_m : float
+        How far off the surface rays start [m].
+    facet_normals : (n_facets, 3) float64
+        Unit normal of each facet.
+    facet_offsets : (n_facets,) float64
+        ``n . x`` of each facet's plane [m].
+    facet_sides : (n_facets, 2) int64
+        Front and back side of each facet, negative where it has none.
+
+    Returns
+    -------
+    sides : (n,) ndarray of int64
+        Side struck, ``ESCAPED`` (-1) where the ray escapes, ``BLIND`` (-2) where the facet has no such side.
+    points : (n, 3) ndarray of float64
+        Where it strikes [m]; zero where it strikes no side.
+
+    Examples
+    --------
+    Two rays down from ``z = 2``: one escapes, one meets the front (side 3) of a facet in the plane ``z = 1``:
+
+    >>> import numpy as np
+    >>> start, down = np.array([[0.0, 0.0, 2.0]] * 2), np.array([[0.0, 0.0, -1.0]] * 2)
+    >>> sides, points = strike(np.array([-1, 0], np.int32), start, -down, down, 0.0,
+    ...     np.array([[0.0, 0.0, 1.0]]), np.array([1.0]), np.array([[3, -1]]))
+    >>> sides, points[1]
+    (array([-1,  3]), array([0., 0., 1.]))
     """
     n = facets.shape[0]
     sides = np.empty(n, dtype=np.int64)
@@ -373,8 +561,9 @@ def land(
 ) -> tuple[
     NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]
 ]:
-    """Count one generation of beams, each leaving ``origin_m`` and meeting side ``sides`` (or
-    ``ESCAPED``/``BLIND``) at ``points_m``; return the next generation.
+    """Count one generation of beams and return the next.
+
+    Each beam leaves ``origin_m`` and meets side ``sides`` (or ``ESCAPED``/``BLIND``) at ``points_m``.
 
     A ``first`` generation's beams the direct law let leave give their momentum back where they
     land; a later one's escaping beams take theirs away. A beam that meets a side splits into
@@ -385,6 +574,68 @@ def land(
     added to in place.
 
     Returns the new beams' origin (n, 3), lift (n, 3), direction (n, 3), power and starting power.
+
+    Parameters
+    ----------
+    origin_m : (n, 3) float64
+        Where each beam leaves from [m].
+    direction : (n, 3) float64
+        Unit direction of each beam.
+    power_W : (n,) float64
+        Power of each beam [W].
+    start_W : (n,) float64
+        Power its chain started with [W].
+    sides : (n,) int64
+        Side each beam meets, or ``ESCAPED``/``BLIND``.
+    points_m : (n, 3) float64
+        Where it meets it [m].
+    first : bool
+        Whether these are first beams (the direct law let them leave).
+    last : bool
+        Whether this is the last generation (every new beam truncated).
+    cutoff : float
+        New beams below this share of their chain's starting power are truncated.
+    side_normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    side_optics : (n_sides, 3) float64
+        ``(rho, beta, sigma)`` of each side.
+    side_sheet : (n_sides,) bool
+        Whether each side belongs to a sheet.
+    lambert_factor : float
+        ``2/3``: the momentum of diffuse light leaving an open plate per unit power.
+    reference_m : (3,) float64
+        Torque reference point [m].
+    totals : (N_TOTALS,) float64
+        Running sums; added to.
+    arrived_W : (n_sides,) float64
+        Beam power arriving at each side [W]; added to.
+
+    Returns
+    -------
+    origin : (k, 3) ndarray of float64
+        Where each new beam starts [m].
+    lift : (k, 3) ndarray of float64
+        Unit vector off the surface on its side.
+    direction : (k, 3) ndarray of float64
+        Its unit direction.
+    power : (k,) ndarray of float64
+        Its power [W].
+    start : (k,) ndarray of float64
+        Its chain's starting power [W].
+
+    Examples
+    --------
+    A 10 W first beam going up meets a mirror facing down at ``z = 1``: its momentum is given back there and
+    it goes on down:
+
+    >>> import numpy as np
+    >>> totals, arrived = np.zeros(N_TOTALS), np.zeros(1)
+    >>> origin, lift, direction, power, start = land(np.zeros((1, 3)), np.array([[0.0, 0.0, 1.0]]),
+    ...     np.array([10.0]), np.array([10.0]), np.array([0]), np.array([[0.0, 0.0, 1.0]]), True, False, 1e-6,
+    ...     np.array([[0.0, 0.0, -1.0]]), np.array([[1.0, 1.0, 0.0]]), np.zeros(1, bool), 2 / 3, np.zeros(3),
+    ...     totals, arrived)
+    >>> direction, power, totals[MOMENTUM : MOMENTUM + 3], arrived
+    (array([[ 0.,  0., -1.]]), array([10.]), array([ 0.,  0., 10.]), array([10.]))
     """
     n = power_W.shape[0]
     most = 2 * np.sum(sides >= 0)  # a side sends at most a mirror and a transmitted beam

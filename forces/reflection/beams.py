@@ -80,6 +80,21 @@ class BeamChainTotals:
         Rays cast (first beams, their re-sampling and every later generation).
     depth : int
         Most surfaces any chain met beyond the side that sent it (the generations of beams cast).
+
+    Examples
+    --------
+    A mirrored convex cube: every first beam escapes at once, so no ray is needed and the direct law was
+    already right:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> mirror = sw.Material("mirror", reflectivity=1.0, specular_fraction=1.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=mirror, threads=1).craft
+    >>> light = side_sampler(craft).illuminate(np.array([0.0, 0.6, 0.8]), 4, None)
+    >>> chains = follow_chains(craft, light, 1000.0, np.zeros(3), level=light.level)
+    >>> chains.escaped_W, chains.first_W, chains.rays, chains.force_N
+    (1400.0, 1400.0, 0, array([0., 0., 0.]))
     """
 
     force_N: NDArray[np.float64]
@@ -98,15 +113,50 @@ class BeamChainTotals:
 
 @dataclass(frozen=True)
 class ChainModel:
-    """What the kernels of :mod:`sunwind.forces.reflection.beam_kernels` need of a spacecraft beyond its own
-    arrays."""
+    """What the beam kernels need of a spacecraft beyond its own arrays.
+
+    Read by the kernels of :mod:`sunwind.forces.reflection.beam_kernels`.
+
+    Parameters
+    ----------
+    side_sheet : (n_sides,) bool
+        Whether each side belongs to a sheet rather than a closed body.
+    facet_offsets : (n_facets,) float64
+        ``n . x`` of each facet's plane [m].
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> model = chain_model(craft)
+    >>> bool(model.side_sheet.any()), model.facet_offsets[:2]
+    (False, array([0.5, 0.5]))
+    """
 
     side_sheet: NDArray[np.bool_]  # (n_sides,) the side belongs to a sheet, not a closed body
     facet_offsets: NDArray[np.float64]  # (n_facets,) ``n . x`` of the facet's plane [m]
 
 
 def chain_model(craft: Spacecraft) -> ChainModel:
-    """The :class:`ChainModel` of ``craft``, built once and kept in its cache."""
+    """Chain model of ``craft``, built once and kept in its cache.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+
+    Returns
+    -------
+    ChainModel
+        Which sides are sheets, and each facet's plane offset.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> chain_model(craft) is chain_model(craft)
+    True
+    """
     return craft.cache.get(
         "beam chain model",
         lambda: ChainModel(
@@ -361,6 +411,7 @@ def follow_chains(
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     light : Illumination
         Lit shares and lit centroids of the attitude (from the direct computation).
     flux_W_m2 : float
@@ -374,6 +425,23 @@ def follow_chains(
     level : int or None
         The shadow pass's fixed sampling level (``level**2`` points per side): first beams leave from
         the same points. None: the shadows were sampled adaptively, and so are the first beams.
+
+    Returns
+    -------
+    BeamChainTotals
+        The chains' correction to the direct force and torque, their diffuse sources and power split.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.geometry.rays.shadows import side_sampler
+    >>> mirror = sw.Material("mirror", reflectivity=1.0, specular_fraction=1.0)
+    >>> craft = sw.load(sw.meshes.box(), uniform=mirror, threads=1).craft
+    >>> light = side_sampler(craft).illuminate(np.array([0.0, 0.6, 0.8]), 4, None)
+    >>> chains = follow_chains(craft, light, 1000.0, np.zeros(3), level=light.level)
+    >>> chains.absorbed_W, chains.truncated_W, chains.depth
+    (0.0, 0.0, 0)
     """
     # beams known to escape need no ray, but adaptive sampling compares every emitter's outcomes
     emitters = _emitters(craft, light, flux_W_m2, cull=level is not None)

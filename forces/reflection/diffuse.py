@@ -68,6 +68,15 @@ class DiffuseTotals:
         Force and torque (about the reference point) of the diffuse light that escapes.
     escaped_W, absorbed_W : float
         Diffuse power that leaves the model, and that sides absorb.
+
+    Examples
+    --------
+    A momentum rate of 1 W leaving along +z pushes the model along -z by ``1 / c``:
+
+    >>> import numpy as np
+    >>> totals = DiffuseTotals.from_sums(np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]), np.zeros(3))
+    >>> f"{totals.force_N[2]:.4e}", totals.escaped_W
+    ('-3.3356e-09', 1.0)
     """
 
     force_N: NDArray[np.float64]
@@ -94,6 +103,7 @@ class DiffuseExchange:
     Parameters
     ----------
     craft : Spacecraft
+        The model.
     view : ViewFactors
         View factors of ``craft``'s sides.
     mirrored : (n_sides,) float64, optional
@@ -101,13 +111,35 @@ class DiffuseExchange:
         re-emits diffusely (``rho = 1``, ``beta`` = that share, nothing passes a sheet), so ``E = F``
         where no side mirrors. Only molecules reaching a side the model does not have (``BLIND``)
         count as absorbed. None (default): light.
-    optics : (n_sides, 3) float64, optional
-        Light: ``(rho, beta, sigma)`` of each side to use instead of ``craft.side_optics`` (the
-        infrared band: ``(1 - eps, 0, 0)``, :mod:`sunwind.forces.thermal`). Not with ``mirrored``.
     cache_dir : path, bool or None
         Where exchange factors are kept on disk
         (:func:`sunwind.geometry.views.exchange_factors.exchange_factors`);
         False: not kept.
+    optics : (n_sides, 3) float64, optional
+        Light: ``(rho, beta, sigma)`` of each side to use instead of ``craft.side_optics`` (the
+        infrared band: ``(1 - eps, 0, 0)``, :mod:`sunwind.forces.thermal`). Not with ``mirrored``.
+
+    Raises
+    ------
+    ValueError
+        Both ``mirrored`` and ``optics`` given.
+
+    Examples
+    --------
+    On a convex cube nothing a side emits meets another, so ``W = S`` and all of it escapes, pushing the
+    cube along ``-(2/3) n / c`` per watt:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> exchange = diffuse_exchange(craft, ReflectionSettings("full", cache_dir=False, rays_per_side=16))
+    >>> source = np.zeros(craft.n_sides)
+    >>> source[0] = 1.0  # 1 W emitted diffusely by side 0, whose normal is -x
+    >>> exchange.solve(source)[:3]
+    array([1., 0., 0.])
+    >>> totals = exchange.totals(source, np.zeros(3))
+    >>> f"{totals.force_N[0]:.4e}", totals.escaped_W, totals.absorbed_W
+    ('2.2238e-09', 1.0, 0.0)
     """
 
     def __init__(
@@ -220,8 +252,33 @@ class DiffuseExchange:
 
 
 def diffuse_exchange(craft: Spacecraft, settings: ReflectionSettings) -> DiffuseExchange:
-    """The :class:`DiffuseExchange` of ``craft`` with its view factors for ``settings``, its
-    exchange factors kept on disk where they are; built once and kept in the model's cache."""
+    """Diffuse exchange of ``craft`` with its view factors for ``settings``, built once and kept in its cache.
+
+    Its exchange factors are kept on disk where ``settings`` says.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    settings : ReflectionSettings
+        Sampling and disk cache of the view factors.
+
+    Returns
+    -------
+    DiffuseExchange
+        The balance of the model's diffuse light.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.5, 0.0), threads=1).craft
+    >>> exchange = diffuse_exchange(craft, ReflectionSettings("full", cache_dir=False, rays_per_side=16))
+    >>> source = np.zeros(craft.n_sides)
+    >>> source[0] = 1.0  # 1 W emitted diffusely by side 0, whose normal is -x
+    >>> exchange.functionals.shape, exchange.responses.shape
+    ((12, 8), (12, 8))
+    """
     return craft.cache.get(
         ("diffuse exchange", *settings.view_key),
         lambda: DiffuseExchange(craft, model_view_factors(craft, settings), cache_dir=settings.cache_dir),

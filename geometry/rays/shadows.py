@@ -259,11 +259,26 @@ def level_for_samples(samples: int) -> int:
 def check_sampling(samples: int | None, tolerance: float) -> None:
     """Check the sampling arguments of :meth:`SideSampler.illuminate`.
 
+    Parameters
+    ----------
+    samples : int or None
+        Fixed shadow-ray points per side (None: the adaptive pass).
+    tolerance : float
+        The adaptive pass's tolerance, in [``MIN_TOLERANCE``, 1).
+
     Raises
     ------
     InputError
         ``samples`` refused by :func:`level_for_samples`, or ``tolerance`` outside
         [``MIN_TOLERANCE``, 1).
+
+    Examples
+    --------
+    >>> check_sampling(None, 1e-3)
+    >>> check_sampling(None, 5.0)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: tolerance 5.0 must lie in [1e-06, 1); default 1e-3
     """
     if samples is not None:
         level_for_samples(samples)
