@@ -64,7 +64,8 @@ _PUBLIC = {
     "fly": "sunwind.forces.orbit.flight:fly",
     "OrbitLoads": "sunwind.forces.orbit.steps:OrbitLoads",
     # results
-    "Result": "sunwind.forces.results:Result",
+    "Result": "sunwind.forces.result_base:Result",
+    "LoadResult": "sunwind.forces.result_base:LoadResult",
     "SrpResult": "sunwind.forces.results:SrpResult",
     "DragResult": "sunwind.forces.results:DragResult",
     "PlanetResult": "sunwind.forces.earth:PlanetResult",

@@ -38,7 +38,7 @@ from sunwind.forces.radiation import (
     surface_forces,
 )
 from sunwind.forces.reflection import PowerBalance, ReflectionSettings, model_view_factors
-from sunwind.forces.result_base import Result
+from sunwind.forces.result_base import LoadResult, Result
 from sunwind.forces.results import AttitudeResult, DragResult, SrpResult
 from sunwind.forces.srp import srp
 from sunwind.forces.tables import DragSetup, SrpSetup, SweepRun, sweep
@@ -52,6 +52,7 @@ __all__ = [
     "DragResult",
     "DragSetup",
     "ErrorEstimate",
+    "LoadResult",
     "Model",
     "ModelSource",
     "Place",

@@ -13,15 +13,15 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from sunwind.forces.result_base import Result, stacked_variable
+from sunwind.forces.result_base import LoadResult, Result, stacked_variable
 from sunwind.forces.results import DragResult, SrpResult
 from sunwind.forces.vocabulary import ATTITUDE, COMPONENT, COMPONENT_ATTRS, COMPONENTS
 
-R = TypeVar("R", bound=Result)
+R = TypeVar("R", bound=LoadResult)
 
 
 @dataclass(frozen=True, eq=False)
-class ResultBatch(Generic[R]):
+class ResultBatch(Result, Generic[R]):
     """Results of several attitudes, in the order asked.
 
     Any per-attitude field or property of the results, asked of the batch, is that field of every
@@ -31,7 +31,7 @@ class ResultBatch(Generic[R]):
 
     Attributes
     ----------
-    results : tuple of Result
+    results : tuple of LoadResult
         One result per attitude.
 
     Examples
@@ -64,7 +64,7 @@ class ResultBatch(Generic[R]):
         return self.stacked(name)
 
     def __dir__(self) -> list[str]:
-        kind = type(self.results[0]) if self.results else Result
+        kind = type(self.results[0]) if self.results else LoadResult
         fields = [name for name in dir(kind) if not name.startswith("_") and self._per_attitude(name)]
         return sorted({*super().__dir__(), *fields})
 
@@ -96,11 +96,11 @@ class ResultBatch(Generic[R]):
         return np.array([np.nan if value is None else np.asarray(value) for value in values])
 
     def to_json(self) -> list[dict]:
-        """One JSON summary per attitude (:meth:`~sunwind.forces.result_base.Result.to_json`)."""
+        """One JSON summary per attitude (:meth:`~sunwind.forces.result_base.LoadResult.to_json`)."""
         return [result.to_json() for result in self.results]
 
     def to_dataset(self) -> xr.Dataset:
-        """Every per-attitude field of :attr:`~sunwind.forces.result_base.Result.VARIABLES` along the
+        """Every per-attitude field of :attr:`~sunwind.forces.result_base.LoadResult.VARIABLES` along the
         dimension ``attitude`` (vectors along ``component``), with the direction's azimuth and
         elevation [deg] as coordinates, units and long names on every variable, and the frame and
         reference point in the attributes (those of the first result).

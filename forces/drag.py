@@ -78,7 +78,8 @@ def drag(
 
     Returns
     -------
-    DragResult, or DragBatch for a batch of velocities
+    DragResult or DragBatch
+        The result of one velocity, or a batch of results for a batch of velocities.
 
     Raises
     ------
@@ -115,8 +116,19 @@ def drag(
 
 
 def checked_velocities(velocity_m_s: Sequence[float] | NDArray) -> NDArray[np.float64]:
-    """``v_rel`` as (3,) or (n, 3) float64, each three finite numbers of a flow speed
-    (:func:`~sunwind.forces.gas.flow.flow_speed`).
+    """Check the relative velocities and return them as (3,) or (n, 3) float64.
+
+    Each must be three finite numbers of a flow speed (:func:`~sunwind.forces.gas.flow.flow_speed`).
+
+    Parameters
+    ----------
+    velocity_m_s : (3,) or (n, 3) array_like
+        ``v_rel``, the spacecraft's velocity relative to the atmosphere, body frame [m/s].
+
+    Returns
+    -------
+    (3,) or (n, 3) ndarray of float64
+        The velocities, as given.
 
     Raises
     ------

@@ -26,7 +26,7 @@ from sunwind.forces.planet.loads import BandLoad, CellSampling, Source, band_loa
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
-from sunwind.forces.result_base import Result
+from sunwind.forces.result_base import LoadResult
 from sunwind.forces.thermal import ThermalState, infrared_exchange, thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
@@ -47,9 +47,9 @@ MAX_ALTITUDE_KM = 4.0e7
 
 
 @dataclass(frozen=True, eq=False)
-class PlanetResult(Result):
+class PlanetResult(LoadResult):
     """The planet's radiation on the spacecraft at one place and attitude; body frame, SI (a
-    :class:`~sunwind.forces.result_base.Result`: ``force_N``, ``torque_Nm``, ``to_json()``,
+    :class:`~sunwind.forces.result_base.LoadResult`: ``force_N``, ``torque_Nm``, ``to_json()``,
     ``to_dataset()``).
 
     Attributes

@@ -26,7 +26,17 @@ ADVICE = "tighten --tolerance (e.g. ten times), or fix the points per side with 
 
 
 class ShadowErrorWarning(UserWarning):
-    """The shadow pass's estimated error exceeds the tolerance the run asked for."""
+    """The shadow pass's estimated error exceeds the tolerance the run asked for.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warnings.warn("force error 2.0e-03 above tolerance 1.0e-03", ShadowErrorWarning)
+    >>> caught[0].category.__name__
+    'ShadowErrorWarning'
+    """
 
 
 @dataclass(frozen=True)
@@ -93,8 +103,17 @@ def _ratio(error: float, scale: float) -> float:
 
 
 def summed(errors: Iterable[LoadsError | None]) -> LoadsError | None:
-    """The errors of several loads added (a bound: they may partly cancel); None when any is None (a
-    load without an estimate), :class:`LoadsError` ``(0, 0)`` when there are none.
+    """Add the errors of several loads (a bound: they may partly cancel).
+
+    Parameters
+    ----------
+    errors : iterable of LoadsError or None
+        Absolute force [N] and torque [N m] errors of the loads; None for a load without an estimate.
+
+    Returns
+    -------
+    LoadsError or None
+        Their sum; None when any is None, ``LoadsError(0, 0)`` when there are none.
 
     Examples
     --------
@@ -113,7 +132,19 @@ def summed(errors: Iterable[LoadsError | None]) -> LoadsError | None:
 
 
 def scaled(error: LoadsError | None, factor: float) -> LoadsError | None:
-    """``error`` of a load ``factor`` times as large (None stays None).
+    """Scale ``error`` to a load ``factor`` times as large (None stays None).
+
+    Parameters
+    ----------
+    error : LoadsError or None
+        Absolute force [N] and torque [N m] errors of a load, or None for no estimate.
+    factor : float
+        Factor of the load, >= 0.
+
+    Returns
+    -------
+    LoadsError or None
+        ``factor`` times both errors; None when ``error`` is None.
 
     Examples
     --------

@@ -1,14 +1,17 @@
-"""What every result shares: the totals, the reference point they are taken about, the error the shadow
-pass estimates it left, and the same two ways out, :meth:`Result.to_json` and :meth:`Result.to_dataset`,
-with the field names and units of :mod:`sunwind.forces.vocabulary` (METHOD.md "Outputs and tables").
+"""What every result shares: the same two ways out, :meth:`Result.to_json` and :meth:`Result.to_dataset`,
+with the field names and units of :mod:`sunwind.forces.vocabulary` (METHOD.md "Outputs and tables");
+and what the loads at one attitude share (:class:`LoadResult`): the totals, the reference point they
+are taken about and the error the shadow pass estimates it left.
 
 :class:`~sunwind.forces.results.SrpResult`, :class:`~sunwind.forces.results.DragResult` and
-:class:`~sunwind.forces.earth.PlanetResult` derive from :class:`Result`; a batch of results
-(:class:`~sunwind.forces.batches.ResultBatch`) stacks the same fields along ``attitude``.
+:class:`~sunwind.forces.earth.PlanetResult` are :class:`LoadResult`; a batch of them
+(:class:`~sunwind.forces.batches.ResultBatch`) stacks the same fields along ``attitude``, and an orbit's
+series (:class:`~sunwind.forces.orbit.results.OrbitResult`) along ``time``: every one a :class:`Result`.
 """
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from importlib.metadata import PackageNotFoundError, version
 from typing import ClassVar
 
@@ -22,7 +25,41 @@ from sunwind.forces.vocabulary import COMPONENT, COMPONENT_ATTRS, COMPONENTS, va
 FRAME = "body frame of the mesh"
 
 
-class Result:
+class Result(ABC):
+    """The base of every result sunwind gives: one attitude's loads (:class:`LoadResult`), a batch of
+    them, an orbit's series. Each is written the same two ways, with the names and UDUNITS of
+    :mod:`~sunwind.forces.vocabulary`, vectors along ``component``, the frame and the reference point
+    stated.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> sorted(name for name in ("to_json", "to_dataset") if callable(getattr(sw.Result, name)))
+    ['to_dataset', 'to_json']
+    >>> issubclass(sw.SrpBatch, sw.Result), issubclass(sw.OrbitResult, sw.Result)
+    (True, True)
+    """
+
+    @abstractmethod
+    def to_json(self) -> dict | list:
+        """The result as plain JSON types; keys carry their units.
+
+        Returns
+        -------
+        dict or list
+        """
+
+    @abstractmethod
+    def to_dataset(self) -> xr.Dataset:
+        """The result as an ``xarray.Dataset`` with units and long names on every variable.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+
+
+class LoadResult(Result):
     """The base of every result of one attitude: body frame, SI units, units in the field names.
 
     A subclass is a frozen dataclass with at least ``force_N`` and ``torque_Nm`` (3,) [N, N m],
@@ -36,7 +73,7 @@ class Result:
     >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
     >>> cube = sw.load(sw.meshes.box((1.0, 1.0, 1.0)), uniform=black, threads=1)
     >>> result = sw.srp(cube, [1.0, 0.0, 0.0], reflections="none")
-    >>> isinstance(result, sw.Result), result.KIND
+    >>> isinstance(result, sw.LoadResult), result.KIND
     (True, 'srp')
     >>> round(float(result.force_N[0]) * 1e6, 3)  # µN: the flux over c on a black 1 m² face
     -4.54

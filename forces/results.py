@@ -2,7 +2,7 @@
 obtained; body frame, SI units (METHOD.md "Outputs and tables").
 
 :class:`SrpResult` and :class:`DragResult` share :class:`AttitudeResult` (itself a
-:class:`~sunwind.forces.result_base.Result`): the same field names for what both have (``force_N``,
+:class:`~sunwind.forces.result_base.LoadResult`): the same field names for what both have (``force_N``,
 ``rays``, ``facet_force_N``, ``azel_deg``, ...), the same JSON keys and the same ``to_dataset()``.
 A batch (:class:`~sunwind.forces.batches.SrpBatch`, :class:`~sunwind.forces.batches.DragBatch`) holds
 one result per attitude and gives every per-attitude field stacked over them, ``(n,)`` or ``(n, 3)``.
@@ -24,7 +24,7 @@ from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.chains import MoleculeChainTotals
 from sunwind.forces.radiation.law import surface_forces
 from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings
-from sunwind.forces.result_base import FRAME, Result
+from sunwind.forces.result_base import FRAME, LoadResult
 from sunwind.geometry.directions import vector_to_azel
 from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import Illumination
@@ -86,7 +86,7 @@ class GasReflected:
 
 
 @dataclass(frozen=True, eq=False)
-class AttitudeResult(Result):
+class AttitudeResult(LoadResult):
     """What a solar-pressure and a free-molecular result of one attitude share; body frame, SI.
 
     Attributes

@@ -43,7 +43,9 @@ def srp(
         Direction from the spacecraft toward the Sun, body frame (normalised here); a batch gives a
         batch of results.
     flux_W_m2 : float, optional
-        Solar flux; or ``distance_au`` from the Sun (flux 1361 W/m^2 at 1 au); default 1 au.
+        Solar flux [W/m^2]; give this or ``distance_au``; default the flux at 1 au.
+    distance_au : float, optional
+        Distance from the Sun [au], the flux scaled from 1361 W/m^2 at 1 au by its inverse square.
     reference_point_m : (3,) array_like, optional
         Torque reference point [m] (the centre of mass); default the model's, else the volume
         centroid of a closed model, else the area centroid.
@@ -60,13 +62,19 @@ def srp(
 
     Returns
     -------
-    SrpResult, or SrpBatch for a batch of Sun vectors
+    SrpResult or SrpBatch
+        The result of one Sun vector, or a batch of results for a batch of Sun vectors.
 
     Raises
     ------
     InputError
         A Sun vector that is not three finite numbers (or rows of them), a flux, reference point,
         sampling or reflections out of range.
+
+    References
+    ----------
+    Shmatov and Mordvinkin (2013): the force law, eq. (4); the interference criterion ``K_IS``, eq. (7);
+    the diffuse balance, eq. (12).
 
     Examples
     --------

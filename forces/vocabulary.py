@@ -1,6 +1,6 @@
 """The names, units and long names every result, batch, sweep table and orbit series shares (METHOD.md
 "Outputs and tables"): one vocabulary, so ``force_N`` is the same quantity, with the same UDUNITS string,
-in a result's :meth:`~sunwind.forces.result_base.Result.to_dataset`, a batch's, a sweep table and an
+in a result's :meth:`~sunwind.forces.result_base.LoadResult.to_dataset`, a batch's, a sweep table and an
 orbit's dataset, and vectors always run along the dimension :data:`COMPONENT`.
 
 >>> from sunwind.forces.vocabulary import units_of

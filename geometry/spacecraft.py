@@ -167,10 +167,12 @@ class Spacecraft:
     # --- facets -------------------------------------------------------------------------------------
     @property
     def n_facets(self) -> int:
+        """Number of triangles of the mesh."""
         return len(self.faces)
 
     @property
     def n_sides(self) -> int:
+        """Number of sides: one per facet of a closed part, two per facet of a two-sided sheet."""
         return len(self.side_facet)
 
     @cached_property

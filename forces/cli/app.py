@@ -57,8 +57,38 @@ for command in (srp, drag, forces, earth, sweep_command, orbit, plot, info, mesh
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Entry point: run the app; report a bad input as one line on stderr with a non-zero exit, and a
-    warning as one line."""
+    """Run the ``sunwind`` program on a command line.
+
+    A bad input is reported as one ``sunwind: error: ...`` line on stderr (the library's parameter
+    names written as this program's flags) and a non-zero exit; each warning becomes one
+    ``sunwind: warning: ...`` line, said once. Long precompute steps and numba's first compilation
+    are reported on stderr while the command runs.
+
+    Parameters
+    ----------
+    argv : list of str or None, optional
+        The arguments after the program's name; None (the default) takes ``sys.argv[1:]``.
+
+    Raises
+    ------
+    SystemExit
+        Status 1 for a refused input (a :class:`~sunwind.geometry.errors.SunwindError`) or memory
+        running out, 2 for a malformed command line, 130 when aborted or interrupted. A command that
+        succeeds returns normally.
+
+    Examples
+    --------
+    >>> main(["--version"])
+    sunwind ...
+    >>> import contextlib, sys
+    >>> with contextlib.redirect_stderr(sys.stdout):
+    ...     try:
+    ...         main(["srp", "no-such-mesh.obj", "--sun", "1", "0", "0"])
+    ...     except SystemExit as exit:
+    ...         print("exit status", exit.code)
+    sunwind: error: no-such-mesh.obj: file not found; check the path and its spelling
+    exit status 1
+    """
 
     said: set[str] = set()
 

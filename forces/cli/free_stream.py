@@ -38,9 +38,30 @@ from sunwind.geometry.errors import InputError
 
 @dataclass(frozen=True)
 class FreeStream:
-    """The flow of a command: ``v_rel`` [m/s] (None for a sweep, which has only the speed), its speed
-    [m/s] and the atmosphere, all None where the command computes no drag; and how its integral over
-    each side's open sky is sampled."""
+    """The flow of a command: relative velocity, speed and atmosphere, and the open-sky sampling.
+
+    Parameters
+    ----------
+    velocity_m_s : (3,) float ndarray or None
+        ``v_rel``, the spacecraft's velocity relative to the air, body frame [m/s]; None for a sweep
+        (its directions come from the grid) or where the command computes no drag.
+    speed_m_s : float or None
+        ``|v_rel|`` [m/s]; None where the command computes no drag.
+    atmosphere : Atmosphere or None
+        The air's density, temperature and composition; None where the command computes no drag.
+    sampling : GasSampling, optional
+        How each side's open sky (and the re-emitted molecules) are sampled.
+    altitude_km : float or None, optional
+        ``--altitude`` [km] as given (it also places the Earth's radiation).
+    time : str or None, optional
+        ``--epoch`` as given, UTC ISO 8601.
+
+    Examples
+    --------
+    >>> stream = FreeStream(None, None, None)  # no drag
+    >>> stream.atmosphere is None, stream.sampling.sky_rays
+    (True, None)
+    """
 
     velocity_m_s: NDArray[np.float64] | None
     speed_m_s: float | None
@@ -137,13 +158,37 @@ _AIR = [
 
 
 def flow_options(directed: bool, optional: bool = False) -> Callable:
-    """The flow and atmosphere flags: keyword ``flow``.
+    """Make the option group of the flow and the atmosphere.
 
-    ``directed``: the command takes the flow's direction (``--velocity`` or ``--flow-azel``), and
-    ``flow`` is a :class:`FreeStream`; else (a sweep) only its speed, and ``flow`` is a function
-    ``flow(drag_wanted) -> FreeStream``: a sweep of SRP alone needs no atmosphere. ``optional``
-    (``forces``): without a flow direction there is no drag and the flow's other flags are refused;
-    ``flow`` then has no velocity, speed or atmosphere.
+    The flow is ``--velocity`` or ``--flow-azel`` with a speed (``--speed``, else the circular-orbit
+    speed at ``--altitude``; ``--corotating`` subtracts the air turning with the Earth), and the air is
+    NRLMSIS at ``--altitude`` or ``--density``, ``--temperature`` and ``--composition`` together.
+
+    Parameters
+    ----------
+    directed : bool
+        The command takes the flow's direction and is handed a :class:`FreeStream`; else (a sweep)
+        only the speed, and the command is handed a function ``flow(drag_wanted) -> FreeStream``
+        (a sweep of SRP alone needs no atmosphere, and an empty stream is given for it).
+    optional : bool, optional
+        With ``directed`` (``sunwind forces``): without a flow direction there is no drag, the
+        stream has no velocity, speed or atmosphere, and the flow's other flags are refused.
+
+    Returns
+    -------
+    callable
+        A decorator handing the command the keyword ``flow``.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @flow_options(directed=True)
+    ... def demo(flow):
+    ...     print(f"{flow.speed_m_s:.1f} m/s, {flow.atmosphere.density_kg_m3:g} kg/m^3")
+    >>> air = ["--density", "1e-12", "--temperature", "1000", "--composition", "O:1"]
+    >>> demo.main(["--flow-azel", "0", "0", "--altitude", "400", *air], standalone_mode=False)
+    7668.6 m/s, 1e-12 kg/m^3
     """
 
     def build(values: dict):
@@ -178,8 +223,27 @@ _FLOW_ONLY = (
 
 
 def refuse_without_flow(keywords: list[str]) -> None:
-    """Refuse in one line the drag's flags (by ``keywords``, ``sky_rays`` for ``--sky-rays``) given to
-    ``forces`` without a flow direction."""
+    """Refuse, in one message, the drag's flags given to ``sunwind forces`` without a flow direction.
+
+    Parameters
+    ----------
+    keywords : list of str
+        The keywords of the drag's flags that were given (``sky_rays`` for ``--sky-rays``); an empty
+        list is accepted.
+
+    Raises
+    ------
+    InputError
+        ``keywords`` is not empty.
+
+    Examples
+    --------
+    >>> refuse_without_flow([])  # nothing given: nothing refused
+    >>> refuse_without_flow(["density", "sky_rays"])
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: --density, --sky-rays set the drag, which needs the flow's ...
+    """
     flags = ["--" + key.replace("_", "-") for key in keywords]
     if flags:
         raise InputError(

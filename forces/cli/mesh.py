@@ -160,10 +160,43 @@ def _edges(tally: dict) -> str:
 
 
 def builder_params(kind: str, builder, words: list[str]) -> dict:
-    """``--name value`` words after ``sunwind mesh KIND`` as keyword arguments of ``builder``.
+    """Read the ``--name value`` words after ``sunwind mesh KIND`` as keyword arguments of its builder.
 
-    Types follow the builder's defaults: numbers, ``--flag/--no-flag`` for booleans, and several
+    Types follow the builder's defaults: numbers, ``--flag``/``--no-flag`` for booleans, and several
     numbers for a sequence (``--size 1 2 3``).
+
+    Parameters
+    ----------
+    kind : str
+        The mesh kind, for messages.
+    builder : callable
+        The kind's builder (:data:`sunwind.meshes.PRIMITIVES` or the sample spacecraft's); its
+        signature names the parameters and its defaults type them.
+    words : list of str
+        The command-line words after the kind.
+
+    Returns
+    -------
+    dict
+        The builder's keyword arguments.
+
+    Raises
+    ------
+    InputError
+        A word that is no ``--name``, a name the builder does not take, or a value that is not of its
+        type.
+
+    Examples
+    --------
+    >>> from sunwind import meshes
+    >>> builder_params("cylinder", meshes.cylinder, ["--radius", "0.5", "--no-caps"])
+    {'radius': 0.5, 'caps': False}
+    >>> builder_params("box", meshes.box, ["--size", "1", "2", "0.5"])
+    {'size': (1, 2, 0.5)}
+    >>> builder_params("box", meshes.box, ["--radius", "1"])
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: mesh box has no parameter --radius; use --size, --divisions
     """
     signature = inspect.signature(builder).parameters
     params: dict = {}
@@ -217,8 +250,23 @@ def _shown(value: object) -> str:
 
 
 def kind_parameters() -> str:
-    """Every kind's flags and their defaults, for ``sunwind mesh --help`` (from the builders' own
-    signatures: one place)."""
+    r"""List every mesh kind's flags and their defaults, for the epilog of ``sunwind mesh --help``.
+
+    The flags come from the builders' own signatures, so the help cannot drift from them.
+
+    Returns
+    -------
+    str
+        A click epilog: a no-rewrap marker line (``\b``), a title, then one line per kind.
+
+    Examples
+    --------
+    >>> lines = kind_parameters().splitlines()
+    >>> print(lines[1])
+    Parameters of each kind (default):
+    >>> print(next(line for line in lines if "box " in line))
+      box       --size 1 1 1, --divisions 1
+    """
     lines = ["\b", "Parameters of each kind (default):"]
     for kind, builder in [*meshes.PRIMITIVES.items(), ("sample", meshes.sample_spacecraft)]:
         flags = []

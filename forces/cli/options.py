@@ -92,15 +92,72 @@ FLAGS = {
 
 
 def given(name: str) -> bool:
-    """Whether the option of keyword ``name`` of the running command was given on the command line (or
-    in the environment), not left at its default."""
+    """Tell whether an option of the running command was given rather than left at its default.
+
+    Parameters
+    ----------
+    name : str
+        The option's keyword (``"step"`` for ``--step``).
+
+    Returns
+    -------
+    bool
+        True when the value came from the command line or the environment, False when it is the
+        option's default.
+
+    Raises
+    ------
+    RuntimeError
+        Called outside a running click command.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @click.option("--step", type=float, default=10.0)
+    ... def demo(step):
+    ...     print(step, given("step"))
+    >>> demo.main([], standalone_mode=False)
+    10.0 False
+    >>> demo.main(["--step", "10"], standalone_mode=False)
+    10.0 True
+    """
     source = click.get_current_context().get_parameter_source(name)
     return source in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT)
 
 
 def group(name: str, options: list[Callable], build: Callable[[dict], object] | None = None) -> Callable:
-    """A decorator adding ``options`` to a command and handing it, instead of their values, the keyword
-    argument ``name``: ``build(values)`` (or the values themselves as a dict)."""
+    """Make a decorator that adds a group of options to a command and hands it one object built from them.
+
+    The command receives, instead of the options' values, the single keyword argument ``name``:
+    ``build(values)``, where ``values`` maps each option's keyword to its value.
+
+    Parameters
+    ----------
+    name : str
+        The keyword argument the command receives.
+    options : list of callable
+        Click option (or argument) decorators, shown in the help in this order.
+    build : callable or None, optional
+        Makes the object from the dict of the options' values; it raises for values it refuses.
+        None (the default) hands the command the dict itself.
+
+    Returns
+    -------
+    callable
+        A decorator for a click command function (apply it below ``@click.command()``).
+
+    Examples
+    --------
+    >>> import click
+    >>> size = [click.option("--width", type=float, default=1.0), click.option("--height", type=float)]
+    >>> @click.command()
+    ... @group("area", size, lambda values: values["width"] * values["height"])
+    ... def demo(area):
+    ...     print(f"area {area} m^2")
+    >>> demo.main(["--height", "2.5"], standalone_mode=False)
+    area 2.5 m^2
+    """
 
     def decorate(command: Callable) -> Callable:
         @functools.wraps(command)
@@ -164,8 +221,39 @@ _MODEL_OPTIONS = [
 
 
 def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
-    """The command-line uniform material, or None when no optics flag gives one; ``gas`` holds the
-    gas-surface flags given (keys of a materials file)."""
+    """Make the uniform material of the command-line optics flags.
+
+    Parameters
+    ----------
+    values : dict
+        The model flags by keyword; ``reflectivity``, ``specular_fraction``, ``transmissivity`` and
+        ``emissivity`` are read (None: not given). A missing transmissivity is 0.
+    gas : dict or None, optional
+        The gas-surface flags given, as materials-file keys (``gsi``, ``wall_temperature``, ...),
+        for the material's gas law.
+
+    Returns
+    -------
+    Material or None
+        The material ``"uniform"``; None when no optics flag is given.
+
+    Raises
+    ------
+    InputError
+        An optics flag without both ``--reflectivity`` and ``--specular-fraction``, or values a
+        material refuses (each out of [0, 1], reflectivity and transmissivity summing above 1, ...).
+
+    Examples
+    --------
+    >>> flags = {"reflectivity": 0.3, "specular_fraction": 0.5, "transmissivity": None, "emissivity": None}
+    >>> material = uniform_material(flags)
+    >>> material.name, material.reflectivity, material.transmissivity
+    ('uniform', 0.3, 0.0)
+    >>> uniform_material({**flags, "specular_fraction": None})
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: a uniform material needs --reflectivity and --specular-fraction; ...
+    """
     rho, beta, sigma = values["reflectivity"], values["specular_fraction"], values["transmissivity"]
     eps = values["emissivity"]
     if rho is None and beta is None and sigma is None and eps is None:
@@ -182,9 +270,28 @@ def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
 
 
 def drag_only(source: ModelSource) -> ModelSource:
-    """``source`` for a run that computes drag alone, which uses no optics: without a uniform material
-    on the command line, parts without a material take the gas law of the gas flags (their defaults
-    where none is given) and no optics."""
+    """Adapt a model source to a run that computes drag alone, which needs no optics.
+
+    Without a uniform material on the command line, parts without a material take a uniform material
+    with the gas law of the gas flags (their defaults where none is given) and no optics.
+
+    Parameters
+    ----------
+    source : ModelSource
+        The model source of the command's flags.
+
+    Returns
+    -------
+    ModelSource
+        ``source`` itself when it has a uniform material, else a copy with the gas-only one.
+
+    Examples
+    --------
+    >>> from sunwind.forces.model import ModelSource
+    >>> source = drag_only(ModelSource("craft.obj", gas=(("wall_temperature", 250.0),)))
+    >>> source.uniform.reflectivity, source.uniform.gas.wall_temperature_K
+    (0.0, 250.0)
+    """
     if source.uniform is not None:
         return source
     gas = {"reflectivity": 0.0, "specular_fraction": 0.0, **dict(source.gas)}
@@ -242,16 +349,61 @@ def _held(values: dict) -> tuple[tuple[str, float], ...]:
 
 @dataclass(frozen=True)
 class SweptSource:
-    """A sweep's model source and its hinges' angles, each hinge a table dimension."""
+    """A sweep's model source and its hinges' angles, each hinge a table dimension.
+
+    Parameters
+    ----------
+    source : ModelSource
+        The mesh and materials, with no hinge held (``articulate`` empty).
+    hinge_angles : dict of str to list of float, or None
+        The angles [deg] of each ``--articulate`` hinge glob, one table dimension per hinge; None
+        when no hinge is swept.
+
+    Examples
+    --------
+    >>> from sunwind.forces.model import ModelSource
+    >>> swept = SweptSource(ModelSource("craft.obj"), {"wing_*": [0.0, 30.0, 60.0]})
+    >>> swept.hinge_angles["wing_*"]
+    [0.0, 30.0, 60.0]
+    """
 
     source: ModelSource
     hinge_angles: dict[str, list[float]] | None
 
 
 def model_options(gas: bool = False, swept: bool = False) -> Callable:
-    """The mesh and its materials (with the gas-surface flags when ``gas``): keyword ``source``, a
-    :class:`~sunwind.forces.model.ModelSource`; with ``swept``, a :class:`SweptSource` whose
-    ``--articulate`` angles (one or a list per hinge) are table dimensions instead."""
+    """Make the option group of the mesh and its materials.
+
+    Its flags are the ``MESH`` argument, ``--materials``, the uniform material's optics, ``--two-sided``,
+    ``--unit`` and ``--articulate`` (and, with ``gas``, the gas-surface flags). Nothing is loaded: the
+    mesh is read when the command loads the source (:func:`loaded`).
+
+    Parameters
+    ----------
+    gas : bool, optional
+        Add the gas-surface flags (``--gsi``, the accommodations, ``--wall-temperature``), which set the
+        uniform material's gas law and override every material's.
+    swept : bool, optional
+        Hand a :class:`SweptSource`, whose ``--articulate`` angles (one or a list per hinge) are table
+        dimensions; else each hinge is held at one angle.
+
+    Returns
+    -------
+    callable
+        A decorator handing the command the keyword ``source``: a
+        :class:`~sunwind.forces.model.ModelSource`, or with ``swept`` a :class:`SweptSource`.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @model_options(gas=True)
+    ... def demo(source):
+    ...     print(source.mesh, source.uniform.reflectivity, dict(source.gas), source.articulate)
+    >>> demo.main(["craft.obj", "--reflectivity", "0.3", "--specular-fraction", "0.5",
+    ...            "--wall-temperature", "250", "--articulate", "wing_*=30"], standalone_mode=False)
+    craft.obj 0.3 {'wall_temperature': 250.0} (('wing_*', 30.0),)
+    """
 
     def build(values: dict) -> ModelSource | SweptSource:
         if swept:
@@ -264,7 +416,40 @@ def model_options(gas: bool = False, swept: bool = False) -> Callable:
 
 
 def loaded(source: ModelSource, **model: object) -> Model:
-    """The model of ``source`` (with ``model``'s references), its repair notices printed on stderr."""
+    """Load the model of a source, printing its repair notices on stderr.
+
+    Parameters
+    ----------
+    source : ModelSource
+        The mesh and materials to read.
+    **model : object
+        :class:`~sunwind.forces.model.Model` fields: the references (``reference_point_m``, ...),
+        ``threads``.
+
+    Returns
+    -------
+    Model
+        The loaded model; each repair made on loading is one ``sunwind: notice:`` line on stderr.
+
+    Raises
+    ------
+    SunwindError
+        A mesh or materials file that cannot be read or is refused.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import sunwind as sw
+    >>> from sunwind.forces.model import ModelSource
+    >>> from sunwind.geometry.io import save_mesh
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     mesh = Path(folder) / "box.obj"
+    ...     save_mesh(sw.meshes.box(), mesh)
+    ...     model = loaded(ModelSource(str(mesh), uniform=sw.Material("black", 0.0, 0.0)), threads=1)
+    >>> model.craft.n_facets, model.threads
+    (12, 1)
+    """
     craft = source.spacecraft()
     for notice in craft.notices:
         print(f"sunwind: notice: {craft.source}: {notice}", file=sys.stderr)
@@ -272,9 +457,38 @@ def loaded(source: ModelSource, **model: object) -> Model:
 
 
 def posed(model: Model, sun_vector: NDArray[np.float64] | None, command: str) -> Model:
-    """``model`` with its hinges at the angles of ``sunwind COMMAND``: fixed ones at theirs, tracking ones
-    turned to ``sun_vector``. A schedule (it needs a time: ``sunwind orbit``), or tracking without a Sun
-    (``drag``, and ``sweep``, which turns nothing from one attitude to the next), is refused."""
+    """Turn a model's hinges to the angles of ``sunwind COMMAND``.
+
+    Fixed hinges take their angles and Sun-tracking ones turn to ``sun_vector``. A hinge that follows
+    a schedule (it needs a time: ``sunwind orbit``), or one that tracks the Sun where there is no Sun
+    (``drag``, and ``sweep``, which turns nothing from one attitude to the next), is refused.
+
+    Parameters
+    ----------
+    model : Model
+        The loaded model.
+    sun_vector : (3,) float ndarray or None
+        Unit vector to the Sun, body frame; None for a command without one.
+    command : str
+        The command's name, for the message.
+
+    Returns
+    -------
+    Model
+        ``model`` posed; the model itself when it has no hinges.
+
+    Raises
+    ------
+    InputError
+        A hinge the command cannot turn, with how to hold it at an angle (``--articulate``).
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> model = sw.load(sw.meshes.box(), uniform=sw.Material("black", 0.0, 0.0), threads=1)
+    >>> posed(model, None, "drag") is model  # no hinges: nothing to turn
+    True
+    """
     model.check_turnable(f"sunwind {command}", sun=sun_vector is not None)
     return model.posed(model.angles_at(sun_vector))
 
@@ -290,8 +504,31 @@ def _references(values: dict) -> dict:
 
 
 def reference_options(sizes: bool = False) -> Callable:
-    """The torque reference point (and with ``sizes`` the coefficient references): keyword ``references``,
-    the :class:`~sunwind.forces.model.Model` fields they set."""
+    """Make the option group of the torque reference point and, with ``sizes``, the coefficient references.
+
+    Parameters
+    ----------
+    sizes : bool, optional
+        Add ``--ref-area`` [m^2] and ``--ref-length`` [m] (for drag's coefficients) to ``--ref-point``
+        [m].
+
+    Returns
+    -------
+    callable
+        A decorator handing the command the keyword ``references``: a dict of the
+        :class:`~sunwind.forces.model.Model` fields they set (``reference_point_m``, and with ``sizes``
+        ``reference_area_m2`` and ``reference_length_m``; None where not given).
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @reference_options(sizes=True)
+    ... def demo(references):
+    ...     print(references["reference_point_m"], references["reference_area_m2"])
+    >>> demo.main(["--ref-point", "0", "0", "0.5", "--ref-area", "2"], standalone_mode=False)
+    [0.  0.  0.5] 2.0
+    """
     options = [
         click.option(
             "--ref-point",
@@ -320,7 +557,23 @@ def reference_options(sizes: bool = False) -> Callable:
 # ------------------------------------------------------------------------------------------------ sun
 @dataclass(frozen=True)
 class Sun:
-    """The Sun of a command: direction (spacecraft to Sun, body frame; None when not asked for) and flux."""
+    """The Sun of a command: its direction and flux.
+
+    Parameters
+    ----------
+    vector : (3,) float ndarray or None
+        Unit vector from the spacecraft to the Sun, body frame; None when the command does not ask
+        for one.
+    flux_W_m2 : float
+        Solar flux at the spacecraft [W/m^2].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> sun = Sun(np.array([0.0, 0.0, 1.0]), 1361.0)
+    >>> sun.flux_W_m2
+    1361.0
+    """
 
     vector: NDArray[np.float64] | None
     flux_W_m2: float
@@ -344,7 +597,33 @@ def _sun(values: dict) -> Sun:
 
 
 def sun_options(direction: bool = True) -> Callable:
-    """The Sun direction (when ``direction``) and the flux: keyword ``sun``, a :class:`Sun`."""
+    """Make the option group of the Sun direction and the solar flux.
+
+    Parameters
+    ----------
+    direction : bool, optional
+        Add ``--sun X Y Z`` and ``--sun-azel AZ EL`` [deg] (one of them is then needed); else only the
+        flux flags ``--flux`` [W/m^2] and ``--distance-au``.
+
+    Returns
+    -------
+    callable
+        A decorator handing the command the keyword ``sun``: a :class:`Sun`.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @sun_options()
+    ... def demo(sun):
+    ...     print(sun.vector.round(6), round(sun.flux_W_m2, 1))
+    >>> demo.main(["--sun-azel", "90", "0", "--distance-au", "2"], standalone_mode=False)
+    [0. 1. 0.] 340.2
+    >>> demo.main(["--distance-au", "2"], standalone_mode=False)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: give the Sun direction with --sun X Y Z or --sun-azel AZ EL ...
+    """
     options = [
         click.option(
             "--sun",
@@ -372,8 +651,29 @@ def _sampling(values: dict) -> ShadowSampling:
 
 
 def sampling_options(command: Callable) -> Callable:
-    """Shadow-ray sampling (``--samples``, ``--tolerance``): keyword ``sampling``, a
-    :class:`~sunwind.geometry.rays.sampling.ShadowSampling`."""
+    """Add the shadow-ray sampling flags ``--samples`` and ``--tolerance`` to a command.
+
+    Parameters
+    ----------
+    command : callable
+        The command function (a decorator is applied directly, without a call).
+
+    Returns
+    -------
+    callable
+        ``command``, handed the keyword ``sampling``: a
+        :class:`~sunwind.geometry.rays.sampling.ShadowSampling`.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @sampling_options
+    ... def demo(sampling):
+    ...     print(sampling.samples, sampling.tolerance)
+    >>> demo.main(["--samples", "16", "--tolerance", "0.01"], standalone_mode=False)
+    16 0.01
+    """
     options = [
         click.option(
             "--samples",
@@ -424,8 +724,35 @@ def _settings(values: dict) -> ReflectionSettings:
 
 
 def reflection_options(of: str) -> Callable:
-    """Inter-reflection of ``of`` ("light", "gas", "both") and view-factor sampling: keyword
-    ``reflections``, a :class:`~sunwind.forces.reflection.ReflectionSettings`."""
+    """Make the option group of inter-reflection and view-factor sampling.
+
+    Parameters
+    ----------
+    of : {"light", "gas", "both"}
+        What is reflected, for the help of ``--reflections``; with ``"light"`` also
+        ``--reflection-cutoff`` and ``--reflection-depth``.
+
+    Returns
+    -------
+    callable
+        A decorator handing the command the keyword ``reflections``: a
+        :class:`~sunwind.forces.reflection.ReflectionSettings`.
+
+    Raises
+    ------
+    KeyError
+        ``of`` is none of the three.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @reflection_options("light")
+    ... def demo(reflections):
+    ...     print(reflections.mode, reflections.depth, reflections.rays_per_side)
+    >>> demo.main(["--reflections", "full", "--view-rays", "512"], standalone_mode=False)
+    full ... 512
+    """
     options = [
         click.option(
             "--reflections",
@@ -456,7 +783,29 @@ def reflection_options(of: str) -> Callable:
 
 
 def view_factor_options(command: Callable) -> Callable:
-    """View-factor sampling and cache alone (for K_IS): keyword ``reflections``, full settings."""
+    """Add the view-factor sampling and cache flags alone to a command (for K_IS).
+
+    Parameters
+    ----------
+    command : callable
+        The command function (a decorator is applied directly, without a call).
+
+    Returns
+    -------
+    callable
+        ``command``, handed the keyword ``reflections``: full
+        :class:`~sunwind.forces.reflection.ReflectionSettings` with the default cutoff and depth.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @view_factor_options
+    ... def demo(reflections):
+    ...     print(reflections.mode, reflections.rays_per_side, reflections.cache_dir)
+    >>> demo.main(["--view-rays", "300", "--no-cache"], standalone_mode=False)
+    full 300 False
+    """
     return group("reflections", _VIEW_FACTOR_OPTIONS, _settings)(command)
 
 

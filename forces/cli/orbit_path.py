@@ -76,7 +76,39 @@ PATH_OPTIONS = [
 
 @dataclass(frozen=True)
 class PathRequest:
-    """Where the spacecraft goes: one source of states, the epoch, duration and step."""
+    """Where ``sunwind orbit``'s spacecraft goes: one source of states, the epoch, duration and step.
+
+    Exactly one of ``elements``, ``tle`` and ``ephemeris`` is set (:func:`path_request` checks it).
+
+    Parameters
+    ----------
+    elements : Elements or None
+        Keplerian elements at the epoch (``--elements``, or a circular orbit).
+    propagator : str
+        How elements are propagated: one of ``PROPAGATORS`` (two-body ``"kepler"``, or with J2).
+    tle : pathlib.Path or None
+        A two-line element file, propagated by SGP4.
+    ephemeris : pathlib.Path or None
+        A CSV of GCRF states, interpolated.
+    epoch : Epoch or None
+        The run's start; None takes the TLE's epoch or the ephemeris' first time.
+    duration_s : float or None
+        The run's length [s]; None is one orbital period (or the whole ephemeris).
+    step_s : float
+        The time between steps [s].
+    max_steps : int, optional
+        The most steps a run may take.
+
+    Examples
+    --------
+    >>> from sunwind.forces.orbit import Elements, Epoch
+    >>> orbit = Elements.circular(500.0, 97.4, 0.0, 0.0)
+    >>> request = PathRequest(orbit, "kepler", None, None, Epoch.of("2024-03-20T00:00:00Z"), 600.0, 60.0)
+    >>> request.step_count(600.0)
+    11
+    >>> float(request.trajectory().time_s[-1])  # the last step's time [s]
+    600.0
+    """
 
     elements: Elements | None
     propagator: str
@@ -166,7 +198,40 @@ def _warn_elements_age(elements_epoch: Epoch, start: Epoch, run_s: float) -> Non
 
 
 def path_request(values: dict) -> PathRequest:
-    """The :class:`PathRequest` of the flags of :data:`PATH_OPTIONS`, checked."""
+    """Make the checked :class:`PathRequest` of the orbit flags (:data:`PATH_OPTIONS`).
+
+    Parameters
+    ----------
+    values : dict
+        The flags' values by keyword: ``elements`` (six numbers: a [km], e, i, RAAN, argp, nu
+        [deg]), ``altitude`` [km], ``inclination``, ``raan`` and ``arg_latitude`` [deg],
+        ``propagator``, ``tle``, ``ephemeris``, ``epoch`` (UTC ISO 8601), ``duration`` and ``step``
+        [s], ``max_steps``; None where not given.
+
+    Returns
+    -------
+    PathRequest
+        The orbit's source of states, epoch, duration and step.
+
+    Raises
+    ------
+    InputError
+        No orbit or more than one, a circular orbit without both altitude and inclination, a
+        duration or step that is not a positive number, or an epoch that cannot be read.
+
+    Examples
+    --------
+    >>> flags = {"elements": None, "altitude": 500.0, "inclination": 97.4, "raan": 0.0,
+    ...          "arg_latitude": 0.0, "propagator": "kepler", "tle": None, "ephemeris": None,
+    ...          "epoch": "2024-03-20T00:00:00Z", "duration": None, "step": 60.0, "max_steps": 1000}
+    >>> request = path_request(flags)
+    >>> round(request.elements.a_m / 1e3, 3), request.duration_s
+    (6878.137, None)
+    >>> path_request({**flags, "altitude": None, "inclination": None})
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: give an orbit; --elements, --altitude with --inclination, ...
+    """
     elements = None
     if values["elements"] is not None:
         a_km, e, i, raan, argp, nu = values["elements"]

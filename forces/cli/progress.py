@@ -20,7 +20,28 @@ INTERVAL = 5.0
 
 
 class StepLines:
-    """A :class:`~sunwind.geometry.progress.Reporter` printing ``sunwind: <step> ...`` lines on stderr."""
+    """A :class:`~sunwind.geometry.progress.Reporter` printing ``sunwind: <step> ...`` lines on stderr.
+
+    A step is shown once it has run for :data:`DELAY` seconds, then given a line with how much is done
+    at most every :data:`INTERVAL` seconds, and a closing line with its time; a quicker step prints
+    nothing. Lines come from timer threads, each written whole.
+
+    Examples
+    --------
+    >>> import contextlib, sys
+    >>> lines = StepLines()
+    >>> with contextlib.redirect_stderr(sys.stdout):
+    ...     lines.begin("view factors")
+    ...     lines.end("view factors", 0.01)  # ended before DELAY: nothing shown
+    >>> import sunwind.forces.cli.progress as progress
+    >>> delay, progress.DELAY = progress.DELAY, 0.0  # show every step at once
+    >>> with contextlib.redirect_stderr(sys.stdout):
+    ...     lines.begin("view factors")
+    ...     lines.end("view factors", 2.5)
+    sunwind: view factors ...
+    sunwind: view factors done in 2.5 s
+    >>> progress.DELAY = delay
+    """
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
@@ -28,7 +49,13 @@ class StepLines:
         self._timers: dict[str, threading.Timer] = {}
 
     def begin(self, name: str) -> None:
-        """Show ``name`` once it has run for :data:`DELAY` seconds."""
+        """Start the step ``name``, shown once it has run for :data:`DELAY` seconds.
+
+        Parameters
+        ----------
+        name : str
+            The step, as its lines name it.
+        """
         if DELAY <= 0:
             self._show(name)
             return
@@ -38,7 +65,15 @@ class StepLines:
         timer.start()
 
     def advance(self, name: str, done: int, total: int) -> None:
-        """A line with ``done`` of ``total`` when the step is shown and :data:`INTERVAL` has passed."""
+        """Report ``done`` of ``total``, in a line when the step is shown and :data:`INTERVAL` has passed.
+
+        Parameters
+        ----------
+        name : str
+            The step.
+        done, total : int
+            Units of work done so far, and in all.
+        """
         with self._lock:
             last = self._shown.get(name)
             if last is None or time.perf_counter() - last < INTERVAL:
@@ -47,7 +82,15 @@ class StepLines:
         self._print(f"{name}: {done} of {total} ({100 * done / max(total, 1):.0f} %)")
 
     def end(self, name: str, seconds: float) -> None:
-        """The closing line of a step that was shown."""
+        """End the step ``name``, with a closing line when it was shown.
+
+        Parameters
+        ----------
+        name : str
+            The step.
+        seconds : float
+            Its running time [s].
+        """
         timer = self._timers.pop(name, None)
         if timer is not None:
             timer.cancel()
@@ -77,16 +120,36 @@ COMPILE_S = 0.75
 
 
 class CompileNotice(event.Listener):
-    """A numba event listener saying, once, on the first compilation of a run (a kernel with no
-    compiled copy on disk: a first run, or a new version), that kernels are being compiled and about
-    how long it takes at most, so the wait is not taken for a hang."""
+    """A numba event listener announcing, once per run, that kernels are being compiled.
+
+    On the first compilation of a run (a kernel with no compiled copy on disk: a first run, or a new
+    version) it says on stderr how many kernels are missing and about how long compiling them takes at
+    most (:data:`COMPILE_S` each), so the wait is not taken for a hang.
+
+    Examples
+    --------
+    >>> import contextlib, sys
+    >>> from numba.core import event
+    >>> notice = CompileNotice()
+    >>> start = event.Event("numba:compile", event.EventStatus.START)
+    >>> with contextlib.redirect_stderr(sys.stdout):
+    ...     notice.on_start(start)
+    ...     notice.on_start(start)  # said once only
+    sunwind: notice: compiling numba kernels on first use (... not on disk yet; about ... s at most, ...)
+    """
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._said = False
 
     def on_start(self, happening: event.Event) -> None:
-        """A compilation starts (in any thread): the notice, the first time only."""
+        """Print the notice when a compilation starts (in any thread), the first time only.
+
+        Parameters
+        ----------
+        happening : numba.core.event.Event
+            The compilation's start event (not read).
+        """
         with self._lock:
             if self._said:
                 return
@@ -100,17 +163,49 @@ class CompileNotice(event.Listener):
         )
 
     def on_end(self, happening: event.Event) -> None:
-        """A compilation ends: nothing to say."""
+        """Do nothing when a compilation ends.
+
+        Parameters
+        ----------
+        happening : numba.core.event.Event
+            The compilation's end event (not read).
+        """
 
 
 def compile_notices() -> contextlib.AbstractContextManager:
-    """A context in which numba's first compilation prints the :class:`CompileNotice`."""
+    """Open a context in which numba's first compilation prints the :class:`CompileNotice`.
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        A context installing a :class:`CompileNotice` for numba's ``"numba:compile"`` events while it
+        lasts.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> with compile_notices():  # nothing is compiled here, so nothing is said
+    ...     sw.meshes.box().n_faces
+    12
+    """
     return event.install_listener("numba:compile", CompileNotice())
 
 
 def uncompiled_kernels() -> int:
-    """How many numba kernels of the imported sunwind modules have no valid compiled copy in numba's
-    on-disk cache (0 when numba's cache layout is not the one known here)."""
+    """Count the numba kernels of the imported sunwind modules that have no valid compiled copy on disk.
+
+    Returns
+    -------
+    int
+        The kernels (numba dispatchers defined in an imported ``sunwind.`` module) whose on-disk cache
+        index is missing or stale; 0 when numba's cache layout is not the one known here.
+
+    Examples
+    --------
+    >>> missing = uncompiled_kernels()
+    >>> isinstance(missing, int) and missing >= 0
+    True
+    """
     kernels = {
         id(value): value
         for name, module in list(sys.modules.items())

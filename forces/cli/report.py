@@ -20,12 +20,55 @@ Terms = Sequence[tuple[str, np.ndarray, np.ndarray]]
 
 
 def vector(v: np.ndarray, fmt: str = "{:+.6e}") -> str:
-    """A vector as ``[a  b  c]``."""
+    """Write a vector as ``[a  b  c]``.
+
+    Parameters
+    ----------
+    v : (3,) float ndarray
+        The vector (any length is written).
+    fmt : str, optional
+        Format of each component; signed scientific notation by default.
+
+    Returns
+    -------
+    str
+        The components in brackets, two spaces apart.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> vector(np.array([1.0, -2.0, 0.5]))
+    '[+1.000000e+00  -2.000000e+00  +5.000000e-01]'
+    >>> vector(np.array([1.0, -2.0, 0.5]), "{:+.2f}")
+    '[+1.00  -2.00  +0.50]'
+    """
     return "[" + "  ".join(fmt.format(x) for x in v) + "]"
 
 
 def about(point_m: np.ndarray, name: str) -> str:
-    """The torque reference point and what it is; a default says how to give the centre of mass."""
+    """Write the torque reference point and what it is.
+
+    Parameters
+    ----------
+    point_m : (3,) float ndarray
+        The reference point [m], body frame.
+    name : str
+        What the point is (a result's ``reference_point``); one ending in ``" (default)"`` is a
+        default, and the text then says how to give the centre of mass.
+
+    Returns
+    -------
+    str
+        The point to the micrometre and its description in parentheses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> about(np.array([0.0, 0.0, 0.1]), "given")
+    '[+0.000000  +0.000000  +0.100000]  (given)'
+    >>> about(np.zeros(3), "volume centroid (default)")
+    '[+0.000000  +0.000000  +0.000000]  (volume centroid, a default: give the centre of mass with ...)'
+    """
     point = vector(point_m, "{:+.6f}")
     if name.endswith(" (default)"):
         what = name.removesuffix(" (default)")
@@ -35,13 +78,46 @@ def about(point_m: np.ndarray, name: str) -> str:
 
 
 def header(craft: Spacecraft) -> dict:
-    """What every JSON document says of the model (and, with hinges, their angles [deg] by glob)."""
+    """Describe the model for the head of a JSON document.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The loaded spacecraft.
+
+    Returns
+    -------
+    dict
+        ``mesh`` (the source), ``unit`` and ``triangles``; with hinges also ``articulation``, their
+        angles [deg] by glob.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> header(cube.craft)
+    {'mesh': '<box>', 'unit': 'm', 'triangles': 12}
+    """
     out = {"mesh": craft.source, "unit": craft.unit, "triangles": craft.n_facets}
     return out | ({"articulation": craft.articulation} if craft.hinges else {})
 
 
 def print_articulation(craft: Spacecraft) -> None:
-    """The line of the hinges' angles, when the model has hinges."""
+    """Print the line of the hinges' angles and laws, when the model has hinges.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The posed spacecraft; without hinges nothing is printed.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> print_articulation(cube.craft)  # a box has no hinges: no line
+    """
     laws = {"fixed": "fixed", "track": "tracking the Sun", "schedule": "scheduled"}
     angles = [
         f"{hinge.pattern} {angle:+.3f} deg ({laws[hinge.law]})"
@@ -52,16 +128,63 @@ def print_articulation(craft: Spacecraft) -> None:
 
 
 def estimated(estimate: ErrorEstimate | None, without: str = "fixed points per side, --samples") -> str:
-    """The text of a shadow error estimate: its relative force and torque, or why there is none
-    (``without``)."""
+    """Write a shadow error estimate, or why there is none.
+
+    Parameters
+    ----------
+    estimate : ErrorEstimate or None
+        The relative force and torque error estimates; None when not estimated.
+    without : str, optional
+        Why there is no estimate, shown in parentheses (by default: fixed points per side).
+
+    Returns
+    -------
+    str
+        The estimate's text, or ``"not estimated (WITHOUT)"``.
+
+    Examples
+    --------
+    >>> estimated(ErrorEstimate(2e-4, 5e-4))
+    'force 2.0e-04, torque 5.0e-04 (relative, estimated)'
+    >>> estimated(None)
+    'not estimated (fixed points per side, --samples)'
+    """
     return f"not estimated ({without})" if estimate is None else str(estimate)
 
 
 def warn_beyond(estimates: Mapping[str, tuple[NDArray, NDArray]], tolerance: float, entries: str) -> None:
-    """One ``sunwind: warning:`` line when the shadow pass's estimated error exceeds ``tolerance``:
-    ``estimates`` holds per quantity (srp, drag, ...) the relative force and torque estimates of its
-    ``entries`` (attitudes, steps), (n,) each, NaN where there is none. With one entry per quantity the
-    line gives the estimates; with more, how many entries exceed it and the worst."""
+    """Warn once when the shadow pass's estimated error exceeds the tolerance.
+
+    One :class:`~sunwind.forces.error_estimate.ShadowErrorWarning` covers every quantity beyond it: with
+    one entry per quantity it gives the estimates; with more, how many entries exceed the tolerance
+    and the worst. Nothing is said when none does.
+
+    Parameters
+    ----------
+    estimates : mapping of str to (ndarray, ndarray)
+        Per quantity (``"srp"``, ``"drag"``, ...), the relative force and torque error estimates of
+        its entries, (n,) each, NaN where there is none.
+    tolerance : float
+        The relative error allowed (``--tolerance``).
+    entries : str
+        What the entries are, plural, for the message (``"attitudes"``, ``"steps"``).
+
+    Warns
+    -----
+    ShadowErrorWarning
+        An estimate exceeds ``tolerance``.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import numpy as np
+    >>> estimates = {"srp": (np.array([0.02, np.nan]), np.array([0.001, 0.004]))}
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_beyond(estimates, 0.01, "attitudes")
+    >>> print(caught[0].message)
+    the shadow pass's estimated error exceeds the tolerance 0.01: srp at 1 of 2 attitudes (worst force ...
+    """
     beyond = []
     for name, (force, torque) in estimates.items():
         worst = np.fmax(force, torque)
@@ -83,7 +206,29 @@ def warn_beyond(estimates: Mapping[str, tuple[NDArray, NDArray]], tolerance: flo
 
 
 def warn_results(results: Mapping[str, ErrorEstimate | None], tolerance: float) -> None:
-    """:func:`warn_beyond` of single results' estimates, by name (None: not estimated)."""
+    """Warn when the estimated errors of single results exceed the tolerance (:func:`warn_beyond`).
+
+    Parameters
+    ----------
+    results : mapping of str to ErrorEstimate or None
+        Each result's relative error estimate by name (None: not estimated, skipped).
+    tolerance : float
+        The relative error allowed (``--tolerance``).
+
+    Warns
+    -----
+    ShadowErrorWarning
+        An estimate exceeds ``tolerance``.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_results({"srp": ErrorEstimate(0.05, 0.002), "drag": None}, 0.01)
+    >>> print(caught[0].message)
+    the shadow pass's estimated error exceeds the tolerance 0.01: srp force 5.0e-02, torque 2.0e-03, ...
+    """
     estimates = {
         name: (np.array([estimate.force]), np.array([estimate.torque]))
         for name, estimate in results.items()
@@ -93,12 +238,57 @@ def warn_results(results: Mapping[str, ErrorEstimate | None], tolerance: float) 
 
 
 def print_json(craft: Spacecraft, document: dict) -> None:
-    """One JSON object: the model, the ``document``, the repair notices."""
+    """Print one JSON object: the model's :func:`header`, the ``document`` and the repair notices.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The loaded spacecraft.
+    document : dict
+        The command's facts, JSON-serialisable; its keys follow the header's.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> print_json(cube.craft, {"k_is": 0.0})
+    {
+      "mesh": "<box>",
+      "unit": "m",
+      "triangles": 12,
+      "k_is": 0.0,
+      "notices": []
+    }
+    """
     print(json.dumps({**header(craft), **document, "notices": list(craft.notices)}, indent=2))
 
 
 def print_srp(result: SrpResult) -> None:
-    """The human-readable SRP report."""
+    """Print the human-readable report of ``sunwind srp``.
+
+    Parameters
+    ----------
+    result : SrpResult
+        The SRP at one attitude.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> light = sw.srp(cube, [1.0, 0.0, 0.0], reflections="none")
+    >>> print_srp(light)  # doctest: +ELLIPSIS
+    sunwind srp: <box> (12 triangles, 1 parts, unit m)
+      frame            body frame of the mesh; SI units
+      sun vector       [+1.000000  +0.000000  +0.000000]  az 0.000 deg  el 0.000 deg
+      flux             1361 W/m^2   pressure P = 4.539807e-06 Pa
+      force   [N]      [-4.539807e-06  +0.000000e+00  +0.000000e+00]  |F| = 4.539807e-06
+    ...
+      lit area         1.000000 m^2
+      projected area   1.000000 m^2
+    ...
+    """
     craft = result.craft
     az, el = result.azel_deg
     parts = f"{craft.n_facets} triangles, {len(craft.part_names)} parts, unit {craft.unit}"
@@ -135,7 +325,36 @@ def print_srp(result: SrpResult) -> None:
 
 
 def print_drag(result: DragResult, heading: str, hinges: bool = True) -> None:
-    """The human-readable drag report under ``heading`` (with the hinges' angles when ``hinges``)."""
+    """Print the human-readable drag report under a heading.
+
+    Parameters
+    ----------
+    result : DragResult
+        The drag for one flow.
+    heading : str
+        The report's first line (``sunwind drag: MESH (...)``, or ``drag:`` within ``forces``).
+    hinges : bool, optional
+        Print the hinges' angles (off where a report above has them).
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> light = sw.srp(cube, [1.0, 0.0, 0.0], reflections="none")
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
+    >>> gas = sw.drag(cube, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
+    >>> print_drag(gas, "drag of a cube:")  # doctest: +ELLIPSIS
+    drag of a cube:
+      frame            body frame of the mesh; SI units
+      v_rel   [m/s]    [+7600.000  +0.000  +0.000]  az 0.000 deg  el 0.000 deg
+    ...
+      force   [N]      [-7.078358e-05  +0.000000e+00  +0.000000e+00]  |F| = 7.078358e-05
+    ...
+      coefficients     CD 1.633970  CL +0.000000  CS +0.000000  CM ...
+    ...
+    """
     air = result.atmosphere
     cd, cs, cl = result.force_coefficients
     az, el = result.azel_deg
@@ -192,9 +411,39 @@ def _total(light: SrpResult, gas: DragResult | None, extra: Terms) -> tuple[np.n
 def total_estimate(
     light: SrpResult, gas: DragResult | None, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
 ) -> ErrorEstimate | None:
-    """The shadow passes' estimated error of the total of SRP, drag (None: none) and the ``extra``
-    terms, relative: the absolute errors of the results and ``errors`` (those of the extra terms that
-    have one) added."""
+    """Estimate the shadow passes' relative error of a total of loads.
+
+    The absolute errors of SRP, drag and the extra terms are added (a bound: they may partly cancel)
+    and made relative to the total force and torque.
+
+    Parameters
+    ----------
+    light : SrpResult
+        The SRP.
+    gas : DragResult or None
+        The drag; None when there is none.
+    extra : sequence of (str, ndarray, ndarray), optional
+        Further loads in the total: name, force [N] (3,) and torque [N m] (3,) each.
+    errors : sequence of LoadsError or None, optional
+        The absolute shadow errors of the extra terms that have one.
+
+    Returns
+    -------
+    ErrorEstimate or None
+        The relative force and torque errors of the total; None when a term has no estimate.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> light = sw.srp(cube, [1.0, 0.0, 0.0], reflections="none")
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
+    >>> gas = sw.drag(cube, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
+    >>> total_estimate(light, gas)
+    ErrorEstimate(force=0.0, torque=0.0)
+    """
     error = summed([light.shadow_error, None if gas is None else gas.shadow_error, *errors])
     if error is None:
         return None
@@ -205,9 +454,40 @@ def total_estimate(
 def forces_document(
     light: SrpResult, gas: DragResult | None, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
 ) -> dict:
-    """The JSON document of ``sunwind forces``: both results (``drag`` null without a flow), the
-    ``extra`` terms' loads (name, force [N], torque [N m]) and the total of all, with its
-    :func:`total_estimate` (``errors``: the extra terms' absolute shadow errors)."""
+    """Make the JSON document of ``sunwind forces``.
+
+    Parameters
+    ----------
+    light : SrpResult
+        The SRP.
+    gas : DragResult or None
+        The drag; None without a flow (``drag`` is then null).
+    extra : sequence of (str, ndarray, ndarray), optional
+        Further loads in the total: name, force [N] (3,) and torque [N m] (3,) each.
+    errors : sequence of LoadsError or None, optional
+        The absolute shadow errors of the extra terms that have one, for :func:`total_estimate`.
+
+    Returns
+    -------
+    dict
+        ``srp`` and ``drag`` (each result's JSON) and ``total``: force [N], torque [N m], the
+        reference point, the frame and the total's error estimate.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> light = sw.srp(cube, [1.0, 0.0, 0.0], reflections="none")
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
+    >>> gas = sw.drag(cube, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
+    >>> document = forces_document(light, gas)
+    >>> sorted(document["total"])
+    ['error_estimate', 'force_N', 'frame', 'reference_point', 'reference_point_m', 'torque_Nm']
+    >>> print(f"{document['total']['force_N'][0]:.4e}")
+    -7.5323e-05
+    """
     force, torque = _total(light, gas, extra)
     estimate = total_estimate(light, gas, extra, errors)
     total = {
@@ -224,8 +504,39 @@ def forces_document(
 def print_forces(
     light: SrpResult, gas: DragResult | None, extra: Terms = (), errors: Sequence[LoadsError | None] = ()
 ) -> None:
-    """The human-readable report of ``sunwind forces`` (the total with drag unless ``gas`` is None, and
-    the ``extra`` terms, whose absolute shadow errors are ``errors``)."""
+    """Print the human-readable report of ``sunwind forces``: the total, then SRP and drag.
+
+    Parameters
+    ----------
+    light : SrpResult
+        The SRP.
+    gas : DragResult or None
+        The drag, in the total and reported below it; None without a flow.
+    extra : sequence of (str, ndarray, ndarray), optional
+        Further loads in the total: name, force [N] (3,) and torque [N m] (3,) each.
+    errors : sequence of LoadsError or None, optional
+        The absolute shadow errors of the extra terms that have one.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> light = sw.srp(cube, [1.0, 0.0, 0.0], reflections="none")
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
+    >>> gas = sw.drag(cube, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
+    >>> print_forces(light, gas)  # doctest: +ELLIPSIS
+    sunwind forces: <box> (12 triangles, unit m)
+      total force  [N]    [-7.532338e-05  +0.000000e+00  +0.000000e+00]  |F| = 7.532338e-05
+      total torque [N m]  [+0.000000e+00  +0.000000e+00  +0.000000e+00]
+    ...
+      srp force    [N]    [-4.539807e-06  +0.000000e+00  +0.000000e+00]  (sun [+1.0000  +0.0000  +0.0000])
+    ...
+      drag:
+      frame            body frame of the mesh; SI units
+    ...
+    """
     craft = light.craft
     force, torque = _total(light, gas, extra)
     print(f"sunwind forces: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")

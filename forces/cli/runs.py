@@ -18,8 +18,35 @@ from sunwind.forces.tables.cluster import require_dask
 
 
 def run_options(entry: str, run: str) -> list[Callable]:
-    """``--resume``, ``--scheduler``, ``--workers`` and ``--chunk`` of a ``run`` (its name in the help)
-    of ``entry``s (one attitude, one step)."""
+    """Make the flags of a checkpointed run of many entries.
+
+    The flags are ``--resume``, ``--scheduler [ADDRESS]``, ``--workers`` and ``--chunk``; their help
+    texts name the run and its entries.
+
+    Parameters
+    ----------
+    entry : str
+        What one entry of the run is, singular (``"attitude"``, ``"step"``).
+    run : str
+        The run's name in the help texts (``"sweep (-o)"``).
+
+    Returns
+    -------
+    list of callable
+        Click option decorators, in order; apply them to a command or hand them to
+        :func:`~sunwind.forces.cli.options.group`.
+
+    Examples
+    --------
+    >>> import click
+    >>> from sunwind.forces.cli.options import group
+    >>> @click.command()
+    ... @group("run", run_options("step", "run"), check_run)
+    ... def demo(run):
+    ...     print(run)
+    >>> demo.main(["--chunk", "8", "--workers", "2"], standalone_mode=False)
+    {'chunk': 8, 'workers': 2, 'scheduler': None, 'resume': False}
+    """
     return [
         click.option("--resume", is_flag=True, help=f"Continue an interrupted {run} from its checkpoint."),
         click.option(
@@ -44,15 +71,60 @@ def run_options(entry: str, run: str) -> list[Callable]:
 
 
 def check_run(values: dict) -> dict:
-    """The run flags, Dask checked importable (before the mesh is loaded or a checkpoint made)."""
+    """Check the run flags before the mesh is loaded or a checkpoint is made.
+
+    Parameters
+    ----------
+    values : dict
+        The values of the :func:`run_options` flags, by keyword (``resume``, ``scheduler``,
+        ``workers``, ``chunk``).
+
+    Returns
+    -------
+    dict
+        ``values`` itself, unchanged.
+
+    Raises
+    ------
+    InputError
+        A ``--scheduler`` is given and Dask distributed cannot be imported.
+
+    Examples
+    --------
+    >>> check_run({"resume": False, "scheduler": None, "workers": None, "chunk": 64})
+    {'resume': False, 'scheduler': None, 'workers': None, 'chunk': 64}
+    """
     if values["scheduler"] is not None:
         require_dask()
     return values
 
 
 def sweep_run(values: dict, checkpoint: Path | None, progress: Callable[[int], None]) -> SweepRun:
-    """The :class:`SweepRun` of the run flags ``values``, keeping its checkpoint at ``checkpoint`` (None:
-    none) and reporting entries done to ``progress``; its notices are ``sunwind: notice:`` lines."""
+    """Make the :class:`~sunwind.forces.tables.SweepRun` of the run flags.
+
+    Its notices are printed on stderr as ``sunwind: notice: CHECKPOINT: ...`` lines.
+
+    Parameters
+    ----------
+    values : dict
+        The values of the :func:`run_options` flags, by keyword.
+    checkpoint : pathlib.Path or None
+        The checkpoint directory the run keeps its finished chunks in; None keeps none.
+    progress : callable
+        Called with the number of entries finished so far (resumed ones included), after each chunk.
+
+    Returns
+    -------
+    SweepRun
+        The run's chunking, checkpoint, resumption and scheduler.
+
+    Examples
+    --------
+    >>> values = {"resume": False, "scheduler": None, "workers": 1, "chunk": 16}
+    >>> run = sweep_run(values, None, lambda done: None)
+    >>> run.chunk, run.checkpoint, run.workers
+    (16, None, 1)
+    """
     return SweepRun(
         values["chunk"],
         checkpoint,
@@ -66,8 +138,34 @@ def sweep_run(values: dict, checkpoint: Path | None, progress: Callable[[int], N
 
 @contextmanager
 def interruptible(bar: Progress, checkpoint: Path | None) -> Iterator[None]:
-    """Run the block; on Ctrl-C stop the progress ``bar`` and say what the run's checkpoint kept and
-    the command that resumes it (:func:`say_interrupted`), then let the interrupt go on."""
+    """Run a block; on Ctrl-C, stop the progress bar and say how to resume before passing the interrupt on.
+
+    Parameters
+    ----------
+    bar : rich.progress.Progress
+        The run's progress bar, stopped on an interrupt so the notice is not drawn over.
+    checkpoint : pathlib.Path or None
+        The run's checkpoint directory (None: the run keeps nothing), for :func:`say_interrupted`.
+
+    Yields
+    ------
+    None
+        The block runs inside; a :class:`KeyboardInterrupt` in it is re-raised after the notice.
+
+    Examples
+    --------
+    >>> import contextlib, sys
+    >>> from rich.progress import Progress
+    >>> bar = Progress(disable=True)
+    >>> with contextlib.redirect_stderr(sys.stdout):
+    ...     try:
+    ...         with interruptible(bar, None):
+    ...             raise KeyboardInterrupt
+    ...     except KeyboardInterrupt:
+    ...         print("the interrupt went on")
+    sunwind: notice: nothing was kept: a run keeps its finished entries only with -o ...
+    the interrupt went on
+    """
     try:
         yield
     except KeyboardInterrupt:
@@ -77,8 +175,24 @@ def interruptible(bar: Progress, checkpoint: Path | None) -> Iterator[None]:
 
 
 def say_interrupted(checkpoint: Path | None) -> None:
-    """On Ctrl-C in a run of many entries, say what its checkpoint kept and the command that resumes it
-    (the command line as given, with ``--resume``)."""
+    """Say on stderr what an interrupted run kept and the command that resumes it.
+
+    The command is the command line as given, with ``--resume`` added; it is read from the running
+    click context, so it is only said when the checkpoint holds finished chunks.
+
+    Parameters
+    ----------
+    checkpoint : pathlib.Path or None
+        The run's checkpoint directory; None when the run keeps nothing (no ``-o``).
+
+    Examples
+    --------
+    >>> import contextlib, sys
+    >>> from pathlib import Path
+    >>> with contextlib.redirect_stderr(sys.stdout):
+    ...     say_interrupted(Path("no-such-checkpoint"))
+    sunwind: notice: no chunk had finished: nothing was kept
+    """
     if checkpoint is None:
         said = "nothing was kept: a run keeps its finished entries only with -o (a checkpoint beside it)"
     elif not (kept := Checkpoint.kept_chunks(checkpoint)):

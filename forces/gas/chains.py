@@ -76,6 +76,13 @@ class ChainLaws(NamedTuple):
         energy_weight m v^2 / (2 k)`` [K].
     wall_temperature_K : float64
         ``T_w`` [K].
+
+    Examples
+    --------
+    Built from the laws with :meth:`of` (its example gives the shares of three laws); its fields:
+
+    >>> ChainLaws._fields[:3]
+    ('mirrored', 'cll', 'alpha_n')
     """
 
     mirrored: NDArray[np.float64]
@@ -146,6 +153,13 @@ class SpeciesStream(NamedTuple):
         Number density of each species [m^-3].
     speed_m_s : float
         Speed of the flow relative to the body [m/s].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> stream = SpeciesStream(np.array([2.66e-26]), np.array([1e15]), 7500.0)
+    >>> stream.speed_m_s
+    7500.0
     """
 
     mass_kg: NDArray[np.float64]
@@ -170,6 +184,14 @@ class Molecules(NamedTuple):
         Molecules per second it stands for [1/s].
     packet : (n,) int64
         Its own number, which keys its random numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> one = Molecules(np.arange(2), np.zeros(2, int), np.zeros((2, 3)), np.ones((2, 3)), np.ones(2),
+    ...                 np.arange(2))
+    >>> len(one.side)
+    2
     """
 
     side: NDArray[np.int64]
@@ -220,6 +242,14 @@ class MoleculeChainTotals:
         Rays cast (arrival checks and legs).
     truncated : float
         Share of the first legs' weight still travelling when chains were cut.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> totals = MoleculeChainTotals(force_N=np.zeros(3), torque_Nm=np.zeros(3), deposit=np.zeros((2, 1)),
+    ...                              packets=0, rays=0, truncated=0.0)
+    >>> totals.packets
+    0
     """
 
     force_N: NDArray[np.float64]

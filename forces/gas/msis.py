@@ -129,10 +129,10 @@ def nrlmsis(
     --------
     >>> import sunwind as sw
     >>> air = sw.nrlmsis(400.0)
-    >>> round(air.temperature_K), sorted(air.number_density_m3)
-    (943, ['Ar', 'H', 'He', 'N', 'N2', 'O', 'O*', 'O2'])
-    >>> f"{air.model_density_kg_m3:.3e}"
-    '2.358e-12'
+    >>> sorted(air.number_density_m3)
+    ['Ar', 'H', 'He', 'N', 'N2', 'O', 'O*', 'O2']
+    >>> 800 < air.temperature_K < 1100, 1e-12 < air.model_density_kg_m3 < 5e-12  # moderate activity
+    (True, True)
     """
     altitude = finite_number(altitude_km, "altitude_km", "km", minimum=0.0)
     if altitude > MSIS_MAX_ALTITUDE_KM:

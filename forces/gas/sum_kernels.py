@@ -51,10 +51,12 @@ def species_sums(
         ``n . u`` [-], in [-1, 1].
     speed_ratio, weight : (n_species,) float64
         ``S_k`` [-] and the weight ``w_k`` of each species' coefficients.
-    pressure_scale, shear_scale : (n_laws,) float64
-        ``a`` and ``c`` of each law [-].
+    pressure_scale : (n_laws,) float64
+        ``a`` of each law [-].
     diffuse : (n_laws, n_species) float64
         ``b``: normal momentum of the diffuse re-emission per incident molecule, over ``q / (n_k V)``.
+    shear_scale : (n_laws,) float64
+        ``c`` of each law [-].
     flux_weight : (n_laws, n_species, m) float64
         Weights of the full stream's number flux ``N / (n_k V)``.
     out : (n, 4 + m) float64

@@ -27,6 +27,7 @@ from sunwind.forces.orbit.inputs import StepInputs
 from sunwind.forces.orbit.steps import OrbitLoads
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
+from sunwind.forces.result_base import Result
 from sunwind.forces.tables.dataset import attribute_text, model_provenance
 from sunwind.forces.vocabulary import COMPONENT, COMPONENTS
 from sunwind.geometry.rays.certificate import LoadsError
@@ -78,7 +79,7 @@ TERMS = ("srp", "drag", "albedo", "infrared", "thermal")
 
 
 @dataclass(frozen=True)
-class OrbitResult:
+class OrbitResult(Result):
     """Loads along an orbit, the momentum they build, and what the run was.
 
     Made by :func:`~sunwind.forces.orbit.flight.fly` (through :meth:`OrbitResult.of`).
@@ -169,7 +170,7 @@ class OrbitResult:
         """
         t, body_to_eci = trajectory.time_s, steps.body_to_eci
         fraction = steps.solar_fraction
-        per_step = [setup.angles(model, steps, i) for i in range(len(steps))]
+        per_step = [setup.angles_at(model, steps, i) for i in range(len(steps))]
         angles = {hinge.pattern: np.array([a[hinge.pattern] for a in per_step]) for hinge in model.hinges}
         asked = {"srp": setup.srp, "drag": setup.drag, "albedo": setup.earth, "infrared": setup.earth}
         asked["thermal"] = setup.earth if setup.earth is not None and setup.earth.thermal else None

@@ -274,7 +274,7 @@ class OrbitLoads:
         for name in out:
             out[name][:] = 0.0
         for i in range(len(inputs)):
-            posed = model.posed(self.angles(model, inputs, i))
+            posed = model.posed(self.angles_at(model, inputs, i))
             flux, sun = float(inputs.flux_W_m2[i]), inputs.sun_body[i]
             errors = []
             if self.srp is not None and flux > 0:
@@ -311,7 +311,7 @@ class OrbitLoads:
             out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
         return error
 
-    def angles(self, model: Model, inputs: StepInputs, i: int) -> dict[str, float]:
+    def angles_at(self, model: Model, inputs: StepInputs, i: int) -> dict[str, float]:
         """Every hinge's angle [deg] at step ``i``, tracked and scheduled ones rounded to
         :attr:`hinge_step_deg`.
 

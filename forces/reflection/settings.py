@@ -143,8 +143,9 @@ class ReflectionSettings:
 
 
 def resolved_mode(mode: str, k_is: float | None) -> str:
-    """The mode applied: ``auto`` resolved by the interference criterion ``k_is`` (``full`` when
-    ``k_is >= AUTO_THRESHOLD``, eq. 8, else ``none``), any other mode as it is.
+    """The mode applied: ``auto`` resolved by the interference criterion ``k_is``, any other as it is.
+
+    ``auto`` becomes ``full`` when ``k_is >= AUTO_THRESHOLD`` (eq. 8), else ``none``.
 
     Parameters
     ----------

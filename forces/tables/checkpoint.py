@@ -28,8 +28,23 @@ from sunwind.geometry.errors import InputError
 
 
 def code_digest() -> str:
-    """SHA-256 over the source of the packages that compute forces: a checkpoint made by other code
-    (an upgrade, a local edit) is not resumed."""
+    """SHA-256 over the source of the packages that compute forces.
+
+    A checkpoint made by other code (an upgrade, a local edit) is not resumed: the digest covers every
+    ``.py`` file of ``geometry`` and ``forces``, by path and content.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.checkpoint import code_digest
+    >>> digest = code_digest()
+    >>> len(digest), digest == code_digest()
+    (64, True)
+    """
     top = Path(__file__).resolve().parents[2]  # the sunwind package: this is forces/tables/checkpoint.py
     digest = hashlib.sha256()
     for package in ("geometry", "forces"):
@@ -40,7 +55,27 @@ def code_digest() -> str:
 
 
 def jsonable(value):
-    """Settings as plain JSON types (paths and arrays as text and lists)."""
+    """Turn settings into plain JSON types (paths and arrays into text and lists).
+
+    Parameters
+    ----------
+    value : object
+        A dict, list, tuple, array, number, string, bool or None, nested as deep as need be; anything
+        else becomes its ``str``.
+
+    Returns
+    -------
+    object
+        The same structure of dicts (keys as text), lists, numbers, strings, bools and None.
+
+    Examples
+    --------
+    >>> from pathlib import PurePosixPath
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.checkpoint import jsonable
+    >>> jsonable({"mesh": PurePosixPath("craft/bus.stl"), 1: (np.arange(2), None, 2.5)})
+    {'mesh': 'craft/bus.stl', '1': [[0, 1], None, 2.5]}
+    """
     if isinstance(value, dict):
         return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
@@ -53,7 +88,45 @@ def jsonable(value):
 
 
 def fingerprint(model: Model, jobs: list[Job], chunk: int) -> dict:
-    """What a sweep is, field by field: a checkpoint is resumed only by a sweep with the same one."""
+    """What a sweep is, field by field: a checkpoint is resumed only by a sweep with the same one.
+
+    Parameters
+    ----------
+    model : Model
+        The model swept: its mesh and materials digests, how it was loaded and its reference point and
+        sizes.
+    jobs : list of Job
+        The sweep's jobs: each one's settings (``describe``) and a digest of its inputs.
+    chunk : int
+        Inputs per chunk (a checkpoint's chunk files are of one size).
+
+    Returns
+    -------
+    dict
+        JSON-ready: ``sunwind_version``, ``code_sha256`` (:func:`code_digest`), the model's digests,
+        ``chunk``, ``model``, ``references`` and, per job kind, ``KIND_settings`` and
+        ``KIND_attitudes_sha256``.
+
+    Examples
+    --------
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
+    >>> from sunwind.forces.tables.jobs import Job, SrpSetup
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> job = Job(SrpSetup(reflections="none"), np.eye(3))  # three Sun directions
+    >>> manifest = fingerprint(cube, [job], chunk=2)
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> place = pathlib.Path(folder.name) / "sweep.checkpoint"
+    >>> list(manifest)[-3:]
+    ['references', 'srp_settings', 'srp_attitudes_sha256']
+    >>> manifest == fingerprint(cube, [job], chunk=2), manifest == fingerprint(cube, [job], chunk=3)
+    (True, False)
+    >>> folder.cleanup()
+    """
     out: dict = {"sunwind_version": version("sunwind"), "code_sha256": code_digest(), **model.digests()}
     out["chunk"] = chunk
     source = {} if model.source is None else asdict(model.source)
@@ -68,11 +141,26 @@ def fingerprint(model: Model, jobs: list[Job], chunk: int) -> dict:
 
 
 def inputs_digest(inputs: Inputs) -> str:
-    """SHA-256 of a job's inputs: the bytes of an array, or the name, shape and float64 bytes of every
-    column of a record of arrays (an orbit's steps), its other fields (the epoch) by their text.
+    """SHA-256 of a job's inputs.
+
+    An array is digested by its bytes; a record of arrays (an orbit's steps) by the name, shape and
+    float64 bytes of every column, its other fields (the epoch) by their text.
+
+    Parameters
+    ----------
+    inputs : Inputs
+        An (n, 3) array of directions, or a dataclass of column arrays such as
+        :class:`~sunwind.forces.orbit.inputs.StepInputs`.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.checkpoint import inputs_digest
     >>> same = inputs_digest(np.eye(3))
     >>> same == inputs_digest(np.eye(3)), same == inputs_digest(-np.eye(3))
     (True, False)
@@ -94,10 +182,28 @@ def inputs_digest(inputs: Inputs) -> str:
 def check_place(directory: Path) -> None:
     """Refuse, before any work, a checkpoint directory whose place a file holds.
 
+    Parameters
+    ----------
+    directory : Path
+        Where the checkpoint is to be kept (need not exist yet).
+
     Raises
     ------
     InputError
         ``directory`` is a file.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from sunwind.forces.tables.checkpoint import check_place
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     check_place(pathlib.Path(folder) / "new.checkpoint")  # free: nothing said
+    ...     taken = pathlib.Path(folder) / "taken"
+    ...     _ = taken.write_text("")
+    ...     check_place(taken)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: ...a file is where the run keeps its checkpoint directory...
     """
     if directory.exists() and not directory.is_dir():
         raise InputError(
@@ -113,7 +219,54 @@ class Checkpoint:
     Every chunk file carries the SHA-256 of the sweep's manifest (:attr:`settings_sha256`) and of its
     own kind, range and data: a chunk is taken up only when both match, whether or not the manifest is
     there, so a chunk of another sweep or an edited one is computed again. :attr:`kept` and
-    :attr:`refused` count the chunks taken up and those found but not taken.
+    :attr:`refused` count the chunks taken up and those found but not taken. Open one with
+    :meth:`Checkpoint.open`, which holds the directory's lock until :meth:`release` or :meth:`remove`.
+
+    Parameters
+    ----------
+    directory : Path
+        The checkpoint directory.
+    manifest : dict
+        What the sweep is (:func:`fingerprint`).
+    created : bool
+        Whether this run made the directory.
+    lock : file object, optional
+        The open, locked ``.lock`` file, held while this run writes there.
+
+    Attributes
+    ----------
+    settings_sha256 : str
+        SHA-256 of the manifest as canonical JSON, stamped on every chunk.
+    kept, refused, saved : int
+        Chunks taken up, found but not taken (damaged, edited or of other settings), and written.
+
+    Examples
+    --------
+    Keep the first chunk of two, then take it up again as a resumed run would:
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
+    >>> from sunwind.forces.tables.jobs import Job, SrpSetup
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> job = Job(SrpSetup(reflections="none"), np.eye(3))  # three Sun directions
+    >>> manifest = fingerprint(cube, [job], chunk=2)
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> place = pathlib.Path(folder.name) / "sweep.checkpoint"
+    >>> checkpoint = Checkpoint.open(place, manifest, resume=False)
+    >>> checkpoint.save(job, 0, job.setup.evaluate(cube, job.inputs[0:2]))
+    >>> checkpoint.release()
+    >>> resumed = Checkpoint.open(place, manifest, resume=True)
+    >>> resumed.load(job, 0, 2)["force_N"].shape, resumed.load(job, 2, 3)
+    ((2, 3), None)
+    >>> resumed.summary(computed=1)
+    'checkpoint: kept 1 chunks, recomputing 1'
+    >>> resumed.remove()
+    >>> place.exists()
+    False
+    >>> folder.cleanup()
     """
 
     def __init__(self, directory: Path, manifest: dict, created: bool, lock: IO | None = None) -> None:
@@ -128,10 +281,55 @@ class Checkpoint:
     def open(cls, directory: Path, manifest: dict, resume: bool) -> Checkpoint:
         """Start a checkpoint, or take up the one there when ``resume``.
 
+        The directory is made if need be and locked for this run before anything else.
+
+        Parameters
+        ----------
+        directory : Path
+            The checkpoint directory.
+        manifest : dict
+            What the sweep is (:func:`fingerprint`); written as ``manifest.json``, or compared with the one
+            there when resuming.
+        resume : bool
+            Take up a checkpoint already there.
+
+        Returns
+        -------
+        Checkpoint
+            The checkpoint, its lock held.
+
         Raises
         ------
         InputError
-            A checkpoint is there and ``resume`` is off; or it is of a different sweep, or unreadable.
+            A file where the directory should be; another run writing there; a checkpoint there while
+            ``resume`` is off; or one of a different sweep (the fields that differ are named), or whose
+            manifest cannot be read.
+
+        Examples
+        --------
+
+        >>> import pathlib, tempfile
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.tables.checkpoint import Checkpoint, fingerprint
+        >>> from sunwind.forces.tables.jobs import Job, SrpSetup
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> job = Job(SrpSetup(reflections="none"), np.eye(3))  # three Sun directions
+        >>> manifest = fingerprint(cube, [job], chunk=2)
+        >>> folder = tempfile.TemporaryDirectory()
+        >>> place = pathlib.Path(folder.name) / "sweep.checkpoint"
+        >>> first = Checkpoint.open(place, manifest, resume=False)
+        >>> Checkpoint.open(place, manifest, resume=True)  # the first still holds the lock
+        Traceback (most recent call last):
+        ...
+        sunwind.geometry.errors.InputError: ...another sunwind run is writing this checkpoint now...
+        >>> first.release()
+        >>> Checkpoint.open(place, manifest | {"chunk": 5}, resume=True)
+        Traceback (most recent call last):
+        ...
+        sunwind.geometry.errors.InputError: ...the checkpoint is of a different sweep: chunk differ...
+        >>> folder.cleanup()
         """
         check_place(directory)
         created = not directory.exists()
@@ -178,15 +376,41 @@ class Checkpoint:
 
     @staticmethod
     def kept_chunks(directory: Path) -> int:
-        """Finished chunks a checkpoint directory holds (0 where there is none)."""
+        """Finished chunks a checkpoint directory holds (0 where there is none).
+
+        Parameters
+        ----------
+        directory : Path
+            The checkpoint directory.
+
+        Returns
+        -------
+        int
+            The number of ``.npz`` chunk files, checked or not.
+        """
         return len(list(directory.glob("*.npz"))) if directory.is_dir() else 0
 
     def _path(self, kind: str, lo: int) -> Path:
         return self.directory / f"{kind}-{lo:08d}.npz"
 
     def load(self, job: Job, lo: int, hi: int) -> Records | None:
-        """The records of a finished chunk of this sweep; None when it is not there, damaged, of other
-        settings or edited (counted in :attr:`refused`)."""
+        """The records of a finished chunk of this sweep, or None.
+
+        None when the chunk is not there, or is damaged, of other settings or edited (counted in
+        :attr:`refused`); a chunk taken up is counted in :attr:`kept`.
+
+        Parameters
+        ----------
+        job : Job
+            The job the chunk belongs to (its kind and fields).
+        lo, hi : int
+            The chunk's index range ``[lo, hi)``.
+
+        Returns
+        -------
+        Records or None
+            One array per field of ``job``, ``hi - lo`` rows.
+        """
         path = self._path(job.kind, lo)
         if not path.exists():
             return None
@@ -214,7 +438,17 @@ class Checkpoint:
         return records
 
     def save(self, job: Job, lo: int, records: Records) -> None:
-        """Keep a finished chunk with its signature (written to a temporary file, then renamed)."""
+        """Keep a finished chunk with its signature (written to a temporary file, then renamed).
+
+        Parameters
+        ----------
+        job : Job
+            The job the chunk belongs to.
+        lo : int
+            The chunk's first index.
+        records : Records
+            The chunk's records, one array per field of ``job``.
+        """
         path = self._path(job.kind, lo)
         temporary = path.with_name(f".{path.stem}.tmp.npz")
         signature = {"settings_sha256": self.settings_sha256, "data_sha256": data_digest(job, lo, records)}
@@ -223,15 +457,25 @@ class Checkpoint:
         self.saved += 1
 
     def summary(self, computed: int) -> str | None:
-        """What a resumed checkpoint gave, one line (None when it gave nothing and refused nothing)."""
+        """What a resumed checkpoint gave, one line (None when it gave nothing and refused nothing).
+
+        Parameters
+        ----------
+        computed : int
+            Chunks the run computes afresh.
+
+        Returns
+        -------
+        str or None
+            ``"checkpoint: kept K chunks, recomputing C"``, with the count refused.
+        """
         if not (self.kept or self.refused):
             return None
         refused = f" ({self.refused} of them found but of other settings or edited)" if self.refused else ""
         return f"checkpoint: kept {self.kept} chunks, recomputing {computed}{refused}"
 
     def remove(self) -> None:
-        """Delete the checkpoint (once the table is made, or after a start that saved nothing) and
-        let it go."""
+        """Delete the checkpoint and let it go (the table is made, or a start saved nothing)."""
         shutil.rmtree(self.directory, ignore_errors=True)
         self.release()
 
@@ -271,7 +515,32 @@ def _lock(directory: Path) -> IO:
 
 
 def data_digest(job: Job, lo: int, records: Records) -> str:
-    """SHA-256 of a chunk: its kind, first index, and every field's name, shape and float64 bytes."""
+    """SHA-256 of a chunk: its kind, first index, and every field's name, shape and float64 bytes.
+
+    Parameters
+    ----------
+    job : Job
+        The chunk's job (its kind and fields, in order).
+    lo : int
+        The chunk's first index.
+    records : Records
+        The chunk's records.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.checkpoint import data_digest
+    >>> from sunwind.forces.tables.jobs import Job, SrpSetup, empty_records
+    >>> job = Job(SrpSetup(), np.eye(3))
+    >>> records = {name: np.zeros_like(values) for name, values in empty_records(job.fields, 2).items()}
+    >>> data_digest(job, 0, records) == data_digest(job, 2, records)  # the place counts
+    False
+    """
     digest = hashlib.sha256(f"{job.kind}:{lo}".encode())
     for name in job.fields:
         values = np.ascontiguousarray(records[name], dtype=np.float64)
@@ -281,7 +550,27 @@ def data_digest(job: Job, lo: int, records: Records) -> str:
 
 
 def write_atomic(path: Path, data: bytes) -> None:
-    """Write ``data`` to a temporary file beside ``path`` and rename it into place."""
+    """Write ``data`` to a temporary file beside ``path`` and rename it into place.
+
+    A reader sees the old file or the whole new one, never a part.
+
+    Parameters
+    ----------
+    path : Path
+        The file to write (replaced if it exists).
+    data : bytes
+        Its new content.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from sunwind.forces.tables.checkpoint import write_atomic
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "manifest.json"
+    ...     write_atomic(path, b"{}")
+    ...     path.read_bytes(), [p.name for p in pathlib.Path(folder).iterdir()]
+    (b'{}', ['manifest.json'])
+    """
     temporary = path.with_name(f".{path.name}.tmp")
     temporary.write_bytes(data)
     os.replace(temporary, path)

@@ -58,6 +58,11 @@ def require_dask() -> None:
     ------
     InputError
         It cannot (the ``dask`` extra is not installed).
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.cluster import require_dask
+    >>> require_dask()  # installed: nothing said
     """
     try:
         import dask.distributed  # noqa: F401
@@ -72,10 +77,37 @@ def require_dask() -> None:
 def connect(scheduler: str, workers: int | None):
     """A Dask client: of a new local cluster for ``"local"``, else of the scheduler at the address.
 
+    Parameters
+    ----------
+    scheduler : str
+        ``"local"`` for a new cluster of one-thread worker processes on this machine, else the address of
+        a running scheduler (``tcp://HOST:8786``), waited for at most :data:`CONNECT_TIMEOUT_S` seconds.
+    workers : int or None
+        Worker processes of a local cluster (default one per core); ignored with an address.
+
+    Returns
+    -------
+    dask.distributed.Client
+        The connected client (close it, and its local cluster, when done).
+
     Raises
     ------
     InputError
         Dask is not installed, or the scheduler cannot be reached.
+
+    Examples
+    --------
+    >>> from dask.distributed import LocalCluster
+    >>> from sunwind.forces.tables.cluster import connect
+    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+    >>> client = connect(cluster.scheduler_address, None)
+    >>> len(client.scheduler_info()["workers"])
+    1
+    >>> client.close(); cluster.close()
+    >>> connect("nowhere://scheduler", None)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: cannot reach the Dask scheduler at nowhere://scheduler: ...
     """
     require_dask()
     from dask.distributed import Client, LocalCluster
@@ -113,7 +145,59 @@ def run_on_dask(
     workers: int | None,
     finished: Callable[[Job, int, int, Records], None],
 ) -> None:
-    """Submit every pending chunk; hand each result to ``finished`` as it arrives."""
+    r"""Submit every pending chunk; hand each result to ``finished`` as it arrives.
+
+    Each worker loads the model from its files on its first task and keeps it; the client (and a local
+    cluster it started) is closed at the end, whatever happens.
+
+    Parameters
+    ----------
+    model : Model
+        A model loaded from files (its ``source`` is what the workers load).
+    pending : list of (Job, int, int)
+        The chunks to run: the job and the range ``[lo, hi)`` of its inputs.
+    scheduler : str
+        ``"local"`` or a scheduler's address, as :func:`connect` takes it.
+    workers : int or None
+        Worker processes of a local cluster.
+    finished : callable
+        Called as ``finished(job, lo, hi, records)`` for each chunk, in the order they finish.
+
+    Raises
+    ------
+    InputError
+        A model built in memory (no files for the workers), Dask missing, or the scheduler out of reach.
+
+    Examples
+    --------
+    On a cluster of one in-process worker (a real one has one-thread worker processes):
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.tables.jobs import Job, SrpSetup
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> obj = pathlib.Path(folder.name) / "tetra.obj"  # workers load the model from its file
+    >>> _ = obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> model = sw.load(obj, uniform=black, threads=1)
+    >>> job = Job(SrpSetup(reflections="none"), np.eye(3))
+    >>> from dask.distributed import LocalCluster
+    >>> from sunwind.forces.tables.cluster import run_on_dask
+    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+    >>> done = {}
+    >>> keep = lambda job, lo, hi, records: done.update({(lo, hi): records["force_N"]})
+    >>> run_on_dask(model, [(job, 0, 2), (job, 2, 3)], cluster.scheduler_address, None, keep)
+    >>> sorted(done), done[(2, 3)].shape
+    ([(0, 2), (2, 3)], (1, 3))
+    >>> cluster.close()
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> run_on_dask(cube, [(job, 0, 3)], "local", 1, keep)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: a model built in memory cannot go to Dask workers: ...
+    >>> folder.cleanup()
+    """
     source, references = _source_of(model), _references(model)
     client = connect(scheduler, workers)
     from dask.distributed import as_completed  # importable: connect checked it
@@ -135,9 +219,58 @@ def run_on_dask(
 
 
 def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -> tuple[float, list[Records]]:
-    """Seconds a local cluster of ``workers`` one-thread workers takes for ``pending`` chunks once every
-    worker has the model and what each job's first attitude makes (one-attitude chunks of every job run
-    on each worker first), and the chunks' records."""
+    r"""Time ``pending`` chunks on a new local cluster of ``workers`` one-thread workers.
+
+    The clock starts once every worker has the model and what each job's first attitude makes
+    (one-attitude chunks of every job run on each worker first), so the time is that of the chunks
+    alone; ``sunwind bench`` uses it to measure how the work scales.
+
+    Parameters
+    ----------
+    model : Model
+        A model loaded from files.
+    pending : list of (Job, int, int)
+        The chunks to time.
+    workers : int
+        Worker processes.
+
+    Returns
+    -------
+    seconds : float
+        Wall time of the chunks [s].
+    records : list of Records
+        The chunks' records, in the order of ``pending``.
+
+    Raises
+    ------
+    InputError
+        A model built in memory, or Dask missing.
+
+    Examples
+    --------
+    Starting worker processes takes seconds, so the timing itself is not run here:
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.tables.jobs import Job, SrpSetup
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> obj = pathlib.Path(folder.name) / "tetra.obj"  # workers load the model from its file
+    >>> _ = obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> model = sw.load(obj, uniform=black, threads=1)
+    >>> job = Job(SrpSetup(reflections="none"), np.eye(3))
+    >>> from sunwind.forces.tables.cluster import timed_on_local_cluster
+    >>> seconds, records = timed_on_local_cluster(model, [(job, 0, 3)], 1)  # doctest: +SKIP
+    >>> records[0]["force_N"].shape  # doctest: +SKIP
+    (3, 3)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> timed_on_local_cluster(cube, [(job, 0, 3)], 1)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: a model built in memory cannot go to Dask workers: ...
+    >>> folder.cleanup()
+    """
     source, references = _source_of(model), _references(model)
     client = connect("local", workers)
     from dask.distributed import wait  # importable: connect checked it

@@ -85,7 +85,6 @@ _TEXT = {
     "drag": "unit flow vector u = v_rel/|v_rel|",
     "earth": "unit vector toward the Earth's centre (the Sun fixed in the body frame)",
 }
-#: Attributes of the coordinates every table has.
 
 
 def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[int, ...]) -> dict:
@@ -109,8 +108,42 @@ def _direction_variable(kind: str, vectors: NDArray[np.float64], dims: tuple[str
 def grid_table(
     records: Mapping[str, Records], grids: Mapping[str, DirectionGrid], attrs: Mapping[str, object]
 ) -> xr.Dataset:
-    """The grid table of sweep records: ``records[kind]`` of the distinct directions of
-    ``grids[kind]``, in their order (:attr:`~sunwind.forces.tables.attitudes.DirectionGrid.distinct`)."""
+    """The grid table of sweep records.
+
+    ``records[kind]`` holds the records of the distinct directions of ``grids[kind]``, in their order
+    (:attr:`~sunwind.forces.tables.attitudes.DirectionGrid.distinct`). Every node of the grid gets the
+    record of its distinct direction (the poles and azimuth +-180 share one); each kind has its azimuth
+    and elevation dimensions (:data:`GRID_DIMS`) and its direction variable (:data:`DIRECTION`).
+
+    Parameters
+    ----------
+    records : mapping of str to Records
+        Kind (``"srp"``, ``"drag"``, ``"earth"``) -> its records, one row per distinct direction.
+    grids : mapping of str to DirectionGrid
+        Kind -> the grid its directions came from.
+    attrs : mapping of str to object
+        Global attributes (:func:`table_attributes`); None values are dropped, dicts stored as JSON.
+
+    Returns
+    -------
+    xarray.Dataset
+        Variables ``KIND_FIELD`` on ``(azimuth, elevation)`` or ``(azimuth, elevation, component)``, with
+        ``units`` and ``long_name``; CF-1.8 global attributes.
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> from sunwind.forces.tables.attitudes import DirectionGrid
+    >>> from sunwind.forces.tables.dataset import grid_table, table_attributes
+    >>> setup, grid = sw.SrpSetup(reflections="none"), DirectionGrid(90.0)
+    >>> records = setup.evaluate(cube, grid.distinct[0])
+    >>> table = grid_table({"srp": records}, {"srp": grid}, table_attributes(cube, [setup], 90.0))
+    >>> dict(table.sizes), table["srp_force_N"].attrs["units"]
+    ({'sun_azimuth': 5, 'sun_elevation': 3, 'component': 3}, 'N')
+    """
     variables, coords = {}, {COMPONENT: (COMPONENT, list(COMPONENTS), COMPONENT_ATTRS)}
     for kind, values in records.items():
         grid = grids[kind]
@@ -139,8 +172,45 @@ def grid_table(
 def list_table(
     records: Mapping[str, Records], attitudes: AttitudeList, attrs: Mapping[str, object]
 ) -> xr.Dataset:
-    """The list table of sweep records, one row per attitude of ``attitudes`` (which have no Earth
-    direction: no earth records)."""
+    r"""The list table of sweep records, one row per attitude of ``attitudes``.
+
+    Parameters
+    ----------
+    records : mapping of str to Records
+        Kind (``"srp"``, ``"drag"``) -> its records, one row per attitude.
+    attitudes : AttitudeList
+        The attitudes (their directions and, if given, quaternions are stored too).
+    attrs : mapping of str to object
+        Global attributes (:func:`table_attributes`); the list's file is added as ``attitudes``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Variables ``KIND_FIELD`` on ``attitude`` (and ``component``).
+
+    Raises
+    ------
+    InputError
+        Earth records: an attitude list has no Earth direction.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> from sunwind.forces.tables.attitudes import read_attitude_csv
+    >>> from sunwind.forces.tables.dataset import list_table, table_attributes
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "attitudes.csv"
+    ...     _ = path.write_text("sun_x,sun_y,sun_z\n0,0,1\n1,0,0\n")
+    ...     attitudes = read_attitude_csv(path)
+    >>> setup = sw.SrpSetup(reflections="none")
+    >>> records = setup.evaluate(cube, attitudes.directions("srp"))
+    >>> table = list_table({"srp": records}, attitudes, table_attributes(cube, [setup], None))
+    >>> (table["srp_force_N"] * 1e6).round(2).values.tolist()  # [uN], away from the Sun
+    [[0.0, 0.0, -4.54], [-4.54, 0.0, 0.0]]
+    """
     if "earth" in records:
         raise InputError(
             "an attitude list has no Earth direction: the Earth's radiation is tabulated on a grid",
@@ -170,9 +240,23 @@ def list_table(
 
 
 def attribute_text(value: object) -> str:
-    """An attribute on one line of a CSV header: settings (dicts) as JSON, vectors as numbers to 17
-    digits, anything else as its text.
+    """An attribute on one line of a CSV header.
 
+    Settings (dicts) as JSON, vectors as numbers to 17 digits, anything else as its text.
+
+    Parameters
+    ----------
+    value : object
+        A table or run attribute.
+
+    Returns
+    -------
+    str
+        One line of text, which reads back to the same numbers.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.dataset import attribute_text
     >>> attribute_text([0.1, 2.0]), attribute_text({"mode": "full"})
     ('0.10000000000000001 2', '{"mode": "full"}')
     """
@@ -200,12 +284,61 @@ def _attributes(attrs: Mapping[str, object]) -> dict:
 
 
 def kinds_of(table: xr.Dataset) -> list[str]:
-    """The quantities a table holds, in :data:`sunwind.forces.tables.jobs.KINDS` order."""
+    """The quantities a table holds, in :data:`sunwind.forces.tables.jobs.KINDS` order.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sweep table.
+
+    Returns
+    -------
+    list of str
+        Each kind whose ``KIND_force_N`` the table has.
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> from sunwind.forces.tables.dataset import kinds_of
+    >>> kinds_of(table)
+    ['srp']
+    """
     return [kind for kind in FIELDS if f"{kind}_force_N" in table]
 
 
 def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) -> dict:
-    """A table's global attributes: frame, reference point, sampling, environment, provenance."""
+    """A table's global attributes: frame, reference point, sampling, environment, provenance.
+
+    Parameters
+    ----------
+    model : Model
+        The model swept.
+    setups : list of Setup
+        What the table holds (the first gives the reference point and sampling; each adds its own
+        environment and reflection mode).
+    step_deg : float or None
+        The grid step [deg]; None for a list table.
+
+    Returns
+    -------
+    dict
+        Attribute name -> value (None where unknown; :func:`grid_table` and :func:`list_table` drop those).
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> from sunwind.forces.tables.dataset import table_attributes
+    >>> attrs = table_attributes(cube, [sw.SrpSetup(reflections="none")], 30.0)
+    >>> attrs["grid_step_deg"], attrs["reference_point"], attrs["flux_W_m2"]
+    (30.0, 'volume centroid (default)', 1361.0)
+    """
     first = setups[0]
     point, name = model.reference(first.reference_point_m)
     provenance = model_provenance(model)
@@ -226,8 +359,31 @@ def table_attributes(model: Model, setups: list[Setup], step_deg: float | None) 
 
 
 def model_provenance(model: Model) -> dict:
-    """Where a result's model came from: mesh and materials files, their unit and two-sided parts, the
-    SHA-256 of each, the sunwind version, and any uniform material or gas overrides."""
+    """Where a result's model came from.
+
+    Parameters
+    ----------
+    model : Model
+        A loaded model.
+
+    Returns
+    -------
+    dict
+        ``mesh``, ``materials``, ``unit``, ``length_unit`` and ``two_sided``, the SHA-256 of mesh and
+        materials, the sunwind version, and any uniform material or gas overrides (None where a model
+        built in memory has no file).
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> from sunwind.forces.tables.dataset import model_provenance
+    >>> origin = model_provenance(cube)
+    >>> origin["mesh"], origin["materials"], len(origin["mesh_sha256"])
+    ('<box>', None, 64)
+    """
     source = model.source.attributes() if model.source else {"mesh": model.craft.source}
     return {
         "mesh": source.pop("mesh"),
@@ -242,9 +398,46 @@ def model_provenance(model: Model) -> dict:
 
 
 def one_pose(table: xr.Dataset, what: str, hint: str = "write the table as netCDF (.nc)") -> xr.Dataset:
-    """``table`` at its one pose: hinge dimensions (``hinge_deg[GLOB]``, a sweep over hinge angles) of
-    length 1 dropped, their angle kept as a coordinate; refused, naming ``what`` needs one pose, when a
-    hinge has several angles."""
+    """``table`` at its one pose, hinge dimensions of length 1 dropped.
+
+    A sweep over hinge angles has a dimension ``hinge_deg[GLOB]`` per hinge; those of length 1 are
+    squeezed out, their angle kept as a scalar coordinate.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sweep table.
+    what : str
+        What needs one pose (a file format), named in the error.
+    hint : str
+        What to do instead, in the error.
+
+    Returns
+    -------
+    xarray.Dataset
+        The table without hinge dimensions (``table`` itself when it has none).
+
+    Raises
+    ------
+    InputError
+        A hinge with several angles.
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> from sunwind.forces.tables.dataset import one_pose
+    >>> posed = one_pose(table.expand_dims({"hinge_deg[wing*]": [30.0]}), "SPAD")
+    >>> "hinge_deg[wing*]" in posed.dims, float(posed["hinge_deg[wing*]"])
+    (False, 30.0)
+    >>> one_pose(table.expand_dims({"hinge_deg[wing*]": [0.0, 30.0]}), "SPAD")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: SPAD takes one pose; the table has 2 angles along hinge_deg[wing*]...
+    """
     hinges = [str(d) for d in table.dims if str(d).startswith("hinge_deg[")]
     several = [d for d in hinges if table.sizes[d] > 1]
     if several:
@@ -257,12 +450,36 @@ def one_pose(table: xr.Dataset, what: str, hint: str = "write the table as netCD
 
 
 def open_table(path: str | os.PathLike) -> xr.Dataset:
-    """A table written by :func:`write_netcdf`, loaded into memory.
+    """A table written as netCDF (:func:`sunwind.forces.export.netcdf.write`), loaded into memory.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.nc`` file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The table, read whole (the file is closed).
 
     Raises
     ------
     InputError
-        Not there, or not a sunwind table.
+        Not there, not readable as netCDF, or not a sunwind table.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> from sunwind.forces.tables.dataset import open_table
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = sw.write(table, pathlib.Path(folder) / "cube.nc")
+    ...     again = open_table(pathlib.Path(folder) / "cube.nc")
+    >>> again.identical(table)
+    True
     """
     path = Path(path)
     if not path.exists():
@@ -286,8 +503,10 @@ def open_table(path: str | os.PathLike) -> xr.Dataset:
 
 @dataclass(frozen=True, eq=False)
 class ReferencePoint:
-    """The torque reference point of a table (attributes ``reference_point_m`` and ``reference_point``),
-    as the export formats state it: ``str()`` gives ``[0.1, 0, 0] m (user)``.
+    """The torque reference point of a table, as the export formats state it.
+
+    From the attributes ``reference_point_m`` and ``reference_point``; ``str()`` gives
+    ``[0.1, 0, 0] m (user)``.
 
     Parameters
     ----------
@@ -296,6 +515,16 @@ class ReferencePoint:
     name : str
         What the point is ("user", "centre of mass (materials file)", "area centroid (default)"); empty
         when the table does not say.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.dataset import ReferencePoint
+    >>> point = ReferencePoint(np.array([0.1, -1e-9, 0.0]), "user")
+    >>> str(point), point.at_origin
+    ('[0.1, 0, 0] m (user)', False)
+    >>> str(ReferencePoint.of({}))  # a table that states none
+    '[0, 0, 0] m'
     """
 
     point_m: NDArray[np.float64]
@@ -303,7 +532,18 @@ class ReferencePoint:
 
     @classmethod
     def of(cls, attrs: Mapping) -> ReferencePoint:
-        """The reference point a table's attributes state."""
+        """The reference point a table's attributes state.
+
+        Parameters
+        ----------
+        attrs : mapping
+            A table's attributes (``reference_point_m``, ``reference_point``).
+
+        Returns
+        -------
+        ReferencePoint
+            The origin, unnamed, for what the attributes leave out.
+        """
         point = np.asarray(attrs.get("reference_point_m", (0.0, 0.0, 0.0)), dtype=np.float64).reshape(3)
         return cls(point, str(attrs.get("reference_point", "")))
 

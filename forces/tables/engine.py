@@ -62,6 +62,26 @@ class SweepRun:
         precomputes are made, before the first chunk is computed, then after each chunk.
     notice : callable or None
         Called with one line when a resumed checkpoint was read: the chunks kept and recomputed.
+
+    Raises
+    ------
+    InputError
+        A chunk that is not a whole number >= 1, a thread count out of range, or a scheduler without
+        Dask installed.
+
+    Examples
+    --------
+    Report progress after every chunk of four attitudes (a 90 deg grid has six distinct directions):
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> from sunwind.forces.tables.engine import SweepRun
+    >>> done = []
+    >>> run = SweepRun(chunk=4, progress=done.append)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0, run=run)
+    >>> done
+    [0, 4, 6]
     """
 
     chunk: int = DEFAULT_CHUNK
@@ -85,8 +105,36 @@ _DIRECTION_BYTES = 24
 
 
 def check_table_memory(grid: DirectionGrid, kinds: tuple[str, ...], name: str = "step_deg") -> None:
-    """Refuse a grid sweep of ``kinds`` whose grid, records and table (float64, each field at every
-    distinct direction and again at every node) exceed the memory limit, before any is made."""
+    """Refuse a grid sweep that would not fit in memory, before any of it is made.
+
+    The grid, the records and the table (float64, each field at every distinct direction and again at
+    every node) of ``kinds`` are counted against the memory limit
+    (:mod:`sunwind.geometry.memory`).
+
+    Parameters
+    ----------
+    grid : DirectionGrid
+        The grid.
+    kinds : tuple of str
+        The kinds tabulated, one entry per job (a kind repeated once per hinge pose).
+    name : str
+        The parameter that set the step, named in the error.
+
+    Raises
+    ------
+    InputError
+        The table would exceed the memory limit.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.attitudes import DirectionGrid
+    >>> from sunwind.forces.tables.engine import check_table_memory
+    >>> check_table_memory(DirectionGrid(10.0), ("srp", "drag"))  # small: nothing said
+    >>> check_table_memory(DirectionGrid(0.001), ("srp",))
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: not enough memory: needs ~29.8 TiB for a table of 6.48e+10 grid...
+    """
     per_node = sum(2 * 8 * sum(FIELDS[kind].values()) + _DIRECTION_BYTES for kind in kinds)
     nodes = grid.nodes
     what = f"a table of {memory.count(nodes)} grid nodes ({', '.join(kinds)})"
@@ -104,8 +152,9 @@ def sweep(
     hinge_angles: Mapping[str, Sequence[float]] | None = None,
     run: SweepRun | None = None,
 ) -> xr.Dataset:
-    """SRP, drag and/or the Earth's radiation over a grid or a list of attitudes, as a table with its
-    provenance.
+    """Tabulate SRP, drag and/or the Earth's radiation over a grid or a list of attitudes.
+
+    The table carries its provenance: units, frame, reference point, environment, model digests.
 
     Parameters
     ----------
@@ -133,6 +182,33 @@ def sweep(
     xarray.Dataset
         Grid or list table (:mod:`sunwind.forces.tables.dataset`), with units, frame, reference
         point, environment and provenance in its attributes.
+
+    Raises
+    ------
+    InputError
+        Nothing to tabulate; both ``step_deg`` and ``attitudes``; the Earth over an attitude list; a grid
+        step that does not divide 180 deg or a table beyond the memory limit; hinge angles that are not
+        distinct finite numbers or hinges that cannot turn so; what a setup or the checkpoint refuses.
+
+    Examples
+    --------
+    SRP and drag of a black 1 m cube on a 90 deg grid:
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, "O:1")
+    >>> table = sw.sweep(
+    ...     cube,
+    ...     srp=sw.SrpSetup(reflections="none"),
+    ...     drag=sw.DragSetup(speed_m_s=7600.0, atmosphere=air, reflections="none"),
+    ...     step_deg=90.0,
+    ... )
+    >>> dict(table.sizes)
+    {'sun_azimuth': 5, 'sun_elevation': 3, 'component': 3, 'flow_azimuth': 5, 'flow_elevation': 3}
+    >>> face_on = table.sel(sun_azimuth=0.0, sun_elevation=0.0, flow_azimuth=0.0, flow_elevation=0.0)
+    >>> (face_on["srp_force_N"] * 1e6).round(2).values.tolist(), round(float(face_on["drag_CD"]), 3)
+    ([-4.54, 0.0, 0.0], 1.634)
     """
     model, run = as_model(model), run or SweepRun()
     setups = [setup for setup in (srp, drag, earth) if setup is not None]
@@ -189,7 +265,31 @@ def sweep(
 
 
 def hinge_poses(hinge_angles: Mapping[str, Sequence[float]] | None) -> list[tuple[tuple[str, float], ...]]:
-    """Every combination of the listed hinge angles, as (glob, deg) pairs; ``[()]`` without any."""
+    """Every combination of the listed hinge angles, as (glob, deg) pairs; ``[()]`` without any.
+
+    Parameters
+    ----------
+    hinge_angles : mapping of str to sequence of float, or None
+        Hinge glob -> the angles [deg] it is held at (a single number is one angle).
+
+    Returns
+    -------
+    list of tuple of (str, float)
+        One pose per combination, the globs in the mapping's order, the last glob varying slowest.
+
+    Raises
+    ------
+    InputError
+        A glob without angles, or angles that are not distinct finite numbers.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.engine import hinge_poses
+    >>> hinge_poses(None)
+    [()]
+    >>> hinge_poses({"wing*": [0, 30], "antenna": 5})
+    [(('wing*', 0.0), ('antenna', 5.0)), (('wing*', 30.0), ('antenna', 5.0))]
+    """
     if hinge_angles is None:
         return [()]
     names, lists = list(hinge_angles), []
@@ -205,8 +305,35 @@ def hinge_poses(hinge_angles: Mapping[str, Sequence[float]] | None) -> list[tupl
 
 
 def by_hinge_angle(tables: list[xr.Dataset], poses: list[tuple[tuple[str, float], ...]]) -> xr.Dataset:
-    """One table of the poses' tables, a dimension ``hinge_deg[GLOB]`` per hinge; the attributes the
-    poses share, and ``hinge_angles_deg`` (JSON: each hinge's angles)."""
+    """One table of the poses' tables, a dimension ``hinge_deg[GLOB]`` per hinge.
+
+    The attributes the poses share are kept, and ``hinge_angles_deg`` (JSON: each hinge's angles) added;
+    direction variables, the same at every pose, keep no hinge dimension.
+
+    Parameters
+    ----------
+    tables : list of xarray.Dataset
+        One table per pose, in the order of ``poses``.
+    poses : list of tuple of (str, float)
+        The poses (:func:`hinge_poses`).
+
+    Returns
+    -------
+    xarray.Dataset
+        The tables combined along the hinge dimensions.
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> from sunwind.forces.tables.engine import by_hinge_angle
+    >>> one = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> both = by_hinge_angle([one, one], [(("wing*", 0.0),), (("wing*", 30.0),)])
+    >>> both["srp_force_N"].dims, both.attrs["hinge_angles_deg"]
+    (('hinge_deg[wing*]', 'sun_azimuth', 'sun_elevation', 'component'), '{"wing*": [0.0, 30.0]}')
+    """
     dimensioned = [
         table.expand_dims({hinge_dimension(name): [angle] for name, angle in pose})
         for table, pose in zip(tables, poses, strict=True)
@@ -225,13 +352,31 @@ def by_hinge_angle(tables: list[xr.Dataset], poses: list[tuple[tuple[str, float]
 
 
 def hinge_dimension(glob: str) -> str:
-    """The table dimension of the angles of the hinge ``glob``."""
+    """The table dimension of the angles of the hinge ``glob``.
+
+    Parameters
+    ----------
+    glob : str
+        The hinge's materials-file glob.
+
+    Returns
+    -------
+    str
+        ``hinge_deg[GLOB]``.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.engine import hinge_dimension
+    >>> hinge_dimension("wing*")
+    'hinge_deg[wing*]'
+    """
     return f"hinge_deg[{glob}]"
 
 
 def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]:
-    """Evaluate every job in chunks: its setup's precomputes once, then the chunks not in the
-    checkpoint, here or on Dask.
+    """Evaluate every job in chunks, here or on Dask.
+
+    Each setup's precomputes are made once, then the chunks the checkpoint does not hold are computed.
 
     Parameters
     ----------
@@ -331,10 +476,11 @@ def _fill(records: Records, lo: int, hi: int, values: Records) -> None:
 
 
 def precompute(model: Model, jobs: list[Job]) -> None:
-    """What every input of ``jobs`` reuses, made once before the first chunk (Dask workers then read
-    it from the disk cache): the view factors when a job reflects, each side's open sky when it computes
-    drag, the thermal balance of the Earth's radiation with its thermal recoil. :func:`run_jobs` calls
-    it for the jobs it computes; nothing else needs to.
+    """Make what every input of ``jobs`` reuses, once, before the first chunk.
+
+    Dask workers then read it from the disk cache: the view factors when a job reflects, each side's
+    open sky when it computes drag, the thermal balance of the Earth's radiation with its thermal
+    recoil. :func:`run_jobs` calls it for the jobs it computes; nothing else needs to.
 
     Parameters
     ----------
@@ -342,6 +488,17 @@ def precompute(model: Model, jobs: list[Job]) -> None:
         The model the jobs evaluate.
     jobs : list of Job
         The jobs.
+
+    Examples
+    --------
+
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.engine import precompute
+    >>> from sunwind.forces.tables.jobs import Job
+    >>> precompute(cube, [Job(sw.SrpSetup(reflections="full"), np.eye(3))])  # the view factors, once
     """
     for job in jobs:
         job.setup.precompute(model)

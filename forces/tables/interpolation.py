@@ -40,7 +40,25 @@ _BLOCK = 32_768
 
 
 class GridAxes(NamedTuple):
-    """Azimuth/elevation axes of a grid table [deg]."""
+    """Azimuth/elevation axes of a grid table [deg], as :func:`grid_axes` checks them.
+
+    Attributes
+    ----------
+    azimuth_deg : ndarray of float64, shape (n_a,)
+        Azimuths -180 to 180, both ends.
+    elevation_deg : ndarray of float64, shape (n_e,)
+        Elevations -90 to 90, both ends.
+    azimuth_step_deg, elevation_step_deg : float
+        The steps of the two axes [deg].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.interpolation import GridAxes
+    >>> axes = GridAxes(np.linspace(-180, 180, 5), np.linspace(-90, 90, 3), 90.0, 90.0)
+    >>> axes.elevation_deg.tolist(), axes.azimuth_step_deg
+    ([-90.0, 0.0, 90.0], 90.0)
+    """
 
     azimuth_deg: NDArray[np.float64]  # (n_a,) -180..180, both ends
     elevation_deg: NDArray[np.float64]  # (n_e,) -90..90, both ends
@@ -49,13 +67,22 @@ class GridAxes(NamedTuple):
 
 
 class InterpolatedLoads(NamedTuple):
-    """Force [N] and torque [N m] interpolated in a table (:class:`TableInterpolator`), body frame;
-    torque about the table's reference point.
+    """Force [N] and torque [N m] interpolated in a table (:class:`TableInterpolator`), body frame.
+
+    The torque is about the table's reference point.
 
     Attributes
     ----------
     force_N, torque_Nm : ndarray, shape (..., 3)
         One vector per direction asked for.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from sunwind.forces.tables.interpolation import InterpolatedLoads
+    >>> force_N, torque_Nm = InterpolatedLoads(np.zeros((2, 3)), np.ones((2, 3)))  # unpacks as a tuple
+    >>> force_N.shape, torque_Nm[0].tolist()
+    ((2, 3), [1.0, 1.0, 1.0])
     """
 
     force_N: NDArray[np.float64]  # (..., 3)
@@ -65,10 +92,39 @@ class InterpolatedLoads(NamedTuple):
 def grid_axes(table: xr.Dataset, prefix: str) -> GridAxes:
     """The checked ``{prefix}_azimuth`` / ``{prefix}_elevation`` axes of a grid table.
 
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A grid table.
+    prefix : str
+        ``"sun"``, ``"flow"`` or ``"earth"`` (:data:`PREFIX`).
+
+    Returns
+    -------
+    GridAxes
+        The axes as exact regular values, and their steps.
+
     Raises
     ------
     InputError
         A list table (no such grid), or axes that are not regular, ascending and end to end.
+
+    Examples
+    --------
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=30.0)
+    >>> from sunwind.forces.tables.interpolation import grid_axes
+    >>> axes = grid_axes(table, "sun")
+    >>> len(axes.azimuth_deg), len(axes.elevation_deg), axes.elevation_step_deg
+    (13, 7, 30.0)
+    >>> grid_axes(table, "flow")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: the table has no flow_azimuth/flow_elevation grid ...
     """
     az_name, el_name = f"{prefix}_azimuth", f"{prefix}_elevation"
     if az_name not in table.dims or el_name not in table.dims:
@@ -82,12 +138,39 @@ def grid_axes(table: xr.Dataset, prefix: str) -> GridAxes:
 
 
 def check_step(step_deg: float, span_deg: float, name: str, whole_degrees: bool = False) -> int:
-    """Number of intervals of ``step_deg`` in ``span_deg``.
+    """Number of intervals of ``step_deg`` in ``span_deg``, the step checked.
+
+    Parameters
+    ----------
+    step_deg : float
+        The step [deg].
+    span_deg : float
+        The span it must divide [deg].
+    name : str
+        What the step is, named in the error.
+    whole_degrees : bool
+        Also require a whole number of degrees.
+
+    Returns
+    -------
+    int
+        ``span_deg / step_deg``.
 
     Raises
     ------
     InputError
-        The step does not divide the span (or, with ``whole_degrees``, is not a whole number of degrees).
+        The step does not divide the span (or, with ``whole_degrees``, is not a whole number of degrees);
+        the hint suggests steps that do.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.interpolation import check_step
+    >>> check_step(30.0, 180.0, "azimuth")
+    6
+    >>> check_step(7.0, 180.0, "azimuth")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: azimuth step 7 deg does not divide 180 deg; ...
     """
     count = span_deg / step_deg if step_deg > 0 else np.nan
     divides = bool(np.isfinite(count)) and abs(count - round(count)) < 1e-9 * max(count, 1.0)
@@ -99,7 +182,30 @@ def check_step(step_deg: float, span_deg: float, name: str, whole_degrees: bool 
 
 
 def azel_directions(azimuth_deg: ArrayLike, elevation_deg: ArrayLike) -> NDArray[np.float64]:
-    """Unit vectors (..., 3) of azimuths and elevations [deg] (broadcast together), body frame."""
+    """Unit vectors of azimuths and elevations [deg], body frame.
+
+    ``d = (cos el cos az, cos el sin az, sin el)``: azimuth from +x toward +y, elevation from the x-y
+    plane toward +z.
+
+    Parameters
+    ----------
+    azimuth_deg : array_like of float
+        Azimuths [deg].
+    elevation_deg : array_like of float
+        Elevations [deg]; broadcast against ``azimuth_deg``.
+
+    Returns
+    -------
+    ndarray of float64, shape (..., 3)
+        One unit vector per broadcast pair.
+
+    Examples
+    --------
+    >>> from sunwind.forces.tables.interpolation import azel_directions
+    >>> azel_directions([0.0, 90.0], [0.0, 45.0]).round(4) + 0.0
+    array([[1.    , 0.    , 0.    ],
+           [0.    , 0.7071, 0.7071]])
+    """
     az, el = np.radians(azimuth_deg), np.radians(elevation_deg)
     az, el = np.broadcast_arrays(az, el)
     return np.stack([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)], axis=-1)
@@ -108,6 +214,9 @@ def azel_directions(azimuth_deg: ArrayLike, elevation_deg: ArrayLike) -> NDArray
 class TableInterpolator:
     """Force and torque of a sweep table at any Sun or flow direction.
 
+    Interpolates in (azimuth, elevation), periodic in azimuth and continued across the poles (see the
+    module notes); the table's nodes are reproduced exactly.
+
     Parameters
     ----------
     table : xarray.Dataset or path
@@ -115,10 +224,42 @@ class TableInterpolator:
     method : {"bicubic", "bilinear"}
         Tensor-product kernel in (azimuth, elevation); see the module notes.
 
+    Attributes
+    ----------
+    table : xarray.Dataset
+        The table, in memory.
+    method : str
+        The kernel.
+
+    Raises
+    ------
+    InputError
+        An unknown method.
+
+    References
+    ----------
+    .. [1] Keys, R. G. (1981). "Cubic convolution interpolation for digital image processing". *IEEE
+       Transactions on Acoustics, Speech, and Signal Processing* 29(6), 1153-1160 (the bicubic kernel,
+       a = -1/2).
+    .. [2] Catmull, E., Rom, R. (1974). "A class of local interpolating splines". In *Computer Aided
+       Geometric Design*, 317-326. Academic Press.
+
     Examples
     --------
-    >>> interp = TableInterpolator("sweep.nc")                      # doctest: +SKIP
-    >>> force_N, torque_Nm = interp.srp([[0.0, 0.6, 0.8]])           # doctest: +SKIP
+    A 30 deg table of a black 1 m cube, against SRP computed at the direction itself:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=30.0)
+    >>> interpolator = sw.TableInterpolator(table)
+    >>> sun = [[0.0, 0.6, 0.8]]
+    >>> force_N, torque_Nm = interpolator.srp(sun)
+    >>> (force_N * 1e6).round(2)  # [uN]
+    array([[ 0.  , -3.74, -5.08]])
+    >>> (sw.srp(cube, sun[0], reflections="none").force_N * 1e6).round(2)
+    array([ 0.  , -3.81, -5.08])
     """
 
     def __init__(
@@ -136,9 +277,38 @@ class TableInterpolator:
         self._grids: dict[tuple[str, ...], _SphereGrid] = {}
 
     def srp(self, sun_vectors: ArrayLike, flux_W_m2: float | None = None) -> InterpolatedLoads:
-        """SRP force [N] and torque [N m] for unit Sun vectors (..., 3) (spacecraft -> Sun, body frame).
+        """SRP force [N] and torque [N m] for unit Sun vectors (spacecraft -> Sun, body frame).
 
-        ``flux_W_m2`` rescales from the table's flux (SRP is linear in the flux); default: the table's.
+        Parameters
+        ----------
+        sun_vectors : array_like of float, shape (..., 3)
+            Directions to the Sun, body frame (normalised here).
+        flux_W_m2 : float, optional
+            Solar flux [W/m^2]; the loads are scaled from the table's ``flux_W_m2`` (SRP is linear in the
+            flux). Default: the table's.
+
+        Returns
+        -------
+        InterpolatedLoads
+            ``force_N`` and ``torque_Nm``, shape (..., 3).
+
+        Raises
+        ------
+        InputError
+            A table without SRP, a list table, or a zero or non-finite direction.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=30.0)
+        >>> interpolator = sw.TableInterpolator(table)
+        >>> at_half = interpolator.srp([[1.0, 0.0, 0.0]], flux_W_m2=1361.0 / 2).force_N
+        >>> (at_half * 1e6).round(3)  # a node: the table's value, halved
+        array([[-2.27,  0.  ,  0.  ]])
         """
         values = self.values(["srp_force_N", "srp_torque_Nm"], sun_vectors)
         if flux_W_m2 is not None:
@@ -146,20 +316,76 @@ class TableInterpolator:
         return InterpolatedLoads(values[..., :3], values[..., 3:])
 
     def drag(self, flow_vectors: ArrayLike) -> InterpolatedLoads:
-        """Drag force [N] and torque [N m] for flow vectors ``u = v_rel / |v_rel|`` (..., 3), body frame."""
-        values = self.values(["drag_force_N", "drag_torque_Nm"], flow_vectors)
-        return InterpolatedLoads(values[..., :3], values[..., 3:])
+        """Drag force [N] and torque [N m] for flow vectors ``u = v_rel / |v_rel|``, body frame.
 
-    def values(self, names: Sequence[str], directions: ArrayLike) -> NDArray[np.float64]:
-        """Variables ``names`` (all SRP, all drag or all Earth) at ``directions`` (..., 3) (Sun, flow or
-        Earth vectors, body frame), channels concatenated.
+        Parameters
+        ----------
+        flow_vectors : array_like of float, shape (..., 3)
+            Flow directions, body frame (normalised here).
 
-        A variable with a ``component`` dimension gives three channels, any other one.
+        Returns
+        -------
+        InterpolatedLoads
+            ``force_N`` and ``torque_Nm``, shape (..., 3), at the table's speed and atmosphere.
 
         Raises
         ------
         InputError
-            A variable missing from the table, a list table, or a zero/non-finite direction.
+            A table without drag, a list table, or a zero or non-finite direction.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=30.0)
+        >>> sw.TableInterpolator(table).drag([[1.0, 0.0, 0.0]])
+        Traceback (most recent call last):
+        ...
+        sunwind.geometry.errors.InputError: the table has no drag_force_N, drag_torque_Nm; ...
+        """
+        values = self.values(["drag_force_N", "drag_torque_Nm"], flow_vectors)
+        return InterpolatedLoads(values[..., :3], values[..., 3:])
+
+    def values(self, names: Sequence[str], directions: ArrayLike) -> NDArray[np.float64]:
+        """Variables ``names`` at ``directions``, channels concatenated.
+
+        A variable with a ``component`` dimension gives three channels, any other one. The padded grid of
+        each group of names is made on first use and kept.
+
+        Parameters
+        ----------
+        names : sequence of str
+            Table variables, all SRP, all drag or all Earth (``srp_*``, ``drag_*``, ``earth_*``).
+        directions : array_like of float, shape (..., 3)
+            Sun, flow or Earth vectors, body frame (normalised here).
+
+        Returns
+        -------
+        ndarray of float64, shape (..., k)
+            The ``k`` channels of the variables, in order, at each direction.
+
+        Raises
+        ------
+        InputError
+            Variables of different kinds, a variable missing from the table, a list table, or a zero or
+            non-finite direction.
+
+        Examples
+        --------
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+        >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+        >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=30.0)
+        >>> interpolator = sw.TableInterpolator(table, "bilinear")
+        >>> interpolator.values(["srp_lit_area_m2", "srp_force_N"], [[0.0, 0.0, 1.0]]).shape
+        (1, 4)
+        >>> interpolator.values(["srp_lit_area_m2"], [[0.0, 0.0, 1.0]]).round(6)  # a pole node: one face
+        array([[1.]])
         """
         key = tuple(names)
         if key not in self._grids:

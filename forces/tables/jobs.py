@@ -436,19 +436,42 @@ Setup = SrpSetup | DragSetup
 
 
 class Inputs(Protocol):
-    """What a job evaluates, one entry per row, cut into chunks by a slice: an (n, 3) array of unit
-    vectors (a sweep's Sun, flow or Earth directions), or the steps of an orbit
-    (:class:`~sunwind.forces.orbit.inputs.StepInputs`)."""
+    """What a job evaluates, one entry per row, cut into chunks by a slice.
 
-    def __len__(self) -> int: ...
+    An (n, 3) array of unit vectors (a sweep's Sun, flow or Earth directions), or the steps of an orbit
+    (:class:`~sunwind.forces.orbit.inputs.StepInputs`): anything with a length and slices of itself.
 
-    def __getitem__(self, index: slice, /) -> Any: ...
+    Attributes
+    ----------
+    __len__ : callable
+        ``len(inputs)``: the number of rows.
+    __getitem__ : callable
+        ``inputs[lo:hi]``: the rows of a chunk, of the same kind (what a chunk's
+        :meth:`Tabulation.evaluate` is given).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> directions = np.eye(3)  # three Sun directions are inputs
+    >>> len(directions), directions[1:3].shape
+    (3, (2, 3))
+    """
+
+    def __len__(self) -> int:
+        """The number of rows."""
+        ...
+
+    def __getitem__(self, index: slice, /) -> Any:
+        """The rows of ``index``, a slice (a chunk)."""
+        ...
 
 
 @runtime_checkable
 class Tabulation(Protocol):
-    """What the sweep engine (:func:`~sunwind.forces.tables.engine.run_jobs`) runs over a job's inputs,
-    chunk by chunk, locally or on Dask workers (so it pickles), and checkpoints by its description.
+    """What the sweep engine runs over a job's inputs, chunk by chunk.
+
+    :func:`~sunwind.forces.tables.engine.run_jobs` runs it locally or on Dask workers (so it pickles),
+    and checkpoints it by its description.
 
     :class:`SrpSetup`, :class:`DragSetup`, :class:`PosedSetup`,
     :class:`~sunwind.forces.tables.earth_setup.EarthSetup` and the orbit's
@@ -479,16 +502,26 @@ class Tabulation(Protocol):
     """
 
     @property
-    def kind(self) -> str: ...
+    def kind(self) -> str:
+        """The name its records are kept under, one per job of a run."""
+        ...
 
     @property
-    def fields(self) -> dict[str, int]: ...
+    def fields(self) -> dict[str, int]:
+        """The records of one input: name -> width (1: a number, else a row of that many)."""
+        ...
 
-    def precompute(self, model: Model) -> None: ...
+    def precompute(self, model: Model) -> None:
+        """Make what every input reuses (view factors, open skies), once, before the first chunk."""
+        ...
 
-    def evaluate(self, model: Model, inputs: Any) -> Records: ...
+    def evaluate(self, model: Model, inputs: Any) -> Records:
+        """The records (:attr:`fields`) of ``inputs``, a chunk of the job's, one row each in their order."""
+        ...
 
-    def describe(self) -> dict: ...
+    def describe(self) -> dict:
+        """JSON-ready settings: a checkpoint's fingerprint, a table's attributes."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -539,7 +572,7 @@ class PosedSetup:
         """
         return self.setup.fields
 
-    def pose(self, model: Model) -> Model:
+    def held(self, model: Model) -> Model:
         """The model with the hinges held at this pose's angles.
 
         Parameters
@@ -562,7 +595,7 @@ class PosedSetup:
         >>> import sunwind as sw
         >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
         >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
-        >>> PosedSetup(SrpSetup(), (), 0).pose(cube).craft.n_sides  # no hinges, nothing to turn
+        >>> PosedSetup(SrpSetup(), (), 0).held(cube).craft.n_sides  # no hinges, nothing to turn
         12
         """
         return model.held(dict(self.angles))
@@ -582,7 +615,7 @@ class PosedSetup:
         >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
         >>> PosedSetup(SrpSetup(reflections="none"), (), 0).precompute(cube)  # nothing to make
         """
-        self.setup.precompute(self.pose(model))
+        self.setup.precompute(self.held(model))
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of directions ``directions`` on the posed model.
@@ -609,7 +642,7 @@ class PosedSetup:
         >>> np.round(records["force_N"] * 1e6, 4) + 0.0  # [uN]
         array([[ 0.    ,  0.    , -5.4478]])
         """
-        return self.setup.evaluate(self.pose(model), directions)
+        return self.setup.evaluate(self.held(model), directions)
 
     def describe(self) -> dict:
         """JSON-ready settings: the wrapped setup's, and the hinge angles.
@@ -670,6 +703,12 @@ class Job:
         Returns
         -------
         list of (int, int)
+            ``(lo, hi)`` in order, covering every input once; the last may be short.
+
+        Examples
+        --------
+        >>> Job(SrpSetup(), np.eye(5)).chunks(2)
+        [(0, 2), (2, 4), (4, 5)]
         """
         n = len(self.inputs)
         return [(lo, min(n, lo + size)) for lo in range(0, n, size)]

@@ -1,4 +1,5 @@
-"""Printed outputs of the documentation pages (README.md, docs/getting_started.md, docs/guides/*.md):
+"""Printed outputs of the documentation pages (README.md, docs/index.md, docs/getting_started.md,
+docs/guides/*.md):
 find them, compare them with a run to the digits shown, and rewrite them.
 
 An output block is a page's ``console`` block whose first line is ``$ sunwind ...`` and whose next
@@ -22,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 #: The pages whose examples are checked, relative to the repository's root.
-PAGE_GLOBS = ("README.md", "docs/getting_started.md", "docs/guides/*.md")
+PAGE_GLOBS = ("README.md", "docs/index.md", "docs/getting_started.md", "docs/guides/*.md")
 
 
 def pages(root: Path) -> list[Path]:
