@@ -51,7 +51,42 @@ from sunwind.geometry.rays.sampling import ShadowSampling
 
 @dataclass(frozen=True)
 class Below:
-    """The planet options of a command."""
+    """The planet below a command: where it is, its albedo and infrared, and how its disc is sampled.
+
+    Parameters
+    ----------
+    nadir : tuple of 3 float or None
+        Direction from the spacecraft to the planet's centre, body frame (``--earth``); needed by
+        :func:`place_and_light`.
+    altitude_km : float
+        Height above the planet's surface [km].
+    planet : str
+        The planet's name, a key of ``PLANETS`` (its radius, albedo and infrared law).
+    albedo : float or None
+        Bond albedo; None takes the planet's.
+    albedo_model : {"lambert", "knocke"}
+        A uniform Lambertian albedo, or Knocke's zonal, seasonal albedo and emissivity of the Earth.
+    epoch : str or None
+        UTC date and time, ISO 8601: the season of ``"knocke"``.
+    pole : tuple of 3 float or None
+        The planet's north pole, body frame: the latitudes of ``"knocke"``.
+    earth_ir : float or None
+        Uniform infrared exitance at the surface [W/m^2]; None takes (1 - A) S / 4.
+    eclipse : str
+        The model of the planet's shadow on the Sun (``"conical"``, ...).
+    cell_deg : float
+        Cell size of the planet's disc for shadowing and reflections [deg].
+    plates : bool, optional
+        Every side an independent plate seeing the whole planet: no ray cast.
+
+    Examples
+    --------
+    >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
+    ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
+    ...               cell_deg=10.0)
+    >>> below.altitude_km, below.plates
+    (500.0, False)
+    """
 
     nadir: tuple[float, float, float] | None
     altitude_km: float
@@ -89,7 +124,27 @@ _POLE = click.option("--pole", nargs=3, type=float, metavar="X Y Z",
 
 
 def planet_options() -> click.decorators.FC:
-    """The planet's place and its albedo and infrared: keyword ``below``, a :class:`Below`."""
+    """Make the option group of the planet's place and its albedo and infrared.
+
+    Its flags are ``--earth``, ``--altitude`` (required), ``--planet``, ``--albedo``,
+    ``--albedo-model``, ``--earth-ir``, ``--epoch``, ``--pole``, ``--eclipse``, ``--step`` and
+    ``--plates``.
+
+    Returns
+    -------
+    callable
+        A decorator handing the command the keyword ``below``: a :class:`Below`.
+
+    Examples
+    --------
+    >>> import click
+    >>> @click.command()
+    ... @planet_options()
+    ... def demo(below):
+    ...     print(below.nadir, below.altitude_km, below.planet, below.cell_deg)
+    >>> demo.main(["--earth", "0", "0", "-1", "--altitude", "500"], standalone_mode=False)
+    (0.0, 0.0, -1.0) 500.0 earth 10.0
+    """
     options = [
         _earth("nadir"),
         click.option("--altitude", "altitude_km", type=float, required=True, metavar="H_KM",
@@ -113,7 +168,32 @@ def planet_options() -> click.decorators.FC:
 
 @dataclass(frozen=True)
 class EarthRequest:
-    """The Earth's radiation asked of ``forces`` or ``orbit`` (``--earth-radiation``)."""
+    """The Earth's radiation asked of ``sunwind forces`` or ``sunwind orbit`` (``--earth-radiation``).
+
+    Parameters
+    ----------
+    albedo : float or None
+        Bond albedo; None takes the Earth's.
+    albedo_model : {"lambert", "knocke"}
+        A uniform Lambertian albedo, or Knocke's zonal, seasonal albedo and emissivity.
+    earth_ir : float or None
+        Uniform infrared exitance at the surface [W/m^2]; None takes (1 - A) S / 4.
+    cell_deg : float
+        Cell size of the Earth's disc for shadowing and reflections [deg] (``--earth-step``).
+    thermal : bool
+        Also each side's equilibrium temperature and the recoil of its infrared.
+    nadir : tuple of 3 float or None, optional
+        Direction to the Earth's centre, body frame (``--earth``; commands without an orbit).
+    pole : tuple of 3 float or None, optional
+        The Earth's north pole, body frame (``--pole``; commands without an orbit).
+
+    Examples
+    --------
+    >>> request = EarthRequest(albedo=None, albedo_model="lambert", earth_ir=None, cell_deg=10.0,
+    ...                        thermal=False, nadir=(0.0, 0.0, -1.0))
+    >>> request.cell_deg, request.pole
+    (10.0, None)
+    """
 
     albedo: float | None
     albedo_model: str
@@ -131,8 +211,34 @@ class EarthRequest:
 
 
 def earth_term_options(*, place: bool) -> list:
-    """``--earth-radiation`` and its settings (``--earth`` and ``--pole`` too where the command has no
-    orbit); :func:`earth_request` makes them an :class:`EarthRequest`."""
+    """Make ``--earth-radiation`` and its settings, for the commands that add the Earth's radiation.
+
+    :func:`earth_request` makes their values an :class:`EarthRequest`.
+
+    Parameters
+    ----------
+    place : bool
+        Add ``--earth`` and ``--pole``, for a command without an orbit to place the Earth.
+
+    Returns
+    -------
+    list of callable
+        Click option decorators, their keywords those of :data:`EARTH_KEYS`.
+
+    Examples
+    --------
+    >>> import click
+    >>> from sunwind.forces.cli.options import group
+    >>> @click.command()
+    ... @group("earth", earth_term_options(place=True), earth_request)
+    ... def demo(earth):
+    ...     print(earth)
+    >>> demo.main(["--earth-radiation", "--earth", "0", "0", "-1"], standalone_mode=False)
+    EarthRequest(albedo=None, albedo_model='lambert', earth_ir=None, cell_deg=10.0, thermal=False,
+                 nadir=(0.0, 0.0, -1.0), pole=None)
+    >>> demo.main([], standalone_mode=False)
+    None
+    """
     return [
         click.option("--earth-radiation", "earth_on", is_flag=True,
                      help="Add the Earth's albedo and infrared pressure (materials need an emissivity)."),
@@ -147,8 +253,38 @@ def earth_term_options(*, place: bool) -> list:
 
 
 def earth_request(values: dict) -> EarthRequest | None:
-    """The :class:`EarthRequest` of the options of :func:`earth_term_options`, taken out of ``values``
-    (None without ``--earth-radiation``, whose settings are then refused)."""
+    """Make the :class:`EarthRequest` of the :func:`earth_term_options` flags, taking them out of ``values``.
+
+    Without ``--earth-radiation`` its settings are refused when given. With it, the step and the
+    albedo and infrared are checked before any work.
+
+    Parameters
+    ----------
+    values : dict
+        The command's values by keyword; the keys of :data:`EARTH_KEYS` are removed from it.
+
+    Returns
+    -------
+    EarthRequest or None
+        The request; None without ``--earth-radiation``.
+
+    Raises
+    ------
+    InputError
+        A setting given without ``--earth-radiation``, an ``--earth-step`` outside (0, 90] deg, or an
+        albedo or infrared exitance the planet's light refuses.
+
+    Examples
+    --------
+    >>> values = {"earth_on": False, "albedo": 0.3, "albedo_model": "lambert", "earth_ir": None,
+    ...           "cell_deg": 10.0, "thermal": False, "mass": 100.0}
+    >>> earth_request(values)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: --albedo needs --earth-radiation; add --earth-radiation
+    >>> values  # the earth flags were taken out
+    {'mass': 100.0}
+    """
     mine = {key: values.pop(key) for key in EARTH_KEYS if key in values}
     if "earth_nadir" in mine:
         mine["nadir"] = mine.pop("earth_nadir")
@@ -173,7 +309,30 @@ def earth_request(values: dict) -> EarthRequest | None:
 
 
 def check_earth_step(altitude_km: float, cell_deg: float) -> None:
-    """:func:`~sunwind.forces.earth.check_cells_at` for the commands whose cell step is ``--earth-step``."""
+    """Refuse an ``--earth-step`` that cuts the Earth's disc into too many cells at this altitude.
+
+    This is :func:`~sunwind.forces.earth.check_cells_at` with its message naming ``--earth-step``.
+
+    Parameters
+    ----------
+    altitude_km : float
+        Height above the Earth's surface [km].
+    cell_deg : float
+        Cell size of the Earth's disc [deg].
+
+    Raises
+    ------
+    InputError
+        The disc would have more cells than the limit.
+
+    Examples
+    --------
+    >>> check_earth_step(500.0, 10.0)  # about a hundred cells: accepted
+    >>> check_earth_step(500.0, 0.1)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: --earth-step 0.1 cuts the planet's disc (68.0 deg half-angle) into ...
+    """
     try:
         check_cells_at(altitude_km, cell_deg)
     except InputError as error:
@@ -181,7 +340,26 @@ def check_earth_step(altitude_km: float, cell_deg: float) -> None:
 
 
 def refuse_without_earth(flags: Sequence[tuple[str, object]]) -> None:
-    """Refuse in one line the ``(flag, value)`` pairs given (value not None) without ``--earth-radiation``."""
+    """Refuse, in one message, the Earth's settings given without ``--earth-radiation``.
+
+    Parameters
+    ----------
+    flags : sequence of (str, object)
+        Each setting's flag and value; a value of None is a flag not given.
+
+    Raises
+    ------
+    InputError
+        Any flag has a value.
+
+    Examples
+    --------
+    >>> refuse_without_earth([("--albedo", None), ("--thermal", None)])  # none given
+    >>> refuse_without_earth([("--albedo", 0.3), ("--pole", (0.0, 0.0, 1.0))])
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: --albedo, --pole need --earth-radiation; add --earth-radiation
+    """
     given = [flag for flag, value in flags if value is not None]
     if given:
         verb = "needs" if len(given) == 1 else "need"
@@ -193,8 +371,45 @@ EARTH_KEYS = ("earth_on", "albedo", "albedo_model", "earth_ir", "cell_deg", "the
 
 
 def place_and_light(below: Below, sun: Sun) -> tuple[Place, PlanetLight]:
-    """The :class:`Place` and :class:`PlanetLight` of the options, the Sun's share behind the planet
-    from ``--eclipse``."""
+    """Make the :class:`Place` and :class:`PlanetLight` of the planet options and the Sun.
+
+    The share of the Sun's disc in view comes from the ``--eclipse`` model.
+
+    Parameters
+    ----------
+    below : Below
+        The planet options.
+    sun : Sun
+        The Sun's direction (body frame) and flux [W/m^2].
+
+    Returns
+    -------
+    place : Place
+        Nadir, altitude [km], Sun direction, pole and the Sun's share in view.
+    light : PlanetLight
+        The planet's albedo and infrared.
+
+    Raises
+    ------
+    InputError
+        No ``--earth`` direction, ``--albedo-model knocke`` without ``--epoch`` and ``--pole``, or a
+        value the place or light refuses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.cli.options import Sun
+    >>> grey = sw.Material("grey", reflectivity=0.0, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
+    ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
+    ...               cell_deg=10.0)
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> place, light = place_and_light(below, sun)
+    >>> place.solar_fraction, light.planet.name
+    (1.0, 'earth')
+    """
     body = planet(below.planet)
     if below.nadir is None:
         raise InputError("give --earth X Y Z: the body-frame direction to the planet's centre")
@@ -259,8 +474,55 @@ def radiation(
     *,
     thermal: bool,
 ) -> tuple[PlanetResult, ThermalState | None]:
-    """The planet's radiation on ``model`` at the place of ``below`` with the command's reflections and
-    shadow ``sampling``, and (``thermal``) the equilibrium temperatures and recoil."""
+    """Compute the planet's radiation on a model at the place of the planet options.
+
+    Parameters
+    ----------
+    model : Model
+        The posed model.
+    below : Below
+        The planet options (``plates`` replaces the reflections by independent plates).
+    sun : Sun
+        The Sun's direction (body frame) and flux [W/m^2].
+    reflections : ReflectionSettings
+        The command's inter-reflection settings.
+    sampling : ShadowSampling
+        The shadow-ray sampling.
+    thermal : bool
+        Also the equilibrium temperatures and their infrared recoil.
+
+    Returns
+    -------
+    result : PlanetResult
+        Albedo and infrared forces [N] and torques [N m], and the power each side absorbs.
+    state : ThermalState or None
+        The temperatures and recoil; None unless ``thermal``.
+
+    Raises
+    ------
+    InputError
+        A place or light the computation refuses.
+    MaterialError
+        A material without an emissivity (the planet's infrared, absorbed and re-emitted, needs one).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.cli.options import Sun
+    >>> grey = sw.Material("grey", reflectivity=0.0, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
+    ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
+    ...               cell_deg=10.0)
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> none = sw.ReflectionSettings("none")
+    >>> result, state = radiation(cube, below, sun, none, sw.ShadowSampling(), thermal=True)
+    >>> print(f"{result.infrared.force_N[2]:.3e} N")  # the infrared pushes away from the planet: +z
+    1.131e-06 N
+    >>> print(f"{state.temperature_K.mean():.0f} K")  # the sides' mean equilibrium temperature
+    286 K
+    """
     place, light = place_and_light(below, sun)
     mode = replace(reflections, mode=PLATES) if below.plates else reflections
     result = planet_radiation(
@@ -270,8 +532,43 @@ def radiation(
 
 
 def earth_below(request: EarthRequest, where: FreeStream) -> Below:
-    """The planet of ``sunwind forces``, checked before any work: the Earth along ``--earth``, at
-    ``--altitude`` and ``--epoch`` from the flow options, the Sun's share behind it by the conical model."""
+    """Place the Earth of ``sunwind forces``, checked before any work.
+
+    The Earth lies along ``--earth``, at ``--altitude`` and ``--epoch`` of the flow options; the Sun's
+    share behind it follows the conical model.
+
+    Parameters
+    ----------
+    request : EarthRequest
+        The ``--earth-radiation`` settings.
+    where : FreeStream
+        The flow options, whose ``altitude_km`` and ``time`` place the spacecraft.
+
+    Returns
+    -------
+    Below
+        The planet options of the Earth.
+
+    Raises
+    ------
+    InputError
+        No ``--earth`` direction or no ``--altitude``, or an ``--earth-step`` too fine for the altitude.
+
+    Examples
+    --------
+    >>> from dataclasses import replace
+    >>> from sunwind.forces.cli.free_stream import FreeStream
+    >>> request = EarthRequest(albedo=None, albedo_model="lambert", earth_ir=None, cell_deg=10.0,
+    ...                        thermal=False, nadir=(0.0, 0.0, -1.0))
+    >>> no_flow = FreeStream(velocity_m_s=None, speed_m_s=None, atmosphere=None)
+    >>> below = earth_below(request, replace(no_flow, altitude_km=400.0))
+    >>> below.planet, below.altitude_km, below.eclipse
+    ('earth', 400.0, 'conical')
+    >>> earth_below(request, no_flow)
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: --earth-radiation needs --earth X Y Z (body-frame direction ...
+    """
     if request.nadir is None or where.altitude_km is None:
         raise InputError(
             "--earth-radiation needs --earth X Y Z (body-frame direction to the Earth's centre) and "
@@ -294,8 +591,38 @@ def earth_below(request: EarthRequest, where: FreeStream) -> Below:
 
 
 def earth_document(result: PlanetResult, state: ThermalState | None) -> dict:
-    """The JSON document of ``sunwind earth``: the result's, with ``thermal`` and each part's
-    ``temperature_K`` when there is a thermal state."""
+    """Make the JSON document of ``sunwind earth``.
+
+    Parameters
+    ----------
+    result : PlanetResult
+        The planet's radiation.
+    state : ThermalState or None
+        The temperatures and recoil, when asked for.
+
+    Returns
+    -------
+    dict
+        The result's JSON; with a thermal state also ``thermal`` and each part's area-weighted mean
+        ``temperature_K``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.cli.options import Sun
+    >>> grey = sw.Material("grey", reflectivity=0.0, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
+    ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
+    ...               cell_deg=10.0)
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> none = sw.ReflectionSettings("none")
+    >>> result, state = radiation(cube, below, sun, none, sw.ShadowSampling(), thermal=True)
+    >>> document = earth_document(result, state)
+    >>> sorted(document["parts"]["box"])
+    ['albedo_W', 'area_m2', 'infrared_W', 'reflected_W', 'solar_W', 'temperature_K']
+    """
     document = result.to_json()
     if state is not None:
         document["thermal"] = state.to_json()
@@ -339,7 +666,39 @@ def _write_sides(path: Path, result: PlanetResult, state: ThermalState | None) -
 
 
 def print_earth(result: PlanetResult, state: ThermalState | None, title: str | None = None) -> None:
-    """The human-readable report, under ``title`` (default the command's header)."""
+    """Print the human-readable report of ``sunwind earth``.
+
+    Parameters
+    ----------
+    result : PlanetResult
+        The planet's radiation.
+    state : ThermalState or None
+        The temperatures and recoil, when asked for.
+    title : str or None, optional
+        The first line; None gives the command's header.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.cli.options import Sun
+    >>> grey = sw.Material("grey", reflectivity=0.0, specular_fraction=0.0, emissivity=0.8)
+    >>> cube = sw.load(sw.meshes.box(), uniform=grey, threads=1)
+    >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
+    ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
+    ...               cell_deg=10.0)
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> none = sw.ReflectionSettings("none")
+    >>> result, state = radiation(cube, below, sun, none, sw.ShadowSampling(), thermal=True)
+    >>> print_earth(result, state)  # doctest: +ELLIPSIS
+    sunwind earth: <box> (12 triangles, 1 parts)
+      frame            body frame of the mesh; SI units
+      planet           earth: albedo 0.3 Lambertian, infrared (1 - A) S / 4 = 238.2 W/m^2 uniform
+      nadir            [+0.000000  +0.000000  -1.000000]  altitude 500 km  (disc radius 68.019 deg)
+    ...
+      absorbed [W]     part: solar, albedo, infrared, reflected, temperature [K]
+        box: 1361, ...
+    """
     craft, place = result.craft, result.place
     parts = f"({craft.n_facets} triangles, {len(craft.part_names)} parts)"
     print(title or f"sunwind earth: {craft.source} {parts}")

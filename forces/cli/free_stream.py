@@ -58,7 +58,7 @@ class FreeStream:
 
     Examples
     --------
-    >>> stream = FreeStream(None, None, None)  # no drag
+    >>> stream = FreeStream(velocity_m_s=None, speed_m_s=None, atmosphere=None)  # no drag
     >>> stream.atmosphere is None, stream.sampling.sky_rays
     (True, None)
     """

@@ -240,8 +240,10 @@ def uniform_material(values: dict, gas: dict | None = None) -> Material | None:
     Raises
     ------
     InputError
-        An optics flag without both ``--reflectivity`` and ``--specular-fraction``, or values a
-        material refuses (each out of [0, 1], reflectivity and transmissivity summing above 1, ...).
+        An optics flag without both ``--reflectivity`` and ``--specular-fraction``.
+    MaterialError
+        Values a material refuses (one outside [0, 1], reflectivity and transmissivity summing above
+        1, ...).
 
     Examples
     --------
@@ -362,7 +364,7 @@ class SweptSource:
     Examples
     --------
     >>> from sunwind.forces.model import ModelSource
-    >>> swept = SweptSource(ModelSource("craft.obj"), {"wing_*": [0.0, 30.0, 60.0]})
+    >>> swept = SweptSource(source=ModelSource("craft.obj"), hinge_angles={"wing_*": [0.0, 30.0, 60.0]})
     >>> swept.hinge_angles["wing_*"]
     [0.0, 30.0, 60.0]
     """
@@ -570,7 +572,7 @@ class Sun:
     Examples
     --------
     >>> import numpy as np
-    >>> sun = Sun(np.array([0.0, 0.0, 1.0]), 1361.0)
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)
     >>> sun.flux_W_m2
     1361.0
     """

@@ -82,8 +82,37 @@ _ENVIRONMENT_OPTIONS = [
 
 @dataclass(frozen=True)
 class Environment:
-    """The terms asked for, the Sun (its flux at 1 au), the eclipse model, the air and the Earth's
-    radiation."""
+    """The environment of ``sunwind orbit``: terms asked for, Sun, eclipse, air and Earth's radiation.
+
+    Parameters
+    ----------
+    srp : bool
+        Compute SRP.
+    drag : bool or None
+        Compute drag; None decides by the orbit (on where it dips below ``DRAG_DEFAULT_BELOW_KM``).
+    sun_eci : (3,) float ndarray or None
+        A fixed Sun direction (GCRF, at 1 au); None takes the ephemeris.
+    eclipse : str
+        The Earth's shadow: ``"conical"`` (with penumbra), ``"cylindrical"`` or ``"none"``.
+    moon : bool
+        The Moon eclipses the Sun too.
+    flux_1au_W_m2 : float
+        Solar flux at 1 au [W/m^2].
+    air : Atmosphere or SpaceWeather
+        A fixed atmosphere, or the space weather of NRLMSIS along the orbit.
+    mass_kg : float or None
+        Spacecraft mass [kg], for the ballistic and SRP coefficients per kilogram.
+    earth : EarthRequest or None
+        The Earth's albedo and infrared (``--earth-radiation``); None: not added.
+
+    Examples
+    --------
+    >>> from sunwind.forces.orbit import SpaceWeather
+    >>> environment = Environment(srp=True, drag=None, sun_eci=None, eclipse="conical", moon=False,
+    ...                           flux_1au_W_m2=1361.0, air=SpaceWeather(), mass_kg=None, earth=None)
+    >>> environment.drag is None  # drag decided by the orbit's lowest altitude
+    True
+    """
 
     srp: bool
     drag: bool | None

@@ -103,7 +103,8 @@ class PathRequest:
     --------
     >>> from sunwind.forces.orbit import Elements, Epoch
     >>> orbit = Elements.circular(500.0, 97.4, 0.0, 0.0)
-    >>> request = PathRequest(orbit, "kepler", None, None, Epoch.of("2024-03-20T00:00:00Z"), 600.0, 60.0)
+    >>> request = PathRequest(elements=orbit, propagator="kepler", tle=None, ephemeris=None,
+    ...                       epoch=Epoch.of("2024-03-20T00:00:00Z"), duration_s=600.0, step_s=60.0)
     >>> request.step_count(600.0)
     11
     >>> float(request.trajectory().time_s[-1])  # the last step's time [s]

@@ -140,8 +140,32 @@ _EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun", 
 
 @dataclass(frozen=True)
 class TableRequest:
-    """What table a sweep writes: the quantities, the attitudes (grid step or list), file and format,
-    and the Earth's radiation (its settings checked, the flux and sampling yet to come; None: none)."""
+    """What table a sweep writes, checked before the mesh is loaded.
+
+    Parameters
+    ----------
+    kinds : tuple of str
+        The quantities tabulated: ``"srp"``, ``"drag"``, ``"earth"``.
+    step_deg : float or None
+        The grid step of the directions [deg]; None for an attitude list.
+    attitudes : pathlib.Path or None
+        The attitude list (CSV); None for a grid.
+    output : pathlib.Path
+        The table file, its extension added when it had none.
+    format : str
+        The file format, a key of ``FORMATS`` (``"nc"``, ``"csv"``, ``"spad"``, ...).
+    earth : EarthSetup or None, optional
+        The Earth's radiation settings (checked; the flux and sampling are set later); None: no earth
+        table.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> request = TableRequest(kinds=("srp", "drag"), step_deg=10.0, attitudes=None,
+    ...                        output=Path("table.nc"), format="nc")
+    >>> request.kinds, request.earth
+    (('srp', 'drag'), None)
+    """
 
     kinds: tuple[str, ...]
     step_deg: float | None
@@ -307,8 +331,32 @@ def sweep_command(
 
 
 def table_estimates(table: xr.Dataset, step_deg: float | None) -> dict[str, tuple[NDArray, NDArray]]:
-    """The shadow error estimates of a sweep's table, per quantity that has them: relative force and
-    torque of each distinct attitude (a grid's shared directions once; every pose's), (n,) each."""
+    """Collect the shadow error estimates of a sweep's table, per quantity that has them.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        The sweep's table.
+    step_deg : float or None
+        Its grid step [deg] (each direction the grid shares between nodes is taken once); None for an
+        attitude list (every row).
+
+    Returns
+    -------
+    dict of str to (ndarray, ndarray)
+        By quantity, the relative force and torque error estimates of each distinct attitude (every
+        pose's), (n,) each.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
+    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
+    >>> table = sw.sweep(cube, srp=sw.SrpSetup(reflections="none"), step_deg=90.0)
+    >>> force, torque = table_estimates(table, 90.0)["srp"]
+    >>> force.shape  # the six distinct directions of a 90-degree grid
+    (6,)
+    """
     out = {}
     for kind in kinds_of(table):
         if f"{kind}_error_estimate_force" in table:

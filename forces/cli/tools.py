@@ -151,7 +151,20 @@ MOST_ATTITUDES = 10_000
 
 @dataclass(frozen=True)
 class Benchmark:
-    """What ``bench`` times: ``kind`` "attitudes", "sweep" or "orbit", and the sweep's grid step [deg]."""
+    """What ``sunwind bench`` times.
+
+    Parameters
+    ----------
+    kind : {"attitudes", "sweep", "orbit"}
+        Single attitudes under every setting, a sweep, or an orbit.
+    step : float
+        The sweep's grid step [deg] (``--step``; read by ``"sweep"`` only).
+
+    Examples
+    --------
+    >>> Benchmark(kind="sweep", step=15.0)
+    Benchmark(kind='sweep', step=15.0)
+    """
 
     kind: str
     step: float

@@ -197,6 +197,12 @@ class AttitudeLaw:
         >>> rotation.shape, bool(np.allclose(rotation[:, :, 0], to_sun))
         ((2, 3, 3), True)
         """
+        if self.kind == "csv":
+            raise InputError(
+                f"attitude csv:{self.path} is read from its file, not computed",
+                hint="use quaternion_file_attitude(law, epoch, time_s) (fly does)",
+                parameters=("attitude",),
+            )
         r, v = trajectory.position_m, trajectory.velocity_m_s
         n = len(r)
         if self.kind == "nadir":
@@ -279,6 +285,7 @@ def quaternion_file_attitude(
     >>> folder.cleanup()
     """
     times, quaternions = read_quaternions(Path(law.path), epoch)
+    time_s = np.asarray(time_s, dtype=float)
     outside = (time_s < times[0] - 1e-9) | (time_s > times[-1] + 1e-9)
     if np.any(outside):
         raise InputError(

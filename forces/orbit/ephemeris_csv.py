@@ -123,7 +123,7 @@ def read_ephemeris(path: str | Path, epoch: Epoch | None) -> tuple[Epoch, NDArra
 
 
 def ephemeris_trajectory(path: str | Path, epoch: Epoch | None, time_s: NDArray[np.float64]) -> Trajectory:
-    r"""States at ``time_s`` [s] after the epoch, interpolated in an ephemeris file.
+    r"""The states at ``time_s`` [s] after the epoch, interpolated in an ephemeris file.
 
     A cubic Hermite spline through the rows' positions and velocities gives the states between them.
 
@@ -173,6 +173,7 @@ def ephemeris_trajectory(path: str | Path, epoch: Epoch | None, time_s: NDArray[
     >>> folder.cleanup()
     """
     epoch, times, position, velocity = read_ephemeris(path, epoch)
+    time_s = np.asarray(time_s, dtype=float)
     outside = (time_s < times[0] - 1e-9) | (time_s > times[-1] + 1e-9)
     if np.any(outside):
         raise InputError(

@@ -275,6 +275,7 @@ def tle_trajectory(path: str | Path, epoch: Epoch, time_s: NDArray[np.float64]) 
         satellite = Satrec.twoline2rv(line1, line2)
     except (ValueError, IndexError) as error:
         raise InputError(f"the TLE does not parse ({error})", path=str(path)) from None
+    time_s = np.asarray(time_s, dtype=float)
     jd, fraction = epoch.ut1(time_s)  # SGP4 takes UTC Julian dates
     codes, r_km, v_km_s = satellite.sgp4_array(jd, fraction)
     failed = np.flatnonzero(codes)
@@ -289,7 +290,7 @@ def tle_trajectory(path: str | Path, epoch: Epoch, time_s: NDArray[np.float64]) 
     position = np.einsum("nij,nj->ni", rotation, r_km * 1e3)
     velocity = np.einsum("nij,nj->ni", rotation, v_km_s * 1e3)
     name = f"sgp4: TLE {Path(path).name} (catalogue number {satellite.satnum_str})"
-    return Trajectory(epoch, np.asarray(time_s, dtype=float), position, velocity, name)
+    return Trajectory(epoch, time_s, position, velocity, name)
 
 
 def teme_to_gcrf(epoch: Epoch, time_s: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -334,7 +334,13 @@ def propagate(elements: Elements, epoch: Epoch, time_s: NDArray[np.float64], pro
         raise InputError(
             f"propagator {propagator!r} is not one of {', '.join(PROPAGATORS)}", parameters=("propagator",)
         )
-    time_s = np.asarray(time_s, dtype=float)
+    time_s = np.atleast_1d(np.asarray(time_s, dtype=float))
+    if time_s.ndim != 1 or len(time_s) == 0 or not np.isfinite(time_s).all():
+        raise InputError(
+            "time_s must be a non-empty list of finite times [s] after the epoch",
+            hint="e.g. numpy.arange(0.0, 5400.0, 60.0)",
+            parameters=("time_s",),
+        )
     label = (
         f"{propagator}: a = {elements.a_m / 1e3:.3f} km, e = {elements.e:g}, i = {elements.i_deg:g} deg, "
         f"RAAN = {elements.raan_deg:g} deg, argp = {elements.argp_deg:g} deg, nu = {elements.nu_deg:g} deg"
@@ -379,11 +385,16 @@ def _with_j2(elements: Elements, time_s: NDArray[np.float64]) -> tuple[NDArray, 
         j2 = -k * r * np.array([1 - 5 * z2, 1 - 5 * z2, 3 - 5 * z2])
         return np.concatenate([y[3:], -EARTH_GM * r / d**3 + j2])
 
-    span = (0.0, float(time_s.max())) if time_s.max() > 0 else (0.0, 1.0)
-    solution = solve_ivp(
-        rates, span, np.concatenate([r0, v0]), method="DOP853", rtol=1e-11, atol=1e-6, dense_output=True
-    )
-    states = solution.sol(time_s).T
+    states = np.empty((len(time_s), 6))
+    for side in (time_s >= 0.0, time_s < 0.0):  # forward from the epoch, and backward before it
+        if not side.any():
+            continue
+        end = float(time_s[side].max() if time_s[side][0] >= 0.0 else time_s[side].min())
+        span = (0.0, end if end != 0.0 else 1.0)
+        solution = solve_ivp(
+            rates, span, np.concatenate([r0, v0]), method="DOP853", rtol=1e-11, atol=1e-6, dense_output=True
+        )
+        states[side] = solution.sol(time_s[side]).T
     return states[:, :3].copy(), states[:, 3:].copy()
 
 

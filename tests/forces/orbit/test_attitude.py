@@ -155,3 +155,10 @@ def test_a_quaternion_file_that_is_not_unit_or_does_not_cover_the_run_is_refused
     short = _write_quaternions(tmp_path, [0.0, 10.0], [[1, 0, 0, 0], [1, 0, 0, 0]], "short.csv")
     with pytest.raises(InputError, match="outside the attitude file"):
         quaternion_file_attitude(AttitudeLaw.parse(f"csv:{short}"), EPOCH, np.array([0.0, 20.0]))
+
+
+def test_a_quaternion_file_law_is_read_not_computed_and_says_so(tmp_path):
+    law = AttitudeLaw.parse(f"csv:{tmp_path / 'q.csv'}")
+    path = propagate(Elements.circular(500.0, 51.6), Epoch.of("2024-03-20T00:00:00Z"), [0.0], "kepler")
+    with pytest.raises(InputError, match="read from its file"):
+        law.body_to_eci(path, np.array([[1.5e11, 0.0, 0.0]]))

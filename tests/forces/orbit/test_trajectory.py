@@ -116,3 +116,23 @@ def test_an_ephemeris_file_reproduces_the_orbit_it_samples(tmp_path):
 def test_impossible_orbits_are_refused(elements, message):
     with pytest.raises(InputError, match=message):
         Elements(*elements)
+
+
+def test_j2_runs_backward_before_the_epoch_as_forward_after_it():
+    """Times before the epoch are integrated backward: J2 moves the craft from the two-body orbit by at
+    most half its largest acceleration (3 J2 GM R^2 / r^4 at most) times t^2, before as after."""
+    elements = Elements.circular(500.0, 51.6)
+    epoch = Epoch.of("2024-03-20T00:00:00Z")
+    times = np.array([-600.0, -60.0, 0.0, 60.0, 600.0])
+    kepler = propagate(elements, epoch, times, "kepler")
+    j2 = propagate(elements, epoch, times, "j2")
+    apart = np.linalg.norm(kepler.position_m - j2.position_m, axis=1)
+    r = elements.a_m
+    bound = 0.5 * 3 * 1.0826e-3 * 3.986e14 * 6.378e6**2 / r**4 * times**2
+    assert np.all(apart <= bound + 1e-3)
+    assert apart[0] == pytest.approx(apart[-1], rel=0.05) and apart[0] > 100.0  # J2 acts both ways
+
+
+def test_an_empty_time_list_is_refused_in_one_line():
+    with pytest.raises(InputError, match="non-empty list of finite times"):
+        propagate(Elements.circular(500.0, 51.6), Epoch.of("2024-03-20T00:00:00Z"), [], "j2")
