@@ -12,8 +12,8 @@ from numpydoc.docscrape import ClassDoc, FunctionDoc
 
 import sunwind
 
-#: Modules whose public names are documented elsewhere: the click commands (the CLI reference is
-#: generated from their help) and ``python -m sunwind``.
+#: Modules whose public names are documented elsewhere: ``python -m sunwind`` (the click commands are
+#: not functions: the CLI reference is generated from their help).
 ELSEWHERE = ("sunwind.__main__",)
 
 

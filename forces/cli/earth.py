@@ -405,7 +405,7 @@ def place_and_light(below: Below, sun: Sun) -> tuple[Place, PlanetLight]:
     >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
     ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
     ...               cell_deg=10.0)
-    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: daylight below
     >>> place, light = place_and_light(below, sun)
     >>> place.solar_fraction, light.planet.name
     (1.0, 'earth')
@@ -515,7 +515,7 @@ def radiation(
     >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
     ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
     ...               cell_deg=10.0)
-    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: daylight below
     >>> none = sw.ReflectionSettings("none")
     >>> result, state = radiation(cube, below, sun, none, sw.ShadowSampling(), thermal=True)
     >>> print(f"{result.infrared.force_N[2]:.3e} N")  # the infrared pushes away from the planet: +z
@@ -616,7 +616,7 @@ def earth_document(result: PlanetResult, state: ThermalState | None) -> dict:
     >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
     ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
     ...               cell_deg=10.0)
-    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: daylight below
     >>> none = sw.ReflectionSettings("none")
     >>> result, state = radiation(cube, below, sun, none, sw.ShadowSampling(), thermal=True)
     >>> document = earth_document(result, state)
@@ -687,7 +687,7 @@ def print_earth(result: PlanetResult, state: ThermalState | None, title: str | N
     >>> below = Below(nadir=(0.0, 0.0, -1.0), altitude_km=500.0, planet="earth", albedo=None,
     ...               albedo_model="lambert", epoch=None, pole=None, earth_ir=None, eclipse="conical",
     ...               cell_deg=10.0)
-    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: the planet below is in full daylight
+    >>> sun = Sun(vector=np.array([0.0, 0.0, 1.0]), flux_W_m2=1361.0)  # overhead: daylight below
     >>> none = sw.ReflectionSettings("none")
     >>> result, state = radiation(cube, below, sun, none, sw.ShadowSampling(), thermal=True)
     >>> print_earth(result, state)  # doctest: +ELLIPSIS

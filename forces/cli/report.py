@@ -443,8 +443,11 @@ def total_estimate(
     >>> gas = sw.drag(cube, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
     >>> total_estimate(light, gas)
     ErrorEstimate(force=0.0, torque=0.0)
+    >>> total_estimate(light, None) is not None  # SRP alone (no flow): its own estimate
+    True
     """
-    error = summed([light.shadow_error, None if gas is None else gas.shadow_error, *errors])
+    drag_error = [] if gas is None else [gas.shadow_error]  # no flow: no drag, and nothing to add
+    error = summed([light.shadow_error, *drag_error, *errors])
     if error is None:
         return None
     force, torque = _total(light, gas, extra)

@@ -176,6 +176,7 @@ def test_forces_without_a_flow_is_srp_and_the_earth_terms_with_a_notice(run_cli,
     assert doc["drag"] is None
     total = sum(np.array(doc[key]["force_N"]) for key in ("srp", "albedo", "infrared"))
     assert np.allclose(doc["total"]["force_N"], total, rtol=1e-14, atol=0)
+    assert doc["total"]["error_estimate"] is not None  # the SRP and Earth passes' estimates, no drag's
     code, out, err = run_cli(*_geo(sphere)[:-1])
     assert code == 0 and "drag:            none (no flow direction" in out, err
 
