@@ -11,6 +11,7 @@ from helpers import ABSORBER, mesh_from_trimesh
 from sunwind.forces.reflection import ReflectionSettings, reflection_plan
 from sunwind.forces.srp import srp
 from sunwind.geometry.cache import ModelCache
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.spacecraft import build_spacecraft
 
 
@@ -47,15 +48,15 @@ def test_clear_drops_every_value_or_those_of_one_name():
 
 def test_an_attitude_fills_the_model_cache_with_what_it_reuses(craft):
     assert len(craft.cache) == 0
-    srp(craft, [0.3, 0.2, 1.0], samples=4, reflections="full")
+    srp(craft, [0.3, 0.2, 1.0], sampling=ShadowSampling(samples=4), reflections="full")
     names = {key if isinstance(key, str) else key[0] for key in craft.cache}
     assert {"ray scene", "side sampler", "block moments", "view factors", "reflection plan"} <= names
     sampler = next(e for e in craft.cache.entries() if e.key == "side sampler")
     assert sampler.nbytes > 0  # the kept ray origins are counted, the model itself is not
     assert sampler.nbytes < 100 * craft.n_sides * 16 * 3 * 4
-    before = srp(craft, [0.3, 0.2, 1.0], samples=4, reflections="full")
+    before = srp(craft, [0.3, 0.2, 1.0], sampling=ShadowSampling(samples=4), reflections="full")
     craft.cache.clear()
-    after = srp(craft, [0.3, 0.2, 1.0], samples=4, reflections="full")
+    after = srp(craft, [0.3, 0.2, 1.0], sampling=ShadowSampling(samples=4), reflections="full")
     assert np.array_equal(before.force_N, after.force_N)  # rebuilt, the same bits
 
 

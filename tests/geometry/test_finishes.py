@@ -106,7 +106,8 @@ def test_the_gas_surface_parameters_are_still_importable_from_materials():
 
 
 def test_the_materials_guide_table_is_the_library():
-    section = (REPO / "docs" / "guides" / "meshes.md").read_text().split("## Materials\n")[1].split("\n## ")[0]
+    guide = (REPO / "docs" / "guides" / "meshes.md").read_text()
+    section = guide.split("## Materials\n")[1].split("\n## ")[0]
     rows = re.findall(r"^\s*\| `([a-z0-9-]+)` \| [^|]+ \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \|", section, re.M)
     table = {name: tuple(map(float, numbers)) for name, *numbers in rows}
     assert table == {n: (f.absorptance, f.emissivity, f.specular_fraction) for n, f in FINISHES.items()}

@@ -94,7 +94,7 @@ def test_every_side_of_a_convex_body_is_its_own_gas_surface_law():
 @pytest.mark.slow
 @pytest.mark.parametrize("samples", [1, 4, None])
 def test_skipping_rays_that_meet_nothing_changes_nothing(monkeypatch, sample, samples):
-    kwargs = {"samples": samples, "reflections": "full"}
+    kwargs = {"sampling": ShadowSampling(samples=samples), "reflections": "full"}
     fast = [drag(sample, SPEED * u, AIR, **kwargs) for u in FLOWS]
     batches = counting_rays(monkeypatch, sample)
     nothing_cleared = Clearance(
