@@ -4,8 +4,9 @@ recoil on a spacecraft mesh, with ray-cast self-shadowing and inter-reflection.
 ``import sunwind as sw`` gives the user's vocabulary, and nothing else:
 
 >>> import sunwind as sw
->>> model = sw.load(sw.meshes.box_wing(), threads=1)  # doctest: +SKIP
->>> sw.srp(model, [0.3, -0.5, 0.8], reflections="none").force_N  # doctest: +SKIP
+>>> model = sw.load(sw.meshes.sample_path(), sw.meshes.sample_materials_path(), threads=1)
+>>> sw.srp(model, [0.3, -0.5, 0.8], reflections="none").force_N.shape  # [N], body frame
+(3,)
 
 Subpackages, each importing only those before it:
 
