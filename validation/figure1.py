@@ -207,21 +207,25 @@ def main(argv: list[str] | None = None) -> None:
     Parameters
     ----------
     argv : list of str, optional
-        Command-line arguments (``-o``/``--output``: the PNG file); default ``sys.argv[1:]``.
+        Command-line arguments (``-o``/``--output``: the PNG file; ``--quick``: two altitudes on a
+        coarse sphere, a second instead of a minute); default ``sys.argv[1:]``.
 
     Examples
     --------
-    The whole altitude grid at full resolution takes a minute:
-
-    >>> main(["--output", "figure1.png"])  # doctest: +SKIP
+    >>> import pathlib, tempfile
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> main(["--quick", "--output", str(pathlib.Path(folder.name) / "figure1.png")])  # doctest: +ELLIPSIS
     SRP on the sphere at 1 au: ...
+    wrote .../figure1.png
+    >>> folder.cleanup()
     """
     parser = argparse.ArgumentParser(
         prog="python -m sunwind.validation.figure1", description=__doc__.split("\n")[0]
     )
     parser.add_argument("-o", "--output", default="figure1.png", help="PNG file to write")
+    parser.add_argument("--quick", action="store_true", help="two altitudes on a coarse sphere (a check)")
     args = parser.parse_args(argv)
-    result = figure1()
+    result = figure1(np.array([300.0, 900.0]), subdivisions=4) if args.quick else figure1()
     print(f"SRP on the sphere at 1 au: {result.srp_N:.4e} N")
     print("altitude_km  " + "  ".join(f"drag_{level}_N" for level in result.drag_N))
     for i, altitude in enumerate(result.altitudes_km):

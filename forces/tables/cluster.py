@@ -99,7 +99,7 @@ def connect(scheduler: str, workers: int | None):
     --------
     >>> from dask.distributed import LocalCluster
     >>> from sunwind.forces.tables.cluster import connect
-    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0")
     >>> client = connect(cluster.scheduler_address, None)
     >>> len(client.scheduler_info()["workers"])
     1
@@ -113,8 +113,8 @@ def connect(scheduler: str, workers: int | None):
     from dask.distributed import Client, LocalCluster
 
     if scheduler == "local":
-        cluster = LocalCluster(
-            n_workers=workers or CORES, threads_per_worker=1, processes=True, dashboard_address=None
+        cluster = LocalCluster(  # the dashboard on a free port: two local clusters may run at once
+            n_workers=workers or CORES, threads_per_worker=1, processes=True, dashboard_address=":0"
         )
         return Client(cluster)
     try:
@@ -184,7 +184,7 @@ def run_on_dask(
     >>> job = Job(SrpSetup(reflections="none"), np.eye(3))
     >>> from dask.distributed import LocalCluster
     >>> from sunwind.forces.tables.cluster import run_on_dask
-    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0")
     >>> done = {}
     >>> keep = lambda job, lo, hi, records: done.update({(lo, hi): records["force_N"]})
     >>> run_on_dask(model, [(job, 0, 2), (job, 2, 3)], cluster.scheduler_address, None, keep)
@@ -248,7 +248,7 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
 
     Examples
     --------
-    Starting worker processes takes seconds, so the timing itself is not run here:
+    Starting a worker process takes a few seconds:
 
     >>> import pathlib, tempfile
     >>> import numpy as np
@@ -261,8 +261,8 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
     >>> model = sw.load(obj, uniform=black, threads=1)
     >>> job = Job(SrpSetup(reflections="none"), np.eye(3))
     >>> from sunwind.forces.tables.cluster import timed_on_local_cluster
-    >>> seconds, records = timed_on_local_cluster(model, [(job, 0, 3)], 1)  # doctest: +SKIP
-    >>> records[0]["force_N"].shape  # doctest: +SKIP
+    >>> seconds, records = timed_on_local_cluster(model, [(job, 0, 3)], 1)
+    >>> records[0]["force_N"].shape
     (3, 3)
     >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
     >>> timed_on_local_cluster(cube, [(job, 0, 3)], 1)
