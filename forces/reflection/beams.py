@@ -32,6 +32,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -261,8 +262,20 @@ def _emitters(craft: Spacecraft, light: Illumination, flux_W_m2: float, cull: bo
     return _Emitters(side, _Beams(centroid, lift, direction, power, power), escaping)
 
 
-#: First beams with the side each meets, where it meets it, and the rays cast to find out.
-_FirstBeams = tuple[_Beams, NDArray[np.int64], NDArray[np.float64], int]
+class _FirstBeams(NamedTuple):
+    """First beams with the side each meets (-1: none), where it meets it, and the rays cast to find out."""
+
+    beams: _Beams
+    sides: NDArray[np.int64]
+    points: NDArray[np.float64]
+    rays: int
+
+
+class _ChainEnds(NamedTuple):
+    """Where beam chains stop: below ``cutoff`` of their first power, or after ``depth`` surfaces."""
+
+    cutoff: float
+    depth: int
 
 
 def _fixed_first_beams(
@@ -276,10 +289,10 @@ def _fixed_first_beams(
         if level == 1:  # the lit centroids
             beams = emitters.beams.take(chosen)
             sides, points = _cast(craft, beams)
-            yield beams, sides, points, len(beams)
+            yield _FirstBeams(beams=beams, sides=sides, points=points, rays=len(beams))
         else:
             beams, _, sides, points, rays = _sample(craft, light, emitters, np.arange(n)[chosen], level)
-            yield beams, sides, points, rays
+            yield _FirstBeams(beams=beams, sides=sides, points=points, rays=rays)
 
 
 def _first_beams(craft: Spacecraft, light: Illumination, emitters: _Emitters) -> _FirstBeams:
@@ -323,11 +336,11 @@ def _first_beams(craft: Spacecraft, light: Illumination, emitters: _Emitters) ->
         previous_share[active] = share
         active = active[again]
         level *= 2
-    return (
-        _Beams.join([a[0] for a in accepted]),
-        np.concatenate([a[1] for a in accepted]),
-        np.concatenate([a[2] for a in accepted]),
-        rays,
+    return _FirstBeams(
+        beams=_Beams.join([a[0] for a in accepted]),
+        sides=np.concatenate([a[1] for a in accepted]),
+        points=np.concatenate([a[2] for a in accepted]),
+        rays=rays,
     )
 
 
@@ -452,11 +465,10 @@ def follow_chains(
     sums = _Sums(np.zeros(kernels.N_TOTALS), np.zeros(craft.n_sides))
     sums.totals[kernels.ESCAPED_W] = emitters.escaping_W
     rays = generations = 0
-    for beams, sides, points, cast in batches:
-        more_rays, chain_generations = _trace(
-            craft, (beams, sides, points), reference_m, (cutoff, depth), sums
-        )
-        rays += cast + more_rays
+    ends = _ChainEnds(cutoff=cutoff, depth=depth)
+    for first in batches:
+        more_rays, chain_generations = _trace(craft, first, reference_m, ends, sums)
+        rays += first.rays + more_rays
         generations = max(generations, chain_generations)
     totals, arrived = sums.totals, sums.arrived_W
     rho, beta, _ = craft.side_optics.T
@@ -488,16 +500,15 @@ class _Sums:
 
 def _trace(
     craft: Spacecraft,
-    first: tuple[_Beams, NDArray[np.int64], NDArray[np.float64]],
+    first: _FirstBeams,
     reference_m: NDArray[np.float64],
-    ends: tuple[float, int],
+    ends: _ChainEnds,
     sums: _Sums,
 ) -> tuple[int, int]:
-    """Follow ``first`` beams, already cast (the beams, the side each meets and the point it meets it),
-    and all they lead to, until the chains end (``ends``: cutoff and depth); add to ``sums``. Returns
-    the rays cast after the first beams and the generations of beams cast."""
-    beams, sides, points = first
-    cutoff, depth = ends
+    """Follow ``first`` beams, already cast, and all they lead to, until the chains ``ends``; add to
+    ``sums``. Returns the rays cast after the first beams and the generations of beams cast."""
+    beams, sides, points = first.beams, first.sides, first.points
+    cutoff, depth = ends.cutoff, ends.depth
     model = chain_model(craft)
     rays = generation = 0
     while len(beams):
