@@ -11,6 +11,7 @@ import io
 import pkgutil
 from pathlib import Path
 
+import dask
 import pytest
 
 import sunwind
@@ -48,8 +49,17 @@ def test_docstring_examples(name, tmp_path, monkeypatch):
         pytest.skip(f"{name}: its '>>>' is not in a docstring doctest collects")
     runner = doctest.DocTestRunner(optionflags=FLAGS)
     out = io.StringIO()
+    scheduler = _dask_scheduler()
     for test in tests:
         runner.run(test, out=out.write)
     assert runner.failures == 0, (
         f"{runner.failures} of {runner.tries} examples failed in {name}:\n{out.getvalue()}"
     )
+    # an example (or the code it runs) must not leave process-wide state behind: a Dask client that
+    # failed to start once left dask's scheduler set, and every later netCDF write in that process failed
+    assert _dask_scheduler() == scheduler, f"{name} left dask's global scheduler changed"
+
+
+def _dask_scheduler() -> tuple:
+    """Dask's process-wide scheduler settings, which a Dask client sets while it is open."""
+    return dask.config.get("scheduler", None), dask.config.get("shuffle", None)

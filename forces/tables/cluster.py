@@ -104,12 +104,16 @@ def connect(scheduler: str, workers: int | None):
     >>> len(client.scheduler_info()["workers"])
     1
     >>> client.close(); cluster.close()
+    >>> import dask
     >>> connect("nowhere://scheduler", None)
     Traceback (most recent call last):
     ...
     sunwind.geometry.errors.InputError: cannot reach the Dask scheduler at nowhere://scheduler: ...
+    >>> dask.config.get("scheduler", None) is None  # the failed client left dask's scheduler alone
+    True
     """
     require_dask()
+    import dask
     from dask.distributed import Client, LocalCluster
 
     if scheduler == "local":
@@ -117,9 +121,13 @@ def connect(scheduler: str, workers: int | None):
             n_workers=workers or CORES, threads_per_worker=1, processes=True, dashboard_address=":0"
         )
         return Client(cluster)
+    before = dict(dask.config.config)
     try:
         return Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
     except (OSError, TimeoutError, ValueError) as error:
+        # a Client that fails to start leaves dask's global scheduler set to itself: put it back
+        dask.config.config.clear()
+        dask.config.config.update(before)
         reason = str(error).splitlines()[0] if str(error) else type(error).__name__
         raise InputError(
             f"cannot reach the Dask scheduler at {scheduler}: {reason}",
