@@ -27,8 +27,14 @@ from sunwind.forces.gas.panel import GasGroups, closed_loads, gas_groups, specie
 from sunwind.forces.gas.sampling import GasSampling
 from sunwind.forces.gas.visible import arrival, model_sky, stream_tables
 from sunwind.forces.model import Model, as_model
-from sunwind.forces.reflection import ReflectionSettings, interference, model_view_factors, resolved_mode
-from sunwind.forces.results import DragResult, GasReflected
+from sunwind.forces.reflection import (
+    Reflected,
+    ReflectionSettings,
+    interference,
+    model_view_factors,
+    resolved_mode,
+)
+from sunwind.forces.results import DragResult
 from sunwind.geometry.directions import unit_vector, unit_vectors
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_items, using_threads
@@ -189,9 +195,14 @@ def _one(
         else:  # what the chains land leaves as from an open plate, as the first re-emission does
             exchange = open_plate_recoil(craft, chains.deposit[0], ref)
         force, torque = exchange.force_N + chains.force_N, exchange.torque_Nm + chains.torque_Nm
-        reflected = GasReflected(mode, force, torque, view, k_is, chains)
+        reflected = Reflected(
+            mode=mode, force_N=force, torque_Nm=torque, power=None, chains=chains, view=view, k_is=k_is
+        )
     else:
-        reflected = GasReflected(mode, np.zeros(3), np.zeros(3), view, k_is, None)
+        zero = np.zeros(3)
+        reflected = Reflected(
+            mode=mode, force_N=zero, torque_Nm=zero, power=None, chains=None, view=view, k_is=k_is
+        )
     side_force, side_torque = panel.force_N, panel.torque_Nm
     panel_force, panel_torque = side_force.sum(axis=0), side_torque.sum(axis=0)
     facing = flow.facing
@@ -263,7 +274,15 @@ def _plate_result(
         torque_Nm=torque,
         direct_force_N=force,
         direct_torque_Nm=torque,
-        reflected=GasReflected("plates", np.zeros(3), np.zeros(3), None, None, None),
+        reflected=Reflected(
+            mode="plates",
+            force_N=np.zeros(3),
+            torque_Nm=np.zeros(3),
+            power=None,
+            chains=None,
+            view=None,
+            k_is=None,
+        ),
         settings=settings,
         reference_point_m=ref,
         reference_point=ref_name,

@@ -21,7 +21,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.gas.atmosphere import Atmosphere
-from sunwind.forces.gas.chains import MoleculeChainTotals
 from sunwind.forces.radiation.law import surface_forces
 from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings
 from sunwind.forces.result_base import FRAME, LoadResult
@@ -30,7 +29,6 @@ from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.sky import OpenSky
-from sunwind.geometry.views.view_factors import ViewFactors
 
 __all__ = ["AXES", "FRAME", "NORMALISATION", "VALIDITY", "AttitudeResult", "DragResult", "SrpResult"]
 
@@ -49,42 +47,6 @@ VALIDITY = (
 )
 
 
-@dataclass(frozen=True)
-class GasReflected:
-    """What the molecules re-emitted from side to side add to the panel law: the diffuse exchange and
-    the chains of unaccommodated molecules (``chains`` None without them).
-
-    Attributes
-    ----------
-    mode : str
-        The re-emission mode applied ("auto" resolved).
-    force_N, torque_Nm : (3,) float64
-        What the exchange adds to the panel law's force [N] and torque [N m].
-    view : ViewFactors or None
-        The view factors the exchange used (None without exchange).
-    k_is : float or None
-        The molecular interference criterion, None when not computed.
-    chains : MoleculeChainTotals or None
-        The chains of unaccommodated molecules.
-
-    Examples
-    --------
-    >>> import sunwind as sw
-    >>> black = sw.Material("black", reflectivity=0.0, specular_fraction=0.0)
-    >>> cube = sw.load(sw.meshes.box(), uniform=black, threads=1)
-    >>> air = sw.explicit_atmosphere(1e-12, 1000.0, {"O": 1.0})
-    >>> sw.drag(cube, [7500.0, 0.0, 0.0], air, reflections="none").reflected.mode
-    'none'
-    """
-
-    mode: str
-    force_N: NDArray[np.float64]
-    torque_Nm: NDArray[np.float64]
-    view: ViewFactors | None
-    k_is: float | None
-    chains: MoleculeChainTotals | None = None
-
-
 @dataclass(frozen=True, eq=False)
 class AttitudeResult(LoadResult):
     """What a solar-pressure and a free-molecular result of one attitude share; body frame, SI.
@@ -96,7 +58,7 @@ class AttitudeResult(LoadResult):
     direct_force_N, direct_torque_Nm : (3,) float64
         The surface law on every side with shadowing, every reflected photon or re-emitted molecule
         leaving to infinity.
-    reflected : Reflected or GasReflected
+    reflected : Reflected
         What inter-reflection (light) or the exchange of re-emitted molecules changes.
     settings : ReflectionSettings
         The inter-reflection settings asked for.
@@ -143,7 +105,7 @@ class AttitudeResult(LoadResult):
     torque_Nm: NDArray[np.float64]
     direct_force_N: NDArray[np.float64]
     direct_torque_Nm: NDArray[np.float64]
-    reflected: Reflected | GasReflected
+    reflected: Reflected
     settings: ReflectionSettings
     reference_point_m: NDArray[np.float64]
     reference_point: str

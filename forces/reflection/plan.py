@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.radiation.direct import ChannelWeights, DirectTotals
 from sunwind.forces.radiation.moments import weight_moments
-from sunwind.forces.reflection.beams import BeamChainTotals, chain_model, follow_chains
+from sunwind.forces.reflection.beams import chain_model, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals, diffuse_exchange
 from sunwind.forces.reflection.settings import ReflectionSettings, resolved_mode
 from sunwind.forces.reflection.views import interference, model_view_factors
@@ -83,7 +83,8 @@ class PowerBalance:
 
 @dataclass(frozen=True)
 class Reflected:
-    """What inter-reflection adds to the direct result of one attitude.
+    """What inter-reflection (light) or the exchange of re-emitted molecules adds to the direct result
+    of one attitude: one record for both.
 
     Parameters
     ----------
@@ -93,10 +94,11 @@ class Reflected:
         Force added to the direct force [N].
     torque_Nm : (3,) float64
         Torque added to the direct torque [N m].
-    power : PowerBalance
-        Where the light went.
-    chains : BeamChainTotals or None
-        The mirror beams' totals; None with ``none`` or ``plates``.
+    power : PowerBalance or None
+        Where the light went; None for molecules.
+    chains : BeamChainTotals or MoleculeChainTotals or None
+        The chains' totals: mirror and transmitted beams (light), unaccommodated molecules
+        (:class:`~sunwind.forces.gas.chains.MoleculeChainTotals`); None without chains.
     view : ViewFactors or None
         The view factors used, if any.
     k_is : float or None
@@ -122,8 +124,8 @@ class Reflected:
     mode: str
     force_N: NDArray[np.float64]
     torque_Nm: NDArray[np.float64]
-    power: PowerBalance
-    chains: BeamChainTotals | None
+    power: PowerBalance | None
+    chains: object | None  # BeamChainTotals, or the gas layer's MoleculeChainTotals
     view: ViewFactors | None
     k_is: float | None
 
@@ -282,7 +284,15 @@ def reflected_part(
     incident, absorbed, channels = power.incident_W, power.absorbed_W, power.channels_W
     if plan.mode in ("none", "plates"):
         power = PowerBalance(incident, absorbed, incident - absorbed)
-        return Reflected(plan.mode, np.zeros(3), np.zeros(3), power, None, plan.view, plan.k_is)
+        return Reflected(
+            mode=plan.mode,
+            force_N=np.zeros(3),
+            torque_Nm=np.zeros(3),
+            power=power,
+            chains=None,
+            view=plan.view,
+            k_is=plan.k_is,
+        )
     chains = follow_chains(craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth, light.level)
     escaped = channels[PASSED] + chains.escaped_W
     absorbed += chains.absorbed_W
@@ -298,4 +308,12 @@ def reflected_part(
         escaped += beams.escaped_W + direct.escaped_W
         absorbed += beams.absorbed_W + direct.absorbed_W
     power = PowerBalance(incident, absorbed, float(escaped), chains.truncated_W)
-    return Reflected(plan.mode, force, torque, power, chains, plan.view, plan.k_is)
+    return Reflected(
+        mode=plan.mode,
+        force_N=force,
+        torque_Nm=torque,
+        power=power,
+        chains=chains,
+        view=plan.view,
+        k_is=plan.k_is,
+    )
