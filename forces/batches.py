@@ -65,8 +65,8 @@ class ResultBatch(Result, Generic[R]):
 
     def __dir__(self) -> list[str]:
         kind = type(self.results[0]) if self.results else LoadResult
-        fields = [name for name in dir(kind) if not name.startswith("_") and self._per_attitude(name)]
-        return sorted({*super().__dir__(), *fields})
+        names = [name for name in dir(kind) if not name.startswith("_") and self._per_attitude(name)]
+        return sorted({*super().__dir__(), *names})
 
     def _per_attitude(self, name: str) -> bool:
         """Whether ``name`` is a per-attitude value of the results (not a method or class constant)."""

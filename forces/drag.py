@@ -110,9 +110,7 @@ def drag(
         raise InputError("atmosphere must be an Atmosphere (nrlmsis or explicit)", parameters=("atmosphere",))
     reference = model.reference(reference_point_m)
     shadows = ShadowSampling.of(sampling)
-    gas = GasSampling() if gas_sampling is None else gas_sampling
-    if not isinstance(gas, GasSampling):
-        raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
+    gas = GasSampling.of(gas_sampling)
     with using_threads(model.threads):
         results = map_items(
             lambda v: _one(model, v, atmosphere, reference, shadows, gas, settings),

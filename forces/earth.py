@@ -22,7 +22,7 @@ from sunwind.forces.error_estimate import summed
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap, check_cells
-from sunwind.forces.planet.loads import BandLoad, CellSampling, Source, band_loads
+from sunwind.forces.planet.loads import BandLoad, Source, band_loads
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
@@ -438,16 +438,12 @@ def planet_radiation(
     shadows = ShadowSampling.of(sampling)
     reference, reference_name = model.reference(reference_point_m)
     settings = ReflectionSettings.of(reflections)
-    plates = settings.mode == PLATES
     body = light.planet
     distance = body.radius_m + place.altitude_km * 1e3
     caps = [
         Cap(place.nadir, place.sun_vector, place.pole, distance, body.radius_m, law)
         for law in (light.albedo, light.infrared)
     ]
-    cell_sampling = CellSampling(
-        shadows.samples, shadows.tolerance, settings.cutoff, settings.depth, shadows=not plates
-    )
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
         cells = [cap.patches(cell_deg) for cap in caps]  # one geometry: the same directions
@@ -465,10 +461,10 @@ def planet_radiation(
                 ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
         ]
-        loads, rays = band_loads(craft, sources, directions, reference, cell_sampling)
+        loads, rays = band_loads(craft, sources, directions, reference, shadows, settings)
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
-        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, cell_sampling)
+        solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, shadows, settings)
     return PlanetResult(
         albedo=loads[0],
         infrared=loads[1],

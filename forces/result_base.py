@@ -12,7 +12,7 @@ series (:class:`~sunwind.forces.orbit.results.OrbitResult`) along ``time``: ever
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from importlib.metadata import PackageNotFoundError, version
+from importlib.metadata import version
 from typing import ClassVar
 
 import numpy as np
@@ -122,7 +122,7 @@ class LoadResult(Result):
             "frame": FRAME,
             "reference_point_m": list(map(float, self.reference_point_m)),
             "reference_point": self.reference_point,
-            "sunwind_version": _version(),
+            "sunwind_version": version("sunwind"),  # as sweep tables record it
         }
 
     def to_dataset(self) -> xr.Dataset:
@@ -172,10 +172,3 @@ def stacked_variable(name: str, values: np.ndarray, dim: str) -> xr.Variable:
     (('attitude', 'component'), 'N')
     """
     return _variable(name, values, (dim,))
-
-
-def _version() -> str:
-    try:
-        return version("sunwind")
-    except PackageNotFoundError:  # a checkout that was never installed
-        return "unknown"

@@ -152,9 +152,14 @@ def _plate_pass(
     cos = craft.side_normals @ u_sun
     facing = np.flatnonzero(cos > 0.0)
     light = Illumination(
-        u_sun, craft.side_normals, (facing,), (np.ones(len(facing)),), craft.side_centroids, 0,
-        "plates: every side facing the Sun wholly lit",
-    )  # fmt: skip
+        direction=u_sun,
+        side_normals=craft.side_normals,
+        facing_runs=(facing,),
+        share_runs=(np.ones(len(facing)),),
+        lit_centroid=craft.side_centroids,
+        rays=0,
+        sampling="plates: every side facing the Sun wholly lit",
+    )
     rho, beta, sigma = craft.side_optics[facing].T
     areas, cos = craft.side_areas[facing], cos[facing]
     forces = surface_forces(craft.side_normals[facing], areas, cos, rho, beta, sigma, u_sun, 1.0)

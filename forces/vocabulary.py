@@ -45,7 +45,6 @@ UNITS = {
     "CL": "1",
     "CM": "1",
     "force_coefficients": "1",
-    "moment_coefficients": "1",
     "speed_ratio": "1",
     "k_is": "1",
     "rays": "1",

@@ -59,3 +59,31 @@ class GasSampling:
                 raise InputError(
                     f"{name} {value!r} must be a whole number from 1 to {high}", parameters=(name,)
                 )
+
+    @classmethod
+    def of(cls, sampling: GasSampling | None) -> GasSampling:
+        """``sampling`` itself, or the defaults for None.
+
+        Parameters
+        ----------
+        sampling : GasSampling or None
+
+        Returns
+        -------
+        GasSampling
+
+        Raises
+        ------
+        InputError
+            ``sampling`` is neither.
+
+        Examples
+        --------
+        >>> GasSampling.of(None) == GasSampling()
+        True
+        """
+        if sampling is None:
+            return cls()
+        if not isinstance(sampling, GasSampling):
+            raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
+        return sampling

@@ -241,7 +241,7 @@ class OrbitLoads:
     def estimates(self) -> bool:
         """Whether every term's shadow pass estimates its error (the default sampling does)."""
         surface = None if self.earth is None else self.earth.surface
-        return all(bool(part.estimates) for part in (self.srp, self.drag, surface) if part is not None)
+        return all(part.sampling.estimates for part in (self.srp, self.drag, surface) if part is not None)
 
     def precompute(self, model: Model) -> None:
         """View factors, open skies and the Earth's optics, made once before the first step.

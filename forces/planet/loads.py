@@ -30,10 +30,11 @@ from numpy.typing import NDArray
 
 from sunwind.forces.error_estimate import summed
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
-from sunwind.forces.reflection import BeamChainTotals, PowerBalance, follow_chains
+from sunwind.forces.reflection import BeamChainTotals, PowerBalance, ReflectionSettings, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals
 from sunwind.geometry.rays.certificate import LoadsError, ShadowCheck
 from sunwind.geometry.rays.hull import clearance
+from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.shadows import side_sampler
 from sunwind.geometry.sides import TWO_SIDED
 from sunwind.geometry.spacecraft import Spacecraft
@@ -128,8 +129,8 @@ class BandLoad:
     >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
     >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
     ...              beams=False, exchange=None)
-    >>> sampling = CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8)
-    >>> (load,), rays = band_loads(craft, [sun], up[None, :], np.zeros(3), sampling)
+    >>> shadows, settings = sw.ShadowSampling(), sw.ReflectionSettings("none")
+    >>> (load,), rays = band_loads(craft, [sun], up[None, :], np.zeros(3), shadows, settings)
     >>> load.name, round(load.power.incident_W, 6), round(load.power.absorbed_W, 6)
     ('solar', 1361.0, 952.7)
     """
@@ -170,8 +171,8 @@ class BandLoad:
         >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
         >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
         ...              beams=False, exchange=None)
-        >>> sampling = CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8)
-        >>> (load,), _ = band_loads(craft, [sun], up[None, :], np.zeros(3), sampling)
+        >>> shadows, settings = sw.ShadowSampling(), sw.ReflectionSettings("none")
+        >>> (load,), _ = band_loads(craft, [sun], up[None, :], np.zeros(3), shadows, settings)
         >>> sorted(load.to_json())
         ['direct', 'force_N', 'power', 'reflected', 'torque_Nm']
         """
@@ -199,52 +200,21 @@ class _Running:
         self.chains: list[BeamChainTotals] = []
 
 
-@dataclass(frozen=True)
-class CellSampling:
-    """How each cell of a source is shadowed and its beams followed.
-
-    Parameters
-    ----------
-    samples : int or None
-        Fixed shadow-ray points per side, or None for the default, self-checking pass
-        (:class:`~sunwind.geometry.rays.sampling.ShadowSampling`).
-    tolerance : float
-        The default pass's tolerance, a share of a refined side's area, in [1e-6, 1).
-    cutoff : float
-        A reflected beam is dropped below this share of its chain's starting power, in [0, 1).
-    depth : int
-        A beam chain is dropped after meeting this many surfaces, >= 1.
-    shadows : bool, default True
-        Whether to shadow at all; False (plates) lets every side see the whole source and follows no
-        beam.
-
-    Examples
-    --------
-    >>> CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8).shadows
-    True
-    """
-
-    samples: int | None
-    tolerance: float
-    cutoff: float
-    depth: int
-    shadows: bool = True
-
-
 def band_loads(
     craft: Spacecraft,
     sources: Sequence[Source],
     directions: NDArray[np.float64],
     reference_m: NDArray[np.float64],
-    sampling: CellSampling,
+    sampling: ShadowSampling,
+    settings: ReflectionSettings,
 ) -> tuple[list[BandLoad], int]:
     """The load of each band of light on the spacecraft, one shadow pass per cell serving every band.
 
     Each side starts from its exact unshadowed integrals; a shadow pass along each cell direction
     takes off what the side's dark part misses of that cell (the parallel-beam law), and moves the lit
     part's force to its lit centroid. Mirror and transmitted beams are followed for sources with
-    ``beams``, and diffuse light through each source's ``exchange``. A convex model, or
-    ``sampling.shadows`` False, casts no rays: every side sees the whole source.
+    ``beams``, and diffuse light through each source's ``exchange``. A convex model, or the ``plates``
+    mode, casts no rays: every side sees the whole source.
 
     Parameters
     ----------
@@ -256,8 +226,10 @@ def band_loads(
         Unit direction of each cell from the spacecraft, body frame.
     reference_m : ndarray of float64, shape (3,)
         Torque reference point [m], body frame.
-    sampling : CellSampling
-        How cells are shadowed and their beams followed.
+    sampling : ShadowSampling
+        How each cell's shadow pass samples the sides.
+    settings : ReflectionSettings
+        Where beam chains stop (``cutoff``, ``depth``); the ``plates`` mode shadows nothing.
 
     Returns
     -------
@@ -287,16 +259,17 @@ def band_loads(
     >>> i0 = 1361.0 * cos  # the Sun overhead, 1361 W/m^2
     >>> sun = Source("solar", (i0, i0[:, None] * up, i0 * cos), np.array([1361.0]), craft.side_optics,
     ...              beams=False, exchange=None)
-    >>> sampling = CellSampling(samples=None, tolerance=1e-3, cutoff=1e-3, depth=8)
-    >>> (load,), rays = band_loads(craft, [sun], up[None, :], np.zeros(3), sampling)
+    >>> shadows, settings = sw.ShadowSampling(), sw.ReflectionSettings("none")
+    >>> (load,), rays = band_loads(craft, [sun], up[None, :], np.zeros(3), shadows, settings)
     >>> rays, np.round(load.force_N * 1e6, 4) + 0.0  # [uN], away from the Sun
     (0, array([ 0.    ,  0.    , -5.4478]))
     """
-    samples, tolerance, cutoff, depth = sampling.samples, sampling.tolerance, sampling.cutoff, sampling.depth
-    checked = sampling.shadows and samples is None  # the default pass estimates its error; 0 when convex
+    samples, tolerance, cutoff, depth = sampling.samples, sampling.tolerance, settings.cutoff, settings.depth
+    shadows = settings.mode != "plates"  # plates: every side alone, sees the whole source
+    checked = shadows and sampling.estimates  # the default pass estimates its error; 0 when convex
     running = [_Running(craft.n_sides, LoadsError(0.0, 0.0) if checked else None) for _ in sources]
     sampler = side_sampler(craft)
-    shadowing = sampling.shadows and not bool(np.all(clearance(craft).open_sky))
+    shadowing = shadows and not bool(np.all(clearance(craft).open_sky))
     rays = 0
     for k, direction in enumerate(directions):
         live = [(s, r) for s, r in zip(sources, running, strict=True) if s.weights[k] > 0]

@@ -322,10 +322,7 @@ class GasOptions(_Setup):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        gas = GasSampling() if self.gas_sampling is None else self.gas_sampling
-        if not isinstance(gas, GasSampling):
-            raise InputError("gas_sampling must be a GasSampling", parameters=("gas_sampling",))
-        object.__setattr__(self, "gas_sampling", gas)
+        object.__setattr__(self, "gas_sampling", GasSampling.of(self.gas_sampling))
 
     def precompute(self, model: Model) -> None:
         """The view factors when it reflects, and each side's open sky."""
