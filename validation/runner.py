@@ -264,7 +264,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument(
-        "--family", action="append", default=None, metavar="NAME", help="run this family only (repeatable)"
+        "--family",
+        action="append",
+        default=None,
+        choices=[family.name for family in FAMILIES],
+        metavar="NAME",
+        help="run this family only (repeatable)",
     )
     args = parser.parse_args(argv)
     return report(args.quick, args.json, args.family)

@@ -95,3 +95,23 @@ def test_the_planets_radiation_is_a_result_like_the_others(box_wing):
     assert document["force_N"] == result.force_N.tolist() and document["frame"] == "body frame of the mesh"
     table = result.to_dataset()
     assert table["infrared_force_N"].dims == (COMPONENT,) and table.attrs["kind"] == "planet radiation"
+
+
+def test_a_mesh_in_memory_loads_as_a_model_without_a_source_and_refuses_a_file_unit():
+    """``sw.load`` takes a mesh of ``sw.meshes``: the same model as the one built from its triangles, with
+    no file to go to Dask workers; ``unit`` (a file's length unit) is refused, not ignored."""
+    cube = sw.load(primitives.box((1.0, 2.0, 3.0)), uniform=MIXED, threads=1)
+    assert cube.source is None and cube.craft.n_facets == 12
+    assert cube.craft.total_area == pytest.approx(2 * (2.0 + 3.0 + 6.0), rel=1e-12)
+    with pytest.raises(sw.SunwindError, match="unit is the length unit of a mesh file"):
+        sw.load(primitives.box(), uniform=MIXED, unit="mm")
+
+
+def test_the_validation_runner_refuses_an_unknown_family_in_one_line(capsys):
+    from sunwind.validation.runner import main, run
+
+    with pytest.raises(sw.SunwindError, match="no validation family is called 'drag'"):
+        run(quick=True, families=["drag"])
+    with pytest.raises(SystemExit) as stop:
+        main(["--family", "drag"])
+    assert stop.value.code == 2 and "invalid choice: 'drag'" in capsys.readouterr().err
