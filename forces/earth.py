@@ -22,7 +22,14 @@ from sunwind.forces.error_estimate import summed
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap, check_cells
-from sunwind.forces.planet.loads import BandLoad, Source, band_loads
+from sunwind.forces.planet.loads import (
+    BandLoad,
+    Source,
+    band_loads,
+    grid_band_loads,
+    solve_reflected,
+)
+from sunwind.forces.planet.visibility import Visibility, direction_grid, level_for, visibility
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
@@ -42,6 +49,9 @@ DEFAULT_CELL_DEG = 10.0
 PLATES = "plates"
 #: The modes whose reflected beams are followed.
 BEAM_MODES = ("specular", "full")
+#: How the shadowed cap is integrated: over the model's precomputed directional visibility, or by a
+#: shadow pass per cell of the cap at every call (the reference).
+METHODS = ("visibility", "cells")
 #: Altitudes accepted [km]: above the surface, and below 100 times the Moon's distance.
 MAX_ALTITUDE_KM = 4.0e7
 
@@ -165,12 +175,23 @@ class PlanetResult(LoadResult):
         """Power each side absorbs [W], (n_sides,) per source: ``solar``, ``albedo``, ``infrared`` as
         they arrive, and ``reflected``: what arrives after reflections, of every band."""
         bands = (self.solar, self.albedo, self.infrared)
+        solve_reflected([band.reflections for band in bands])  # the solar and albedo bands in one solve
         return {
             "solar": self.solar.absorbed_side_W,
             "albedo": self.albedo.absorbed_side_W,
             "infrared": self.infrared.absorbed_side_W,
             "reflected": sum(band.reflected_side_W for band in bands),
         }
+
+    def part_absorbed_W(self) -> dict[str, NDArray[np.float64]]:
+        """:meth:`absorbed_side_W` summed over each part, (n_parts,) per source, in ``craft.part_names``
+        order; the reflected powers by the adjoint of the diffuse balance (no forward solve)."""
+        craft = self.craft
+        part, count = craft.facet_part[craft.side_facet], len(craft.part_names)
+        bands = (self.solar, self.albedo, self.infrared)
+        out = {band.name: self.per_part(band.absorbed_side_W) for band in bands}
+        out["reflected"] = sum(band.reflections.absorbed_by_group(part, count) for band in bands)
+        return out
 
     def per_part(self, side_values: NDArray[np.float64]) -> NDArray[np.float64]:
         """``side_values`` (n_sides,) summed over the sides of each part, (n_parts,) in
@@ -382,6 +403,7 @@ def planet_radiation(
     sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
     cell_deg: float = DEFAULT_CELL_DEG,
+    method: str = "visibility",
 ) -> PlanetResult:
     """Albedo and infrared force and torque from the planet below, and the power each side absorbs
     from them and from the Sun.
@@ -406,8 +428,16 @@ def planet_radiation(
         side an independent plate that sees the whole planet (its exact integrals, the dissertation's
         closed-form view factors), no self-shadowing and no inter-reflection; no ray is cast.
     cell_deg : float
-        Size of the cap's cells [deg] in (0, 90]: one shadow pass each. Sides no other side can shadow
-        are exact at any size.
+        Resolution of the shadowing [deg] in (0, 90]: with ``method="visibility"`` the spacing of the
+        grid of directions (:func:`~sunwind.forces.planet.visibility.level_for`: 10 gives the 642-node
+        grid, 5 the 2562-node one), with ``"cells"`` the size of the cap's cells, one shadow pass each.
+        Sides no other side can shadow are exact at any size.
+    method : str
+        ``"visibility"`` (default): the model's directional visibility, built once per model and
+        settings (and kept on disk with the view factors), makes each call a weighted sum with no ray
+        cast but the Sun's; its error estimate adds the grid's (the change from the grid a level
+        coarser, over 3) to the passes'. ``"cells"``: a shadow pass per cap cell at every call (the
+        reference; better for a single call or a model posed anew at each call).
 
     Returns
     -------
@@ -435,6 +465,8 @@ def planet_radiation(
     band_optics = (craft.side_optics, infrared_optics(craft))  # no emissivity: an error before any work
     light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
     check_cell_size(cell_deg)
+    if method not in METHODS:
+        raise InputError(f"method {method!r} is not one of {', '.join(METHODS)}", parameters=("method",))
     shadows = ShadowSampling.of(sampling)
     reference, reference_name = model.reference(reference_point_m)
     settings = ReflectionSettings.of(reflections)
@@ -446,22 +478,34 @@ def planet_radiation(
     ]
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
-        cells = [cap.patches(cell_deg) for cap in caps]  # one geometry: the same directions
-        directions = cells[0][0]
+        check_cells(caps[0].half_angle, cell_deg)
+        seen = None
+        if method == "visibility" and plan.mode != PLATES:
+            beams = plan.mode in BEAM_MODES
+            seen = visibility(craft, level_for(cell_deg), shadows, settings, beams=beams)
+            points, values = _spread(caps)
+            cells = [seen.grid.weights(points, v) for v in values]
+            directions = seen.grid.nodes
+        else:
+            cells = [cap.patches(cell_deg)[1] for cap in caps]  # one geometry: the same directions
+            directions = caps[0].patches(cell_deg)[0]
         sources = [
             Source(
                 name=name,
-                integrals=cap.side_integrals(craft.side_normals),
+                integrals=_side_integrals(craft, cap),
                 weights=weights,
                 optics=optics,
                 beams=name == "albedo" and plan.mode in BEAM_MODES,
                 exchange=_exchange(craft, plan, settings, name),
             )
-            for name, cap, (_, weights), optics in zip(
+            for name, cap, weights, optics in zip(
                 ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
         ]
-        loads, rays = band_loads(craft, sources, directions, reference, shadows, settings)
+        if seen is None:
+            loads, rays = band_loads(craft, sources, directions, reference, shadows, settings)
+        else:
+            loads, rays = _visible_loads(craft, sources, seen, (points, values), reference, shadows), 0
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
         solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, shadows, settings)
@@ -479,6 +523,44 @@ def planet_radiation(
         reference_point=reference_name,
         craft=craft,
     )
+
+
+def _side_integrals(
+    craft: Spacecraft, cap: Cap
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """:meth:`Cap.side_integrals` of every side, each distinct normal once (found once per model)."""
+    unique, inverse = craft.cache.get("distinct side normals", lambda: _distinct(craft.side_normals))
+    i0, i1, i2 = cap.side_integrals(unique)
+    return i0[inverse], i1[inverse], i2[inverse]
+
+
+def _distinct(normals: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    unique, inverse = np.unique(normals, axis=0, return_inverse=True)
+    return np.ascontiguousarray(unique), inverse.reshape(-1)
+
+
+def _spread(caps: list[Cap]) -> tuple[NDArray[np.float64], list[NDArray[np.float64]]]:
+    """The caps' quadrature points (one geometry: the same for every band) and each band's ``L dw``."""
+    points, solid = caps[0].quadrature()
+    return points, [cap.radiance_along(points) * solid for cap in caps]
+
+
+def _visible_loads(
+    craft: Spacecraft,
+    sources: list[Source],
+    seen: Visibility,
+    rule: tuple[NDArray[np.float64], list[NDArray[np.float64]]],
+    reference: NDArray[np.float64],
+    sampling: ShadowSampling,
+) -> list[BandLoad]:
+    """The bands from the visibility, with the grid's error (from the grid a level coarser)."""
+    coarser = None
+    if seen.grid.level > 0 and sampling.estimates:
+        points, values = rule
+        coarse = direction_grid(seen.grid.level - 1)
+        coarser = np.zeros((len(seen.grid.nodes), len(values)))
+        coarser[: len(coarse.nodes)] = coarse.weights(points, np.column_stack(values))
+    return grid_band_loads(craft, sources, seen, reference, sampling.estimates, coarser)
 
 
 def _exchange(

@@ -18,6 +18,24 @@ COMPONENTS = ("x", "y", "z")
 COMPONENT_ATTRS = {"long_name": "vector component along the body-frame axis"}
 #: The dimension a batch's results run along.
 ATTITUDE = "attitude"
+#: The dimensions an orbit's per-part and per-side series run along (besides ``time``).
+PART, SIDE = "part", "side"
+#: Sources of the power a part or a side absorbs, in order, with what each is: the first three as they
+#: arrive, ``reflected`` after reflections off the spacecraft (of every band); the four add up to the
+#: absorbed power.
+ABSORBED_SOURCES = {
+    "solar": "direct sunlight",
+    "albedo": "sunlight the Earth reflects, as it arrives",
+    "infrared": "the Earth's infrared, as it arrives",
+    "reflected": "light of every band after reflection off the spacecraft's own surfaces",
+}
+#: Coordinates of the :data:`SIDE` dimension, what maps a side onto a mesh facet, with their long names.
+SIDE_COORDINATES = {
+    "side_part": "part the side belongs to",
+    "side_facet": "facet of the side (index into the model's triangles)",
+    "side_face": "front (along the facet normal) or back side of the facet",
+    "side_area_m2": "area of the side",
+}
 
 #: UDUNITS strings of the unit suffixes names end in, longest first where one ends another.
 SUFFIX_UNITS = (
@@ -86,7 +104,52 @@ LONG_NAMES = {
     "solar_fraction": "share of the solar disc in view (0: the Earth hides the Sun)",
     "error_estimate_force": "estimated relative error of the force left by the shadow pass",
     "error_estimate_torque": "estimated relative error of the torque left by the shadow pass",
+    **SIDE_COORDINATES,
 }
+
+
+def absorbed_name(where: str, source: str) -> str:
+    """The name of the power absorbed from ``source``, summed over each ``where``: ``{where}_{source}_W``.
+
+    There is no CF standard name for absorbed power: its variables carry ``units``, ``long_name`` and a
+    ``comment`` that spells this scheme out (:func:`variable_attrs`).
+
+    Parameters
+    ----------
+    where : {"part", "side"}
+        Per part (its sides summed) or per side (one side of a facet).
+    source : str
+        One of :data:`ABSORBED_SOURCES`.
+
+    Returns
+    -------
+    str
+        The field's name.
+
+    Examples
+    --------
+    >>> absorbed_name(PART, "albedo"), absorbed_name(SIDE, "solar")
+    ('part_albedo_W', 'side_solar_W')
+    """
+    return f"{where}_{source}_W"
+
+
+_EACH = {PART: "each part (its sides summed)", SIDE: "each side of a facet"}
+LONG_NAMES |= {
+    absorbed_name(where, source): f"power absorbed by {_EACH[where]}: {words}"
+    for where in (PART, SIDE)
+    for source, words in ABSORBED_SOURCES.items()
+} | {
+    "part_temperature_K": "area-weighted mean of the sides' radiative-equilibrium temperatures of each part",
+    PART: "part of the model (mesh part name)",
+    SIDE: "side of a facet (index into the model's sides)",
+}
+_ABSORBED_COMMENT = (
+    "no CF standard_name exists for absorbed power; sunwind names it {where}_{source}_W, where the power "
+    "is summed (part: over a part's sides; side: one side of a facet) and what it comes from (solar, "
+    "albedo, infrared as they arrive; reflected: after reflections off the spacecraft); the four sources "
+    "add up to the absorbed power"
+)
 #: What the variables of some fields mean beyond their long names (attribute ``comment``).
 COMMENTS = {
     "error_estimate_force": "|dF| / |F|: the shadow pass's check (rays at random points of a sample of "
@@ -94,7 +157,7 @@ COMMENTS = {
     "wrong; not written with fixed sampling (samples)",
     "error_estimate_torque": "|dM| / max(|M|, 0.01 |F| L), L the diagonal of the model's bounding box: "
     "against the torque, or where that is small against a torque the force could give",
-}
+} | {absorbed_name(where, source): _ABSORBED_COMMENT for where in (PART, SIDE) for source in ABSORBED_SOURCES}
 
 
 def units_of(name: str) -> str | None:

@@ -37,6 +37,8 @@ MATERIAL_KEYS = {
 }
 #: Keys of a ``[thermal."GLOB"]`` table.
 THERMAL_KEYS = ("isothermal", "conductance_W_m2K", "heat_capacity_J_K")
+#: Keys of a ``[[conductance]]`` table (a conductance between two isothermal parts).
+CONDUCTANCE_KEYS = ("parts", "conductance_W_K")
 #: Most tables and arrays one inside another that a materials file may nest (a real one nests 2).
 MAX_TOML_DEPTH = 64
 
@@ -421,14 +423,172 @@ def parse_thermal(table: object, source: str | None = None) -> tuple[ThermalRule
     return tuple(rules)
 
 
-def unmatched_thermal(
-    rules: Sequence[ThermalRule], parts: Sequence[str], mesh: str, path: str | None
-) -> list[MaterialError]:
-    """List an error for each ``[thermal]`` rule whose glob matches no part of the mesh.
+@dataclass(frozen=True)
+class Conductance:
+    """One ``[[conductance]]`` table: a conductance between two parts, each at one temperature.
+
+    Heat flows ``G (T_b - T_a)`` [W] from part ``b`` into part ``a`` (and the opposite into ``b``): a
+    link between their thermal nodes, beside the front-back links of sheets
+    (:mod:`sunwind.forces.thermal.nodes`). Both parts must be isothermal (a ``[thermal."GLOB"]`` table
+    with ``isothermal = true``).
+
+    Attributes
+    ----------
+    parts : (2,) tuple of str
+        The two parts: names or globs (see :func:`part_matches`), each matching exactly one part.
+    conductance_W_K : float
+        ``G`` [W/K], > 0 and finite.
+
+    Examples
+    --------
+    >>> link = Conductance.checked({"parts": ["panel_px", "panel_p*"], "conductance_W_K": 0.5})
+    >>> link.table
+    '[[conductance]] parts = ["panel_px", "panel_p*"]'
+    >>> link.matched(["bus", "panel_px", "panel_py"])
+    [[1], [1, 2]]
+    """
+
+    parts: tuple[str, str]
+    conductance_W_K: float
+
+    @property
+    def table(self) -> str:
+        """The table as a message names it: ``[[conductance]] parts = ["a", "b"]``."""
+        return f"[[conductance]] parts = {json.dumps(list(self.parts), ensure_ascii=False)}"
+
+    def matched(self, parts: Sequence[str]) -> list[list[int]]:
+        """The indices into ``parts`` each of the two globs matches."""
+        return [[i for i, part in enumerate(parts) if part_matches(part, glob)] for glob in self.parts]
+
+    def problems(
+        self, parts: Sequence[str], mesh: str, path: str | None, rules: Sequence[object] = ()
+    ) -> list[MaterialError]:
+        """An error for each glob that matches no part or more than one, when both match the same part,
+        and for each part whose first matching :class:`ThermalRule` of ``rules`` is not isothermal (or
+        that none matches); empty when the table joins two isothermal parts of ``parts`` (of the mesh
+        ``mesh``)."""
+        found = self.matched(parts)
+        listed = ", ".join(parts[:20]) + (f", ... ({len(parts)} parts)" if len(parts) > 20 else "")
+        errors = []
+        for glob, hits in zip(self.parts, found, strict=True):
+            if len(hits) != 1:
+                which = (
+                    "no part" if not hits else f"{len(hits)} parts ({', '.join(parts[i] for i in hits[:5])})"
+                )
+                errors.append(
+                    MaterialError(
+                        f'{self.table}: "{glob}" matches {which} of {mesh}',
+                        path=path,
+                        hint=f"give each of the two parts by a name or a glob that matches one part; "
+                        f"the parts are: {listed}",
+                    )
+                )
+        if not errors and found[0] == found[1]:
+            errors.append(
+                MaterialError(
+                    f"{self.table} joins part '{parts[found[0][0]]}' to itself",
+                    path=path,
+                    hint="a conductance joins two different parts",
+                )
+            )
+        if errors:
+            return errors
+        thermal = [rule for rule in rules if isinstance(rule, ThermalRule)]
+        for hits in found:
+            part = parts[hits[0]]
+            if not next((rule.isothermal for rule in thermal if rule.matches(part)), False):
+                errors.append(
+                    MaterialError(
+                        f"{self.table}: part '{part}' is not isothermal (a conductance joins two parts "
+                        "each at one temperature)",
+                        path=path,
+                        hint=f"add [thermal.{json.dumps(part)}] with isothermal = true before any other "
+                        "[thermal] table that matches it",
+                    )
+                )
+        return errors
+
+    @classmethod
+    def checked(cls, values: object, source: str | None = None) -> Conductance:
+        """A conductance from its ``[[conductance]]`` table; :class:`MaterialError` for a table that is not
+        one, an unknown or missing key, ``parts`` not two part names, a conductance not above 0."""
+        hint = 'write [[conductance]] then parts = ["PART_A", "PART_B"] and conductance_W_K = W/K (> 0)'
+        if not isinstance(values, Mapping):
+            raise MaterialError("[[conductance]] must hold tables", path=source, hint=hint)
+        unknown = sorted(set(values) - set(CONDUCTANCE_KEYS))
+        missing = [key for key in CONDUCTANCE_KEYS if key not in values]
+        parts = values.get("parts")
+        where = (
+            f"[[conductance]] parts = {json.dumps(parts, ensure_ascii=False)}"
+            if isinstance(parts, list) and all(isinstance(p, str) for p in parts)
+            else "[[conductance]]"
+        )
+        if unknown or missing:
+            what = f"unknown key '{unknown[0]}'" if unknown else f"no '{missing[0]}'"
+            raise MaterialError(f"{where} has {what}", path=source, hint=hint)
+        if where == "[[conductance]]" or len(parts) != 2:
+            raise MaterialError(
+                f"[[conductance]] parts = {parts!r} is not two part names", path=source, hint=hint
+            )
+        conductance = checked_number(
+            where, "conductance_W_K", values["conductance_W_K"], source, 0.0, None, " W/K"
+        )
+        return cls((parts[0], parts[1]), conductance)
+
+
+def parse_conductances(array: object, source: str | None = None) -> tuple[Conductance, ...]:
+    """Read a materials file's ``[[conductance]]`` tables, in order.
 
     Parameters
     ----------
-    rules : sequence of ThermalRule
+    array : list of mappings
+        The ``[[conductance]]`` array of tables, each with :data:`CONDUCTANCE_KEYS`.
+    source : str, optional
+        The materials file, named in errors.
+
+    Returns
+    -------
+    tuple of Conductance
+        One per table, in file order.
+
+    Raises
+    ------
+    MaterialError
+        Every problem of every table, reported at once.
+
+    Examples
+    --------
+    >>> links = parse_conductances([{"parts": ["px", "py"], "conductance_W_K": 0.5}])
+    >>> links[0].parts, links[0].conductance_W_K
+    (('px', 'py'), 0.5)
+    """
+    if not isinstance(array, list):
+        raise MaterialError(
+            "[[conductance]] must be an array of tables",
+            path=source,
+            hint='write [[conductance]] (double brackets) before each parts = ["A", "B"] and conductance_W_K',
+        )
+    links, problems = [], []
+    for values in array:
+        try:
+            links.append(Conductance.checked(values, source))
+        except MaterialError as error:
+            problems.append(error)
+    if problems:
+        raise combine(problems)
+    return tuple(links)
+
+
+def unmatched_thermal(
+    rules: Sequence[ThermalRule], parts: Sequence[str], mesh: str, path: str | None
+) -> list[MaterialError]:
+    """List an error for each ``[thermal]`` rule whose glob matches no part of the mesh, and for each
+    ``[[conductance]]`` table that does not join two of its isothermal parts
+    (:meth:`Conductance.problems`).
+
+    Parameters
+    ----------
+    rules : sequence of ThermalRule and Conductance
         The rules to check.
     parts : sequence of str
         Part names of the mesh.
@@ -449,6 +609,7 @@ def unmatched_thermal(
     ['[thermal] "wing*" matches no part of craft.obj']
     """
     listed = ", ".join(parts[:20]) + (f", ... ({len(parts)} parts)" if len(parts) > 20 else "")
+    links = [rule for rule in rules if isinstance(rule, Conductance)]
     return [
         MaterialError(
             f'[thermal] "{rule.pattern}" matches no part of {mesh}',
@@ -456,8 +617,8 @@ def unmatched_thermal(
             hint=f"the parts are: {listed}",
         )
         for rule in rules
-        if not any(rule.matches(part) for part in parts)
-    ]
+        if not isinstance(rule, Conductance) and not any(rule.matches(part) for part in parts)
+    ] + [error for link in links for error in link.problems(list(parts), mesh, path, rules)]
 
 
 @dataclass(frozen=True)
@@ -476,8 +637,8 @@ class MaterialSpec:
         ``[model] centre_of_mass_m`` [m], body frame: the torque reference point; None when not given.
     hinges : tuple of Hinge
         The ``[articulation]`` tables.
-    thermal : tuple of ThermalRule
-        The ``[thermal]`` tables, in order.
+    thermal : tuple of ThermalRule and Conductance
+        The ``[thermal]`` tables, in order, then the ``[[conductance]]`` tables, in order.
 
     Examples
     --------
@@ -492,7 +653,7 @@ class MaterialSpec:
     source: str | None = None
     centre_of_mass_m: tuple[float, float, float] | None = None
     hinges: tuple[Hinge, ...] = ()
-    thermal: tuple[ThermalRule, ...] = ()
+    thermal: tuple[ThermalRule | Conductance, ...] = ()
 
     def rule_for(self, part: str) -> PartRule | None:
         """The first rule matching ``part``, or None."""
@@ -510,7 +671,7 @@ def load_materials(path: str | os.PathLike) -> MaterialSpec:
     Returns
     -------
     MaterialSpec
-        Its materials, part rules, centre of mass, hinges and thermal rules.
+        Its materials, part rules, centre of mass, hinges, thermal rules and conductances.
 
     Raises
     ------
@@ -564,7 +725,8 @@ def parse_materials(document: Mapping[str, object], source: str | None = None) -
     Parameters
     ----------
     document : mapping
-        The parsed document: ``materials``, ``parts``, ``model``, ``articulation`` and ``thermal`` tables.
+        The parsed document: ``materials``, ``parts``, ``model``, ``articulation`` and ``thermal`` tables
+        and the ``conductance`` array of tables.
     source : str, optional
         The file it came from, named in errors.
 
@@ -586,13 +748,15 @@ def parse_materials(document: Mapping[str, object], source: str | None = None) -
     >>> spec.materials["foil"].emissivity, spec.rules[0].sheet, spec.centre_of_mass_m
     (0.05, True, (0.0, 0.0, 0.5))
     """
-    unknown = sorted(set(document) - {"materials", "parts", "model", "articulation", "thermal"})
+    unknown = sorted(
+        set(document) - {"materials", "parts", "model", "articulation", "thermal", "conductance"}
+    )
     if unknown:
         raise MaterialError(
             f"unknown top-level table '{unknown[0]}'",
             path=source,
             hint="a materials file has [materials.NAME] tables, a [parts] table, a [model] table, "
-            '[articulation."GLOB"] tables and [thermal."GLOB"] tables',
+            '[articulation."GLOB"] tables, [thermal."GLOB"] tables and [[conductance]] tables',
         )
     tables = document.get("materials", {})
     if not isinstance(tables, Mapping) or not all(isinstance(t, Mapping) for t in tables.values()):
@@ -630,9 +794,13 @@ def parse_materials(document: Mapping[str, object], source: str | None = None) -
         thermal = parse_thermal(document.get("thermal", {}), source)
     except MaterialError as error:
         problems.append(error)
+    try:
+        links = parse_conductances(document.get("conductance", []), source)
+    except MaterialError as error:
+        problems.append(error)
     if problems:
         raise combine(problems)
-    return MaterialSpec(materials, tuple(rules), source, centre, hinges, thermal)
+    return MaterialSpec(materials, tuple(rules), source, centre, hinges, thermal + links)
 
 
 def _centre_of_mass(table: object, source: str | None) -> tuple[float, float, float] | None:

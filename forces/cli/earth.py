@@ -29,6 +29,7 @@ from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import about, estimated, print_json, vector, warn_results
 from sunwind.forces.earth import (
     DEFAULT_CELL_DEG,
+    METHODS,
     PLATES,
     Place,
     PlanetResult,
@@ -37,13 +38,14 @@ from sunwind.forces.earth import (
 )
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.orbit.clock import Epoch
-from sunwind.forces.orbit.earth_terms import EarthTerms
+from sunwind.forces.orbit.earth_terms import THERMAL_MODES, EarthTerms
 from sunwind.forces.planet.bodies import PLANETS, PlanetLight, planet
 from sunwind.forces.planet.shadow import ECLIPSE_MODELS, sun_behind
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.tables.jobs import SrpSetup
 from sunwind.forces.thermal import ThermalState
+from sunwind.forces.thermal.transient import DEFAULT_TOLERANCE_K
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.rays.sampling import ShadowSampling
@@ -75,7 +77,9 @@ class Below:
     eclipse : str
         The model of the planet's shadow on the Sun (``"conical"``, ...).
     cell_deg : float
-        Cell size of the planet's disc for shadowing and reflections [deg].
+        Resolution of the shadowing [deg] (``--step``).
+    cap_method : {"visibility", "cells"}, optional
+        How the shadowed cap is integrated (``--cap-method``).
     plates : bool, optional
         Every side an independent plate seeing the whole planet: no ray cast.
 
@@ -98,6 +102,7 @@ class Below:
     earth_ir: float | None
     eclipse: str
     cell_deg: float
+    cap_method: str = "visibility"
     plates: bool = False
 
 
@@ -157,7 +162,12 @@ def planet_options() -> click.decorators.FC:
         click.option("--eclipse", type=click.Choice(ECLIPSE_MODELS), default="conical", show_default=True,
                      help="The planet's shadow on the Sun (sunlight in the heat budget)."),
         click.option("--step", "cell_deg", type=float, default=DEFAULT_CELL_DEG, show_default=True,
-                     help="Cell size of the planet's disc for shadowing and reflections [deg]."),
+                     help="Resolution of the shadowing [deg]: the spacing of the visibility's directions "
+                     "(10: 642 directions, 5: 2562), or the cells' size with --cap-method cells."),
+        click.option("--cap-method", type=click.Choice(METHODS), default=METHODS[0], show_default=True,
+                     help="visibility: each side's view past the model along a grid of directions, built "
+                     "once per model (cached on disk), then weighted sums; cells: a shadow pass per cell "
+                     "of the planet's disc (the reference)."),
         click.option("--plates", is_flag=True,
                      help="Fast mode (--reflections plates): every side an independent plate seeing the "
                      "whole planet (exact plate factors), no self-shadowing or inter-reflection; no ray "
@@ -186,6 +196,18 @@ class EarthRequest:
         Direction to the Earth's centre, body frame (``--earth``; commands without an orbit).
     pole : tuple of 3 float or None, optional
         The Earth's north pole, body frame (``--pole``; commands without an orbit).
+    per_side : bool, optional
+        Also each side's absorbed power at every step (``--per-side``; ``sunwind orbit``).
+    transient : bool, optional
+        With ``thermal``: the lumped transient along the orbit instead of each step's equilibrium
+        (``--thermal transient``; ``sunwind orbit``).
+    initial_temperature_K : float or None, optional
+        The transient's start, every node at this temperature [K] (``--initial-temperature``); None: the
+        equilibrium of the first step.
+    thermal_tolerance_K : float, optional
+        The transient's tolerance per step [K] (``--thermal-tolerance``).
+    cap_method : {"auto", "visibility", "cells"}, optional
+        How the shadowed cap is integrated (``--earth-cap-method``).
 
     Examples
     --------
@@ -193,6 +215,10 @@ class EarthRequest:
     ...                        thermal=False, nadir=(0.0, 0.0, -1.0))
     >>> request.cell_deg, request.pole
     (10.0, None)
+    >>> from sunwind.forces.tables.jobs import SrpSetup
+    >>> lumped = EarthRequest(None, "lambert", None, 10.0, thermal=True, transient=True)
+    >>> lumped.terms(SrpSetup()).thermal
+    'transient'
     """
 
     albedo: float | None
@@ -202,15 +228,38 @@ class EarthRequest:
     thermal: bool
     nadir: tuple[float, float, float] | None = None
     pole: tuple[float, float, float] | None = None
+    per_side: bool = False
+    transient: bool = False
+    initial_temperature_K: float | None = None
+    thermal_tolerance_K: float = DEFAULT_TOLERANCE_K
+    cap_method: str = "auto"
 
     def terms(self, surface: SrpSetup) -> EarthTerms:
         """The orbit's settings, with the sampling and reflections of ``surface``."""
+        knocke = self.albedo_model == "knocke"
+        mode = THERMAL_MODES[self.transient] if self.thermal else None
+        lumped = (
+            {
+                "initial_temperature_K": self.initial_temperature_K,
+                "thermal_tolerance_K": self.thermal_tolerance_K,
+            }
+            if self.transient
+            else {}
+        )
         return EarthTerms(
-            surface, self.albedo, self.earth_ir, self.albedo_model == "knocke", self.cell_deg, self.thermal
+            surface,
+            self.albedo,
+            self.earth_ir,
+            knocke,
+            self.cell_deg,
+            mode,
+            self.per_side,
+            **lumped,
+            cap_method=self.cap_method,
         )
 
 
-def earth_term_options(*, place: bool) -> list:
+def earth_term_options(*, place: bool, per_side: bool = False, transient: bool = False) -> list:
     """Make ``--earth-radiation`` and its settings, for the commands that add the Earth's radiation.
 
     :func:`earth_request` makes their values an :class:`EarthRequest`.
@@ -219,6 +268,11 @@ def earth_term_options(*, place: bool) -> list:
     ----------
     place : bool
         Add ``--earth`` and ``--pole``, for a command without an orbit to place the Earth.
+    per_side : bool, optional
+        Add ``--per-side``, for ``sunwind orbit``: each side's absorbed power at every step.
+    transient : bool, optional
+        For ``sunwind orbit``: ``--thermal [equilibrium|transient]`` (alone: ``equilibrium``) and the
+        transient's ``--initial-temperature`` and ``--thermal-tolerance``.
 
     Returns
     -------
@@ -235,21 +289,63 @@ def earth_term_options(*, place: bool) -> list:
     ...     print(earth)
     >>> demo.main(["--earth-radiation", "--earth", "0", "0", "-1"], standalone_mode=False)
     EarthRequest(albedo=None, albedo_model='lambert', earth_ir=None, cell_deg=10.0, thermal=False,
-                 nadir=(0.0, 0.0, -1.0), pole=None)
+                 nadir=(0.0, 0.0, -1.0), pole=None, per_side=False, transient=False,
+                 initial_temperature_K=None, thermal_tolerance_K=0.01, cap_method='auto')
     >>> demo.main([], standalone_mode=False)
     None
+    >>> @click.command()
+    ... @group("earth", earth_term_options(place=False, transient=True), earth_request)
+    ... def orbit_demo(earth):
+    ...     print(earth.thermal, earth.transient, earth.initial_temperature_K)
+    >>> orbit_demo.main(["--earth-radiation", "--thermal"], standalone_mode=False)
+    True False None
+    >>> orbit_demo.main(["--earth-radiation", "--thermal", "transient", "--initial-temperature", "280"],
+    ...                 standalone_mode=False)
+    True True 280.0
     """
     return [
         click.option("--earth-radiation", "earth_on", is_flag=True,
                      help="Add the Earth's albedo and infrared pressure (materials need an emissivity)."),
         *_light_options(),
         click.option("--earth-step", "cell_deg", type=float, default=DEFAULT_CELL_DEG, show_default=True,
-                     help="Cell size of the Earth's disc for shadowing and reflections [deg]."),
-        click.option("--thermal", is_flag=True,
-                     help="With --earth-radiation: each side's equilibrium temperature and the recoil of "
-                     "its infrared."),
+                     help="Resolution of the Earth's shadowing [deg] (as --step of sunwind earth)."),
+        click.option("--earth-cap-method", "cap_method", type=click.Choice(["auto", *METHODS]),
+                     default="auto", show_default=True,
+                     help="As --cap-method of sunwind earth; auto: the visibility, built once, unless a "
+                     "hinge moves (it poses the model anew at every step): then cells."),
+        *(_TRANSIENT_OPTIONS if transient else [_THERMAL_FLAG]),
         *([_earth("earth_nadir"), _POLE] if place else []),
+        *([_PER_SIDE] if per_side else []),
     ]  # fmt: skip
+
+
+_THERMAL_FLAG = click.option(
+    "--thermal",
+    is_flag=True,
+    help="With --earth-radiation: each side's equilibrium temperature and the recoil of its infrared.",
+)
+_TRANSIENT_OPTIONS = [
+    click.option("--thermal", type=click.Choice(THERMAL_MODES), is_flag=False, flag_value=THERMAL_MODES[0],
+                 default=None, metavar="[equilibrium|transient]",
+                 help="With --earth-radiation: the parts' temperatures and the recoil of their infrared. "
+                 "Alone or equilibrium: each step's radiative equilibrium; transient: the lumped model "
+                 "of the materials file's heat capacities ([thermal.\"GLOB\"] heat_capacity_J_K) integrated "
+                 "along the orbit."),
+    click.option("--initial-temperature", type=float, metavar="K",
+                 help="With --thermal transient: every node at this temperature [K] at the first step "
+                 "[default: the equilibrium of the first step]."),
+    click.option("--thermal-tolerance", type=float, metavar="K",
+                 help="With --thermal transient: largest estimated local error of the temperatures over a "
+                 f"step [K] [default {DEFAULT_TOLERANCE_K:g}]."),
+]  # fmt: skip
+
+
+_PER_SIDE = click.option(
+    "--per-side",
+    is_flag=True,
+    help="With --earth-radiation: also each side's absorbed power by source at every step, with the side's "
+    "part, facet and face (front/back), in -o and --json.",
+)
 
 
 def earth_request(values: dict) -> EarthRequest | None:
@@ -288,18 +384,28 @@ def earth_request(values: dict) -> EarthRequest | None:
     mine = {key: values.pop(key) for key in EARTH_KEYS if key in values}
     if "earth_nadir" in mine:
         mine["nadir"] = mine.pop("earth_nadir")
+    mode = mine.pop("thermal")
+    start, tolerance = mine.pop("initial_temperature", None), mine.pop("thermal_tolerance", None)
     if not mine.pop("earth_on"):
         refuse_without_earth(
             (
                 ("--albedo", mine["albedo"]),
                 ("--earth-ir", mine["earth_ir"]),
-                ("--thermal", mine["thermal"] or None),
+                ("--thermal", mode or None),
+                ("--initial-temperature", start),
+                ("--thermal-tolerance", tolerance),
                 ("--earth", mine.get("nadir")),
                 ("--pole", mine.get("pole")),
                 ("--albedo-model knocke", mine["albedo_model"] == "knocke" or None),
+                ("--per-side", mine.get("per_side") or None),
+                (
+                    "--earth-cap-method",
+                    None if mine.get("cap_method", "auto") == "auto" else mine["cap_method"],
+                ),
             )
         )
         return None
+    mine |= _thermal_request(mode, start, tolerance)
     step = mine["cell_deg"]
     if not (math.isfinite(step) and 0.0 < step <= 90.0):
         raise InputError(f"--earth-step {step:g} is not in (0, 90] deg", hint="e.g. --earth-step 10")
@@ -366,8 +472,32 @@ def refuse_without_earth(flags: Sequence[tuple[str, object]]) -> None:
         raise InputError(f"{', '.join(given)} {verb} --earth-radiation", hint="add --earth-radiation")
 
 
+def _thermal_request(mode: bool | str | None, start: float | None, tolerance: float | None) -> dict:
+    """The :class:`EarthRequest` fields of ``--thermal [MODE]``, ``--initial-temperature`` and
+    ``--thermal-tolerance``, checked."""
+    transient = mode == THERMAL_MODES[1]
+    given = [flag for flag, value in (("--initial-temperature", start), ("--thermal-tolerance", tolerance))
+             if value is not None]  # fmt: skip
+    if given and not transient:
+        verb = "needs" if len(given) == 1 else "need"
+        raise InputError(f"{', '.join(given)} {verb} --thermal transient", hint="add --thermal transient")
+    for flag, value in (("--initial-temperature", start), ("--thermal-tolerance", tolerance)):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise InputError(f"{flag} {value:g} K is not a temperature above 0 K", hint=f"e.g. {flag} 0.01"
+                             if flag == "--thermal-tolerance" else f"e.g. {flag} 290")  # fmt: skip
+    return {
+        "thermal": bool(mode),
+        "transient": transient,
+        "initial_temperature_K": start,
+        "thermal_tolerance_K": DEFAULT_TOLERANCE_K if tolerance is None else tolerance,
+    }
+
+
 #: The keyword names of :func:`earth_term_options`.
-EARTH_KEYS = ("earth_on", "albedo", "albedo_model", "earth_ir", "cell_deg", "thermal", "earth_nadir", "pole")
+EARTH_KEYS = (
+    "earth_on", "albedo", "albedo_model", "earth_ir", "cell_deg", "cap_method", "thermal",
+    "initial_temperature", "thermal_tolerance", "earth_nadir", "pole", "per_side",
+)  # fmt: skip
 
 
 def place_and_light(below: Below, sun: Sun) -> tuple[Place, PlanetLight]:
@@ -526,7 +656,13 @@ def radiation(
     place, light = place_and_light(below, sun)
     mode = replace(reflections, mode=PLATES) if below.plates else reflections
     result = planet_radiation(
-        model, place, light, reflections=mode, sampling=sampling, cell_deg=below.cell_deg
+        model,
+        place,
+        light,
+        reflections=mode,
+        sampling=sampling,
+        cell_deg=below.cell_deg,
+        method=below.cap_method,
     )
     return result, result.equilibrium("none" if mode.mode == PLATES else reflections) if thermal else None
 
@@ -587,6 +723,7 @@ def earth_below(request: EarthRequest, where: FreeStream) -> Below:
         earth_ir=request.earth_ir,
         eclipse="conical",
         cell_deg=request.cell_deg,
+        cap_method="visibility" if request.cap_method == "auto" else request.cap_method,
     )
 
 

@@ -76,7 +76,7 @@ _ENVIRONMENT_OPTIONS = [
     click.option("--temperature", type=float, help="Fixed atmosphere: temperature [K]."),
     click.option("--composition", help='Fixed atmosphere: mole fractions, e.g. "O:0.7,N2:0.3".'),
     click.option("--mass", type=float, help="Spacecraft mass [kg]: ballistic and SRP coefficients per kg."),
-    *earth_term_options(place=False),
+    *earth_term_options(place=False, per_side=True, transient=True),
 ]
 
 
@@ -177,6 +177,12 @@ _ATTITUDE_OPTIONS = [
 _OUTPUT_OPTIONS = [
     click.option("--output", "-o", type=click.Path(path_type=Path), help="Time series file: .nc or .csv."),
     click.option("--plot", type=click.Path(path_type=Path), help="PNG of torque and momentum against time."),
+    click.option(
+        "--plot-thermal",
+        type=click.Path(path_type=Path),
+        help="With --earth-radiation: PNG of each part's absorbed power (and temperature with --thermal) and "
+        "the power by source against time.",
+    ),
     click.option("--json", "as_json", is_flag=True, help="Print one JSON object: the series and summary."),
     click.option(
         "--gas-reflections",
@@ -208,6 +214,8 @@ def _output(values: dict) -> dict:
         check_writable(out)
     if values["plot"] is not None:
         check_image(values["plot"], out)
+    if values["plot_thermal"] is not None:
+        check_image(values["plot_thermal"], out, values["plot"])
     if values["resume"] and out is None:
         raise InputError("--resume takes up the checkpoint of an output: give -o as before")
     check_run(values)
@@ -238,9 +246,10 @@ def orbit(
 ) -> None:
     """Forces, torques and accumulated momentum along an orbit, with eclipse and an attitude law."""
     inputs = (source.mesh, source.materials, path.tle, path.ephemeris, attitude.path)
-    for written in (output["output"], output["plot"]):
+    for written in (output["output"], output["plot"], output["plot_thermal"]):
         if written is not None:
             check_distinct(written, *inputs)
+    _check_heat_outputs(environment.earth, output)
     trajectory = path.trajectory()
     lowest = float(geodetic(trajectory)[:, 0].min())
     drag_on = environment.drag if environment.drag is not None else lowest < DRAG_DEFAULT_BELOW_KM
@@ -276,16 +285,32 @@ def orbit(
         check_place(checkpoint)
     if planet is not None:  # the largest cap, at the lowest altitude; --step is the time's here
         check_earth_step(max(lowest, 0.0), planet.cell_deg)
+        try:
+            planet = planet.sized(model, len(trajectory.time_s))
+        except InputError as error:
+            raise error.renamed({"per_side": "--per-side", "thermal": "--thermal"}) from None
+        if planet.transient and planet.initial_temperature_K is None:
+            print(
+                "sunwind: notice: --thermal transient starts from the equilibrium of the first step "
+                "(--initial-temperature K sets one temperature for every node)",
+                file=sys.stderr,
+            )
     begin = time.perf_counter()
-    started: list[float] = []  # when the steps start: the run's first progress, once precomputes are made
+    steps = len(trajectory.time_s)
+    # when the steps start (the run's first progress, once precomputes are made) and, with the thermal
+    # transient, when its integration after the steps starts (progress past the steps)
+    started: list[float] = []
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
     with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
-        task = bar.add_task("orbit", total=len(trajectory.time_s))
+        task = bar.add_task("orbit", total=steps)
 
         def progress(done: int) -> None:
-            if not started:
+            if not started or (done > steps and len(started) == 1):
                 started.append(time.perf_counter())
-            bar.update(task, completed=done)
+            if done > steps:
+                bar.update(task, description="thermal transient", completed=done - steps)
+            else:
+                bar.update(task, completed=done)
 
         run = sweep_run(output, checkpoint, progress)
         loads = OrbitLoads(
@@ -302,12 +327,12 @@ def orbit(
                 moon=environment.moon,
                 run=run,
             )
-    start = started[0] if started else begin
-    seconds = time.perf_counter() - start
-    steps = len(trajectory.time_s)
+    start, end = started[0] if started else begin, time.perf_counter()
+    seconds = (started[1] if len(started) > 1 else end) - start
+    thermal = f", then the thermal transient in {end - started[1]:.1f} s" if len(started) > 1 else ""
     print(
         f"sunwind: notice: {steps} steps in {seconds:.1f} s ({1e3 * seconds / steps:.0f} ms per step) "
-        f"after {start - begin:.1f} s of precomputes",
+        f"after {start - begin:.1f} s of precomputes{thermal}",
         file=sys.stderr,
     )
     written = []
@@ -323,6 +348,11 @@ def orbit(
 
         plot_orbit(result, output["plot"])
         written.append(output["plot"])
+    if output["plot_thermal"] is not None:
+        from sunwind.forces.orbit.plots import plot_thermal
+
+        plot_thermal(result, output["plot_thermal"])
+        written.append(output["plot_thermal"])
     if output["as_json"]:
         print_json(model.craft, result.to_json(environment.mass_kg))
     else:
@@ -332,6 +362,17 @@ def orbit(
     if "error_estimate_force" in result.series:
         series = (result.series["error_estimate_force"], result.series["error_estimate_torque"])
         warn_beyond({"orbit": series}, sampling.tolerance, "steps")
+
+
+def _check_heat_outputs(earth: EarthRequest | None, output: dict) -> None:
+    """Refuse ``--plot-thermal`` without the Earth's radiation, and ``--per-side`` with nowhere to write."""
+    if output["plot_thermal"] is not None and earth is None:
+        raise InputError("--plot-thermal needs --earth-radiation", hint="add --earth-radiation")
+    if earth is not None and earth.per_side and output["output"] is None and not output["as_json"]:
+        raise InputError(
+            "--per-side records go to the time series: without -o or --json they would be lost",
+            hint="add -o FILE.nc (the sides as coordinates), -o FILE.csv or --json",
+        )
 
 
 def _print_summary(name: str, result, mass_kg: float | None) -> None:
@@ -366,6 +407,13 @@ def _print_summary(name: str, result, mass_kg: float | None) -> None:
             else ""
         )
         print(f"  part {name}: mean absorbed solar, albedo, infrared, reflected {heat} W{span}")
+    if attrs.get("thermal") == "transient":
+        start = attrs["thermal_initial_temperature_K"]
+        start = f"{start:g} K" if isinstance(start, float) else f"the {start}"
+        print(
+            f"  thermal    transient from {start}, tolerance {attrs['thermal_tolerance_K']:g} K per step; "
+            f"estimated error at most {summary['thermal_error_worst_K']:.2g} K"
+        )
     print(f"  largest torque {summary['max_torque_Nm']:.4e} N m at t = {summary['max_torque_time_s']:g} s")
     worst = summary.get("error_estimate_worst")
     estimate = None if worst is None else ErrorEstimate(worst["force"], worst["torque"])

@@ -230,6 +230,7 @@ def _earth_table(values: dict) -> EarthSetup | None:
             albedo=request.albedo,
             infrared_W_m2=request.earth_ir,
             cell_deg=request.cell_deg,
+            cap_method="visibility" if request.cap_method == "auto" else request.cap_method,
             thermal=request.thermal,
         )
     except InputError as error:

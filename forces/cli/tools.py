@@ -48,6 +48,10 @@ from sunwind.meshes.samples import sample_spacecraft
     click.option("--step", type=float, default=5.0, show_default=True, help="Grid step of --sweep [deg]."),
     click.option("--orbit", "orbit_flag", is_flag=True,
                  help="Time orbit steps instead: LEO with SRP and drag, each alone, and GEO."),
+    click.option("--earth", "earth_flag", is_flag=True,
+                 help="Time the Earth's albedo and infrared instead (full reflections): the visibility's "
+                 "build, time per attitude against SRP, and the error against 2.5 deg cells."),
+    click.option("--places", type=int, default=20, show_default=True, help="Places of --earth."),
 ], lambda values: _benchmark(**values))  # fmt: skip
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def bench(mesh_path, materials, triangles, attitudes, samples, what: Benchmark, as_json) -> None:
@@ -66,6 +70,9 @@ def bench(mesh_path, materials, triangles, attitudes, samples, what: Benchmark, 
     load_s = time.perf_counter() - start
     if what.kind == "orbit":
         _bench_orbit(craft, as_json)
+        return
+    if what.kind == "earth":
+        _bench_earth(craft, what.places, as_json)
         return
     with _progress_bar(as_json) as bar:
         task = bar.add_task("timing attitudes", total=attitudes)
@@ -155,28 +162,37 @@ class Benchmark:
 
     Parameters
     ----------
-    kind : {"attitudes", "sweep", "orbit"}
-        Single attitudes under every setting, a sweep, or an orbit.
+    kind : {"attitudes", "sweep", "orbit", "earth"}
+        Single attitudes under every setting, a sweep, an orbit, or the Earth's radiation.
     step : float
         The sweep's grid step [deg] (``--step``; read by ``"sweep"`` only).
+    places : int
+        Places of ``"earth"`` (``--places``).
 
     Examples
     --------
-    >>> Benchmark(kind="sweep", step=15.0)
-    Benchmark(kind='sweep', step=15.0)
+    >>> Benchmark(kind="sweep", step=15.0, places=20)
+    Benchmark(kind='sweep', step=15.0, places=20)
     """
 
     kind: str
     step: float
+    places: int
 
 
-def _benchmark(sweep_flag: bool, step: float, orbit_flag: bool) -> Benchmark:
-    """The :class:`Benchmark` of ``--sweep``, ``--step`` and ``--orbit``, checked together."""
-    if sweep_flag and orbit_flag:
-        raise InputError("--sweep and --orbit are two benchmarks", hint="give one of them")
+def _benchmark(sweep_flag: bool, step: float, orbit_flag: bool, earth_flag: bool, places: int) -> Benchmark:
+    """The :class:`Benchmark` of ``--sweep``, ``--step``, ``--orbit``, ``--earth`` and ``--places``, checked
+    together."""
+    if sweep_flag + orbit_flag + earth_flag > 1:
+        raise InputError("--sweep, --orbit and --earth are three benchmarks", hint="give one of them")
     if given("step") and not sweep_flag:
         raise InputError("--step is the grid step of --sweep", hint="add --sweep, or drop --step")
-    return Benchmark("sweep" if sweep_flag else "orbit" if orbit_flag else "attitudes", step)
+    if given("places") and not earth_flag:
+        raise InputError("--places is the place count of --earth", hint="add --earth, or drop --places")
+    if not 1 <= places <= 1000:
+        raise InputError(f"--places {places} must be from 1 to 1000")
+    kind = "sweep" if sweep_flag else "orbit" if orbit_flag else "earth" if earth_flag else "attitudes"
+    return Benchmark(kind, step, places)
 
 
 def _check_model(mesh_path: Path | None, materials: Path | None, attitudes: int, what: Benchmark) -> None:
@@ -218,6 +234,41 @@ def _bench_orbit(craft, as_json: bool) -> None:
     for name, ms in report.ms_per_step.items():
         print(f"  {name:<22}  {ms:.1f} ms per step")
     print("  error of a step         that of srp and drag at one attitude (sunwind bench)")
+
+
+def _bench_earth(craft, places: int, as_json: bool) -> None:
+    """``sunwind bench --earth``: run and print :func:`sunwind.forces.planet_bench.earth_benchmark`."""
+    from sunwind.forces.model import Model
+    from sunwind.forces.planet_bench import REFERENCE_STEP_DEG, earth_benchmark
+
+    with _progress_bar(as_json) as bar:
+        task = bar.add_task("building the visibility", total=None)
+        report = earth_benchmark(
+            Model(craft),
+            places,
+            progress=lambda stage, done, total: bar.update(
+                task, description=stage, completed=done, total=total
+            ),
+        )
+    if as_json:
+        print(json.dumps({"mesh": craft.source, **report.to_json()}, indent=2))
+        return
+    print(f"sunwind bench --earth: {craft.source} ({report.triangles} triangles, {report.sides} sides)")
+    print(f"  machine                 {report.machine}; full reflections, {report.places} places 500 km up")
+    print(
+        f"  visibility              {report.build_s:.1f} s ({report.visibility_origin}), {report.grid_nodes} "
+        f"directions, {report.visibility_MB:.0f} MB"
+    )
+    print(
+        f"  albedo + infrared       {report.earth_ms:.1f} ms per attitude (median), "
+        f"{report.earth_over_srp:.1f}x SRP ({report.srp_ms:.1f} ms)"
+    )
+    print(f"{'':26}{report.error}")
+    print(f"{'':26}torque {report.torque_scaled_worst:.1e} worst of max(|M|, 0.01 |F| L)")
+    low, high = report.estimate_over_error
+    print(f"  error estimate          {low:.1f} to {high:.1f} times the force error")
+    seconds = report.reference_ms / 1e3
+    print(f"  errors against          cells of {REFERENCE_STEP_DEG:g} deg, {seconds:.1f} s per attitude")
 
 
 def _bench_sweep(triangles: int, step: float, samples: int | None, as_json: bool) -> None:

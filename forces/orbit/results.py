@@ -22,14 +22,23 @@ from scipy.integrate import cumulative_trapezoid
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.model import Model
 from sunwind.forces.orbit.attitude import AttitudeLaw
-from sunwind.forces.orbit.earth_terms import PART_SOURCES
+from sunwind.forces.orbit.earth_terms import FIRST_EQUILIBRIUM, PART_SOURCES
 from sunwind.forces.orbit.inputs import StepInputs
 from sunwind.forces.orbit.steps import OrbitLoads
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
 from sunwind.forces.result_base import Result
 from sunwind.forces.tables.dataset import attribute_text, model_provenance
-from sunwind.forces.vocabulary import COMPONENT, COMPONENTS
+from sunwind.forces.vocabulary import (
+    COMPONENT,
+    COMPONENT_ATTRS,
+    COMPONENTS,
+    PART,
+    SIDE,
+    SIDE_COORDINATES,
+    absorbed_name,
+    variable_attrs,
+)
 from sunwind.geometry.rays.certificate import LoadsError
 
 #: Time series of the output, in order, with their units (UDUNITS).
@@ -52,7 +61,9 @@ SERIES = {
     "dynamic_pressure_Pa": "Pa",
 }
 #: Series of a run with the Earth's radiation (``thermal_*`` and ``part_temperature_K`` with thermal
-#: recoil); ``part_*`` are (n, n_parts), columns in ``part_names`` order.
+#: recoil, ``thermal_error_K`` with the transient, ``side_*`` with per-side records); ``part_*`` are
+#: (n, n_parts), columns in ``part_names`` order, ``side_*`` (n, n_sides), columns in the model's side
+#: order (:attr:`OrbitResult.sides`).
 EARTH_SERIES = {
     "albedo_force_body_N": "N",
     "albedo_torque_body_Nm": "N m",
@@ -60,11 +71,19 @@ EARTH_SERIES = {
     "infrared_torque_body_Nm": "N m",
     "thermal_force_body_N": "N",
     "thermal_torque_body_Nm": "N m",
-    "part_solar_W": "W",
-    "part_albedo_W": "W",
-    "part_infrared_W": "W",
-    "part_reflected_W": "W",
+    **{absorbed_name(PART, source): "W" for source in PART_SOURCES},
     "part_temperature_K": "K",
+    "thermal_error_K": "K",
+    **{absorbed_name(SIDE, source): "W" for source in PART_SOURCES},
+}
+#: Long names of the series the transient (``thermal="transient"``) gives, in place of the equilibrium's.
+TRANSIENT_LONG_NAMES = {
+    "part_temperature_K": "area-weighted mean of the sides' temperatures of each part, lumped transient "
+    "model",
+    "thermal_force_body_N": "recoil of the infrared the spacecraft emits, lumped transient model, body frame",
+    "thermal_torque_body_Nm": "torque of the thermal recoil, lumped transient model",
+    "thermal_error_K": "estimated error of the node temperatures, largest over the nodes: the integrator's "
+    "local error estimates carried along its steps",
 }
 #: Series of a run whose every term uses the default shadow pass: the error the passes estimate they
 #: left in the step's total force and torque, relative (:class:`~sunwind.forces.error_estimate.
@@ -96,7 +115,9 @@ class OrbitResult(Result):
         Hinge glob -> (n,) angles used [deg]; empty for a model without hinges.
     attributes : dict of str to object
         What the run was: frame, epoch, trajectory, attitude, terms, reference point, settings and the
-        model's provenance.
+        model's provenance; with thermal recoil ``thermal`` (the mode), and for the transient
+        ``thermal_tolerance_K`` and ``thermal_initial_temperature_K`` (a temperature [K], or
+        ``"equilibrium of the first step"``).
     period_s : float
         Two-body period of the orbit at its first step [s] (inf when not bound).
     flux_1au_W_m2 : float
@@ -105,6 +126,9 @@ class OrbitResult(Result):
         The terms computed, of :data:`TERMS`.
     part_names : tuple of str
         Columns of the ``part_*`` series (with the Earth's radiation; else empty).
+    sides : dict of str to ndarray
+        Columns of the ``side_*`` series: each side's :data:`SIDE_COORDINATES` (part name, facet index in
+        the model, ``"front"`` or ``"back"``, area [m^2]), (n_sides,) each; empty without per-side records.
 
     Examples
     --------
@@ -130,6 +154,7 @@ class OrbitResult(Result):
     flux_1au_W_m2: float
     terms: tuple[str, ...] = field(default=())
     part_names: tuple[str, ...] = field(default=())
+    sides: dict[str, NDArray] = field(default_factory=dict)
 
     @property
     def names(self) -> list[str]:
@@ -199,7 +224,7 @@ class OrbitResult(Result):
         for name in EARTH_SERIES:
             if name in records:
                 values = records[name]
-                series[name] = values.reshape(len(t), -1) if name.startswith("part_") else values
+                series[name] = values.reshape(len(t), -1) if _per(name) else values
         if "shadow_error_force_N" in records:
             errors = zip(records["shadow_error_force_N"], records["shadow_error_torque_Nm"], strict=True)
             size = model.craft.diagonal_m
@@ -219,11 +244,13 @@ class OrbitResult(Result):
             "reference_point_m": [float(x) for x in point],
             "reference_point": name,
             "settings": setup.describe(),
+            **_thermal_attributes(setup),
             **{k: v for k, v in model_provenance(model).items() if v is not None},
         }
         parts = tuple(model.craft.part_names) if setup.earth is not None else ()
+        sides = _side_coordinates(model) if absorbed_name(SIDE, PART_SOURCES[0]) in records else {}
         flux = setup.flux_1au_W_m2
-        return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms, parts)
+        return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms, parts, sides)
 
     def summary(self, mass_kg: float | None = None) -> dict[str, object]:
         """Orbit averages, eclipses, the largest torque, the momentum per orbit and the effective areas.
@@ -249,7 +276,8 @@ class OrbitResult(Result):
             ``mean_torque_body_Nm``, ``max_torque_Nm``, ``max_torque_time_s``, ``angular_impulse_body_Nms``,
             ``angular_impulse_eci_Nms`` (at the end); as they apply, ``momentum_per_orbit_Nms`` [N m s],
             ``drag_area_m2``, ``srp_area_m2``, the mean albedo, infrared and thermal loads,
-            ``error_estimate_worst`` and ``parts`` (per part: mean absorbed powers [W], temperatures [K]).
+            ``thermal_error_worst_K`` (the transient's largest estimated error [K]), ``error_estimate_worst``
+            and ``parts`` (per part: mean absorbed powers [W], temperatures [K]).
 
         Examples
         --------
@@ -307,6 +335,8 @@ class OrbitResult(Result):
             if term in self.terms:
                 out[f"mean_{term}_force_body_N"] = _mean(t, s[f"{term}_force_body_N"])
                 out[f"mean_{term}_torque_body_Nm"] = _mean(t, s[f"{term}_torque_body_Nm"])
+        if "thermal_error_K" in s:
+            out["thermal_error_worst_K"] = float(s["thermal_error_K"].max())
         if "error_estimate_force" in s:
             out["error_estimate_worst"] = {
                 "force": float(s["error_estimate_force"].max()),
@@ -357,7 +387,8 @@ class OrbitResult(Result):
         -------
         dict of str to object
             Every series of :attr:`names` (one row per step) by its name, ``part_names`` (the columns of the
-            ``part_*`` series) with the Earth's radiation, ``hinge_angles_deg`` (by glob) with hinges, then
+            ``part_*`` series) with the Earth's radiation, ``sides`` (the columns of the ``side_*`` series,
+            :attr:`sides`) with per-side records, ``hinge_angles_deg`` (by glob) with hinges, then
             ``attributes`` and ``summary``.
 
         Examples
@@ -381,6 +412,8 @@ class OrbitResult(Result):
         out: dict[str, object] = {name: self.series[name].tolist() for name in self.names}
         if self.part_names:
             out["part_names"] = list(self.part_names)
+        if self.sides:
+            out["sides"] = {name: values.tolist() for name, values in self.sides.items()}
         if self.hinge_angles_deg:
             out["hinge_angles_deg"] = {k: v.tolist() for k, v in self.hinge_angles_deg.items()}
         out["attributes"] = self.attributes
@@ -388,10 +421,14 @@ class OrbitResult(Result):
         return out
 
     def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
-        """The series as an xarray Dataset on dimensions ``time``, ``component`` (x, y, z, as in sweep tables)
-        and ``part``, units (UDUNITS) in attributes.
+        """The series as an xarray Dataset on dimensions ``time``, ``component`` (x, y, z, as in sweep
+        tables), ``part`` and ``side``, with units (UDUNITS), long names and comments in attributes.
 
-        The ``time`` coordinate is seconds since the epoch (CF units); the run's attributes and the summary
+        The ``time`` coordinate is CF time: seconds since the epoch, ``calendar = "standard"`` (read back as
+        UTC times). ``part`` is named by the parts' names; ``side`` (with per-side records) is the side's
+        index, with the coordinates :data:`SIDE_COORDINATES` to map each side onto a mesh facet. The
+        absorbed powers are ``{part,side}_{source}_W`` [W]
+        (:func:`~sunwind.forces.vocabulary.absorbed_name`). The run's attributes and the summary
         (``summary_*``) are the dataset's attributes, and each hinge's angles a ``hinge_angle_deg[GLOB]``
         variable.
 
@@ -424,13 +461,16 @@ class OrbitResult(Result):
         (('time', 'component'), 'seconds since 2024-03-20T00:00:00.000Z')
         """
         variables, units = {}, SERIES | EARTH_SERIES | dict.fromkeys(ESTIMATE_SERIES, "1")
+        long_names = dict(ESTIMATE_SERIES)
+        if self.attributes.get("thermal") == "transient":
+            long_names |= TRANSIENT_LONG_NAMES
         for name in self.names:
             values = self.series[name]
-            dims = (
-                ("time",) if values.ndim == 1 else ("time", "part" if name.startswith("part_") else COMPONENT)
-            )
-            attrs = {"units": units[name]} | (
-                {"long_name": ESTIMATE_SERIES[name]} if name in ESTIMATE_SERIES else {}
+            dims = ("time",) if values.ndim == 1 else ("time", _per(name) or COMPONENT)
+            attrs = (
+                variable_attrs(name)
+                | {"units": units[name]}
+                | ({"long_name": long_names[name]} if name in long_names else {})
             )
             variables[name] = xr.Variable(dims, values, attrs)
         for pattern, angles in self.hinge_angles_deg.items():
@@ -441,20 +481,28 @@ class OrbitResult(Result):
             ("time",),
             self.series["time_s"],
             {
+                "standard_name": "time",
+                "long_name": "UTC",
+                "axis": "T",
                 "units": f"seconds since {self.attributes['epoch_utc']}",
                 "calendar": "standard",
-                "long_name": "UTC",
             },
+            encoding={"_FillValue": None},  # CF: no fill value on a coordinate
         )
-        coords = {"time": time, COMPONENT: list(COMPONENTS)} | (
-            {"part": list(self.part_names)} if self.part_names else {}
-        )
+        coords = {"time": time, COMPONENT: xr.Variable((COMPONENT,), list(COMPONENTS), COMPONENT_ATTRS)}
+        if self.part_names:
+            coords[PART] = xr.Variable((PART,), list(self.part_names), variable_attrs(PART))
+        if self.sides:
+            n_sides = len(self.sides["side_facet"])
+            coords[SIDE] = xr.Variable((SIDE,), np.arange(n_sides), variable_attrs(SIDE))
+            coords |= {k: xr.Variable((SIDE,), v, variable_attrs(k)) for k, v in self.sides.items()}
         return xr.Dataset(variables, coords=coords, attrs=attrs | summary)
 
     def write_csv(self, path: Path) -> None:
         """Write the series as CSV: one row per step, the attributes as ``#`` comment lines above the header.
 
-        Vectors are ``name_x``, ``name_y``, ``name_z`` columns, per-part series ``name[PART]`` and hinge
+        Vectors are ``name_x``, ``name_y``, ``name_z`` columns, per-part series ``name[PART]``, per-side
+        series ``name[PART:FACET:FACE]`` (the side's part, facet index and ``front`` or ``back``) and hinge
         angles ``hinge_angle_deg[GLOB]``.
 
         Parameters
@@ -489,9 +537,10 @@ class OrbitResult(Result):
         columns, header = [], []
         for name in self.names:
             values = self.series[name]
-            if name.startswith("part_"):
+            per = _per(name)
+            if per is not None:
                 columns += list(values.T)
-                header += [f"{name}[{part}]" for part in self.part_names]
+                header += [f"{name}[{label}]" for label in self._labels(per)]
             elif values.ndim == 2:
                 columns += [values[:, i] for i in range(3)]
                 header += [f"{name}_{axis}" for axis in "xyz"]
@@ -506,6 +555,45 @@ class OrbitResult(Result):
             writer = csv.writer(handle)
             writer.writerow(header)
             writer.writerows(np.stack(columns, axis=1).tolist())
+
+    def _labels(self, per: str) -> list[str]:
+        """Column labels of the series along ``per``: the part names, or ``PART:FACET:FACE`` per side."""
+        if per == PART:
+            return list(self.part_names)
+        s = self.sides
+        labels = s["side_part"].astype(str)
+        for text in (s["side_facet"].astype(str), s["side_face"].astype(str)):
+            labels = np.char.add(np.char.add(labels, ":"), text)
+        return labels.tolist()
+
+
+def _thermal_attributes(setup: OrbitLoads) -> dict[str, object]:
+    """The thermal mode (``thermal``) and, for the transient, its tolerance and start, as attributes."""
+    earth = setup.earth
+    if earth is None or earth.thermal is None:
+        return {}
+    out: dict[str, object] = {"thermal": earth.thermal}
+    if earth.transient:
+        start = earth.initial_temperature_K
+        out["thermal_tolerance_K"] = earth.thermal_tolerance_K
+        out["thermal_initial_temperature_K"] = FIRST_EQUILIBRIUM if start is None else float(start)
+    return out
+
+
+def _per(name: str) -> str | None:
+    """The dimension a per-part or per-side series runs along besides time (its name's first word), else
+    None."""
+    head = name.split("_", 1)[0]
+    return head if head in (PART, SIDE) else None
+
+
+def _side_coordinates(model: Model) -> dict[str, NDArray]:
+    """Each side's :data:`SIDE_COORDINATES`: its part's name, its facet, ``front`` or ``back``, its area."""
+    craft = model.craft
+    part = np.asarray(craft.part_names)[craft.facet_part[craft.side_facet]]
+    face = np.where(craft.side_sign > 0, "front", "back")
+    values = (part, np.array(craft.side_facet), face, np.array(craft.side_areas))
+    return dict(zip(SIDE_COORDINATES, values, strict=True))
 
 
 def _attribute(value: object) -> object:

@@ -45,6 +45,9 @@ AZIMUTH_POINTS = 12
 _SCAN_RINGS = 2048
 #: Sides per parallel block of the side integrals.
 _BLOCK_SIDES = 2048
+#: Rings and points per ring of :meth:`Cap.quadrature` (the rings split among the ``theta`` pieces).
+QUADRATURE_RINGS = 48
+QUADRATURE_AZIMUTHS = 96
 #: Most cells a cap is cut into (about 2 pi (1 - cos theta0) / step^2): a finer step is refused.
 MOST_CELLS = 20_000
 
@@ -371,6 +374,55 @@ class Cap:
             map_ranges(run, n_blocks, 1)
         values = out[inverse]
         return values[:, 0], values[:, 1:4], values[:, 4]
+
+    def quadrature(
+        self, rings: int = QUADRATURE_RINGS, azimuths: int = QUADRATURE_AZIMUTHS
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """A product rule over the cap: directions and the solid angle each stands for.
+
+        ``theta`` by Gauss-Legendre in each piece between :attr:`theta_breaks` (under the map that smooths
+        the square-root onset of an arc; ``rings`` shared among the pieces by their width, at least 4
+        each), the azimuth by the periodic trapezoid rule on ``azimuths`` points.
+
+        Parameters
+        ----------
+        rings : int
+            Points in ``theta``, about.
+        azimuths : int
+            Points in azimuth per ring.
+
+        Returns
+        -------
+        directions : (p, 3) float64
+            Unit directions, body frame.
+        solid_sr : (p,) float64
+            Solid angle of each point [sr]; ``sum(radiance_along(directions) * solid_sr)`` is ``int L dw``.
+
+        Examples
+        --------
+        The solid angles add up to the cap's, ``2 pi (1 - cos theta_0)``:
+
+        >>> import math
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0]),
+        ...           2.0, 1.0, Radiance(uniform_W_m2=np.pi))
+        >>> directions, solid = cap.quadrature()
+        >>> bool(abs(solid.sum() - 2 * math.pi * (1 - math.cos(math.pi / 6))) < 1e-12)
+        True
+        """
+        breaks = self.theta_breaks
+        span = breaks[-1] - breaks[0]
+        thetas, widths = [], []
+        for lo, hi in itertools.pairwise(breaks):
+            count = max(4, round(rings * (hi - lo) / span)) if span > 0 else 4
+            x, dx = _mapped_rule(count)
+            thetas.append(lo + (hi - lo) * x)
+            widths.append((hi - lo) * dx)
+        theta, d_theta = np.concatenate(thetas), np.concatenate(widths)
+        phi = 2 * math.pi * np.arange(azimuths) / azimuths
+        grid_theta, grid_phi = np.meshgrid(theta, phi, indexing="ij")
+        directions = self.directions(grid_theta, grid_phi).reshape(-1, 3)
+        solid = (d_theta * np.sin(theta))[:, None] * np.full(azimuths, 2 * math.pi / azimuths)
+        return directions, solid.reshape(-1)
 
     def patches(self, cell_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The cap cut into cells about ``cell_deg`` across, for the shadow passes.

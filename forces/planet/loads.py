@@ -22,17 +22,19 @@ forward.
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.error_estimate import summed
-from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
+from sunwind.forces.planet.lit_law import cell_error, law, open_force
+from sunwind.forces.planet.visibility import Visibility
 from sunwind.forces.reflection import BeamChainTotals, PowerBalance, ReflectionSettings, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals
-from sunwind.geometry.rays.certificate import LoadsError, ShadowCheck
+from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.hull import clearance
 from sunwind.geometry.rays.sampling import ShadowSampling
 from sunwind.geometry.rays.shadows import side_sampler
@@ -84,6 +86,166 @@ class Source:
     exchange: DiffuseExchange | None
 
 
+@dataclass(eq=False)
+class ReflectedPower:
+    """Where a band's reflected light ends on the spacecraft, the diffuse balance solved on first use.
+
+    Each side absorbs ``(1 - rho - sigma)`` of the beam power that lands on it (``beams_arrived_W``) and of
+    the diffuse light that reaches it, ``E^T W`` with ``W = exchange.solve(source_W)`` the diffuse power
+    leaving each side. The forces need no forward solve (they come from the adjoint), so it is done only
+    when the powers are asked for, and :func:`solve_reflected` does the bands sharing an exchange in one.
+
+    Parameters
+    ----------
+    absorptance : (n_sides,) float64
+        ``1 - rho - sigma`` of each side in the band.
+    beams_arrived_W : (n_sides,) float64
+        Beam power landing on each side [W].
+    beam_lost_W : float
+        Beam power lost before the diffuse balance (on no side, or cut off) [W].
+    exchange : DiffuseExchange or None
+        The band's diffuse balance; None: diffuse light leaves to open sky.
+    source_W : (n_sides,) float64 or None
+        Diffuse power each side sends into the balance [W].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> no_exchange = ReflectedPower(np.full(2, 0.5), np.array([2.0, 0.0]), 0.25, None, None)
+    >>> no_exchange.absorbed_side_W(), no_exchange.lost_W()
+    (array([1., 0.]), 0.25)
+    """
+
+    absorptance: NDArray[np.float64]
+    beams_arrived_W: NDArray[np.float64]
+    beam_lost_W: float
+    exchange: DiffuseExchange | None = None
+    source_W: NDArray[np.float64] | None = None
+    emitted_W: NDArray[np.float64] | None = field(default=None, repr=False)
+
+    def absorbed_side_W(self) -> NDArray[np.float64]:
+        """Power each side absorbs after reflections [W], (n_sides,)."""
+        arrived = self.beams_arrived_W
+        if self.exchange is not None:
+            arrived = arrived + self.exchange.factors.matrix.T @ self._emitted()
+        return self.absorptance * arrived
+
+    def lost_W(self) -> float:
+        """Reflected power on no side or cut off [W]."""
+        if self.exchange is None:
+            return self.beam_lost_W
+        factors = self.exchange.factors
+        return self.beam_lost_W + float(
+            self._emitted() @ (factors.blind_fraction + factors.truncated_fraction)
+        )
+
+    def absorbed_by_group(self, group: NDArray[np.int64], count: int) -> NDArray[np.float64]:
+        """Power each group of sides absorbs after reflections [W], (count,), without the forward solve.
+
+        The diffuse share is a linear functional of the sources: the sides of group ``g`` absorb
+        ``(M^-T E (a 1_g))^T S``, so the responses of the groups (``count`` adjoint solves, once per
+        exchange, grouping and absorptance: kept) make it a dot product. Once the balance has been solved
+        forward, its solution is summed instead.
+
+        Parameters
+        ----------
+        group : (n_sides,) int64
+            Group of each side (the part, say), in ``[0, count)``.
+        count : int
+            Number of groups.
+
+        Returns
+        -------
+        (count,) float64
+            ``absorbed_side_W()`` summed by group.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.reflection import reflection_plan
+        >>> white = sw.Material("white", reflectivity=0.8, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box_wing(facet_size=0.5), uniform=white, threads=1).craft
+        >>> exchange = reflection_plan(craft, sw.ReflectionSettings("full")).exchange
+        >>> source = np.where(np.arange(craft.n_sides) == 0, 10.0, 0.0)
+        >>> dark, nothing = np.full(craft.n_sides, 0.2), np.zeros(craft.n_sides)
+        >>> part = craft.facet_part[craft.side_facet]
+        >>> by_adjoint = ReflectedPower(dark, nothing, 0.0, exchange, source).absorbed_by_group(part, 3)
+        >>> sides = ReflectedPower(dark, nothing, 0.0, exchange, source).absorbed_side_W()
+        >>> forward = np.bincount(part, sides, 3)
+        >>> bool(np.allclose(by_adjoint, forward, rtol=1e-9))
+        True
+        """
+        beams = np.bincount(group, self.absorptance * self.beams_arrived_W, count)
+        if self.exchange is None:
+            return beams
+        if self.emitted_W is not None:
+            return np.bincount(
+                group, self.absorptance * (self.exchange.factors.matrix.T @ self.emitted_W), count
+            )
+        return beams + _group_responses(self.exchange, self.absorptance, group, count).T @ self.source_W
+
+    def _emitted(self) -> NDArray[np.float64]:
+        if self.emitted_W is None:
+            solve_reflected([self])
+        return self.emitted_W
+
+
+def _group_responses(
+    exchange: DiffuseExchange, absorptance: NDArray[np.float64], group: NDArray[np.int64], count: int
+) -> NDArray[np.float64]:
+    """``M^-T E (a 1_g)`` for every group (n_sides, count), kept on the exchange per absorptance and
+    grouping."""
+    key = hashlib.sha256(
+        absorptance.tobytes() + np.ascontiguousarray(group, dtype=np.int64).tobytes()
+    ).hexdigest()
+    kept = exchange.__dict__.setdefault("_group_responses", {})
+    if key not in kept:
+        indicator = np.zeros((len(group), count))
+        indicator[np.arange(len(group)), group] = absorptance
+        kept[key] = np.ascontiguousarray(exchange.adjoint(exchange.factors.matrix @ indicator))
+    return kept[key]
+
+
+def solve_reflected(powers: Sequence[ReflectedPower]) -> None:
+    """Solve the diffuse balances of several bands, one solve (of several columns) per exchange.
+
+    Parameters
+    ----------
+    powers : sequence of ReflectedPower
+        The bands' reflected power (``load.reflections``); those already solved or without an exchange are
+        left as they are.
+
+    Returns
+    -------
+    None
+        Each one's ``emitted_W`` is set.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.reflection import reflection_plan
+    >>> white = sw.Material("white", reflectivity=0.8, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box_wing(), uniform=white, threads=1).craft
+    >>> exchange = reflection_plan(craft, sw.ReflectionSettings("full")).exchange
+    >>> source = np.where(np.arange(craft.n_sides) == 0, 10.0, 0.0)
+    >>> dark, nothing = np.full(craft.n_sides, 0.2), np.zeros(craft.n_sides)
+    >>> a, b = (ReflectedPower(dark, nothing, 0.0, exchange, s * source) for s in (1.0, 2.0))
+    >>> solve_reflected([a, b])
+    >>> bool(np.allclose(2 * a.absorbed_side_W(), b.absorbed_side_W()))
+    True
+    """
+    groups: dict[int, list[ReflectedPower]] = {}
+    for power in powers:
+        if power.exchange is not None and power.emitted_W is None:
+            groups.setdefault(id(power.exchange), []).append(power)
+    for group in groups.values():
+        emitted = group[0].exchange.solve(np.column_stack([p.source_W for p in group]))
+        for k, power in enumerate(group):
+            power.emitted_W = emitted[:, k]
+
+
 @dataclass(frozen=True, eq=False, kw_only=True)
 class BandLoad:
     """What one band does at one attitude; body frame, SI.
@@ -104,17 +266,17 @@ class BandLoad:
         Power arriving at each side from the source, shadowing included [W].
     absorbed_side_W : (n_sides,) float64
         Of it, what each side absorbs [W].
-    reflected_side_W : (n_sides,) float64
-        Power each side absorbs of the band's light after one or more reflections [W].
-    lost_W : float
-        Reflected power absorbed where the model has no side (inside a closed body), in
-        ``power.absorbed_W``, or dropped by a chain's cutoff, ``power.truncated_W`` [W]: on no side.
     rays : int
         Shadow and beam rays cast.
     shadow_error : LoadsError or None
         The shadow passes' estimated absolute error in the direct force [N] and torque [N m]: each
         cell's pass's (from its check and the cell's load per unit lit area), added over the cells; 0
         where no side can be shadowed; None with fixed sampling or without shadowing (plates).
+    reflections : ReflectedPower
+        Where the band's reflected light ends on the spacecraft: :attr:`reflected_side_W` (power each side
+        absorbs after one or more reflections [W]) and :attr:`lost_W` (reflected power absorbed where the
+        model has no side, inside a closed body, in ``power.absorbed_W``, or dropped by a chain's cutoff,
+        ``power.truncated_W`` [W]); the diffuse balance is solved forward on first use.
 
     Examples
     --------
@@ -145,10 +307,20 @@ class BandLoad:
     power: PowerBalance
     incident_side_W: NDArray[np.float64]
     absorbed_side_W: NDArray[np.float64]
-    reflected_side_W: NDArray[np.float64]
-    lost_W: float
     rays: int
     shadow_error: LoadsError | None = None
+    reflections: ReflectedPower = field(repr=False)
+
+    @property
+    def reflected_side_W(self) -> NDArray[np.float64]:
+        """Power each side absorbs of the band's light after one or more reflections [W], (n_sides,)
+        (the diffuse balance solved forward on first use: :func:`solve_reflected`)."""
+        return self.reflections.absorbed_side_W()
+
+    @property
+    def lost_W(self) -> float:
+        """Reflected power absorbed where the model has no side, or dropped by a chain's cutoff [W]."""
+        return self.reflections.lost_W()
 
     def to_json(self) -> dict:
         """A plain-JSON summary: the totals, the direct and reflected parts and the power balance.
@@ -285,13 +457,149 @@ def band_loads(
             if len(dark):
                 _shadow(craft, source.optics, direction, weight, dark, dark_share, light.lit_centroid, sums)
             if light.check is not None:
-                error = _cell_error(craft, source.optics, (direction, weight), light.check, reference_m)
+                error = cell_error(craft, source.optics, (direction, weight), light.check, reference_m)
                 sums.shadow_error = summed([sums.shadow_error, error])
             if source.beams and shadowing:
                 chains = follow_chains(craft, light, weight, reference_m, cutoff, depth, light.level)
                 rays += chains.rays
                 sums.chains.append(chains)
     return [_finish(craft, s, r, reference_m) for s, r in zip(sources, running, strict=True)], rays
+
+
+def grid_band_loads(
+    craft: Spacecraft,
+    sources: Sequence[Source],
+    seen: Visibility,
+    reference_m: NDArray[np.float64],
+    estimates: bool,
+    coarser: NDArray[np.float64] | None = None,
+) -> list[BandLoad]:
+    """The load of each band from a model's precomputed directional visibility: no ray is cast.
+
+    As :func:`band_loads`, with the cells the nodes of ``seen.grid`` and each source's ``weights`` its
+    irradiance spread on them (:meth:`~sunwind.forces.planet.visibility.DirectionGrid.weights`): what
+    the sides lose to shadow is ``S W``, the lit-centroid torque and the passes' errors are dot products
+    with the per-node values, and the beam chains (sources with ``beams``) are those of the nodes times
+    ``W``.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The spacecraft ``seen`` was built for.
+    sources : sequence of Source
+        The bands; ``weights`` of length ``len(seen.grid.nodes)``; a source named "infrared" takes the
+        infrared values, any other the solar ones.
+    seen : Visibility
+        The model's visibility (:func:`~sunwind.forces.planet.visibility.visibility`).
+    reference_m : (3,) float64
+        Torque reference point [m], body frame.
+    estimates : bool
+        Report the passes' error (the sampling estimates it); else ``shadow_error`` is None.
+    coarser : (n, b) float64, optional
+        Each source's irradiance spread on the grid a level coarser (its nodes the first of this grid's,
+        zero beyond): the interpolation is second order in the spacing, so a third of the change of the
+        loads between the two grids (through the same matrices; diffuse exchange left out) is added to each
+        band's error as the grid's.
+
+    Returns
+    -------
+    list of BandLoad
+        One per source, in order; ``rays`` 0.
+
+    Examples
+    --------
+    A uniform source all around a box-and-wing model, spread on the level-2 grid:
+
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.planet.visibility import visibility
+    >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.box_wing(), uniform=grey, threads=1).craft
+    >>> seen = visibility(craft, 2, sw.ShadowSampling(), sw.ReflectionSettings("none"))
+    >>> weights = np.full(len(seen.grid.nodes), 1.0)
+    >>> cos = np.maximum(craft.side_normals @ seen.grid.nodes.T, 0.0)  # (n_sides, n)
+    >>> i0 = cos @ weights
+    >>> integrals = (i0, (cos * weights) @ seen.grid.nodes, (cos**2) @ weights)
+    >>> glow = Source("infrared", integrals, weights, craft.side_optics, beams=False, exchange=None)
+    >>> (load,) = grid_band_loads(craft, [glow], seen, np.zeros(3), estimates=True)
+    >>> bool(load.power.incident_W < float((craft.side_areas * i0).sum()))  # the bus shades the wings
+    True
+    """
+    nodes = seen.grid.nodes
+    weights = np.column_stack([source.weights for source in sources])  # (n, b)
+    if coarser is not None:  # the same matrices serve the grid's error
+        weights = np.concatenate([weights, weights - coarser], axis=1)
+    n, b = weights.shape
+    columns = np.concatenate([weights, (weights[:, :, None] * nodes[:, None, :]).reshape(n, 3 * b)], axis=1)
+    lost, lost2 = seen.shadow @ columns, seen.shadow2 @ weights
+
+    def losses(k: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        return lost[:, k], lost[:, b + 3 * k : b + 3 * k + 3], lost2[:, k]
+
+    reach = float(np.linalg.norm(reference_m))
+    out = []
+    for k, source in enumerate(sources):
+        band = 1 if source.name == "infrared" else 0
+        w = weights[:, k]
+        error = None
+        if estimates and seen.error_force_N is not None:
+            force_error = float(w @ seen.error_force_N[band])
+            error = LoadsError(force_error, float(w @ seen.error_torque_Nm[band]) + reach * force_error)
+            if coarser is not None:
+                j = len(sources) + k
+                change = _grid_change(craft, source, seen, losses(j), weights[:, j], reference_m)
+                error = summed([error, LoadsError(change.force_N / 3.0, change.torque_Nm / 3.0)])
+        sums = _Running(craft.n_sides, error)
+        sums.lost_i0, sums.lost_i1, sums.lost_i2 = losses(k)
+        sums.shift_torque = w @ seen.shift_torque_Nm[band]
+        if source.beams and seen.chains is not None:
+            sums.chains.append(_node_chains(seen, w, reference_m))
+        out.append(_finish(craft, source, sums, reference_m))
+    return out
+
+
+def _grid_change(
+    craft: Spacecraft,
+    source: Source,
+    seen: Visibility,
+    lost: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+    difference: NDArray[np.float64],
+    reference_m: NDArray[np.float64],
+) -> LoadsError:
+    """The size of the load node irradiances ``difference`` make (their losses ``lost`` = ``dI_0, dI_1,
+    dI_2``): the shadow losses, the lit-centroid torque and the beam chains (diffuse exchange left out)."""
+    side_force = -open_force(craft.side_normals, craft.side_areas, source.optics, *lost)
+    force = side_force.sum(axis=0)
+    band = 1 if source.name == "infrared" else 0
+    lever = craft.side_centroids - reference_m
+    torque = np.cross(lever, side_force).sum(axis=0) + difference @ seen.shift_torque_Nm[band]
+    if source.beams and seen.chains is not None:
+        chains = _node_chains(seen, difference, reference_m)
+        force, torque = force + chains.force_N, torque + chains.torque_Nm
+    return LoadsError(float(np.linalg.norm(force)), float(np.linalg.norm(torque)))
+
+
+def _node_chains(
+    seen: Visibility, weights: NDArray[np.float64], reference_m: NDArray[np.float64]
+) -> BeamChainTotals:
+    """The nodes' beam chains at irradiances ``weights``, torques about ``reference_m``."""
+    chains = seen.chains
+    force, open_force = weights @ chains.force_N, weights @ chains.open_sky_force_N
+    live = weights > 0
+    return BeamChainTotals(
+        force_N=force,
+        torque_Nm=weights @ chains.torque_Nm - np.cross(reference_m, force),
+        diffuse_source_W=chains.diffuse_source_W @ weights,
+        arrived_W=chains.arrived_W @ weights,
+        open_sky_force_N=open_force,
+        open_sky_torque_Nm=weights @ chains.open_sky_torque_Nm - np.cross(reference_m, open_force),
+        escaped_W=float(weights @ chains.escaped_W),
+        absorbed_W=float(weights @ chains.absorbed_W),
+        truncated_W=float(weights @ chains.truncated_W),
+        first_W=float(weights @ chains.first_W),
+        rays=0,
+        depth=int(chains.depth[live].max(initial=0)),
+    )
 
 
 def _shadow(
@@ -312,53 +620,9 @@ def _shadow(
     np.add.at(sums.lost_i0, sides, lost)
     np.add.at(sums.lost_i1, sides, lost[:, None] * direction)
     np.add.at(sums.lost_i2, sides, lost * cos)
-    lit_force = _law(normals, craft.side_areas[sides], optics[sides], weight * cos * share, direction, cos)
+    lit_force = law(normals, craft.side_areas[sides], optics[sides], weight * cos * share, direction, cos)
     offset = lit_centroid[sides] - craft.side_centroids[sides]
     sums.shift_torque += np.cross(offset, lit_force).sum(axis=0)
-
-
-def _cell_error(
-    craft: Spacecraft,
-    optics: NDArray[np.float64],
-    cell: tuple[NDArray[np.float64], float],
-    check: ShadowCheck,
-    reference_m: NDArray[np.float64],
-) -> LoadsError:
-    """The error a cell's shadow pass leaves in a source's force and torque: what its ``check`` found,
-    with the force of the cell (``cell`` = its direction and irradiance [W/m^2]) on one unit of each
-    side's lit area as the load."""
-    direction, weight = cell
-    cos = np.maximum(craft.side_normals @ direction, 0.0)
-    load = _law(craft.side_normals, np.ones(craft.n_sides), optics, weight * cos, direction, cos)
-    return check.loads_error(craft, load, reference_m)
-
-
-def _law(
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    optics: NDArray[np.float64],
-    i0: NDArray[np.float64],
-    direction: NDArray[np.float64],
-    cos: NDArray[np.float64],
-) -> NDArray[np.float64]:
-    """Eq. (4) for a parallel beam of irradiance ``i0 / cos`` on each side (``i0`` on its plane) [N]."""
-    return _open_force(normals, areas, optics, i0, i0[:, None] * direction, i0 * cos)
-
-
-def _open_force(
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    optics: NDArray[np.float64],
-    i0: NDArray[np.float64],
-    i1: NDArray[np.float64],
-    i2: NDArray[np.float64],
-) -> NDArray[np.float64]:
-    """``F = -(A / c) [(1 - sigma - rho_s) I_1 + (2 rho_s I_2 + (2/3) rho_d I_0) n]`` per side [N]."""
-    rho, beta, sigma = optics.T
-    rho_s, rho_d = rho * beta, rho * (1 - beta)
-    along = (1.0 - sigma - rho_s)[:, None] * i1
-    normal = 2.0 * rho_s * i2 + LAMBERT_FACTOR * rho_d * i0
-    return -(areas / SPEED_OF_LIGHT)[:, None] * (along + normal[:, None] * normals)
 
 
 def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDArray[np.float64]) -> BandLoad:
@@ -369,7 +633,7 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
     dark = i0 <= 0.0
     i0, i1, i2 = np.where(dark, 0.0, i0), np.where(dark[:, None], 0.0, i1), np.where(dark, 0.0, i2)
     areas, optics = craft.side_areas, source.optics
-    side_force = _open_force(craft.side_normals, areas, optics, i0, i1, i2)
+    side_force = open_force(craft.side_normals, areas, optics, i0, i1, i2)
     force = side_force.sum(axis=0)
     torque = np.cross(craft.side_centroids - reference_m, side_force).sum(axis=0) + sums.shift_torque
     rho, beta, sigma = optics.T
@@ -380,7 +644,6 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
     diffuse = rho * (1 - beta) * incident
     total_in, total_absorbed = float(incident.sum()), float(absorbed.sum())
     zero = np.zeros(3)
-    reflected_side = np.zeros(craft.n_sides)
     if not source.beams and source.exchange is None:
         power = PowerBalance(total_in, total_absorbed, total_in - total_absorbed)
         return BandLoad(
@@ -394,10 +657,9 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
             power=power,
             incident_side_W=incident,
             absorbed_side_W=absorbed,
-            reflected_side_W=reflected_side,
-            lost_W=0.0,
             rays=0,
             shadow_error=sums.shadow_error,
+            reflections=ReflectedPower(1.0 - rho - sigma, np.zeros(craft.n_sides), 0.0),
         )
     chains = _sum_chains(sums.chains, craft.n_sides)
     r_force, r_torque = chains.force_N.copy(), chains.torque_Nm.copy()
@@ -406,8 +668,6 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
     first = float(((rho * beta + np.where(closed, 0.0, sigma)) * incident).sum())
     escaped = passed + chains.escaped_W + first - chains.first_W
     total_absorbed += chains.absorbed_W
-    arrived = chains.arrived_W.copy()
-    lost = chains.truncated_W
     if source.exchange is None:
         r_force += chains.open_sky_force_N
         r_torque += chains.open_sky_torque_Nm
@@ -422,12 +682,10 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
         r_torque += from_direct.torque_Nm + from_beams.torque_Nm
         escaped += from_direct.escaped_W + from_beams.escaped_W
         total_absorbed += from_direct.absorbed_W + from_beams.absorbed_W
-        emitted = exchange.solve(diffuse + chains.diffuse_source_W)
-        arrived += exchange.factors.matrix.T @ emitted
-        factors = exchange.factors
-        lost += float(emitted @ (factors.blind_fraction + factors.truncated_fraction))
-    reflected_side = (1.0 - rho - sigma) * arrived
-    lost += chains.absorbed_W - float(((1.0 - rho - sigma) * chains.arrived_W).sum())
+    absorptance = 1.0 - rho - sigma
+    lost = chains.truncated_W + chains.absorbed_W - float((absorptance * chains.arrived_W).sum())
+    sent = None if source.exchange is None else diffuse + chains.diffuse_source_W
+    reflections = ReflectedPower(absorptance, chains.arrived_W, lost, source.exchange, sent)
     power = PowerBalance(total_in, total_absorbed, float(escaped), chains.truncated_W)
     return BandLoad(
         name=source.name,
@@ -440,10 +698,9 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
         power=power,
         incident_side_W=incident,
         absorbed_side_W=absorbed,
-        reflected_side_W=reflected_side,
-        lost_W=lost,
         rays=chains.rays,
         shadow_error=sums.shadow_error,
+        reflections=reflections,
     )
 
 

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.earth import (
     DEFAULT_CELL_DEG,
+    METHODS,
     Place,
     check_altitude,
     check_cell_size,
@@ -43,6 +44,7 @@ from sunwind.forces.tables.jobs import (
 )
 from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.directions import unit_vector
+from sunwind.geometry.errors import InputError
 from sunwind.geometry.spacecraft import infrared_optics
 
 #: The eclipse model of the Sun's share behind the Earth.
@@ -73,7 +75,10 @@ class EarthSetup(_Setup):
     infrared_W_m2 : float, optional
         Uniform infrared exitance at the surface [W/m^2] instead of ``(1 - A) S / 4``.
     cell_deg : float
-        Cell size of the Earth's disc for shadowing and reflections [deg], in (0, 90].
+        Resolution of the shadowing [deg], in (0, 90] (:func:`~sunwind.forces.earth.planet_radiation`).
+    cap_method : {"visibility", "cells"}
+        How the shadowed cap is integrated: the model's directional visibility, built once per pose, or a
+        shadow pass per cell of every entry.
     thermal : bool
         Each side's radiative-equilibrium temperature and the recoil of its infrared, added to the
         total and recorded apart (``thermal_force_N``, ``thermal_torque_Nm``).
@@ -108,6 +113,7 @@ class EarthSetup(_Setup):
     albedo: float | None = None
     infrared_W_m2: float | None = None
     cell_deg: float = DEFAULT_CELL_DEG
+    cap_method: str = field(default="visibility", kw_only=True)
     thermal: bool = False
 
     def __post_init__(self) -> None:
@@ -118,6 +124,11 @@ class EarthSetup(_Setup):
         solar_flux(self.flux_W_m2)
         self.light()  # the albedo and infrared checked
         check_cell_size(self.cell_deg)
+        if self.cap_method not in METHODS:
+            raise InputError(
+                f"cap_method {self.cap_method!r} is not one of {', '.join(METHODS)}",
+                parameters=("cap_method",),
+            )
 
     @property
     def fields(self) -> dict[str, int]:
@@ -165,7 +176,9 @@ class EarthSetup(_Setup):
         for i, u in enumerate(directions):
             fraction = self.solar_fraction(u)
             place = Place(u, self.altitude_km, sun, None, fraction)
-            result = planet_radiation(model, place, light, cell_deg=self.cell_deg, **options)
+            result = planet_radiation(
+                model, place, light, cell_deg=self.cell_deg, method=self.cap_method, **options
+            )
             force, torque = result.force_N, result.torque_Nm
             if self.thermal:
                 state = result.equilibrium(options["reflections"])
@@ -202,6 +215,7 @@ class EarthSetup(_Setup):
             "earth_albedo": albedo,
             "earth_infrared_W_m2": light.infrared.uniform_W_m2,
             "earth_cell_deg": self.cell_deg,
+            "earth_cap_method": self.cap_method,
             "earth_eclipse": ECLIPSE,
             "earth_thermal": self.thermal,
             "earth_reflections": reflection_plan(posed.craft, self.settings).mode,

@@ -373,7 +373,13 @@ def hinge_dimension(glob: str) -> str:
     return f"hinge_deg[{glob}]"
 
 
-def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]:
+def run_jobs(
+    model: Model,
+    jobs: list[Job],
+    run: SweepRun,
+    *,
+    finish: Callable[[dict[str, Records]], dict[str, Records]] | None = None,
+) -> dict[str, Records]:
     """Evaluate every job in chunks, here or on Dask.
 
     Each setup's precomputes are made once, then the chunks the checkpoint does not hold are computed.
@@ -386,11 +392,15 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
         Each a :class:`~sunwind.forces.tables.jobs.Tabulation` over its inputs; kinds distinct.
     run : SweepRun
         Chunks, checkpoint, resume, Dask, threads and progress.
+    finish : callable, optional
+        A pass over the finished records (e.g. the orbit's thermal transient), run before the
+        checkpoint is removed: stopped or failed, it leaves the checkpoint for a resume, which
+        computes no chunk again. Its result is returned.
 
     Returns
     -------
     dict of str to Records
-        Records per kind, rows in the order of the job's inputs.
+        Records per kind, rows in the order of the job's inputs (``finish``'s, with it).
 
     Raises
     ------
@@ -433,6 +443,8 @@ def run_jobs(model: Model, jobs: list[Job], run: SweepRun) -> dict[str, Records]
             run.progress(done)
         if pending:
             _evaluate(model, pending, run, finished)
+        if finish is not None:
+            records = finish(records)
         if store is not None:
             store.remove()
     except BaseException:

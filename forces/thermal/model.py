@@ -5,17 +5,18 @@
 planet infrared, inter-reflected light: computed by the caller), the temperature ``T_k`` [K] of each node
 ``k`` (:mod:`sunwind.forces.thermal.nodes`) satisfies::
 
-    C_k dT_k/dt = sum_{i in k} (Q_i + eps_i G_i) + sum_{links k-l} h A (T_l - T_k)
+    C_k dT_k/dt = sum_{i in k} (Q_i + eps_i G_i) + sum_{links k-l} g_kl (T_l - T_k)
                   - sum_{i in k} eps_i A_i sigma_SB T_k^4
 
 with ``G`` the spacecraft's own infrared arriving at each side, its emission
 ``e_i = eps_i A_i sigma_SB T_i^4`` after all reflections (:mod:`sunwind.forces.thermal.balance`), and
-``C_k`` the node's heat capacity [J/K]. This is the dissertation's eq. (1.1),
-``d rho c dT/dt = A_S q + eps q_e - eps sigma T^4`` per unit area, summed over a node, with the
-infrared the spacecraft sends itself and the conduction of sheets added.
+``C_k`` the node's heat capacity [J/K], ``g_kl`` a link's conductance [W/K] (``h A`` of a sheet facet).
+This is the dissertation's eq. (1.1), ``d rho c dT/dt = A_S q + eps q_e - eps sigma T^4`` per unit area,
+summed over a node, with the infrared the spacecraft sends itself and the conduction of the links
+added.
 
-**Equilibrium** (``dT/dt = 0``; :meth:`ThermalModel.equilibrium`). Without conduction links (every
-``h`` infinite or 0) the balance is linear in ``X_k = sigma_SB T_k^4``::
+**Equilibrium** (``dT/dt = 0``; :meth:`ThermalModel.equilibrium`). Without conduction links (no sheet
+of finite ``h > 0``, no ``[[conductance]]``) the balance is linear in ``X_k = sigma_SB T_k^4``::
 
     (sum_{i in k} eps_i A_i) X_k - sum_{i in k} eps_i G_i(X) = sum_{i in k} Q_i
 
@@ -23,13 +24,42 @@ and is solved as one linear system with the infrared balance (its residual at ro
 is solved by Newton's method on ``T``, the infrared balance inside each step (the joined system of
 :func:`~sunwind.forces.thermal.balance.solve_joined`, the node Jacobian ``diag(4 sigma T^3 sum eps A)
 + L`` sparse), starting from the linear solution with every linked group of nodes at one temperature,
-until the node and infrared residuals sum to at most :data:`NEWTON_TOLERANCE` of the power through the
-model. A group of linked nodes none of whose sides emits (``eps = 0``) has no equilibrium: an error.
+until the node residuals beyond each node's rounding (:data:`ROUNDING` of its terms, the stored heat's
+``rate T`` and ``rate T_old`` among them) and the infrared residuals sum to at most
+:data:`NEWTON_TOLERANCE` of the power through the model, or the temperatures no longer move (without an
+exchange no infrared comes back, and a Newton step is the node system alone: dense up to
+:data:`DENSE_NODES` nodes). A step takes the slope ``4 sigma T^3`` at the node's temperature (at
+:data:`SLOPE_FLOOR_K` at least) and moves no temperature by more than a factor :data:`STEP_FACTOR`. A
+group of linked nodes none of whose sides emits (``eps = 0``) has no equilibrium: an error. A node
+without heat capacity that no power reaches (no external power, and no infrared or conduction from a
+node that has any, directly or through others: a facet facing the sky in eclipse) is at 0 K: set so,
+not approached by Newton's steps (which near 0 K only take off a quarter of the temperature each).
 
-**Transient** (:meth:`ThermalModel.step`). Backward Euler over ``dt``: ``C_k (T_k - T_k,old) / dt`` on
-the left, everything else at the new temperatures, solved by the same Newton iteration (from the old
-temperatures). Nodes without heat capacity (all but isothermal parts given ``heat_capacity_J_K``) are
-in equilibrium at every step. Unconditionally stable; first order in ``dt``.
+**Node-level exchange** (:attr:`ThermalModel.node_exchange`, :mod:`sunwind.forces.thermal.factors`).
+With an exchange and at most :data:`EXCHANGE_NODES` nodes the infrared exchange is reduced once per
+model to node-level factors (Gebhart's: a solve of the diffuse balance per node), and the linear
+solution and every Newton step are dense systems of the node temperatures alone, with no sweep over
+the sides: exact, since a node's sides share one temperature (its emission splits among them by
+``eps_i A_i``), and equal to the side-level solution to the solves' tolerance. Above
+:data:`EXCHANGE_NODES` the side-level joined systems above are solved. :meth:`ThermalModel.state_at`
+solves the side-level balance once in both (per-side infrared, recoil).
+
+**Transient.** Nodes without heat capacity (all but isothermal parts given ``heat_capacity_J_K``) are
+in equilibrium at every instant (with the others, a DAE of index 1). :meth:`ThermalModel.step` is one
+backward-Euler step over ``dt``: ``C_k (T_k - T_k,old) / dt`` on the left, everything else at the new
+temperatures, solved by the same Newton iteration (from the old temperatures); unconditionally stable,
+first order in ``dt``, no error control. :func:`sunwind.forces.thermal.transient.integrate` follows a
+series of times with Alexander's two-stage SDIRK (order 2, L-stable, stiffly accurate), each stage the
+same backward-Euler balance with ``rate = C / (gamma h)`` and a shifted ``old``; sub-steps halved by step
+doubling until the estimated local error is within a tolerance, the estimate carried along as a global
+error; the external power interpolated linearly between the times, sunlight optionally scaled by the
+share of the Sun in view at each stage's own time (eclipse edges resolved inside a step). Assumed:
+lumped nodes (a part is isothermal or each facet side its own node; no conduction but the links), the
+spacecraft's own infrared exchanged instantly. Details in that module.
+
+**Links** join two nodes by a conductance [W/K]: the front and back of a sheet facet of finite
+``conductance_W_m2K``, and two isothermal parts named by a materials file's ``[[conductance]]`` table
+(:mod:`sunwind.forces.thermal.nodes`); all enter the node Laplacian ``L``.
 
 **Recoil.** The emitted infrared pushes the spacecraft as diffuse light does: once all its reflections
 are done, the infrared that escapes carries away momentum ``W_i e_esc,i / c`` (the diffuse balance's
@@ -47,8 +77,13 @@ reaches sides the model does not have, or is dropped by a truncated exchange cha
 
 from __future__ import annotations
 
+import hashlib
+from functools import cached_property
+
 import numpy as np
 import scipy.sparse
+import scipy.sparse.csgraph
+import scipy.sparse.linalg
 from numpy.typing import NDArray
 
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
@@ -56,6 +91,7 @@ from sunwind.forces.reflection.diffuse import DiffuseExchange
 from sunwind.forces.reflection.settings import ReflectionSettings
 from sunwind.forces.reflection.views import model_view_factors
 from sunwind.forces.thermal.balance import STEFAN_BOLTZMANN, InfraredBalance, solve_joined
+from sunwind.forces.thermal.factors import NodeExchange, node_exchange, node_sums, solve_linear
 from sunwind.forces.thermal.nodes import ThermalNodes, thermal_nodes
 from sunwind.forces.thermal.state import ThermalState
 from sunwind.geometry.errors import InputError
@@ -63,10 +99,26 @@ from sunwind.geometry.spacecraft import Spacecraft, infrared_optics
 
 #: Newton ends when the node and infrared residuals sum to this share of the power through the model.
 NEWTON_TOLERANCE = 1e-13
+#: A node's residual within this many ulps of its terms is rounding (not counted against the tolerance).
+ROUNDING = 8 * np.finfo(float).eps
 #: Most Newton steps before the iteration is an error.
 NEWTON_STEPS = 100
 #: Below this temperature [K] Newton takes the slope ``4 sigma T^3`` at it (a node at 0 K has none).
-SLOPE_FLOOR_K = 1.0
+SLOPE_FLOOR_K = 1e-3
+#: A Newton step divides a node's temperature by at most this, and multiplies it (or 1 K) by at most
+#: this: from above the root, Newton on ``sigma T^4`` never passes it; from far below it would jump far
+#: above (and come back by a quarter a step).
+STEP_FACTOR = 10.0
+#: Up to this many nodes, a Newton step without an infrared exchange is solved as a dense system.
+DENSE_NODES = 64
+#: Up to this many nodes a model with an infrared exchange reduces it to node-level factors
+#: (:mod:`sunwind.forces.thermal.factors`). The rule: the reduction costs ``n_nodes`` solves of the
+#: diffuse balance once, swept together (about what a few side-level Newton steps cost, each a joined
+#: solve), and keeps ``8 n_nodes^2`` bytes (0.5 MB); a Newton step is then an LU of ``n_nodes^2``
+#: doubles (``n^3 / 3`` = 6 Mflop, about a millisecond, at 256) instead of sweeps over every side. A
+#: transient takes tens of Newton steps per output step, so past a few steps the reduction has paid
+#: for itself; beyond 256 nodes the dense LU would cost what the sweeps cost.
+EXCHANGE_NODES = 256
 
 
 def infrared_exchange(
@@ -131,6 +183,10 @@ class ThermalModel:
         None: every side's emission escapes (no reflections, or a convex body).
     rules : tuple of ThermalRule, optional
         Node rules (:func:`~sunwind.forces.thermal.nodes.thermal_nodes`); default ``craft.thermal``.
+    node_level : bool, optional
+        Whether the infrared exchange is reduced to node-level factors (:attr:`node_exchange`): default
+        when the model has at most :data:`EXCHANGE_NODES` nodes; True or False to choose (without an
+        exchange there is nothing to reduce: ignored).
 
     Attributes
     ----------
@@ -167,7 +223,12 @@ class ThermalModel:
     """
 
     def __init__(
-        self, craft: Spacecraft, exchange: DiffuseExchange | None = None, *, rules: tuple | None = None
+        self,
+        craft: Spacecraft,
+        exchange: DiffuseExchange | None = None,
+        *,
+        rules: tuple | None = None,
+        node_level: bool | None = None,
     ) -> None:
         emissivity = 1.0 - infrared_optics(craft)[:, 0]
         self.craft = craft
@@ -175,6 +236,55 @@ class ThermalModel:
         self.infrared = InfraredBalance(craft, emissivity, exchange)
         #: ``sum_{i in k} eps_i A_i`` of each node [m^2]
         self.node_emitting_area_m2 = self.nodes.sum_sides(self.infrared.emitting_area)
+        chosen = self.nodes.n_nodes <= EXCHANGE_NODES if node_level is None else bool(node_level)
+        self._node_level = exchange is not None and chosen
+        self._kept: dict[str, NodeExchange] = {}  # the node factors, once looked up
+
+    @property
+    def node_exchange(self) -> NodeExchange | None:
+        """The node-level exchange factors the model solves with, made on first use (None: the
+        side-level path, or no exchange).
+
+        Kept in the model's cache beside the infrared exchange they reduce (a solve of its balance per
+        node, :func:`~sunwind.forces.thermal.factors.node_exchange`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.reflection import ReflectionSettings
+        >>> from sunwind.geometry.materials import ThermalRule
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box_wing(facet_size=0.5), uniform=grey, two_sided=["wing*"]).craft
+        >>> exchange = infrared_exchange(craft, ReflectionSettings("full", rays_per_side=64, cache_dir=False))
+        >>> parts = (ThermalRule("*", isothermal=True),)
+        >>> ThermalModel(craft, exchange, rules=parts).node_exchange.gebhart.shape  # three part nodes
+        (3, 3)
+        >>> ThermalModel(craft, exchange, rules=parts, node_level=False).node_exchange is None
+        True
+        """
+        if not self._node_level:
+            return None
+        if "factors" not in self._kept:  # looked up (or made) once, then held here too
+            named = self._exchange_key()
+            nodes = self.nodes
+            build = lambda: node_exchange(self.infrared, nodes.side_node, nodes.n_nodes)  # noqa: E731
+            if named is None:  # an exchange made apart: kept with this model alone
+                self._kept["factors"] = build()
+            else:
+                digest = hashlib.sha256(nodes.side_node.tobytes()).hexdigest()[:16]
+                key = ("thermal node exchange", *named[1:], digest)
+                self._kept["factors"] = self.craft.cache.get(key, build)
+        return self._kept["factors"]
+
+    def _exchange_key(self) -> tuple | None:
+        """The key the model's cache keeps its infrared exchange under (None: not there)."""
+        cache, exchange = self.craft.cache, self.infrared.exchange
+        for key in cache:
+            if isinstance(key, tuple) and key[:1] == ("infrared exchange",):
+                if cache.get(key, lambda: None) is exchange:
+                    return key
+        return None
 
     @property
     def exchange(self) -> DiffuseExchange | None:
@@ -387,24 +497,112 @@ class ThermalModel:
 
     # --- solving -------------------------------------------------------------------------------------
     def _temperatures(
-        self, absorbed: NDArray[np.float64], rate: NDArray[np.float64], old: NDArray[np.float64] | None
+        self,
+        absorbed: NDArray[np.float64],
+        rate: NDArray[np.float64],
+        old: NDArray[np.float64] | None,
+        guess: NDArray[np.float64] | None = None,
     ) -> NDArray[np.float64]:
         """Node temperatures [K] balancing ``absorbed`` [W] per side, with ``rate = C / dt`` [W/K] per
-        node pulling toward ``old`` [K] (None: equilibrium, ``rate`` 0)."""
-        nodes = self.nodes
+        node pulling toward ``old`` [K] (None: equilibrium, ``rate`` 0); Newton starts from ``guess``
+        (default ``old``). Nodes no power reaches are set to 0 K."""
+        nodes, factors = self.nodes, self.node_exchange
+        node_absorbed = nodes.sum_sides(absorbed)
+        dead = self._unreached(node_absorbed, rate)
         if len(nodes.links) == 0 and not np.any(rate):
-            return self._linear(nodes.side_node, absorbed)
-        if old is None:
-            guess = self._grouped_guess(absorbed)
+            if factors is None:
+                return self._linear(np.arange(nodes.n_nodes), absorbed)
+            if np.all(dead):
+                return np.zeros(nodes.n_nodes)
+            live = np.where(dead, -1, np.cumsum(~dead) - 1)  # dead nodes left out, at 0 K
+            return np.where(dead, 0.0, self._linear(live, absorbed)[np.maximum(live, 0)])
+        start = old if guess is None else guess
+        if start is None:
+            start = self._grouped_guess(absorbed)
         else:
-            guess = old.copy()
-            cold = guess <= 0
+            start = start.copy()
+            cold = (start <= 0) & ~dead
             if np.any(cold):
-                guess[cold] = self._grouped_guess(absorbed)[cold]
-        return self._newton(absorbed, rate, np.zeros(nodes.n_nodes) if old is None else old, guess)
+                start[cold] = self._grouped_guess(absorbed)[cold]
+        start[dead] = 0.0
+        old = np.zeros(nodes.n_nodes) if old is None else old
+        if factors is not None:
+            return self._node_newton(factors, node_absorbed, rate, old, (start, ~dead))
+        return self._newton(absorbed, rate, old, start)
 
-    def _linear(self, side_node: NDArray[np.int64], absorbed: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Equilibrium temperatures [K] of nodes ``side_node`` without links: linear in ``sigma T^4``."""
+    def _sensitivity(
+        self, temperature: NDArray[np.float64], rate: NDArray[np.float64], change: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
+        """How the solution of a step moves, to first order, when its ``old`` temperatures move by
+        ``change`` [K]: ``J^-1 (rate * change)`` with ``J`` Newton's Jacobian at ``temperature`` [K]."""
+        nodes = self.nodes
+        if not np.any(rate):
+            return np.zeros(nodes.n_nodes)
+        slope = 4.0 * STEFAN_BOLTZMANN * np.maximum(temperature, SLOPE_FLOOR_K) ** 3
+        factors = self.node_exchange
+        if factors is not None:  # nodes at 0 K without heat capacity (none reaches them) stay there
+            index = np.flatnonzero((temperature > 0) | (rate > 0))
+            pick = np.ix_(index, index)
+            jacobian = factors.net_m2[pick] * slope[index] + self._dense_laplacian[pick]
+            moved = np.zeros(nodes.n_nodes)
+            moved[index] = np.linalg.solve(jacobian + np.diag(rate[index]), (rate * change)[index])
+            return moved
+        _, moved = self._solve_linearised(slope, rate, rate * change, np.zeros(self.craft.n_sides))
+        return moved
+
+    def _solve_linearised(
+        self,
+        slope: NDArray[np.float64],
+        rate: NDArray[np.float64],
+        node_rhs: NDArray[np.float64],
+        side_source: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """:func:`solve_joined` with ``H = diag(eps A slope + rate) + L`` and ``b = slope`` (a Newton step).
+        Without an exchange no infrared comes back: the node system alone, ``H`` built on a kept pattern."""
+        nodes, infrared = self.nodes, self.infrared
+        diagonal = self.node_emitting_area_m2 * slope + rate
+        if infrared.arriving is not None:
+            jacobian = scipy.sparse.diags(diagonal) + nodes.laplacian
+            return solve_joined(infrared, nodes.side_node, jacobian, slope, node_rhs, side_source)
+        if len(nodes.links) == 0:
+            change = node_rhs / diagonal
+        elif nodes.n_nodes <= DENSE_NODES:
+            change = np.linalg.solve(self._dense_laplacian + np.diag(diagonal), node_rhs)
+        else:
+            indices, indptr, conduction, on_diagonal = self._conduction_pattern
+            data = conduction.copy()
+            data[on_diagonal] += diagonal
+            matrix = scipy.sparse.csc_matrix((data, indices, indptr), shape=(nodes.n_nodes,) * 2)
+            change = scipy.sparse.linalg.spsolve(matrix, node_rhs)
+        side = nodes.side_node
+        return side_source + infrared.emitting_area * slope[side] * change[side], change
+
+    @cached_property
+    def _dense_laplacian(self) -> NDArray[np.float64]:
+        """``L`` as a dense array (for models of at most :data:`DENSE_NODES` nodes, or
+        :data:`EXCHANGE_NODES` with node factors)."""
+        return self.nodes.laplacian.toarray()
+
+    @cached_property
+    def _conduction_pattern(self) -> tuple[NDArray, NDArray, NDArray[np.float64], NDArray[np.int64]]:
+        """``L`` in CSC form with every diagonal entry stored: indices, pointers, values, and where the
+        diagonal entries are among the values."""
+        n = self.nodes.n_nodes
+        pattern = (self.nodes.laplacian + scipy.sparse.identity(n)).tocsc()
+        pattern.sort_indices()
+        columns = np.repeat(np.arange(n), np.diff(pattern.indptr))
+        on_diagonal = np.flatnonzero(pattern.indices == columns)
+        conduction = np.asarray(self.nodes.laplacian.tocsr()[pattern.indices, columns]).reshape(-1)
+        return pattern.indices, pattern.indptr, conduction, on_diagonal
+
+    def _linear(self, groups: NDArray[np.int64], absorbed: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Equilibrium temperatures [K] of groups of nodes (``groups``: each node's, -1 for one left
+        out at 0 K) each at one temperature, without links: linear in ``sigma T^4``."""
+        factors = self.node_exchange
+        if factors is not None:
+            x = solve_linear(factors, groups, self.nodes.sum_sides(absorbed))
+            return (np.maximum(x, 0.0) / STEFAN_BOLTZMANN) ** 0.25
+        side_node = groups[self.nodes.side_node]
         n = int(side_node.max()) + 1
         area = np.bincount(side_node, weights=self.infrared.emitting_area, minlength=n)
         area = np.where(area > 0, area, 1.0)  # a node that cannot emit (only as a first guess)
@@ -421,7 +619,7 @@ class ThermalModel:
     def _grouped_guess(self, absorbed: NDArray[np.float64]) -> NDArray[np.float64]:
         """Equilibrium temperatures [K] with every group of linked nodes at one temperature."""
         groups = self.nodes.components
-        return self._linear(groups[self.nodes.side_node], absorbed)[groups]
+        return self._linear(groups, absorbed)[groups]
 
     def _newton(
         self,
@@ -445,20 +643,115 @@ class ThermalModel:
             node_residual = (
                 node_absorbed + nodes.sum_sides(eps * arriving) - laplacian @ temperature - area * x - stored
             )
-            through = absorbed.sum() + area @ x + np.abs(stored).sum()
-            if np.abs(node_residual).sum() + np.abs(infrared_residual).sum() <= NEWTON_TOLERANCE * through:
+            flows = (node_absorbed, area * x, stored, rate * (temperature + old))
+            if self._converged(node_residual, np.abs(infrared_residual).sum(), flows, temperature):
                 return temperature
             slope = 4.0 * STEFAN_BOLTZMANN * np.maximum(temperature, SLOPE_FLOOR_K) ** 3
-            jacobian = scipy.sparse.diags(area * slope + rate) + laplacian
-            d_leaving, d_temperature = solve_joined(
-                infrared, nodes.side_node, jacobian, slope, node_residual, -infrared_residual
-            )
-            updated = np.maximum(temperature + d_temperature, 0.1 * temperature)  # stays positive
+            d_leaving, d_temperature = self._solve_linearised(slope, rate, node_residual, -infrared_residual)
+            updated = _bounded(temperature, d_temperature)
             leaving = leaving + d_leaving
             if np.all(np.abs(updated - temperature) <= 4 * np.finfo(float).eps * temperature):
                 return updated  # settled to round-off
             temperature = updated
-        raise InputError(
+        raise self._unconverged()
+
+    def _node_newton(
+        self,
+        factors: NodeExchange,
+        node_absorbed: NDArray[np.float64],
+        rate: NDArray[np.float64],
+        old: NDArray[np.float64],
+        start: tuple[NDArray[np.float64], NDArray[np.bool_]],
+    ) -> NDArray[np.float64]:
+        """Newton's method on the node temperatures alone, the infrared by the node factors: ``start``
+        is the first guess [K] and the nodes solved for (the others stay as guessed, at 0 K)."""
+        guess, live = start
+        index = np.flatnonzero(live)
+        pick = np.ix_(index, index)
+        net, conduction = factors.net_m2[pick], self._dense_laplacian[pick]
+        area = factors.emitting_m2[index]
+        q, r, before = node_absorbed[index], rate[index], old[index]
+        temperature = guess[index].copy()
+        for _ in range(NEWTON_STEPS):
+            x = STEFAN_BOLTZMANN * temperature**4
+            stored = r * (temperature - before)
+            residual = q - net @ x - conduction @ temperature - stored
+            flows = (q, area * x, stored, r * (temperature + before))
+            if self._converged(residual, 0.0, flows, temperature, index):
+                break
+            slope = 4.0 * STEFAN_BOLTZMANN * np.maximum(temperature, SLOPE_FLOOR_K) ** 3
+            change = np.linalg.solve(net * slope + conduction + np.diag(r), residual)
+            updated = _bounded(temperature, change)
+            settled = np.all(np.abs(updated - temperature) <= 4 * np.finfo(float).eps * temperature)
+            temperature = updated
+            if settled:
+                break
+        else:
+            raise self._unconverged()
+        result = guess.copy()
+        result[index] = temperature
+        return result
+
+    def _converged(
+        self,
+        residual: NDArray[np.float64],
+        infrared_W: float,
+        flows: tuple[NDArray[np.float64], ...],
+        temperature: NDArray[np.float64],
+        index: NDArray[np.int64] | slice = slice(None),
+    ) -> bool:
+        """Whether Newton is done: the node residuals ``residual`` [W] of the nodes ``index`` beyond their
+        rounding, and the infrared residuals ``infrared_W`` [W], sum to at most :data:`NEWTON_TOLERANCE`
+        of the power through them. ``flows``: each node's absorbed, emitted and stored power and its
+        stored heat's terms ``rate (T + T_old)`` [W]; a node's rounding is a few ulps of its terms, the
+        stored heat's included (``rate T - rate T_old`` is rounded at the size of either)."""
+        absorbed, emitted, stored, storing = flows
+        conducted = self._conduction_weights[index] * temperature
+        terms = np.abs(absorbed) + emitted + conducted + storing
+        beyond = np.maximum(np.abs(residual) - ROUNDING * terms, 0.0).sum()
+        through = np.abs(absorbed).sum() + emitted.sum() + np.abs(stored).sum()
+        return bool(beyond + infrared_W <= NEWTON_TOLERANCE * through)
+
+    @cached_property
+    def _conduction_weights(self) -> NDArray[np.float64]:
+        """``sum_j |L_kj|`` of each node ``k`` [W/K]: times ``T_k``, about the size of its conduction
+        terms."""
+        return np.asarray(abs(self.nodes.laplacian).sum(axis=1)).reshape(-1)
+
+    def _unreached(self, node_absorbed: NDArray[np.float64], rate: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Nodes no power reaches, at 0 K (n_nodes,) bool: without heat capacity or external power, and
+        no node that has either sends them infrared or conduction, directly or through others."""
+        quiet = (rate == 0) & (node_absorbed == 0)
+        n, sends = len(quiet), self._sends
+        if not np.any(quiet) or sends.nnz == 0:
+            return quiet
+        sources = np.flatnonzero(~quiet)
+        start = scipy.sparse.csr_matrix(
+            (np.ones(len(sources)), (np.full(len(sources), n), sources)), shape=(n + 1, n + 1)
+        )
+        graph = scipy.sparse.block_diag((sends, scipy.sparse.csr_matrix((1, 1))), format="csr") + start
+        reached = scipy.sparse.csgraph.breadth_first_order(graph, n, directed=True, return_predecessors=False)
+        quiet[reached[reached < n]] = False
+        return quiet
+
+    @cached_property
+    def _sends(self) -> scipy.sparse.csr_matrix:
+        """Which node can send heat to which, (n_nodes, n_nodes) sparse, ``[k, l]`` nonzero when ``k``
+        sends to ``l``: a link either way, or infrared (node factors, else any view factor between
+        their sides, which over-counts: nodes are only taken as unreached when they are)."""
+        nodes, n = self.nodes, self.nodes.n_nodes
+        sends = (nodes.laplacian != 0).astype(np.float64)  # the links, both ways (and the diagonal)
+        if self.infrared.exchange is None:
+            return sends
+        factors = self.node_exchange
+        if factors is not None:
+            return (sends + scipy.sparse.csr_matrix(factors.absorbed_m2.T != 0)).tocsr()
+        to_nodes = node_sums(nodes.side_node, n)
+        seen = abs(self.infrared.exchange.factors.matrix)
+        return (sends + to_nodes @ seen @ to_nodes.T).tocsr()
+
+    def _unconverged(self) -> InputError:
+        return InputError(
             f"the node temperatures did not converge in {NEWTON_STEPS} Newton steps",
             path=self.craft.source,
             hint="check the conductances and heat capacities of the [thermal] rules for extreme values",
@@ -501,6 +794,13 @@ class ThermalModel:
                 parameters=("node_temperature_K",),
             )
         return t
+
+
+def _bounded(temperature: NDArray[np.float64], change: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``temperature + change`` [K] kept within :data:`STEP_FACTOR` of ``temperature`` (of 1 K when
+    rising): positive, and no jump from a cold guess far above the root."""
+    ceiling = STEP_FACTOR * np.maximum(temperature, 1.0)
+    return np.clip(temperature + change, temperature / STEP_FACTOR, ceiling)
 
 
 def thermal_model(craft: Spacecraft, reflections: str | ReflectionSettings = "full") -> ThermalModel:

@@ -16,9 +16,14 @@ whose glob matches wins, as in ``[parts]``; a part no rule matches takes the def
   matched part** (a glob matching three parts makes three nodes); ``conductance_W_m2K`` is then moot;
 * ``heat_capacity_J_K`` [J/K] of an isothermal rule is the heat capacity of the parts it matches
   together, shared among their part nodes in proportion to part area (the lumped model of the
-  transient, :meth:`sunwind.forces.thermal.model.ThermalModel.step`). Every other node has none (0
-  here): it is taken in steady state at every step. A heat capacity on a rule that is not isothermal
-  is an error.
+  transient, :meth:`sunwind.forces.thermal.model.ThermalModel.step` and
+  :func:`sunwind.forces.thermal.transient.integrate`). Every other node has none (0 here): it is taken
+  in steady state at every instant. A heat capacity on a rule that is not isothermal is an error;
+* a ``[[conductance]]`` table (:class:`sunwind.geometry.materials.Conductance`) joins two parts by a
+  link of conductance ``G`` [W/K], carrying ``G (T_b - T_a)`` into part ``a``'s node. Each of its two
+  globs must match exactly one part, and both parts must be isothermal (one node each): else a
+  :class:`~sunwind.geometry.errors.MaterialError` naming the table and the fix. Links between the same
+  two nodes add up.
 
 Node names: ``"part"`` for a part node; ``"part/facet 12"`` for a facet's one side, or the two sides
 of a two-sided sheet facet taken as one node; ``"part/facet 12 front"`` and ``"part/facet 12 back"``
@@ -38,8 +43,8 @@ import scipy.sparse
 import scipy.sparse.csgraph
 from numpy.typing import NDArray
 
-from sunwind.geometry.errors import InputError
-from sunwind.geometry.materials import part_matches
+from sunwind.geometry.errors import InputError, MaterialError, combine
+from sunwind.geometry.materials import Conductance, part_matches
 from sunwind.geometry.sides import TWO_SIDED
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -57,9 +62,10 @@ class ThermalNodes:
     area_m2 : (n_nodes,) float64
         Area of each node's sides [m^2] (a sheet node of both sides counts the facet twice).
     links : (n_links, 2) int64
-        Node pairs ``(front, back)`` coupled through a two-sided sheet facet of finite conductance.
+        Node pairs joined by a conductance: ``(front, back)`` of each two-sided sheet facet of finite
+        conductance, then the part nodes of each ``[[conductance]]`` table, in order.
     link_conductance_W_K : (n_links,) float64
-        ``h A`` of each link [W/K].
+        Conductance of each link [W/K]: ``h A`` of a sheet facet, ``G`` of a table.
     heat_capacity_J_K : (n_nodes,) float64
         Heat capacity of each node [J/K]; 0 for a node held in steady state.
 
@@ -196,8 +202,9 @@ def thermal_nodes(craft: Spacecraft, rules: tuple | None = None) -> ThermalNodes
     ----------
     craft : Spacecraft
         The spacecraft.
-    rules : tuple of ThermalRule, optional
-        Rules in order (first match wins); default ``craft.thermal``.
+    rules : tuple of ThermalRule and Conductance, optional
+        Rules in order (the first :class:`ThermalRule` matching a part wins) and conductances between
+        parts; default ``craft.thermal``.
 
     Returns
     -------
@@ -210,6 +217,9 @@ def thermal_nodes(craft: Spacecraft, rules: tuple | None = None) -> ThermalNodes
     InputError
         A rule with ``heat_capacity_J_K`` that is not isothermal, a negative heat capacity or
         conductance.
+    MaterialError
+        A ``[[conductance]]`` whose globs do not match one part each, or joins a part that is not
+        isothermal.
 
     Examples
     --------
@@ -222,8 +232,22 @@ def thermal_nodes(craft: Spacecraft, rules: tuple | None = None) -> ThermalNodes
     >>> nodes = thermal_nodes(craft, (ThermalRule("box", isothermal=True, heat_capacity_J_K=900.0),))
     >>> nodes.names.tolist(), nodes.area_m2, nodes.heat_capacity_J_K
     (['box'], array([6.]), array([900.]))
+
+    Two isothermal parts joined by a conductance of 0.5 W/K:
+
+    >>> from dataclasses import replace
+    >>> from sunwind.geometry.materials import Conductance
+    >>> two = sw.meshes.box()
+    >>> two = replace(two, face_part=(two.vertices[two.faces].mean(axis=1)[:, 2] > 0).astype(np.int32),
+    ...               part_names=("bottom", "top"))
+    >>> craft = sw.load(two, uniform=grey, threads=1).craft
+    >>> nodes = thermal_nodes(craft, (ThermalRule("*", isothermal=True), Conductance(("top", "bottom"), 0.5)))
+    >>> nodes.names.tolist(), nodes.links.tolist(), nodes.link_conductance_W_K
+    (['bottom', 'top'], [[1, 0]], array([0.5]))
     """
-    rules = tuple(craft.thermal if rules is None else rules)
+    given = tuple(craft.thermal if rules is None else rules)
+    joins = tuple(rule for rule in given if isinstance(rule, Conductance))
+    rules = tuple(rule for rule in given if not isinstance(rule, Conductance))
     for rule in rules:
         _check_rule(rule, craft.source)
     n_parts = len(craft.part_names)
@@ -266,6 +290,14 @@ def thermal_nodes(craft: Spacecraft, rules: tuple | None = None) -> ThermalNodes
     back_of[facet[coupled & (sign < 0)]] = side_node[coupled & (sign < 0)]
     links = np.column_stack([side_node[front], back_of[facet[front]]]).reshape(-1, 2)
     link_g = conductance[part[front]] * craft.side_areas[front]
+    if joins:
+        part_node = np.full(n_parts, -1, dtype=np.int64)
+        part_node[part[whole]] = side_node[whole]
+        # the rules' file: the model's materials file when they are the model's own
+        path = craft.materials_source if given == tuple(craft.thermal) else None
+        joined = _joined_parts(craft, rules, joins, path)
+        links = np.concatenate([links, part_node[joined]])
+        link_g = np.concatenate([link_g, [join.conductance_W_K for join in joins]])
 
     # one representative side per node, for its name and heat capacity
     first = np.zeros(n_nodes, dtype=np.int64)
@@ -298,6 +330,27 @@ def _check_rule(rule, source: str) -> None:
             path=source,
             hint="give a finite number >= 0 [J/K]",
         )
+
+
+def _joined_parts(
+    craft: Spacecraft, rules: tuple, joins: tuple[Conductance, ...], path: str | None
+) -> NDArray[np.int64]:
+    """The two parts (n_joins, 2) each ``[[conductance]]`` joins, both isothermal under ``rules``; every
+    problem of every table at once."""
+    parts = list(craft.part_names)
+    problems = [error for join in joins for error in join.problems(parts, craft.source, path, rules)]
+    for join in joins:
+        if not (join.conductance_W_K > 0 and math.isfinite(join.conductance_W_K)):
+            problems.append(
+                MaterialError(
+                    f"{join.table}: conductance_W_K = {join.conductance_W_K} is not a conductance",
+                    path=path,
+                    hint="give a finite number above 0 [W/K]",
+                )
+            )
+    if problems:
+        raise combine(problems)
+    return np.array([[found[0] for found in join.matched(parts)] for join in joins], dtype=np.int64)
 
 
 def _names(

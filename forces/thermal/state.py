@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -80,6 +80,38 @@ class ThermalState:
     lost_W: float
     stored_W: float
     imbalance: float
+
+    def with_stored(self, stored_W: float) -> ThermalState:
+        """This state with the nodes taking up heat at ``stored_W``, its ``imbalance`` made anew.
+
+        Parameters
+        ----------
+        stored_W : float
+            Rate at which the nodes' heat capacities take up heat [W].
+
+        Returns
+        -------
+        ThermalState
+            A copy with ``stored_W`` and ``imbalance`` changed.
+
+        Examples
+        --------
+        A cube at 250 K in sunlight emits less than it absorbs; storing the difference balances it:
+
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.thermal import thermal_model
+        >>> grey = sw.Material("grey", reflectivity=0.3, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+        >>> sunlit = 0.7 * 1361.0 * 0.5 * np.maximum(craft.side_normals @ [0.0, 0.0, 1.0], 0.0)  # [W]
+        >>> state = thermal_model(craft, "none").state_at(np.full(12, 240.0), sunlit)
+        >>> balanced = state.with_stored(state.absorbed_W - state.escaped_W)
+        >>> round(balanced.stored_W, 1), abs(balanced.imbalance) < 1e-15
+        (49.7, True)
+        """
+        scale = max(self.absorbed_W, self.escaped_W + self.lost_W, np.finfo(float).tiny)
+        imbalance = (self.absorbed_W - self.escaped_W - self.lost_W - stored_W) / scale
+        return replace(self, stored_W=float(stored_W), imbalance=imbalance)
 
     def to_json(self) -> dict:
         """A plain-JSON summary; keys carry their units, node temperatures by node name.

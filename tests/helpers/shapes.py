@@ -69,3 +69,12 @@ def hinged_box_wing(folder: Path) -> tuple[Path, Path]:
     write_obj(box_wing(facet_size=0.25), folder / "craft.obj")
     (folder / "craft.toml").write_text(HINGED_MATERIALS)
     return folder / "craft.obj", folder / "craft.toml"
+
+
+def plate_over_plate():
+    """A 1 m plate facing the planet, a 0.4 m plate 0.3 m below it (toward the planet): two-sided."""
+    big = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0.0]])[::-1]
+    small = np.array([[-0.2, -0.2, -0.3], [0.2, -0.2, -0.3], [0.2, 0.2, -0.3], [-0.2, 0.2, -0.3]])
+    material = Material("grey", 0.0, 0.0, 0.0, emissivity=1.0)
+    mesh = MeshData.concatenate([quad_sheet(big, "big", 1), quad_sheet(small, "small", 1)])
+    return build_spacecraft(mesh, uniform=material, two_sided=["*"]), big, small

@@ -98,7 +98,9 @@ def test_a_slow_sweep_speed_is_said_once(run_cli, box, tmp_path):
 
 
 BENCH = {
-    "both benchmarks": (["bench", "--sweep", "--orbit"], "--sweep and --orbit are two benchmarks"),
+    "both benchmarks": (["bench", "--sweep", "--orbit"], "--sweep, --orbit and --earth are three benchmarks"),
+    "places without the earth": (["bench", "--places", "5"], "--places is the place count of --earth"),
+    "no places": (["bench", "--earth", "--places", "0"], "--places 0 must be from 1 to 1000"),
     "a hundred million attitudes": (["bench", "--attitudes", "100000000"], "must be from 1 to 10000"),
     "a sweep of a mesh it does not time": (["bench", "--sweep", "--mesh", "{d}/box.obj", "-m", "{d}/q.csv"],
                                            "--sweep times the generated sample"),

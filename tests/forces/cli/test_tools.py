@@ -127,3 +127,25 @@ def test_bench_orbit_times_every_case(run_cli):
     report = json.loads(out)
     assert set(report["ms_per_step"]) == {"LEO SRP + drag", "LEO SRP", "LEO drag", "GEO SRP"}
     assert all(ms > 0 for ms in report["ms_per_step"].values()) and report["steps"] == 40
+
+
+@pytest.mark.slow
+def test_bench_earth_reports_time_memory_and_error_against_the_cells(run_cli, tmp_path):
+    """``sunwind bench --earth`` on a small box-and-wing: the visibility's build and size, the time per
+    attitude against SRP, the error against the 2.5 deg cells (under 1e-3) and the estimate's ratio to it."""
+    from sunwind.geometry.io.obj import write_obj
+    from sunwind.meshes.primitives import box_wing
+
+    write_obj(box_wing(facet_size=0.5), tmp_path / "craft.obj")
+    white = "[materials.white]\nreflectivity = 0.6\nspecular_fraction = 0.5\nemissivity = 0.8\n"
+    parts = '[parts]\n"wing_*" = { front = "white", back = "white" }\nbus = "white"\n'
+    (tmp_path / "craft.toml").write_text(white + parts)
+    mesh, materials = str(tmp_path / "craft.obj"), str(tmp_path / "craft.toml")
+    code, out, err = run_cli("bench", "--earth", "--mesh", mesh, "-m", materials, "--places", "3", "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    assert report["grid_nodes"] == 642 and report["visibility_MB"] > 0 and report["build_s"] > 0
+    assert report["earth_ms"] > 0 and report["srp_ms"] > 0 and report["places"] == 3
+    assert report["error"]["force_worst"] < 1e-3 and report["torque_scaled_worst"] < 1e-2
+    low, high = report["estimate_over_error"]  # at errors of 1e-5 the passes' own estimate dominates
+    assert 0.5 < low <= high < 30

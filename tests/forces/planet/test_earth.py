@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from helpers import quad_sheet
-from helpers.shapes import open_box
+from helpers.shapes import open_box, plate_over_plate
 from sunwind.forces.earth import Place, planet_radiation
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap
@@ -115,7 +115,7 @@ def test_absorbing_sphere_against_its_closed_forms():
 def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
     """A 1 m plate facing the planet with a 0.4 m plate 0.3 m below it: the shadowed irradiance and force
     on the big plate against the ray brute force, falling with the cell size."""
-    craft, big, small = _plate_over_plate()
+    craft, big, small = plate_over_plate()
     body = ref.SphericalPlanet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
     sun = SUNS[1]
     result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cell_deg=step_deg)
@@ -128,20 +128,11 @@ def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
         assert abs(got - expected.irradiance_W_m2) <= tolerance * expected.irradiance_W_m2
 
 
-def _plate_over_plate():
-    """A 1 m plate facing the planet, a 0.4 m plate 0.3 m below it (toward the planet): two-sided."""
-    big = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0.0]])[::-1]
-    small = np.array([[-0.2, -0.2, -0.3], [0.2, -0.2, -0.3], [0.2, 0.2, -0.3], [-0.2, 0.2, -0.3]])
-    material = Material("grey", 0.0, 0.0, 0.0, emissivity=1.0)
-    mesh = MeshData.concatenate([quad_sheet(big, "big", 1), quad_sheet(small, "small", 1)])
-    return build_spacecraft(mesh, uniform=material, two_sided=["*"]), big, small
-
-
 def test_the_plate_mode_gives_every_side_the_closed_form_factors_of_a_plate_alone():
     """``reflections="plates"``: each side of the shadowing pair gets the dissertation's ``M phi_1``
     and, with the Sun overhead (where the closed form is exact), ``A S phi_2``, as if it were alone; no
     ray is cast. The default, which shadows, gives the big plate less."""
-    craft, _, _ = _plate_over_plate()
+    craft, _, _ = plate_over_plate()
     sun = SUNS[0]
     alone = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="plates")
     theta_0 = float(ref.theta_0_of(EARTH.radius_m, 500e3))
