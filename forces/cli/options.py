@@ -38,6 +38,7 @@ FLAGS = {
     "reference_area_m2": "--ref-area",
     "reference_length_m": "--ref-length",
     "samples": "--samples",
+    "method": "--cap-method",
     "tolerance": "--tolerance",
     "reflections": "--reflections",
     "cutoff": "--reflection-cutoff",

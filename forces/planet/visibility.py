@@ -411,7 +411,7 @@ def _check_memory(craft: Spacecraft, grid: DirectionGrid, beams: bool) -> None:
     require(
         facing * per_entry * 2,  # and the lists they are assembled from
         f"the directional visibility of {craft.n_sides} sides along {len(grid.nodes)} directions",
-        "give a larger cell_deg (a coarser grid), or method='cells' (a shadow pass per cell and step)",
+        "give a larger cell_deg (a coarser grid), or method cells (a shadow pass per cell at every call)",
         ("cell_deg", "method"),
     )
 
