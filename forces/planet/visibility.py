@@ -30,7 +30,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import time
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 import scipy.sparse
@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
 from sunwind.forces.planet.lit_law import cell_error, law
-from sunwind.forces.reflection import ReflectionSettings, follow_chains
+from sunwind.forces.reflection import BeamChainTotals, ReflectionSettings, follow_chains
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import require
 from sunwind.geometry.progress import advance, step
@@ -460,7 +460,7 @@ def _build(
         if beams:
             chains = follow_chains(craft, light, 1.0, origin, settings.cutoff, settings.depth, light.level)
             rays += chains.rays
-            chain_list.append(chains)
+            chain_list.append(_compact(chains))  # per-side arrays kept sparse from the start
         advance(j + 1, n)
     shape = (craft.n_sides, n)
     rows_all, cols_all = np.concatenate(rows), np.concatenate(cols)
@@ -473,17 +473,30 @@ def _build(
         shift_torque_Nm=shift,
         error_force_N=None if errors is None else errors[:, 0],
         error_torque_Nm=None if errors is None else errors[:, 1],
-        chains=_stacked(chain_list) if beams else None,
+        chains=_stacked(chain_list, craft.n_sides) if beams else None,
         rays=rays,
         seconds=time.perf_counter() - start,
     )
 
 
-def _stacked(chains: list) -> NodeChains:
-    """The chains of each node (unit irradiance) as arrays."""
+def _compact(chains: BeamChainTotals) -> BeamChainTotals:
+    """``chains`` with its per-side arrays as (indices, values) of their non-zero entries."""
+    sparse = {}
+    for name in _CHAIN_SPARSE:
+        values = getattr(chains, name)
+        kept = np.flatnonzero(values)
+        sparse[name] = (kept, values[kept])
+    return replace(chains, **sparse)
+
+
+def _stacked(chains: list[BeamChainTotals], n_sides: int) -> NodeChains:
+    """The chains of each node (unit irradiance, per-side arrays compacted) as arrays."""
 
     def sparse(name: str) -> scipy.sparse.csr_matrix:
-        return scipy.sparse.csc_matrix(np.column_stack([getattr(c, name) for c in chains])).tocsr()
+        parts = [getattr(c, name) for c in chains]
+        columns = np.concatenate([np.full(len(kept), j) for j, (kept, _) in enumerate(parts)])
+        rows, values = np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+        return scipy.sparse.csr_matrix((values, (rows, columns)), shape=(n_sides, len(chains)))
 
     def rows(name: str) -> NDArray[np.float64]:
         return np.array([getattr(c, name) for c in chains], dtype=np.float64)
