@@ -487,8 +487,8 @@ def planet_radiation(
             cells = [seen.grid.weights(points, v) for v in values]
             directions = seen.grid.nodes
         else:
-            cells = [cap.patches(cell_deg)[1] for cap in caps]  # one geometry: the same directions
-            directions = caps[0].patches(cell_deg)[0]
+            patches = [cap.patches(cell_deg) for cap in caps]  # one geometry: the same directions
+            directions, cells = patches[0][0], [weights for _, weights in patches]
         sources = [
             Source(
                 name=name,

@@ -22,7 +22,6 @@ forward.
 
 from __future__ import annotations
 
-import hashlib
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -31,7 +30,7 @@ from numpy.typing import NDArray
 
 from sunwind.forces.error_estimate import summed
 from sunwind.forces.planet.lit_law import cell_error, law, open_force
-from sunwind.forces.planet.visibility import Visibility
+from sunwind.forces.planet.visibility import BANDS, Visibility
 from sunwind.forces.reflection import BeamChainTotals, PowerBalance, ReflectionSettings, follow_chains
 from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseTotals
 from sunwind.geometry.rays.certificate import LoadsError
@@ -143,9 +142,9 @@ class ReflectedPower:
         """Power each group of sides absorbs after reflections [W], (count,), without the forward solve.
 
         The diffuse share is a linear functional of the sources: the sides of group ``g`` absorb
-        ``(M^-T E (a 1_g))^T S``, so the responses of the groups (``count`` adjoint solves, once per
-        exchange, grouping and absorptance: kept) make it a dot product. Once the balance has been solved
-        forward, its solution is summed instead.
+        ``(M^-T E (a 1_g))^T S``, so the exchange's responses of the groups
+        (:meth:`~sunwind.forces.reflection.diffuse.DiffuseExchange.group_absorption`) make it a dot
+        product. Once the balance has been solved forward, its solution is summed instead.
 
         Parameters
         ----------
@@ -183,28 +182,12 @@ class ReflectedPower:
             return np.bincount(
                 group, self.absorptance * (self.exchange.factors.matrix.T @ self.emitted_W), count
             )
-        return beams + _group_responses(self.exchange, self.absorptance, group, count).T @ self.source_W
+        return beams + self.exchange.group_absorption(self.absorptance, group, count).T @ self.source_W
 
     def _emitted(self) -> NDArray[np.float64]:
         if self.emitted_W is None:
             solve_reflected([self])
         return self.emitted_W
-
-
-def _group_responses(
-    exchange: DiffuseExchange, absorptance: NDArray[np.float64], group: NDArray[np.int64], count: int
-) -> NDArray[np.float64]:
-    """``M^-T E (a 1_g)`` for every group (n_sides, count), kept on the exchange per absorptance and
-    grouping."""
-    key = hashlib.sha256(
-        absorptance.tobytes() + np.ascontiguousarray(group, dtype=np.int64).tobytes()
-    ).hexdigest()
-    kept = exchange.__dict__.setdefault("_group_responses", {})
-    if key not in kept:
-        indicator = np.zeros((len(group), count))
-        indicator[np.arange(len(group)), group] = absorptance
-        kept[key] = np.ascontiguousarray(exchange.adjoint(exchange.factors.matrix @ indicator))
-    return kept[key]
 
 
 def solve_reflected(powers: Sequence[ReflectedPower]) -> None:
@@ -539,7 +522,7 @@ def grid_band_loads(
     reach = float(np.linalg.norm(reference_m))
     out = []
     for k, source in enumerate(sources):
-        band = 1 if source.name == "infrared" else 0
+        band = _band(source)
         w = weights[:, k]
         error = None
         if estimates and seen.error_force_N is not None:
@@ -570,13 +553,18 @@ def _grid_change(
     dI_2``): the shadow losses, the lit-centroid torque and the beam chains (diffuse exchange left out)."""
     side_force = -open_force(craft.side_normals, craft.side_areas, source.optics, *lost)
     force = side_force.sum(axis=0)
-    band = 1 if source.name == "infrared" else 0
+    band = _band(source)
     lever = craft.side_centroids - reference_m
     torque = np.cross(lever, side_force).sum(axis=0) + difference @ seen.shift_torque_Nm[band]
     if source.beams and seen.chains is not None:
         chains = _node_chains(seen, difference, reference_m)
         force, torque = force + chains.force_N, torque + chains.torque_Nm
     return LoadsError(float(np.linalg.norm(force)), float(np.linalg.norm(torque)))
+
+
+def _band(source: Source) -> int:
+    """Index in :data:`~sunwind.forces.planet.visibility.BANDS` of the optics ``source`` takes."""
+    return BANDS.index("infrared" if source.name == "infrared" else "solar")
 
 
 def _node_chains(

@@ -27,6 +27,7 @@ Molecules (``mirrored``) use the same balance with ``rho = 1`` and the share eac
 
 from __future__ import annotations
 
+import hashlib
 import os
 from dataclasses import dataclass
 from functools import cached_property
@@ -174,6 +175,8 @@ class DiffuseExchange:
         #: ``diag(rho_d) E^T``: the diffuse power each side re-emits per watt each side emits;
         #: ``M = I - coupling``
         self.coupling = (scipy.sparse.diags(re_emitted) @ self.factors.matrix.T).tocsr()
+        #: :meth:`group_absorption` by its absorptance and grouping
+        self._group_absorption: dict[str, NDArray[np.float64]] = {}
 
     def _solve(self, coupling: scipy.sparse.csr_matrix, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
         """``(I - coupling)^-1 rhs`` for one or more right-hand sides (n,) or (n, k).
@@ -226,6 +229,51 @@ class DiffuseExchange:
     def adjoint(self, weights: NDArray[np.float64]) -> NDArray[np.float64]:
         """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T S`` for every source ``S``."""
         return self._solve(self.coupling.T.tocsr(), np.asarray(weights, dtype=np.float64))
+
+    def group_absorption(
+        self, absorptance: NDArray[np.float64], group: NDArray[np.int64], count: int
+    ) -> NDArray[np.float64]:
+        """``g = M^-T E (a 1_g)`` for each group of sides, (n_sides, count): ``g^T S`` is the diffuse power
+        the sides of each group absorb for sources ``S``, with no forward solve.
+
+        ``count`` adjoint solves, made once per absorptance and grouping and kept.
+
+        Parameters
+        ----------
+        absorptance : (n_sides,) float64
+            Share of the arriving light each side absorbs.
+        group : (n_sides,) int64
+            Group of each side (its part, say), in ``[0, count)``.
+        count : int
+            Number of groups.
+
+        Returns
+        -------
+        (n_sides, count) float64
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import sunwind as sw
+        >>> from sunwind.forces.reflection import reflection_plan
+        >>> white = sw.Material("white", reflectivity=0.8, specular_fraction=0.0, emissivity=0.8)
+        >>> craft = sw.load(sw.meshes.box_wing(facet_size=0.5), uniform=white, threads=1).craft
+        >>> exchange = reflection_plan(craft, sw.ReflectionSettings("full")).exchange
+        >>> part, source = craft.facet_part[craft.side_facet], np.full(craft.n_sides, 1.0)
+        >>> by_part = exchange.group_absorption(exchange.absorptance, part, 3).T @ source
+        >>> arrived = exchange.factors.matrix.T @ exchange.solve(source)
+        >>> bool(np.allclose(by_part, np.bincount(part, exchange.absorptance * arrived, 3), rtol=1e-9))
+        True
+        """
+        group = np.ascontiguousarray(group, dtype=np.int64)
+        key = hashlib.sha256(np.ascontiguousarray(absorptance, dtype=np.float64).tobytes() + group.tobytes())
+        kept = self._group_absorption.get(key.hexdigest())
+        if kept is None:
+            indicator = np.zeros((len(group), count))
+            indicator[np.arange(len(group)), group] = absorptance
+            kept = np.ascontiguousarray(self.adjoint(self.factors.matrix @ indicator))
+            self._group_absorption[key.hexdigest()] = kept
+        return kept
 
     @cached_property
     def responses(self) -> NDArray[np.float64]:
