@@ -34,6 +34,7 @@ from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
 from sunwind.forces.reflection.diffuse import DiffuseExchange
 from sunwind.forces.result_base import LoadResult
+from sunwind.forces.sensitivity import Sensitivities
 from sunwind.forces.thermal import ThermalState, infrared_exchange, thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
@@ -86,6 +87,9 @@ class PlanetResult(LoadResult):
         Where it came from (as :class:`~sunwind.forces.results.AttitudeResult`).
     craft : Spacecraft
         The model evaluated.
+    sensitivities : Sensitivities or None
+        d force / d coefficient and d torque / d coefficient of every material, when asked for; else
+        None.
 
     Examples
     --------
@@ -114,6 +118,7 @@ class PlanetResult(LoadResult):
     reference_point_m: NDArray[np.float64]
     reference_point: str
     craft: Spacecraft = field(repr=False)
+    sensitivities: Sensitivities | None = field(default=None, kw_only=True)
 
     KIND: ClassVar[str] = "planet radiation"
     VARIABLES: ClassVar[tuple[str, ...]] = (

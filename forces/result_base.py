@@ -19,6 +19,7 @@ import numpy as np
 import xarray as xr
 
 from sunwind.forces.error_estimate import ErrorEstimate
+from sunwind.forces.sensitivity import Sensitivities
 from sunwind.forces.vocabulary import COMPONENT, COMPONENT_ATTRS, COMPONENTS, variable_attrs
 
 #: The frame every vector is given in.
@@ -113,7 +114,14 @@ class LoadResult(Result):
             "reference_point_m": self.reference_point_m.tolist(),
             "reference_point": self.reference_point,
             "error_estimate": None if estimate is None else estimate.to_json(),
+            **({} if self.sensitivities is None else {"sensitivities": self.sensitivities.to_json()}),
         }
+
+    @property
+    def sensitivities(self) -> Sensitivities | None:
+        """d force and d torque per material coefficient (:class:`~sunwind.forces.sensitivity.Sensitivities`)
+        when the result was asked for them; None otherwise (a subclass's field overrides this)."""
+        return None
 
     def dataset_attrs(self) -> dict[str, object]:
         """Global attributes of :meth:`to_dataset`: frame, reference point and kind."""

@@ -24,6 +24,7 @@ from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.radiation.law import surface_forces
 from sunwind.forces.reflection import PowerBalance, Reflected, ReflectionSettings
 from sunwind.forces.result_base import FRAME, LoadResult
+from sunwind.forces.sensitivity import Sensitivities
 from sunwind.geometry.directions import vector_to_azel
 from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.shadows import Illumination
@@ -83,6 +84,9 @@ class AttitudeResult(LoadResult):
         The shadow pass's estimated absolute error in the direct force [N] and torque [N m], from its
         check and each side's load per unit lit area; None with fixed sampling (no check).
         :attr:`error_estimate` states it relative to the totals.
+    sensitivities : Sensitivities or None
+        d force / d coefficient and d torque / d coefficient of every material, when asked for
+        (``sensitivities=True``); None otherwise.
 
     Both kinds give ``side_force_N`` and ``side_torque_Nm`` (n_sides, 3): the direct force on each side
     and its torque about the reference point, which :attr:`facet_force_N` and :attr:`facet_torque_Nm`
@@ -115,6 +119,7 @@ class AttitudeResult(LoadResult):
     sampling: str
     craft: Spacecraft = field(repr=False)
     shadow_error: LoadsError | None = field(kw_only=True)
+    sensitivities: Sensitivities | None = field(default=None, kw_only=True)
 
     VARIABLES: ClassVar[tuple[str, ...]] = (
         "force_N",
