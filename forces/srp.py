@@ -15,6 +15,7 @@ from sunwind.forces.model import Model, as_model
 from sunwind.forces.radiation.direct import DirectTotals, direct_pass, lit_area_loads
 from sunwind.forces.radiation.law import radiation_pressure, solar_flux, surface_forces
 from sunwind.forces.reflection import ReflectionSettings, reflected_part, reflection_plan
+from sunwind.forces.reflection.sensitivity import optics_sensitivities
 from sunwind.forces.results import SrpResult
 from sunwind.geometry.directions import unit_vectors
 from sunwind.geometry.parallel import map_items, using_threads
@@ -32,6 +33,7 @@ def srp(
     reference_point_m: Sequence[float] | NDArray | None = None,
     sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
+    sensitivities: bool = False,
 ) -> SrpResult | SrpBatch:
     """Solar-radiation force and torque with self-shadowing and inter-reflection.
 
@@ -59,6 +61,11 @@ def srp(
         ``"specular"``, ``"full"``, ``"auto"`` (full when ``K_IS >= 0.1``) or ``"plates"`` (every side
         facing the Sun wholly lit, no ray cast); or settings with chain cutoff, depth and view-factor
         sampling (:class:`~sunwind.forces.reflection.ReflectionSettings`).
+    sensitivities : bool
+        Also give ``result.sensitivities``: the derivatives of force and torque with respect to every
+        material's reflectivity, specular fraction and transmissivity
+        (:class:`~sunwind.forces.sensitivity.Sensitivities`; METHOD.md "Sensitivities"), in the same
+        pass: eq. (4)'s partials, the beam chains' forward derivatives and the diffuse balance's adjoint.
 
     Returns
     -------
@@ -94,7 +101,8 @@ def srp(
     shadows = ShadowSampling.of(sampling)
     with using_threads(model.threads):
         results = map_items(
-            lambda u: _one(model.craft, u, flux, reference, shadows, settings), suns.reshape(-1, 3)
+            lambda u: _one(model.craft, u, flux, reference, shadows, settings, sensitivities),
+            suns.reshape(-1, 3),
         )
     return results[0] if suns.ndim == 1 else SrpBatch(tuple(results))
 
@@ -106,6 +114,7 @@ def _one(
     reference: tuple[NDArray[np.float64], str],
     sampling: ShadowSampling,
     settings: ReflectionSettings,
+    sensitivities: bool,
 ) -> SrpResult:
     """One attitude, its arguments checked."""
     pressure = radiation_pressure(flux)
@@ -116,7 +125,7 @@ def _one(
     else:
         direct = direct_pass(craft, u_sun, ref, sampling.samples, sampling.tolerance, plan.weights)
     light = direct.illumination
-    reflected = reflected_part(craft, direct, flux, ref, settings, plan)
+    reflected = reflected_part(craft, direct, flux, ref, settings, plan, sensitivities)
     force, torque = pressure * direct.force, pressure * direct.torque
     shadow_error = None
     if light.check is not None:  # the default pass checked itself: what its errors cost in eq. (4)
@@ -141,6 +150,9 @@ def _one(
         lit_area_m2=direct.lit_area_m2,
         illumination=light,
         shadow_error=shadow_error,
+        sensitivities=optics_sensitivities(craft, light, flux, ref, plan, reflected.chains)
+        if sensitivities
+        else None,
     )
 
 

@@ -37,6 +37,7 @@ from sunwind.forces.cli.report import (
     print_srp,
     warn_results,
 )
+from sunwind.forces.cli.sensitivities import print_sensitivities, sensitivities_option
 from sunwind.forces.drag import drag as drag_of
 from sunwind.forces.model import Model, ModelSource
 from sunwind.forces.reflection import ReflectionSettings
@@ -52,6 +53,7 @@ from sunwind.geometry.spacecraft import infrared_optics
 @reference_options()
 @sampling_options
 @reflection_options("light")
+@sensitivities_option
 @json_option
 def srp(
     source: ModelSource,
@@ -59,15 +61,25 @@ def srp(
     references: dict,
     sampling: ShadowSampling,
     reflections: ReflectionSettings,
+    sensitivities: bool,
     as_json: bool,
 ) -> None:
     """Solar-radiation force and torque for one Sun direction, with self-shadowing and inter-reflection."""
     model = posed(loaded(source, **references), sun.vector, "srp")
-    result = srp_of(model, sun.vector, flux_W_m2=sun.flux_W_m2, reflections=reflections, sampling=sampling)
+    result = srp_of(
+        model,
+        sun.vector,
+        flux_W_m2=sun.flux_W_m2,
+        reflections=reflections,
+        sampling=sampling,
+        sensitivities=sensitivities,
+    )
     if as_json:
         print_json(model.craft, result.to_json())
     else:
         print_srp(result)
+        if result.sensitivities is not None:
+            print_sensitivities(result.sensitivities)
     warn_results({"srp": result.error_estimate}, sampling.tolerance)
 
 

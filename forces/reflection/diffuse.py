@@ -154,6 +154,8 @@ class DiffuseExchange:
     ) -> None:
         self.craft = craft
         self.view = view
+        #: where the exchange factors, and what is made from them, are kept on disk
+        self.cache_dir = cache_dir
         if mirrored is not None and optics is not None:
             raise ValueError("DiffuseExchange takes mirrored (molecules) or optics (light), not both")
         if mirrored is not None:
@@ -222,9 +224,8 @@ class DiffuseExchange:
         """The eight weights ``w`` (n_sides, 8) with ``w^T W`` the escaping momentum rate [W] (3), its
         moment about the origin [W m] (3), the escaped and the absorbed power [W]."""
         factors = self.factors
-        moment = np.cross(self.craft.side_centroids, factors.escape_vector) + factors.escape_moment
         absorbed = factors.matrix @ self.absorptance + factors.blind_fraction + factors.truncated_fraction
-        return np.column_stack([factors.escape_vector, moment, factors.escape_fraction, absorbed])
+        return np.column_stack([escape_functionals(self.craft, factors), absorbed])
 
     def adjoint(self, weights: NDArray[np.float64]) -> NDArray[np.float64]:
         """``M^-T w`` for functionals ``w`` (n_sides, k): ``w^T W = (M^-T w)^T S`` for every source ``S``."""
@@ -282,7 +283,7 @@ class DiffuseExchange:
 
     def totals(self, source_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """Escaping force and torque about ``reference_m`` and the power split, for sources ``S`` [W]."""
-        return DiffuseTotals.from_sums(_weighted(self.responses, source_W), reference_m)
+        return DiffuseTotals.from_sums(weighted_sum(self.responses, source_W), reference_m)
 
     @cached_property
     def open_sky_functionals(self) -> NDArray[np.float64]:
@@ -296,7 +297,35 @@ class DiffuseExchange:
 
     def totals_of(self, emitted_W: NDArray[np.float64], reference_m: NDArray[np.float64]) -> DiffuseTotals:
         """The same from a solved ``W`` (diffuse power leaving each side) instead of the sources."""
-        return DiffuseTotals.from_sums(_weighted(self.functionals, emitted_W), reference_m)
+        return DiffuseTotals.from_sums(weighted_sum(self.functionals, emitted_W), reference_m)
+
+
+def escape_functionals(craft: Spacecraft, factors: ExchangeFactors) -> NDArray[np.float64]:
+    """The first seven of :attr:`DiffuseExchange.functionals` for exchange factors ``factors``: escaping
+    momentum rate (3), its moment about the origin (3) and the escaped power, per watt each side emits.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    factors : ExchangeFactors
+        Its exchange factors.
+
+    Returns
+    -------
+    (n_sides, 7) float64
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> from sunwind.geometry.views.view_factors import compute_view_factors
+    >>> craft = sw.load(sw.meshes.box(), uniform=sw.Material("white", 0.5, 0.0), threads=1).craft
+    >>> factors = ExchangeFactors.of_view(compute_view_factors(craft, rays_per_side=16))
+    >>> escape_functionals(craft, factors)[0, 6]  # a convex box: everything escapes
+    np.float64(1.0)
+    """
+    moment = np.cross(craft.side_centroids, factors.escape_vector) + factors.escape_moment
+    return np.column_stack([factors.escape_vector, moment, factors.escape_fraction])
 
 
 def diffuse_exchange(craft: Spacecraft, settings: ReflectionSettings) -> DiffuseExchange:
@@ -333,11 +362,29 @@ def diffuse_exchange(craft: Spacecraft, settings: ReflectionSettings) -> Diffuse
     )
 
 
-def _weighted(columns: NDArray[np.float64], weights: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``columns.T @ weights`` for C-ordered ``columns`` (n, k), reading only the rows of nonzero
-    weights. Blocks of ``_BLOCK_SIDES`` rows are summed in parallel and added in block order, so the
-    result has the same bits whatever the threads did (and no BLAS thread pool is left spinning,
-    taking the cores from the next attitude's ray casting)."""
+def weighted_sum(columns: NDArray[np.float64], weights: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Find ``columns.T @ weights``, reading only the rows of nonzero weights.
+
+    Blocks of ``_BLOCK_SIDES`` rows are summed in parallel and added in block order, so the result has
+    the same bits whatever the threads did (and no BLAS thread pool is left spinning, taking the cores
+    from the next attitude's ray casting).
+
+    Parameters
+    ----------
+    columns : (n, k) float64, C-ordered
+        Per-side columns (adjoint responses).
+    weights : (n,) float64
+        Per-side weights (sources), mostly zero.
+
+    Returns
+    -------
+    (k,) float64
+
+    Examples
+    --------
+    >>> weighted_sum(np.arange(6.0).reshape(3, 2), np.array([0.0, 1.0, 2.0]))
+    array([10., 13.])
+    """
     n_blocks = -(-len(weights) // _BLOCK_SIDES)
     partial = np.zeros((n_blocks, columns.shape[1]))
     weights = np.ascontiguousarray(weights, dtype=np.float64)

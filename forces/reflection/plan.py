@@ -238,6 +238,7 @@ def reflected_part(
     reference_m: NDArray[np.float64],
     settings: ReflectionSettings,
     plan: ReflectionPlan,
+    derivatives: bool = False,
 ) -> Reflected:
     """Compute inter-reflection's correction to the direct force and torque of one attitude.
 
@@ -259,6 +260,9 @@ def reflected_part(
     plan : ReflectionPlan
         The model's plan under ``settings``; with ``none`` or ``plates`` nothing is added and all the
         light not absorbed escapes.
+    derivatives : bool
+        Trace the beam chains with their derivatives in every material's optics
+        (:attr:`BeamChainTotals.derivatives`).
 
     Returns
     -------
@@ -293,7 +297,16 @@ def reflected_part(
             view=plan.view,
             k_is=plan.k_is,
         )
-    chains = follow_chains(craft, light, flux_W_m2, reference_m, settings.cutoff, settings.depth, light.level)
+    chains = follow_chains(
+        craft,
+        light,
+        flux_W_m2,
+        reference_m,
+        settings.cutoff,
+        settings.depth,
+        light.level,
+        derivatives=derivatives,
+    )
     escaped = channels[PASSED] + chains.escaped_W
     absorbed += chains.absorbed_W
     if plan.mode == "specular":

@@ -281,6 +281,7 @@ def compute_exchange_factors(
     cutoff: float = EXCHANGE_CUTOFF,
     depth: int = EXCHANGE_DEPTH,
     optics: NDArray[np.float64] | None = None,
+    rows: NDArray[np.int64] | None = None,
 ) -> ExchangeFactors:
     """Compute the exchange factors of a model from its view factors (see the module docstring).
 
@@ -297,6 +298,9 @@ def compute_exchange_factors(
     optics : (n_sides, 3) ndarray of float64, optional
         ``rho, beta, sigma`` of every side; default ``craft.side_optics`` (sunlight's). Molecules give
         their own (:mod:`sunwind.forces.gas.exchange`).
+    rows : (k,) int64, optional
+        Follow the chains of these sides only; the other rows are the view factors' (first arrivals) and
+        are not the exchange factors: for callers that read these rows alone. Default: every side.
 
     Returns
     -------
@@ -326,6 +330,8 @@ def compute_exchange_factors(
     rho, beta, _ = optics.T
     emits = rho * (1 - beta) > 0
     traced = np.flatnonzero((onward_weight > 0) & emits)
+    if rows is not None:
+        traced = np.intersect1d(traced, rows)
     unfollowed = np.where(emits, 0.0, onward_weight)
     if not len(traced):
         plain = ExchangeFactors.of_view(view)
