@@ -41,6 +41,7 @@ _PUBLIC = {
     "drag": "sunwind.forces.drag:drag",
     "planet_radiation": "sunwind.forces.earth:planet_radiation",
     "Place": "sunwind.forces.earth:Place",
+    "CapSampling": "sunwind.forces.earth:CapSampling",
     # the environment
     "nrlmsis": "sunwind.forces.gas.msis:nrlmsis",
     "explicit_atmosphere": "sunwind.forces.gas.atmosphere:explicit",

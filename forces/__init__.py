@@ -19,7 +19,7 @@ them where they are made.
 
 from sunwind.forces.batches import DragBatch, ResultBatch, SrpBatch
 from sunwind.forces.drag import drag
-from sunwind.forces.earth import Place, PlanetResult, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, PlanetResult, planet_radiation
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import (
     Atmosphere,
@@ -48,6 +48,7 @@ __all__ = [
     "SPEED_OF_LIGHT",
     "Atmosphere",
     "AttitudeResult",
+    "CapSampling",
     "DragBatch",
     "DragResult",
     "DragSetup",

@@ -29,6 +29,12 @@ from sunwind.forces.planet.loads import (
     grid_band_loads,
     solve_reflected,
 )
+from sunwind.forces.planet.sensitivity import (
+    CellShares,
+    band_derivatives,
+    grid_share_loads,
+    planet_sensitivities,
+)
 from sunwind.forces.planet.visibility import Visibility, direction_grid, level_for, visibility
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionPlan, ReflectionSettings, reflection_plan
@@ -344,6 +350,50 @@ def check_cells_at(altitude_km: float, cell_deg: float) -> None:
     check_cells(math.asin(radius / (radius + altitude_km * 1e3)), cell_deg)
 
 
+@dataclass(frozen=True)
+class CapSampling:
+    """How the planet's disc is resolved for shadowing: the step and the method.
+
+    Parameters
+    ----------
+    cell_deg : float
+        Resolution of the shadowing [deg] in (0, 90]: with ``method="visibility"`` the spacing of the
+        grid of directions (:func:`~sunwind.forces.planet.visibility.level_for`: 10 gives the 642-node
+        grid, 5 the 2562-node one), with ``"cells"`` the size of the cap's cells, one shadow pass each.
+        Sides no other side can shadow are exact at any size.
+    method : str
+        ``"visibility"`` (default): the model's directional visibility, built once per model and
+        settings (and kept on disk with the view factors), makes each call a weighted sum with no ray
+        cast but the Sun's; its error estimate adds the grid's (the change from the grid a level
+        coarser, over 3) to the passes'. ``"cells"``: a shadow pass per cap cell at every call (the
+        reference; better for a single call or a model posed anew at each call).
+
+    Raises
+    ------
+    InputError
+        A cell size out of (0, 90] or an unknown method.
+
+    Examples
+    --------
+    >>> CapSampling(20.0).method
+    'visibility'
+    >>> CapSampling(5.0, "rays")
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: method 'rays' is not one of visibility, cells
+    """
+
+    cell_deg: float = DEFAULT_CELL_DEG
+    method: str = "visibility"
+
+    def __post_init__(self) -> None:
+        check_cell_size(self.cell_deg)
+        if self.method not in METHODS:
+            raise InputError(
+                f"method {self.method!r} is not one of {', '.join(METHODS)}", parameters=("method",)
+            )
+
+
 @dataclass(frozen=True, eq=False)
 class Place:
     """Where the spacecraft is relative to the planet and the Sun, in its body frame.
@@ -407,8 +457,8 @@ def planet_radiation(
     reference_point_m: Sequence[float] | NDArray | None = None,
     sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
-    cell_deg: float = DEFAULT_CELL_DEG,
-    method: str = "visibility",
+    cap: CapSampling | None = None,
+    sensitivities: bool = False,
 ) -> PlanetResult:
     """Albedo and infrared force and torque from the planet below, and the power each side absorbs
     from them and from the Sun.
@@ -432,17 +482,14 @@ def planet_radiation(
         ``auto`` decides by the model's ``K_IS``. ``"plates"``: the fast mode of plate models, every
         side an independent plate that sees the whole planet (its exact integrals, the dissertation's
         closed-form view factors), no self-shadowing and no inter-reflection; no ray is cast.
-    cell_deg : float
-        Resolution of the shadowing [deg] in (0, 90]: with ``method="visibility"`` the spacing of the
-        grid of directions (:func:`~sunwind.forces.planet.visibility.level_for`: 10 gives the 642-node
-        grid, 5 the 2562-node one), with ``"cells"`` the size of the cap's cells, one shadow pass each.
-        Sides no other side can shadow are exact at any size.
-    method : str
-        ``"visibility"`` (default): the model's directional visibility, built once per model and
-        settings (and kept on disk with the view factors), makes each call a weighted sum with no ray
-        cast but the Sun's; its error estimate adds the grid's (the change from the grid a level
-        coarser, over 3) to the passes'. ``"cells"``: a shadow pass per cap cell at every call (the
-        reference; better for a single call or a model posed anew at each call).
+    cap : CapSampling, optional
+        The resolution of the shadowing over the planet's disc and the method
+        (:class:`CapSampling`); default the 10-degree visibility.
+    sensitivities : bool
+        Also give the derivatives of ``force_N`` and ``torque_Nm`` with respect to every material's
+        reflectivity, specular fraction and transmissivity (the albedo) and emissivity (the infrared):
+        exact, from the same shadow passes (:mod:`~sunwind.forces.planet.sensitivity`), about the
+        result's reference point; with reflections ``none`` or ``plates`` only, for now.
 
     Returns
     -------
@@ -451,7 +498,8 @@ def planet_radiation(
     Raises
     ------
     InputError
-        A cell size, sampling or reflections out of range.
+        A cell size, sampling or reflections out of range; ``sensitivities`` with reflections whose
+        beams or diffuse balance are followed.
     MaterialError
         A side's material has no emissivity.
 
@@ -461,20 +509,24 @@ def planet_radiation(
     >>> white = sw.Material("white", reflectivity=0.5, specular_fraction=0.5, emissivity=0.8)
     >>> model = sw.load(sw.meshes.box_wing(), uniform=white, threads=1)
     >>> place = sw.Place([0.0, 0.0, -1.0], 500.0, [1.0, 0.0, 0.0])
-    >>> result = sw.planet_radiation(model, place, reflections="plates", cell_deg=30.0)
+    >>> result = sw.planet_radiation(model, place, reflections="plates", cap=sw.CapSampling(30.0))
     >>> result.reflections, result.rays, bool(result.force_N[2] > 0)  # pushed away from the planet
     ('plates', 0, True)
+    >>> d = sw.planet_radiation(model, place, reflections="plates", sensitivities=True).sensitivities
+    >>> bool(d.of("white.emissivity").force_N[2] < 0)  # a darker infrared: less diffuse push
+    True
     """
     model = as_model(model)
     craft = model.craft
     band_optics = (craft.side_optics, infrared_optics(craft))  # no emissivity: an error before any work
     light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
-    check_cell_size(cell_deg)
-    if method not in METHODS:
-        raise InputError(f"method {method!r} is not one of {', '.join(METHODS)}", parameters=("method",))
+    cap = CapSampling() if cap is None else cap
+    cell_deg, method = cap.cell_deg, cap.method
     shadows = ShadowSampling.of(sampling)
     reference, reference_name = model.reference(reference_point_m)
     settings = ReflectionSettings.of(reflections)
+    if sensitivities:
+        _check_sensitivities(settings.mode)
     body = light.planet
     distance = body.radius_m + place.altitude_km * 1e3
     caps = [
@@ -483,6 +535,8 @@ def planet_radiation(
     ]
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
+        if sensitivities:
+            _check_sensitivities(plan.mode)  # "auto" resolved
         check_cells(caps[0].half_angle, cell_deg)
         seen = None
         if method == "visibility" and plan.mode != PLATES:
@@ -507,10 +561,23 @@ def planet_radiation(
                 ("albedo", "infrared"), caps, cells, band_optics, strict=True
             )
         ]
+        observed = (
+            CellShares(craft, sources) if sensitivities and seen is None else None
+        )  # the passes' shares
         if seen is None:
-            loads, rays = band_loads(craft, sources, directions, reference, shadows, settings)
+            observe = None if observed is None else observed.observe
+            loads, rays = band_loads(craft, sources, directions, reference, shadows, settings, observe)
         else:
             loads, rays = _visible_loads(craft, sources, seen, (points, values), reference, shadows), 0
+        derivatives = None
+        if sensitivities:  # the direct parts; the reflected parts' derivatives join them in the sum
+            shares = (
+                grid_share_loads(craft, sources, seen, reference)
+                if observed is None
+                else observed.share_loads(reference)
+            )
+            parts = [band_derivatives(craft, s.name, share) for s, share in zip(sources, shares, strict=True)]
+            derivatives = planet_sensitivities(craft, parts, reference)
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
         solar, solar_rays = band_loads(craft, [sun], place.sun_vector[None, :], reference, shadows, settings)
@@ -527,7 +594,19 @@ def planet_radiation(
         reference_point_m=reference,
         reference_point=reference_name,
         craft=craft,
+        sensitivities=derivatives,
     )
+
+
+def _check_sensitivities(mode: str) -> None:
+    """Refuse sensitivities with reflections whose beams or diffuse balance are followed: their
+    derivatives are not available yet."""
+    if mode in BEAM_MODES:
+        raise InputError(
+            f"sensitivities of the planet's radiation with reflections '{mode}' are not available yet",
+            hint='use reflections="none" or "plates"',
+            parameters=("sensitivities", "reflections"),
+        )
 
 
 def _side_integrals(

@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from sunwind.forces.bench import LoadError
-from sunwind.forces.earth import Place, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, planet_radiation
 from sunwind.forces.model import Model
 from sunwind.forces.planet.shadow import sun_behind
 from sunwind.forces.planet.visibility import level_for, visibility
@@ -188,7 +188,7 @@ def earth_benchmark(
     if compare:
         reference, reference_times = _timed(
             lambda p: planet_radiation(
-                model, p, reflections=settings, method="cells", cell_deg=REFERENCE_STEP_DEG
+                model, p, reflections=settings, cap=CapSampling(REFERENCE_STEP_DEG, "cells")
             ),
             at,
             "reference",

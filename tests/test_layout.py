@@ -116,14 +116,22 @@ LAYERS = {
     "sunwind.geometry": ("sunwind.geometry",),
     "sunwind.meshes": ("sunwind.geometry", "sunwind.meshes"),
     "sunwind.forces.model": ("sunwind.geometry",),
-    "sunwind.forces.radiation": ("sunwind.geometry", "sunwind.forces.radiation"),
+    # the record of derivatives, which every floor that makes them fills
+    "sunwind.forces.sensitivity": ("sunwind.geometry", "sunwind.forces.vocabulary"),
+    "sunwind.forces.radiation": (
+        "sunwind.geometry",
+        "sunwind.forces.sensitivity",
+        "sunwind.forces.radiation",
+    ),
     "sunwind.forces.reflection": (
         "sunwind.geometry",
+        "sunwind.forces.sensitivity",
         "sunwind.forces.radiation",
         "sunwind.forces.reflection",
     ),
     "sunwind.forces.gas": (
         "sunwind.geometry",
+        "sunwind.forces.sensitivity",
         "sunwind.forces.radiation",
         "sunwind.forces.reflection",
         "sunwind.forces.gas",

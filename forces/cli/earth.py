@@ -31,6 +31,7 @@ from sunwind.forces.earth import (
     DEFAULT_CELL_DEG,
     METHODS,
     PLATES,
+    CapSampling,
     Place,
     PlanetResult,
     check_cells_at,
@@ -661,8 +662,7 @@ def radiation(
         light,
         reflections=mode,
         sampling=sampling,
-        cell_deg=below.cell_deg,
-        method=below.cap_method,
+        cap=CapSampling(below.cell_deg, below.cap_method),
     )
     return result, result.equilibrium("none" if mode.mode == PLATES else reflections) if thermal else None
 

@@ -28,6 +28,7 @@ from sunwind.forces.cli.orbit_path import PATH_OPTIONS, PathRequest, path_reques
 from sunwind.forces.cli.outputs import check_distinct, check_image, check_writable
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
 from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
+from sunwind.forces.cli.sensitivities import print_sensitivities, sensitivities_option
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
 from sunwind.forces.gas.sampling import GasSampling
@@ -39,6 +40,7 @@ from sunwind.forces.orbit.eclipse import ECLIPSE_MODELS
 from sunwind.forces.orbit.flight import check_sun, geodetic
 from sunwind.forces.radiation import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.sensitivity import Sensitivities
 from sunwind.forces.tables.checkpoint import check_place
 from sunwind.forces.tables.jobs import GasOptions, SrpSetup
 from sunwind.geometry.errors import InputError
@@ -202,6 +204,7 @@ _OUTPUT_OPTIONS = [
         help="Tracked and scheduled hinge angles rounded to this step [deg] (0: exact): each new angle is "
         "a new pose whose caches (view factors) are made again.",
     ),
+    sensitivities_option,
     *run_options("step", "run (-o)"),
 ]
 
@@ -244,7 +247,12 @@ def orbit(
     reflections: ReflectionSettings,
     output: dict,
 ) -> None:
-    """Forces, torques and accumulated momentum along an orbit, with eclipse and an attitude law."""
+    """Forces, torques and accumulated momentum along an orbit, with eclipse and an attitude law.
+
+    With --sensitivities every step also gives the derivatives of its summed force and torque with
+    respect to every material's coefficients (sensitivity_force_N, sensitivity_torque_Nm on time,
+    material, coefficient and component): SRP's at the step's eclipsed flux, drag's and the Earth's
+    albedo and infrared's (not with --thermal); their orbit means are printed."""
     inputs = (source.mesh, source.materials, path.tle, path.ephemeris, attitude.path)
     for written in (output["output"], output["plot"], output["plot_thermal"]):
         if written is not None:
@@ -274,6 +282,15 @@ def orbit(
     if environment.earth is not None:
         surface = SrpSetup(reflections=reflections, **shared)
         planet = environment.earth.terms(surface)
+    loads = OrbitLoads(  # checked before the model is loaded; the Earth's terms sized once it is
+        srp,
+        drag,
+        environment.air,
+        output["hinge_step"],
+        planet,
+        flux_1au_W_m2=environment.flux_1au_W_m2,
+        sensitivities=output["sensitivities"],
+    )
     light_needed = srp is not None or planet is not None
     model = loaded(source if light_needed else drag_only(source), **references)
     checkpoint = (
@@ -313,15 +330,12 @@ def orbit(
                 bar.update(task, completed=done)
 
         run = sweep_run(output, checkpoint, progress)
-        loads = OrbitLoads(
-            srp, drag, environment.air, output["hinge_step"], planet, flux_1au_W_m2=environment.flux_1au_W_m2
-        )
         with interruptible(bar, checkpoint):
             result = fly(
                 model,
                 trajectory,
                 attitude,
-                loads,
+                replace(loads, earth=planet),
                 sun_eci=environment.sun_eci,
                 eclipse=environment.eclipse,
                 moon=environment.moon,
@@ -357,6 +371,8 @@ def orbit(
         print_json(model.craft, result.to_json(environment.mass_kg))
     else:
         _print_summary(model.craft.source, result, environment.mass_kg)
+        if result.materials:
+            _print_mean_sensitivities(result)
         for target in written:
             print(f"  wrote {target}")
     if "error_estimate_force" in result.series:
@@ -373,6 +389,20 @@ def _check_heat_outputs(earth: EarthRequest | None, output: dict) -> None:
             "--per-side records go to the time series: without -o or --json they would be lost",
             hint="add -o FILE.nc (the sides as coordinates), -o FILE.csv or --json",
         )
+
+
+def _print_mean_sensitivities(result) -> None:
+    """The orbit means of the derivatives of the summed force and torque, every nonzero one."""
+    t, s = result.series["time_s"], result.series
+    if len(t) < 2:
+        force, torque = s["sensitivity_force_N"][0], s["sensitivity_torque_Nm"][0]
+    else:
+        span = t[-1] - t[0]
+        force = np.trapezoid(s["sensitivity_force_N"], t, axis=0) / span
+        torque = np.trapezoid(s["sensitivity_torque_Nm"], t, axis=0) / span
+    point = np.asarray(result.attributes["reference_point_m"], dtype=float)
+    print("  orbit means of the derivatives:")
+    print_sensitivities(Sensitivities(result.materials, force, torque, point))
 
 
 def _print_summary(name: str, result, mass_kg: float | None) -> None:

@@ -40,6 +40,7 @@ from sunwind.forces.cli.options import (
 from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import warn_beyond
 from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
+from sunwind.forces.cli.sensitivities import sensitivities_option
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.export import FORMATS, check_request, output_target, write
 from sunwind.forces.reflection import ReflectionSettings
@@ -133,6 +134,7 @@ _OUTPUT_OPTIONS = [
         help="With --earth-radiation: the Sun, fixed in the body frame, while the Earth's direction goes "
         "over the grid (a Sun-pointing spacecraft's view).",
     ),
+    sensitivities_option,
 ]
 #: The flags of the earth table's settings, by the names :class:`EarthSetup` gives them in its errors.
 _EARTH_FLAGS = {"altitude_km": "--earth-altitude", "sun_vector": "--earth-sun", "cell_deg": "--earth-step"}
@@ -157,6 +159,9 @@ class TableRequest:
     earth : EarthSetup or None, optional
         The Earth's radiation settings (checked; the flux and sampling are set later); None: no earth
         table.
+    sensitivities : bool, optional
+        Also tabulate each kind's derivatives with respect to every material's coefficients (netCDF
+        only).
 
     Examples
     --------
@@ -173,6 +178,7 @@ class TableRequest:
     output: Path
     format: str
     earth: EarthSetup | None = None
+    sensitivities: bool = False
 
 
 def _table(values: dict) -> TableRequest:
@@ -195,8 +201,13 @@ def _table(values: dict) -> TableRequest:
     kinds = _kinds(values["srp_flag"], values["drag_flag"], earth is not None, fmt)
     if grid is not None:
         check_table_memory(grid, kinds, "--step")
+    if values["sensitivities"] and fmt != "nc":
+        raise InputError(
+            f"--sensitivities go to a netCDF table; --format {fmt} has no place for them",
+            hint="write the table as netCDF (-o NAME.nc)",
+        )
     check_writable(output)
-    return TableRequest(kinds, step, values["attitude_csv"], output, fmt, earth)
+    return TableRequest(kinds, step, values["attitude_csv"], output, fmt, earth, values["sensitivities"])
 
 
 def _earth_table(values: dict) -> EarthSetup | None:
@@ -257,11 +268,16 @@ def sweep_command(
     run: dict,
 ) -> None:
     """Force and torque over a grid or list of attitudes, written as a table simulators read; with
-    --earth-radiation, the Earth's albedo and infrared over Earth directions, the Sun fixed (--earth-sun)."""
+    --earth-radiation, the Earth's albedo and infrared over Earth directions, the Sun fixed (--earth-sun).
+
+    With --sensitivities each kind also tabulates d force / d coefficient and d torque / d coefficient of
+    every material's coefficients (KIND_sensitivity_force_N, KIND_sensitivity_torque_Nm on the
+    directions, material, coefficient and component; netCDF tables only)."""
     check_distinct(table.output, source.source.mesh, source.source.materials, table.attitudes)
     stream = flow("drag" in table.kinds)
     point = references["reference_point_m"]
     setups = {"reflections": reflections, "sampling": sampling, "reference_point_m": point}
+    setups["sensitivities"] = table.sensitivities
     srp = SrpSetup(flux_W_m2=sun.flux_W_m2, **setups) if "srp" in table.kinds else None
     drag = None
     if "drag" in table.kinds:

@@ -25,7 +25,14 @@ import numpy as np
 import scipy.sparse
 from numpy.typing import NDArray
 
-from sunwind.forces.earth import DEFAULT_CELL_DEG, METHODS, Place, check_cell_size, planet_radiation
+from sunwind.forces.earth import (
+    DEFAULT_CELL_DEG,
+    METHODS,
+    CapSampling,
+    Place,
+    check_cell_size,
+    planet_radiation,
+)
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.tables.jobs import Records, SrpSetup
@@ -330,7 +337,13 @@ class EarthTerms:
         self.surface.precompute(model)
 
     def evaluate(
-        self, model: Model, place: Place, sunlight_W_m2: float, julian_tt: float
+        self,
+        model: Model,
+        place: Place,
+        sunlight_W_m2: float,
+        julian_tt: float,
+        *,
+        sensitivities: bool = False,
     ) -> tuple[dict[str, NDArray[np.float64]], LoadsError | None]:
         """One step's records, and the shadow passes' estimated error of its albedo and infrared loads.
 
@@ -344,6 +357,10 @@ class EarthTerms:
             Solar flux at the spacecraft's distance, without eclipse [W/m^2].
         julian_tt : float
             TT Julian date (Knocke's season).
+        sensitivities : bool
+            Also the derivatives of the albedo and infrared force and torque with respect to every
+            material's coefficients, ``sensitivity_force_N`` and ``sensitivity_torque_Nm`` (n_materials,
+            7, 3) among the records.
 
         Returns
         -------
@@ -380,13 +397,23 @@ class EarthTerms:
         method = self.cap_method
         if method == "auto":
             method = "cells" if any(hinge.law != "fixed" for hinge in model.hinges) else "visibility"
-        result = planet_radiation(model, place, light, cell_deg=self.cell_deg, method=method, **options)
+        result = planet_radiation(
+            model,
+            place,
+            light,
+            cap=CapSampling(self.cell_deg, method),
+            sensitivities=sensitivities,
+            **options,
+        )
         out = {
             "albedo_force_body_N": result.albedo.force_N,
             "albedo_torque_body_Nm": result.albedo.torque_Nm,
             "infrared_force_body_N": result.infrared.force_N,
             "infrared_torque_body_Nm": result.infrared.torque_Nm,
         }
+        if sensitivities:
+            out["sensitivity_force_N"] = result.sensitivities.force_N
+            out["sensitivity_torque_Nm"] = result.sensitivities.torque_Nm
         if not (self.thermal or self.per_side):  # per part only: no forward solve of the diffuse balance
             for source, values in result.part_absorbed_W().items():
                 out[absorbed_name(PART, source)] = values

@@ -99,7 +99,7 @@ def fly(
     steps = step_inputs(trajectory, attitude, loads, sun_eci=sun_eci, eclipse=eclipse, moon=moon)
     if loads.drag is not None and isinstance(loads.air, SpaceWeather):
         loads.air.check(steps.altitude_km)
-    setup = loads.sized(len(model.craft.part_names))
+    setup = loads.sized(len(model.craft.part_names), model.craft.materials.names)
     if loads.earth is not None:
         check_height(steps.height_km)
         setup = replace(setup, earth=loads.earth.sized(model, len(steps)))

@@ -28,7 +28,9 @@ from sunwind.forces.orbit.steps import OrbitLoads
 from sunwind.forces.orbit.trajectory import Trajectory
 from sunwind.forces.radiation.law import radiation_pressure
 from sunwind.forces.result_base import Result
+from sunwind.forces.sensitivity import COEFFICIENTS
 from sunwind.forces.tables.dataset import attribute_text, model_provenance
+from sunwind.forces.tables.sensitivities import SENSITIVITY_DIMS, sensitivity_coords
 from sunwind.forces.vocabulary import (
     COMPONENT,
     COMPONENT_ATTRS,
@@ -93,6 +95,12 @@ ESTIMATE_SERIES = {
     "error_estimate_torque": "estimated relative error of torque_body_Nm left by the shadow passes, "
     "|dM| / max(|M|, 0.01 |F| L), L the diagonal of the model's bounding box",
 }
+#: Series of a run with sensitivities: the derivatives of ``force_body_N`` and ``torque_body_Nm`` with
+#: respect to every material's coefficients, (n, n_materials, 7, 3), with units and long names.
+SENSITIVITY_SERIES = {
+    "sensitivity_force_N": ("N", "d force_body_N / d coefficient, body frame"),
+    "sensitivity_torque_Nm": ("N m", "d torque_body_Nm / d coefficient, body frame"),
+}
 #: Terms a run can add up, each with its force and torque series.
 TERMS = ("srp", "drag", "albedo", "infrared", "thermal")
 
@@ -129,6 +137,8 @@ class OrbitResult(Result):
     sides : dict of str to ndarray
         Columns of the ``side_*`` series: each side's :data:`SIDE_COORDINATES` (part name, facet index in
         the model, ``"front"`` or ``"back"``, area [m^2]), (n_sides,) each; empty without per-side records.
+    materials : tuple of str
+        The materials of the :data:`SENSITIVITY_SERIES` (with sensitivities; else empty).
 
     Examples
     --------
@@ -155,12 +165,14 @@ class OrbitResult(Result):
     terms: tuple[str, ...] = field(default=())
     part_names: tuple[str, ...] = field(default=())
     sides: dict[str, NDArray] = field(default_factory=dict)
+    materials: tuple[str, ...] = field(default=(), kw_only=True)
 
     @property
     def names(self) -> list[str]:
-        """The output series of this run, in order (:data:`SERIES`, then those of :data:`EARTH_SERIES`
-        and :data:`ESTIMATE_SERIES` it has)."""
-        return [*SERIES, *(name for name in (*EARTH_SERIES, *ESTIMATE_SERIES) if name in self.series)]
+        """The output series of this run, in order (:data:`SERIES`, then those of :data:`EARTH_SERIES`,
+        :data:`ESTIMATE_SERIES` and :data:`SENSITIVITY_SERIES` it has)."""
+        extra = (*EARTH_SERIES, *ESTIMATE_SERIES, *SENSITIVITY_SERIES)
+        return [*SERIES, *(name for name in extra if name in self.series)]
 
     @classmethod
     def of(
@@ -234,6 +246,9 @@ class OrbitResult(Result):
             ]
             series["error_estimate_force"] = np.array([e.force for e in estimates])
             series["error_estimate_torque"] = np.array([e.torque for e in estimates])
+        for name in SENSITIVITY_SERIES:
+            if name in records:  # flat per step: (material, coefficient, component)
+                series[name] = records[name].reshape(len(t), -1, len(COEFFICIENTS), 3)
         point, name = model.reference()
         attributes = {
             "frame": "body loads in the body frame, ECI = GCRF",
@@ -250,7 +265,19 @@ class OrbitResult(Result):
         parts = tuple(model.craft.part_names) if setup.earth is not None else ()
         sides = _side_coordinates(model) if absorbed_name(SIDE, PART_SOURCES[0]) in records else {}
         flux = setup.flux_1au_W_m2
-        return cls(series, body_to_eci, angles, attributes, trajectory.period_s, flux, terms, parts, sides)
+        materials = tuple(setup.materials) if setup.sensitivities else ()
+        return cls(
+            series,
+            body_to_eci,
+            angles,
+            attributes,
+            trajectory.period_s,
+            flux,
+            terms,
+            parts,
+            sides,
+            materials=materials,
+        )
 
     def summary(self, mass_kg: float | None = None) -> dict[str, object]:
         """Orbit averages, eclipses, the largest torque, the momentum per orbit and the effective areas.
@@ -388,8 +415,9 @@ class OrbitResult(Result):
         dict of str to object
             Every series of :attr:`names` (one row per step) by its name, ``part_names`` (the columns of the
             ``part_*`` series) with the Earth's radiation, ``sides`` (the columns of the ``side_*`` series,
-            :attr:`sides`) with per-side records, ``hinge_angles_deg`` (by glob) with hinges, then
-            ``attributes`` and ``summary``.
+            :attr:`sides`) with per-side records, ``materials`` and ``coefficients`` (the axes of the
+            ``sensitivity_*`` series, ``[step][material][coefficient][component]``) with sensitivities,
+            ``hinge_angles_deg`` (by glob) with hinges, then ``attributes`` and ``summary``.
 
         Examples
         --------
@@ -414,6 +442,8 @@ class OrbitResult(Result):
             out["part_names"] = list(self.part_names)
         if self.sides:
             out["sides"] = {name: values.tolist() for name, values in self.sides.items()}
+        if self.materials:
+            out["materials"], out["coefficients"] = list(self.materials), list(COEFFICIENTS)
         if self.hinge_angles_deg:
             out["hinge_angles_deg"] = {k: v.tolist() for k, v in self.hinge_angles_deg.items()}
         out["attributes"] = self.attributes
@@ -422,7 +452,8 @@ class OrbitResult(Result):
 
     def to_dataset(self, mass_kg: float | None = None) -> xr.Dataset:
         """The series as an xarray Dataset on dimensions ``time``, ``component`` (x, y, z, as in sweep
-        tables), ``part`` and ``side``, with units (UDUNITS), long names and comments in attributes.
+        tables), ``part`` and ``side`` (and ``material``, ``coefficient`` with sensitivities), with units
+        (UDUNITS), long names and comments in attributes.
 
         The ``time`` coordinate is CF time: seconds since the epoch, ``calendar = "standard"`` (read back as
         UTC times). ``part`` is named by the parts' names; ``side`` (with per-side records) is the side's
@@ -461,12 +492,15 @@ class OrbitResult(Result):
         (('time', 'component'), 'seconds since 2024-03-20T00:00:00.000Z')
         """
         variables, units = {}, SERIES | EARTH_SERIES | dict.fromkeys(ESTIMATE_SERIES, "1")
-        long_names = dict(ESTIMATE_SERIES)
+        units |= {name: unit for name, (unit, _) in SENSITIVITY_SERIES.items()}
+        long_names = dict(ESTIMATE_SERIES) | {name: text for name, (_, text) in SENSITIVITY_SERIES.items()}
         if self.attributes.get("thermal") == "transient":
             long_names |= TRANSIENT_LONG_NAMES
         for name in self.names:
             values = self.series[name]
             dims = ("time",) if values.ndim == 1 else ("time", _per(name) or COMPONENT)
+            if name in SENSITIVITY_SERIES:
+                dims = ("time", *SENSITIVITY_DIMS)
             attrs = (
                 variable_attrs(name)
                 | {"units": units[name]}
@@ -496,14 +530,17 @@ class OrbitResult(Result):
             n_sides = len(self.sides["side_facet"])
             coords[SIDE] = xr.Variable((SIDE,), np.arange(n_sides), variable_attrs(SIDE))
             coords |= {k: xr.Variable((SIDE,), v, variable_attrs(k)) for k, v in self.sides.items()}
+        if self.materials:
+            coords |= sensitivity_coords(self.materials)
         return xr.Dataset(variables, coords=coords, attrs=attrs | summary)
 
     def write_csv(self, path: Path) -> None:
         """Write the series as CSV: one row per step, the attributes as ``#`` comment lines above the header.
 
         Vectors are ``name_x``, ``name_y``, ``name_z`` columns, per-part series ``name[PART]``, per-side
-        series ``name[PART:FACET:FACE]`` (the side's part, facet index and ``front`` or ``back``) and hinge
-        angles ``hinge_angle_deg[GLOB]``.
+        series ``name[PART:FACET:FACE]`` (the side's part, facet index and ``front`` or ``back``), the
+        derivatives ``name[MATERIAL.COEFFICIENT]_x`` (and ``_y``, ``_z``) and hinge angles
+        ``hinge_angle_deg[GLOB]``.
 
         Parameters
         ----------
@@ -541,6 +578,14 @@ class OrbitResult(Result):
             if per is not None:
                 columns += list(values.T)
                 header += [f"{name}[{label}]" for label in self._labels(per)]
+            elif name in SENSITIVITY_SERIES:
+                columns += list(values.reshape(len(values), -1).T)
+                header += [
+                    f"{name}[{material}.{coefficient}]_{axis}"
+                    for material in self.materials
+                    for coefficient in COEFFICIENTS
+                    for axis in "xyz"
+                ]
             elif values.ndim == 2:
                 columns += [values[:, i] for i in range(3)]
                 header += [f"{name}_{axis}" for axis in "xyz"]

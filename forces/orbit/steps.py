@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.drag import drag
-from sunwind.forces.earth import Place
+from sunwind.forces.earth import Place, planet_radiation
 from sunwind.forces.error_estimate import summed
 from sunwind.forces.gas.atmosphere import Atmosphere, AtmosphereWarning
 from sunwind.forces.gas.msis import (
@@ -37,6 +37,12 @@ from sunwind.forces.orbit.inputs import StepInputs
 from sunwind.forces.radiation.law import SOLAR_FLUX_1AU, solar_flux
 from sunwind.forces.srp import srp
 from sunwind.forces.tables.jobs import GasOptions, Records, SrpSetup, empty_records
+from sunwind.forces.tables.sensitivities import (
+    SENSITIVITY_FIELDS,
+    flat,
+    sensitivity_fields,
+    sensitivity_keyword,
+)
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.rays.certificate import LoadsError
 
@@ -175,11 +181,18 @@ class OrbitLoads:
     n_parts : int
         The model's number of parts: the width of the per-part records of the Earth's radiation (set
         by :func:`~sunwind.forces.orbit.flight.fly`, :meth:`sized`).
+    sensitivities : bool
+        Also record the derivatives of the step's summed force and torque with respect to every
+        material's coefficients (``sensitivity_force_N``, ``sensitivity_torque_Nm``): SRP's at the
+        step's flux (the solar fraction in it), drag's and the Earth's albedo and infrared's.
+    materials : tuple of str
+        With sensitivities, the model's material names (set by :meth:`sized`).
 
     Raises
     ------
     InputError
-        A flux that is not one, or an SRP setup (or the Earth's surface setup) with a flux of its own.
+        A flux that is not one, or an SRP setup (or the Earth's surface setup) with a flux of its own;
+        sensitivities of a term whose function gives none, or with the thermal recoil.
 
     Examples
     --------
@@ -208,6 +221,8 @@ class OrbitLoads:
     earth: EarthTerms | None = None
     flux_1au_W_m2: float = field(default=SOLAR_FLUX_1AU, kw_only=True)
     n_parts: int = field(default=0, kw_only=True, repr=False)
+    sensitivities: bool = field(default=False, kw_only=True)
+    materials: tuple[str, ...] = field(default=(), kw_only=True, repr=False)
 
     def __post_init__(self) -> None:
         solar_flux(self.flux_1au_W_m2)
@@ -220,22 +235,39 @@ class OrbitLoads:
                     hint=f"give OrbitLoads(flux_1au_W_m2={setup.flux_W_m2:g}) and leave the setup's flux",
                     parameters=("flux_1au_W_m2",),
                 )
+        for kind, function in self._terms().items():
+            sensitivity_keyword(function, kind, self.sensitivities)
+        if self.sensitivities and self.earth is not None and self.earth.thermal:
+            raise InputError(
+                "sensitivities of the thermal recoil are not available yet",
+                hint="leave out the thermal recoil or the sensitivities",
+                parameters=("sensitivities", "thermal"),
+            )
 
-    def sized(self, n_parts: int) -> OrbitLoads:
-        """These loads for a model of ``n_parts`` parts (the width of the per-part records).
+    def _terms(self) -> dict:
+        """The function of each term computed, by its name."""
+        terms = {"srp": srp, "drag": drag, "earth": planet_radiation}
+        return {kind: terms[kind] for kind in terms if getattr(self, kind) is not None}
+
+    def sized(self, n_parts: int, materials: tuple[str, ...] = ()) -> OrbitLoads:
+        """These loads for a model of ``n_parts`` parts (the width of the per-part records) and these
+        materials (the width of the derivatives' records, with :attr:`sensitivities`).
 
         Examples
         --------
         >>> OrbitLoads(SrpSetup()).sized(3).n_parts
         3
+        >>> OrbitLoads(SrpSetup(), sensitivities=True).sized(1, ("paint",)).fields["sensitivity_force_N"]
+        21
         """
-        return replace(self, n_parts=n_parts)
+        return replace(self, n_parts=n_parts, materials=tuple(materials))
 
     @property
     def fields(self) -> dict[str, int]:
         """The records of a step: name -> width (1: a number, else a row of that many)."""
         extra = {} if self.earth is None else self.earth.fields(self.n_parts)
-        return self.base_fields | extra | (self.estimate_fields if self.estimates else {})
+        derivatives = sensitivity_fields(self.materials) if self.sensitivities else {}
+        return self.base_fields | extra | (self.estimate_fields if self.estimates else {}) | derivatives
 
     @property
     def estimates(self) -> bool:
@@ -273,20 +305,23 @@ class OrbitLoads:
         out = empty_records(self.fields, len(inputs))
         for name in out:
             out[name][:] = 0.0
+        asked = {"sensitivities": True} if self.sensitivities else {}
         for i in range(len(inputs)):
             posed = model.posed(self.angles_at(model, inputs, i))
             flux, sun = float(inputs.flux_W_m2[i]), inputs.sun_body[i]
             errors = []
-            if self.srp is not None and flux > 0:
-                light = srp(posed, sun, flux_W_m2=flux, **self.srp.options())
+            if self.srp is not None and flux > 0:  # the flux eclipsed: its derivatives too
+                light = srp(posed, sun, flux_W_m2=flux, **self.srp.options(), **asked)
                 out["srp_force_body_N"][i], out["srp_torque_body_Nm"][i] = light.force_N, light.torque_Nm
+                self._add_sensitivities(out, i, light.sensitivities)
                 errors.append(light.shadow_error)
             if self.drag is not None:
                 air = self.air if isinstance(self.air, Atmosphere) else self.air.atmosphere(inputs, i)
-                gas = drag(posed, inputs.velocity_body_m_s[i], air, **self.drag.options())
+                gas = drag(posed, inputs.velocity_body_m_s[i], air, **self.drag.options(), **asked)
                 out["drag_force_body_N"][i], out["drag_torque_body_Nm"][i] = gas.force_N, gas.torque_Nm
                 out["density_kg_m3"][i] = air.density_kg_m3
                 out["dynamic_pressure_Pa"][i] = gas.dynamic_pressure_Pa
+                self._add_sensitivities(out, i, gas.sensitivities)
                 errors.append(gas.shadow_error)
             if self.earth is not None:
                 errors.append(self._earth(posed, inputs, i, out))
@@ -295,6 +330,12 @@ class OrbitLoads:
                 out["shadow_error_force_N"][i] = total.force_N
                 out["shadow_error_torque_Nm"][i] = total.torque_Nm
         return out
+
+    def _add_sensitivities(self, out: Records, i: int, derivatives) -> None:
+        """Add a term's derivatives (a :class:`~sunwind.forces.sensitivity.Sensitivities`) to step ``i``'s."""
+        if self.sensitivities:
+            for name, row in flat(derivatives, self.materials).items():
+                out[name][i] += row
 
     def _earth(self, posed: Model, inputs: StepInputs, i: int, out: Records) -> LoadsError | None:
         """The Earth's radiation at step ``i`` into ``out``; its shadow passes' estimated error."""
@@ -306,9 +347,13 @@ class OrbitLoads:
             float(inputs.solar_fraction[i]),
         )
         julian = float(sum(inputs.epoch.tt(float(inputs.time_s[i]))))
-        records, error = self.earth.evaluate(posed, place, float(inputs.sunlight_W_m2[i]), julian)
+        asked = {"sensitivities": True} if self.sensitivities else {}
+        records, error = self.earth.evaluate(posed, place, float(inputs.sunlight_W_m2[i]), julian, **asked)
         for name, value in records.items():
-            out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
+            if name in SENSITIVITY_FIELDS:  # (n_materials, 7, 3): added to the other terms'
+                out[name][i] += np.ravel(value)
+            else:
+                out[name][i] = np.reshape(value, out[name][i].shape)  # one part: a number
         return error
 
     def angles_at(self, model: Model, inputs: StepInputs, i: int) -> dict[str, float]:
@@ -352,4 +397,4 @@ class OrbitLoads:
             "flux_1au_W_m2": self.flux_1au_W_m2,
             "hinge_step_deg": self.hinge_step_deg,
             "earth": None if self.earth is None else self.earth.describe(),
-        }
+        } | ({"sensitivities": list(self.materials)} if self.sensitivities else {})

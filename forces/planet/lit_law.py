@@ -1,6 +1,7 @@
 """Eq. (4), the law of light on a lit flat area, as the planet's bands use it: a parallel beam on each
-side, the open force of a side's integrals over an extended source, and the error a shadow pass leaves in
-a cell's load (METHOD.md "Planet radiation")."""
+side, the open force of a side's integrals over an extended source, the same per unit share of each way
+light leaves (the derivatives' basis), and the error a shadow pass leaves in a cell's load (METHOD.md
+"Planet radiation")."""
 
 from __future__ import annotations
 
@@ -151,3 +152,105 @@ def open_force(
     along = (1.0 - sigma - rho_s)[:, None] * i1
     normal = 2.0 * rho_s * i2 + LAMBERT_FACTOR * rho_d * i0
     return -(areas / SPEED_OF_LIGHT)[:, None] * (along + normal[:, None] * normals)
+
+
+#: The shares of a side's light, in the order of :func:`share_forces` (and of
+#: :func:`~sunwind.forces.sensitivity.optics_partials`).
+SHARES = ("absorbed", "specular", "diffuse", "transmitted")
+
+
+def share_forces(
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    i0: NDArray[np.float64],
+    i1: NDArray[np.float64],
+    i2: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """:func:`open_force` per unit share: the force on each side were all its light absorbed, mirrored,
+    diffused or transmitted [N].
+
+    The law is linear in the shares ``(alpha, rho_s, rho_d, sigma)`` (:data:`SHARES`; ``1 - sigma - rho_s =
+    alpha + rho_d``), so :func:`open_force` is the sum of these times the shares, and its derivative with
+    respect to any coefficient the sum times the shares' partials
+    (:func:`~sunwind.forces.sensitivity.optics_partials`):
+
+    ``-(A / c) [I_1,  2 I_2 n,  I_1 + (2/3) I_0 n,  0]``.
+
+    Parameters
+    ----------
+    normals : (m, 3) float64
+        Unit outward normals.
+    areas : (m,) float64
+        Areas [m^2].
+    i0, i1, i2 : (m,), (m, 3), (m,) float64
+        ``I_0, I_1, I_2`` of each side [W/m^2].
+
+    Returns
+    -------
+    (m, 4, 3) float64
+        ``[side, share, component]`` [N per unit share].
+
+    Examples
+    --------
+    The shares of a grey plate weight the four forces into :func:`open_force`:
+
+    >>> import numpy as np
+    >>> up = np.array([[0.0, 0.0, 1.0]])
+    >>> i0 = np.array([1361.0])
+    >>> basis = share_forces(up, np.ones(1), i0, i0[:, None] * up, i0)
+    >>> rho, beta, sigma = 0.4, 0.25, 0.1
+    >>> shares = np.array([1 - rho - sigma, rho * beta, rho * (1 - beta), sigma])
+    >>> optics = np.array([[rho, beta, sigma]])
+    >>> bool(np.allclose(shares @ basis[0], open_force(up, np.ones(1), optics, i0, i0[:, None] * up, i0)))
+    True
+    """
+    scale = -(areas / SPEED_OF_LIGHT)[:, None]
+    out = np.zeros((len(areas), len(SHARES), 3))
+    out[:, 0] = scale * i1
+    out[:, 1] = scale * (2.0 * i2)[:, None] * normals
+    out[:, 2] = scale * (i1 + LAMBERT_FACTOR * i0[:, None] * normals)
+    return out
+
+
+def lit_share_torques(
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    direction: NDArray[np.float64],
+    lit: tuple[NDArray[np.float64], NDArray[np.float64]],
+) -> NDArray[np.float64]:
+    """The torque of moving each side's lit force, per unit share, from its centroid to its lit centroid,
+    for a parallel beam of unit irradiance along ``direction`` (the couple a shadow pass adds).
+
+    Parameters
+    ----------
+    normals : (m, 3) float64
+        Unit outward normals of sides facing ``direction``.
+    areas : (m,) float64
+        Areas [m^2].
+    direction : (3,) float64
+        Unit direction toward the source.
+    lit : tuple of ((m,) float64, (m, 3) float64)
+        Each side's lit share and its lit centroid's offset from its centroid [m].
+
+    Returns
+    -------
+    (m, 4, 3) float64
+        ``[side, share, component]`` [N m per unit share per W/m^2]; summed with the shares it is the
+        torque of :func:`law`'s lit force at the offsets.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> up = np.array([[0.0, 0.0, 1.0]])
+    >>> torques = lit_share_torques(up, np.ones(1), up[0], (np.array([0.5]), np.array([[0.1, 0.0, 0.0]])))
+    >>> optics = np.array([[0.4, 0.25, 0.1]])
+    >>> force = law(up, np.ones(1), optics, np.array([0.5]), up[0], np.ones(1))
+    >>> shares = np.array([0.5, 0.1, 0.3, 0.1])
+    >>> bool(np.allclose(shares @ torques[0], np.cross([0.1, 0.0, 0.0], force[0])))
+    True
+    """
+    share, offset = lit
+    cos = normals @ direction
+    i0 = cos * share
+    forces = share_forces(normals, areas, i0, i0[:, None] * direction, i0 * cos)
+    return np.cross(offset[:, None, :], forces)

@@ -22,7 +22,7 @@ forward.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -36,7 +36,7 @@ from sunwind.forces.reflection.diffuse import MOMENTA, DiffuseExchange, DiffuseT
 from sunwind.geometry.rays.certificate import LoadsError
 from sunwind.geometry.rays.hull import clearance
 from sunwind.geometry.rays.sampling import ShadowSampling
-from sunwind.geometry.rays.shadows import side_sampler
+from sunwind.geometry.rays.shadows import Illumination, side_sampler
 from sunwind.geometry.sides import TWO_SIDED
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -362,6 +362,7 @@ def band_loads(
     reference_m: NDArray[np.float64],
     sampling: ShadowSampling,
     settings: ReflectionSettings,
+    observe: Callable[[int, Illumination], None] | None = None,
 ) -> tuple[list[BandLoad], int]:
     """The load of each band of light on the spacecraft, one shadow pass per cell serving every band.
 
@@ -385,6 +386,10 @@ def band_loads(
         How each cell's shadow pass samples the sides.
     settings : ReflectionSettings
         Where beam chains stop (``cutoff``, ``depth``); the ``plates`` mode shadows nothing.
+    observe : callable, optional
+        ``observe(k, light)`` is given every shadow pass as it is cast (cell ``k``), so that what else
+        depends on the cells' lit shares (the derivatives,
+        :class:`~sunwind.forces.planet.sensitivity.CellShares`) needs no pass of its own.
 
     Returns
     -------
@@ -432,6 +437,8 @@ def band_loads(
             continue  # reflected beam escapes
         light = sampler.illuminate(direction, samples, tolerance)
         rays += light.rays
+        if observe is not None:
+            observe(k, light)
         facing, share = light.facing, light.facing_share.astype(np.float64)
         dark = facing[share < 1.0]
         dark_share = share[share < 1.0]

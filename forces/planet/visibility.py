@@ -11,7 +11,9 @@ build keeps, per node,
   only sides partly in shadow), which turn node irradiances ``W_j`` into what each side loses of the
   source, ``dI_0 = S W``, ``dI_1 = S (W d)``, ``dI_2 = S2 W``;
 * per optics band (solar, infrared) the torque of moving each side's lit force to its lit centroid and the
-  pass's estimated error, both per unit irradiance;
+  pass's estimated error, both per unit irradiance; and that torque per material and unit share of each
+  way light leaves (:func:`~sunwind.forces.planet.lit_law.lit_share_torques`), whatever the optics: the
+  basis of the derivatives with respect to the optics;
 * with mirror or transmitted beams (solar band), each node's beam chains per unit irradiance
   (:func:`~sunwind.forces.reflection.follow_chains` is linear in the flux): their force and torque,
   the diffuse sources and arrivals they leave on each side (sparse) and their power split.
@@ -38,7 +40,7 @@ import trimesh
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
-from sunwind.forces.planet.lit_law import cell_error, law
+from sunwind.forces.planet.lit_law import SHARES, cell_error, law, lit_share_torques
 from sunwind.forces.reflection import BeamChainTotals, ReflectionSettings, follow_chains
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import require
@@ -271,6 +273,10 @@ class Visibility:
         origin); None with fixed sampling.
     chains : NodeChains or None
         The nodes' beam chains (solar optics), when beams were asked for and some side can be shadowed.
+    lit_torque_Nm : (n, n_materials, 4, 3) float64
+        Per node, material and share of :data:`~sunwind.forces.planet.lit_law.SHARES`, the torque of
+        moving the lit forces of the material's sides to their lit centroids per unit irradiance and unit
+        share; ``shift_torque_Nm`` of a band is its sum weighted by the band's shares.
     rays : int
         Rays the build cast.
     seconds : float
@@ -296,6 +302,7 @@ class Visibility:
     error_force_N: NDArray[np.float64] | None
     error_torque_Nm: NDArray[np.float64] | None
     chains: NodeChains | None
+    lit_torque_Nm: NDArray[np.float64]
     rays: int
     seconds: float
     origin: str = "computed"
@@ -393,6 +400,10 @@ def _kept(
         "cutoff": settings.cutoff,
         "depth": settings.depth,
         "optics": hashlib.sha256(np.ascontiguousarray(optics, dtype="<f8").tobytes()).hexdigest(),
+        "materials": [
+            len(craft.materials),
+            hashlib.sha256(np.ascontiguousarray(craft.side_material, dtype="<i4").tobytes()).hexdigest(),
+        ],
     }
     return kept_on_disk(
         directory,
@@ -400,7 +411,7 @@ def _kept(
         geometry_key(craft, settings_key),
         build,
         _arrays,
-        lambda arrays, origin: _decoded(arrays, grid, craft.n_sides, origin),
+        lambda arrays, origin: _decoded(arrays, grid, (craft.n_sides, len(craft.materials)), origin),
     )
 
 
@@ -408,8 +419,9 @@ def _check_memory(craft: Spacecraft, grid: DirectionGrid, beams: bool) -> None:
     """Refuse a build whose worst case (every facing side partly shadowed at every node) exceeds the limit."""
     facing = craft.n_sides * len(grid.nodes) / 2
     per_entry = 2 * (8 + 4) + (2 * (8 + 4) if beams else 0)  # values and indices of the sparse matrices
+    couples = len(grid.nodes) * len(craft.materials) * len(SHARES) * 3 * 8  # the lit couples per material
     require(
-        facing * per_entry * 2,  # and the lists they are assembled from
+        facing * per_entry * 2 + couples,  # and the lists they are assembled from
         f"the directional visibility of {craft.n_sides} sides along {len(grid.nodes)} directions",
         "give a larger cell_deg (a coarser grid), or method cells (a shadow pass per cell at every call)",
         ("cell_deg", "method"),
@@ -420,7 +432,8 @@ def _empty(craft: Spacecraft, grid: DirectionGrid, sampling: ShadowSampling) -> 
     n, shape = len(grid.nodes), (craft.n_sides, len(grid.nodes))
     errors = np.zeros((2, n)) if sampling.estimates else None
     empty = scipy.sparse.csr_matrix(shape)
-    return Visibility(grid, empty, empty.copy(), np.zeros((2, n, 3)), errors, errors, None, 0, 0.0)
+    lit = np.zeros((n, len(craft.materials), len(SHARES), 3))
+    return Visibility(grid, empty, empty.copy(), np.zeros((2, n, 3)), errors, errors, None, lit, 0, 0.0)
 
 
 def _build(
@@ -437,6 +450,7 @@ def _build(
     n, origin = len(grid.nodes), np.zeros(3)
     rows, cols, lost, lost2 = [], [], [], []
     shift = np.zeros((2, n, 3))
+    lit_torque = np.zeros((n, len(craft.materials), len(SHARES), 3))
     errors = np.zeros((2, 2, n)) if sampling.estimates else None
     chain_list, rays = [], 0
     for j, direction in enumerate(grid.nodes):
@@ -450,8 +464,10 @@ def _build(
         lost.append(cos * (1.0 - dark_share))
         lost2.append(cos * cos * (1.0 - dark_share))
         offset = light.lit_centroid[dark] - craft.side_centroids[dark]
+        normals, areas = craft.side_normals[dark], craft.side_areas[dark]
+        torques = lit_share_torques(normals, areas, direction, (dark_share, offset))
+        np.add.at(lit_torque[j], craft.side_material[dark], torques)
         for b, optics in enumerate(band_optics):
-            normals, areas = craft.side_normals[dark], craft.side_areas[dark]
             lit = law(normals, areas, optics[dark], cos * dark_share, direction, cos)
             shift[b, j] = np.cross(offset, lit).sum(axis=0)
             if errors is not None and light.check is not None:
@@ -474,6 +490,7 @@ def _build(
         error_force_N=None if errors is None else errors[:, 0],
         error_torque_Nm=None if errors is None else errors[:, 1],
         chains=_stacked(chain_list, craft.n_sides) if beams else None,
+        lit_torque_Nm=lit_torque,
         rays=rays,
         seconds=time.perf_counter() - start,
     )
@@ -522,7 +539,11 @@ _CHAIN_SPARSE = ("diffuse_source_W", "arrived_W")
 
 def _arrays(seen: Visibility) -> dict[str, NDArray]:
     """The arrays of a visibility, by name, for the disk entry."""
-    out: dict[str, NDArray] = {"shift_torque_Nm": seen.shift_torque_Nm, "rays": np.array(seen.rays)}
+    out: dict[str, NDArray] = {
+        "shift_torque_Nm": seen.shift_torque_Nm,
+        "lit_torque_Nm": seen.lit_torque_Nm,
+        "rays": np.array(seen.rays),
+    }
     for name in _SPARSE:
         matrix = getattr(seen, name)
         out |= {
@@ -543,8 +564,12 @@ def _arrays(seen: Visibility) -> dict[str, NDArray]:
     return out
 
 
-def _decoded(arrays: dict[str, NDArray], grid: DirectionGrid, n_sides: int, origin: str) -> Visibility:
-    """A visibility from its disk entry, its shapes and values checked."""
+def _decoded(
+    arrays: dict[str, NDArray], grid: DirectionGrid, counts: tuple[int, int], origin: str
+) -> Visibility:
+    """A visibility from its disk entry (``counts``: the model's sides and materials), its shapes and
+    values checked."""
+    n_sides, n_materials = counts
     n, shape = len(grid.nodes), (n_sides, len(grid.nodes))
 
     def sparse(prefix: str) -> scipy.sparse.csr_matrix:
@@ -558,6 +583,11 @@ def _decoded(arrays: dict[str, NDArray], grid: DirectionGrid, n_sides: int, orig
     shift = np.asarray(arrays["shift_torque_Nm"], dtype=np.float64)
     if shift.shape != (2, n, 3):
         raise ValueError(f"shift_torque_Nm has shape {shift.shape}, not {(2, n, 3)}")
+    lit = np.asarray(arrays["lit_torque_Nm"], dtype=np.float64)
+    if lit.shape != (n, n_materials, len(SHARES), 3):
+        raise ValueError(f"lit_torque_Nm has shape {lit.shape}, not {(n, n_materials, len(SHARES), 3)}")
+    if not np.all(np.isfinite(lit)):
+        raise ValueError("lit_torque_Nm holds values that are not finite")
     shadow, shadow2 = sparse("shadow"), sparse("shadow2")
     if shadow.nnz and not (shadow.data.min() >= 0.0 and shadow.data.max() <= 1.0 + 1e-9):
         raise ValueError("shadow holds losses outside [0, 1]")
@@ -578,6 +608,7 @@ def _decoded(arrays: dict[str, NDArray], grid: DirectionGrid, n_sides: int, orig
         error_force_N=arrays.get("error_force_N"),
         error_torque_Nm=arrays.get("error_torque_Nm"),
         chains=chains,
+        lit_torque_Nm=lit,
         rays=int(arrays["rays"]),
         seconds=0.0,
         origin=origin,

@@ -10,7 +10,9 @@ parts and areas, the coefficients ``CD, CS, CL`` and ``CM``, ``flow_vector``) an
 only: the albedo plus infrared (plus thermal recoil) force and torque, each band apart, the visible share
 of the Sun, ``earth_vector``; the Sun fixed in the body frame, see :mod:`.earth_setup`); with the default
 shadow pass, each kind's ``*_error_estimate_force`` and ``*_error_estimate_torque`` (the error the pass
-estimates it left, relative). Every variable and coordinate has ``units`` and ``long_name`` (CF-1.8,
+estimates it left, relative); with sensitivities, each kind's ``*_sensitivity_force_N`` and
+``*_sensitivity_torque_Nm`` on its dimensions and ``material, coefficient, component``
+(:mod:`.sensitivities`). Every variable and coordinate has ``units`` and ``long_name`` (CF-1.8,
 ``Conventions``); the global attributes hold the frame, the sign conventions (``comment``), reference
 point, solar flux, atmosphere (its source and altitude), the Earth's slice, albedo and infrared
 (``earth_*``), coefficient references, the reflection mode each quantity used (``srp_reflections``,
@@ -36,6 +38,7 @@ from sunwind.forces.model import Model
 from sunwind.forces.results import FRAME
 from sunwind.forces.tables.attitudes import AttitudeList, DirectionGrid
 from sunwind.forces.tables.jobs import FIELDS, Records, Setup
+from sunwind.forces.tables.sensitivities import sensitivity_variables
 from sunwind.forces.vocabulary import (
     COMMENTS,
     COMPONENT,
@@ -88,6 +91,8 @@ _TEXT = {
 
 
 def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[int, ...]) -> dict:
+    records = dict(records)  # the derivatives taken out: on (..., material, coefficient, component)
+    derivatives = sensitivity_variables(records, f"{kind}_", dims, shape, _TITLES[kind])
     out = {}
     names = LONG_NAMES | (_EARTH_TOTALS["thermal_force_N" in records] if kind == "earth" else {})
     for name, values in records.items():
@@ -97,7 +102,7 @@ def _variables(kind: str, records: Records, dims: tuple[str, ...], shape: tuple[
         if name in COMMENTS:
             attrs["comment"] = COMMENTS[name]
         out[f"{kind}_{name}"] = xr.Variable((*dims, "component") if vector else dims, data, attrs)
-    return out
+    return out | derivatives
 
 
 def _direction_variable(kind: str, vectors: NDArray[np.float64], dims: tuple[str, ...]) -> xr.Variable:

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 from sunwind.forces.earth import (
     DEFAULT_CELL_DEG,
     METHODS,
+    CapSampling,
     Place,
     check_altitude,
     check_cell_size,
@@ -42,6 +43,7 @@ from sunwind.forces.tables.jobs import (
     empty_records,
     estimate_records,
 )
+from sunwind.forces.tables.sensitivities import flat
 from sunwind.forces.thermal import thermal_model
 from sunwind.geometry.directions import unit_vector
 from sunwind.geometry.errors import InputError
@@ -92,12 +94,15 @@ class EarthSetup(_Setup):
         Height above the Earth's surface (WGS 84 equatorial radius) [km].
     sun_vector : (3,) float
         The Sun, fixed in the body frame (spacecraft to Sun); kept normalised.
+    sensitivities : bool
+        Also record the derivatives of the albedo and infrared force and torque with respect to every
+        material's coefficients (``sensitivity_force_N``, ``sensitivity_torque_Nm``); not with thermal.
 
     Raises
     ------
     InputError
         An altitude, Sun vector, flux, albedo, infrared exitance, cell size, sampling or reflections
-        out of range.
+        out of range; sensitivities with thermal.
 
     Examples
     --------
@@ -129,12 +134,25 @@ class EarthSetup(_Setup):
                 f"cap_method {self.cap_method!r} is not one of {', '.join(METHODS)}",
                 parameters=("cap_method",),
             )
+        if self.sensitivities and self.thermal:
+            raise InputError(
+                "sensitivities of the thermal recoil are not available yet: an earth table's derivatives "
+                "are those of the albedo and infrared",
+                hint="leave out the thermal recoil or the sensitivities",
+                parameters=("sensitivities", "thermal"),
+            )
 
     @property
     def fields(self) -> dict[str, int]:
         """The records of an entry: name -> width (the thermal recoil's with :attr:`thermal`, the error
         estimate with the default shadow pass)."""
-        return EARTH_FIELDS | (EARTH_THERMAL_FIELDS if self.thermal else {}) | self.estimates
+        thermal = EARTH_THERMAL_FIELDS if self.thermal else {}
+        return EARTH_FIELDS | thermal | self.estimates | self.sensitivity_fields
+
+    @property
+    def computes(self) -> Any:
+        """The function every entry calls, :func:`~sunwind.forces.earth.planet_radiation`."""
+        return planet_radiation
 
     def light(self) -> PlanetLight:
         """The Earth's albedo and infrared laws under :attr:`flux_W_m2`."""
@@ -170,14 +188,15 @@ class EarthSetup(_Setup):
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of Earth directions ``directions`` (n, 3), body frame."""
         model = self.posed(model)
-        light, options, sun = self.light(), self.options(), np.asarray(self.sun_vector)
+        light, options, sun = self.light(), self.options() | self.keyword(), np.asarray(self.sun_vector)
+        materials = self.materials or model.craft.materials.names
         out = empty_records(self.fields, len(directions))
         estimates = []
         for i, u in enumerate(directions):
             fraction = self.solar_fraction(u)
             place = Place(u, self.altitude_km, sun, None, fraction)
             result = planet_radiation(
-                model, place, light, cell_deg=self.cell_deg, method=self.cap_method, **options
+                model, place, light, cap=CapSampling(self.cell_deg, self.cap_method), **options
             )
             force, torque = result.force_N, result.torque_Nm
             if self.thermal:
@@ -188,6 +207,9 @@ class EarthSetup(_Setup):
             for name, band in (("albedo", result.albedo), ("infrared", result.infrared)):
                 out[f"{name}_force_N"][i], out[f"{name}_torque_Nm"][i] = band.force_N, band.torque_Nm
             out["solar_fraction"][i] = fraction
+            if self.sensitivities:
+                for name, row in flat(result.sensitivities, materials).items():
+                    out[name][i] = row
             error = result.shadow_error  # relative to the loads recorded, the thermal recoil's too
             estimates.append(
                 None if error is None else ErrorEstimate.of(error, force, torque, model.craft.diagonal_m)

@@ -29,6 +29,7 @@ from sunwind.forces.tables.cluster import require_dask, run_on_dask
 from sunwind.forces.tables.dataset import grid_table, list_table, table_attributes
 from sunwind.forces.tables.earth_setup import EarthSetup
 from sunwind.forces.tables.jobs import FIELDS, DragSetup, Job, PosedSetup, Records, SrpSetup, empty_records
+from sunwind.forces.tables.sensitivities import labelled
 from sunwind.geometry import memory
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import checked_threads
@@ -104,7 +105,9 @@ class SweepRun:
 _DIRECTION_BYTES = 24
 
 
-def check_table_memory(grid: DirectionGrid, kinds: tuple[str, ...], name: str = "step_deg") -> None:
+def check_table_memory(
+    grid: DirectionGrid, kinds: tuple[str, ...], name: str = "step_deg", extra: int = 0
+) -> None:
     """Refuse a grid sweep that would not fit in memory, before any of it is made.
 
     The grid, the records and the table (float64, each field at every distinct direction and again at
@@ -119,6 +122,8 @@ def check_table_memory(grid: DirectionGrid, kinds: tuple[str, ...], name: str = 
         The kinds tabulated, one entry per job (a kind repeated once per hinge pose).
     name : str
         The parameter that set the step, named in the error.
+    extra : int
+        Numbers per distinct direction recorded besides the kinds' fields (the sensitivities').
 
     Raises
     ------
@@ -135,7 +140,7 @@ def check_table_memory(grid: DirectionGrid, kinds: tuple[str, ...], name: str = 
     ...
     sunwind.geometry.errors.InputError: not enough memory: needs ~29.8 TiB for a table of 6.48e+10 grid...
     """
-    per_node = sum(2 * 8 * sum(FIELDS[kind].values()) + _DIRECTION_BYTES for kind in kinds)
+    per_node = sum(2 * 8 * sum(FIELDS[kind].values()) + _DIRECTION_BYTES for kind in kinds) + 2 * 8 * extra
     nodes = grid.nodes
     what = f"a table of {memory.count(nodes)} grid nodes ({', '.join(kinds)})"
     memory.require((GRID_BYTES + per_node) * nodes, what, f"raise {name}", (name,))
@@ -162,7 +167,9 @@ def sweep(
         The loaded model (:func:`sunwind.forces.load`; Dask needs one loaded from files).
     srp, drag : SrpSetup, DragSetup, optional
         What to tabulate (at least one of these and ``earth``): the settings of every SRP attitude, of
-        every drag attitude.
+        every drag attitude. A setup with ``sensitivities=True`` adds ``KIND_sensitivity_force_N`` and
+        ``KIND_sensitivity_torque_Nm`` on the attitude dimensions and ``(material, coefficient,
+        component)`` (:mod:`~sunwind.forces.tables.sensitivities`).
     earth : EarthSetup, optional
         The Earth's albedo and infrared (and thermal recoil) over Earth directions, at the setup's
         altitude with its Sun fixed in the body frame: grid tables only.
@@ -232,10 +239,14 @@ def sweep(
         )
     if earth is not None:
         earth.check(model)
+    setups = [setup.sized(model) for setup in setups]  # with sensitivities: per material of the model
     grid = None
     if attitudes is None:
         grid = direction_grid(DEFAULT_STEP if step_deg is None else step_deg, "step_deg")
-        check_table_memory(grid, tuple(setup.kind for setup in setups) * len(poses))
+        derivatives = sum(sum(setup.sensitivity_fields.values()) for setup in setups)
+        check_table_memory(
+            grid, tuple(setup.kind for setup in setups) * len(poses), extra=derivatives * len(poses)
+        )
     directions = {
         setup.kind: grid.distinct[0] if grid is not None else attitudes.directions(setup.kind)
         for setup in setups
@@ -258,9 +269,10 @@ def sweep(
         }
         attrs = table_attributes(held, setups, None if grid is None else grid.step_deg)
         if grid is not None:
-            tables.append(grid_table(own, dict.fromkeys(own, grid), attrs))
+            table = grid_table(own, dict.fromkeys(own, grid), attrs)
         else:
-            tables.append(list_table(own, attitudes, attrs))
+            table = list_table(own, attitudes, attrs)
+        tables.append(labelled(table, held.craft.materials.names))
     return tables[0] if hinge_angles is None else by_hinge_angle(tables, poses)
 
 

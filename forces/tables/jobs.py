@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
@@ -36,6 +36,7 @@ from sunwind.forces.reflection import (
     resolved_mode,
 )
 from sunwind.forces.srp import srp
+from sunwind.forces.tables.sensitivities import sensitivity_fields, sensitivity_keyword, sensitivity_records
 from sunwind.geometry.directions import finite_point
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.rays.sampling import ShadowSampling
@@ -177,12 +178,19 @@ class _Setup:
         for its defaults.
     reflections : str or ReflectionSettings
         One of :data:`~sunwind.forces.reflection.settings.MODES`, or settings.
+    sensitivities : bool
+        Also record the derivatives of force and torque with respect to every material's coefficients
+        (:mod:`~sunwind.forces.tables.sensitivities`; the keyword of the same name).
+    materials : tuple of str
+        With sensitivities, the model's material names (the records' widths): set by :meth:`sized`.
     """
 
     kind: ClassVar[str]
     reference_point_m: tuple[float, float, float] | None = field(default=None, kw_only=True)
     sampling: ShadowSampling = field(default_factory=ShadowSampling, kw_only=True)
     reflections: ReflectionSettings | str = field(default="auto", kw_only=True)
+    sensitivities: bool = field(default=False, kw_only=True)
+    materials: tuple[str, ...] = field(default=(), kw_only=True, repr=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "sampling", ShadowSampling.of(self.sampling))
@@ -201,6 +209,60 @@ class _Setup:
         """:attr:`reflections` as settings."""
         return ReflectionSettings.of(self.reflections)
 
+    @property
+    def computes(self) -> Any:
+        """The function every attitude calls: :func:`~sunwind.forces.srp.srp`, unless the kind's own."""
+        return srp
+
+    @property
+    def sensitivity_fields(self) -> dict[str, int]:
+        """The records of the derivatives (:func:`~.sensitivities.sensitivity_fields`), none without
+        :attr:`sensitivities`."""
+        if not self.sensitivities:
+            return {}
+        if not self.materials:
+            raise InputError(
+                "a setup with sensitivities records them per material: size it for its model first",
+                hint="setup.sized(model) (sweep does)",
+                parameters=("sensitivities",),
+            )
+        return sensitivity_fields(self.materials)
+
+    def sized(self, model: Model) -> _Setup:
+        """These settings for ``model``: with :attr:`sensitivities`, its material names (the width of
+        their records), the kind checked to give them.
+
+        Parameters
+        ----------
+        model : Model
+            The model the attitudes evaluate.
+
+        Returns
+        -------
+        _Setup
+            These settings, :attr:`materials` set (the same without sensitivities).
+
+        Raises
+        ------
+        InputError
+            Sensitivities of a kind whose function gives none.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> cube = sw.load(sw.meshes.box(), uniform=sw.Material("grey", 0.3, 0.0), threads=1)
+        >>> SrpSetup(sensitivities=True).sized(cube).sensitivity_fields
+        {'sensitivity_force_N': 21, 'sensitivity_torque_Nm': 21}
+        """
+        if not self.sensitivities:
+            return self
+        sensitivity_keyword(self.computes, self.kind, True)
+        return replace(self, materials=tuple(model.craft.materials.names))
+
+    def keyword(self) -> dict:
+        """The ``sensitivities`` keyword of every attitude's call, with :attr:`sensitivities` (else none)."""
+        return sensitivity_keyword(self.computes, self.kind, self.sensitivities)
+
     def precompute(self, model: Model) -> None:
         """What every attitude reuses, made once before the first: the view factors when it reflects."""
         if self.settings.uses_view_factors:
@@ -217,6 +279,10 @@ class _Setup:
     def describe(self) -> dict:
         """JSON-ready settings (the view-factor cache's place left out: it does not change results)."""
         out = asdict(self)
+        if not self.sensitivities:  # a run without them is described as before they were
+            del out["sensitivities"], out["materials"]
+        else:
+            out["materials"] = list(self.materials)
         out["reflections"] = asdict(self.settings)
         out["reflections"].pop("cache_dir")
         if self.reference_point_m is not None:  # given as an array or a sequence: JSON numbers either way
@@ -262,13 +328,14 @@ class SrpSetup(_Setup):
 
     @property
     def fields(self) -> dict[str, int]:
-        """The records of an attitude: name -> width (:data:`SRP_FIELDS`, and the error estimate)."""
-        return SRP_FIELDS | self.estimates
+        """The records of an attitude: name -> width (:data:`SRP_FIELDS`, the error estimate, the
+        derivatives)."""
+        return SRP_FIELDS | self.estimates | self.sensitivity_fields
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of Sun directions ``directions`` (n, 3); a model whose hinges track the Sun is
         posed at each direction's angles first."""
-        options = {"flux_W_m2": self.flux_W_m2, **self.options()}
+        options = {"flux_W_m2": self.flux_W_m2, **self.options(), **self.keyword()}
         if any(hinge.law == "track" for hinge in model.hinges):
             poses = [model.posed(model.angles_at(u)) for u in directions]
             batch = SrpBatch(
@@ -277,6 +344,8 @@ class SrpSetup(_Setup):
         else:
             batch = srp(model, directions, **options)
         out = {name: batch.stacked(name) for name in SRP_FIELDS}
+        if self.sensitivities:
+            out |= sensitivity_records(batch, self.materials or model.craft.materials.names)
         return out | (estimate_records([r.error_estimate for r in batch]) if self.estimates else {})
 
     def attributes(self, model: Model) -> dict:
@@ -334,6 +403,11 @@ class GasOptions(_Setup):
         """The keyword arguments every attitude's call takes."""
         return super().options() | {"gas_sampling": self.gas_sampling}
 
+    @property
+    def computes(self) -> Any:
+        """The function every attitude calls, :func:`~sunwind.forces.drag.drag`."""
+        return drag
+
 
 @dataclass(frozen=True)
 class DragSetup(GasOptions):
@@ -387,13 +461,16 @@ class DragSetup(GasOptions):
 
     @property
     def fields(self) -> dict[str, int]:
-        """The records of an attitude: name -> width (:data:`DRAG_FIELDS`, and the error estimate)."""
-        return DRAG_FIELDS | self.estimates
+        """The records of an attitude: name -> width (:data:`DRAG_FIELDS`, the error estimate, the
+        derivatives)."""
+        return DRAG_FIELDS | self.estimates | self.sensitivity_fields
 
     def evaluate(self, model: Model, directions: NDArray[np.float64]) -> Records:
         """The records of flow directions ``u`` (n, 3)."""
-        batch = drag(model, self.speed_m_s * directions, self.atmosphere, **self.options())
+        batch = drag(model, self.speed_m_s * directions, self.atmosphere, **self.options(), **self.keyword())
         out = {name: batch.stacked(name) for name in DRAG_FIELDS}
+        if self.sensitivities:
+            out |= sensitivity_records(batch, self.materials or model.craft.materials.names)
         return out | (estimate_records([r.error_estimate for r in batch]) if self.estimates else {})
 
     def describe(self) -> dict:

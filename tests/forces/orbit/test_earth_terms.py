@@ -14,7 +14,7 @@ import xarray as xr
 from helpers.planet import BLACK, R_EARTH, infrared_on_black_sphere, materials_toml, write_sphere
 from helpers.runs import stopped_then_resumed
 from sunwind.forces import Model
-from sunwind.forces.earth import Place, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, planet_radiation
 from sunwind.forces.orbit import AttitudeLaw, Elements, Epoch, OrbitLoads, fly, propagate
 from sunwind.forces.orbit.earth_terms import EarthTerms
 from sunwind.forces.orbit.sun import AU_M, sun_position
@@ -61,7 +61,7 @@ def test_each_step_is_the_planet_radiation_and_equilibrium_at_its_place(model, r
             float(s["solar_fraction"][i]),
         )
         light = PlanetLight.of(planet("earth"), 1361.0 * (AU_M / np.linalg.norm(sun[i])) ** 2)
-        alone = planet_radiation(model, place, light, reflections="none", cell_deg=15.0)
+        alone = planet_radiation(model, place, light, reflections="none", cap=CapSampling(15.0))
         for band in ("albedo", "infrared"):
             loads = getattr(alone, band)
             assert np.allclose(s[f"{band}_force_body_N"][i], loads.force_N, rtol=1e-10, atol=0)

@@ -10,7 +10,7 @@ import pytest
 
 from helpers import quad_sheet
 from helpers.shapes import open_box, plate_over_plate
-from sunwind.forces.earth import Place, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, planet_radiation
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.cap import Cap
 from sunwind.geometry.materials import Material, MaterialSpec, PartRule
@@ -118,7 +118,9 @@ def test_plate_behind_a_plate_against_rays(step_deg, tolerance):
     craft, big, small = plate_over_plate()
     body = ref.SphericalPlanet(EARTH.radius_m, 500e3, FLUX, EARTH.albedo)
     sun = SUNS[1]
-    result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cell_deg=step_deg)
+    result = planet_radiation(
+        craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cap=CapSampling(step_deg)
+    )
     part = craft.facet_part[craft.side_facet]
     facing = (part == craft.part_names.index("big")) & (craft.side_normals[:, 2] < 0)
     blockers = np.array([small[[0, 1, 2]], small[[0, 2, 3]]])

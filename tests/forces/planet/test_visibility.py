@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from helpers.shapes import hinged_box_wing, plate_over_plate
-from sunwind.forces.earth import Place, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, planet_radiation
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.visibility import direction_grid, level_for, visibility
 from sunwind.forces.reflection import ReflectionSettings
@@ -75,10 +75,14 @@ def test_shadowed_plate_converges_to_the_ray_brute_force(cell_deg, tolerance):
     expected = ref.shadowed_plate_irradiance(
         blockers, big, [0, 0, -1.0], NADIR, sun, body, "infrared", (64, 32)
     )
-    result = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cell_deg=cell_deg)
+    result = planet_radiation(
+        craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cap=CapSampling(cell_deg)
+    )
     got = result.infrared.incident_side_W[facing].sum()
     assert abs(got / expected.irradiance_W_m2 - 1) <= tolerance
-    cells = planet_radiation(craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", method="cells")
+    cells = planet_radiation(
+        craft, Place(NADIR, 500.0, sun), LIGHT, reflections="none", cap=CapSampling(method="cells")
+    )
     assert result.rays < cells.rays / 20  # the Sun's pass only
 
 
@@ -103,7 +107,7 @@ def test_visibility_matches_a_shadow_pass_per_cell_with_reflections_and_knows_it
     size = model.diagonal_m
     for place in _places()[1:]:
         fast = planet_radiation(model, place, reflections="full")
-        slow = planet_radiation(model, place, reflections="full", method="cells", cell_deg=2.5)
+        slow = planet_radiation(model, place, reflections="full", cap=CapSampling(2.5, "cells"))
         force = np.linalg.norm(fast.force_N - slow.force_N) / np.linalg.norm(slow.force_N)
         scale = max(np.linalg.norm(slow.torque_Nm), 0.01 * np.linalg.norm(slow.force_N) * size)
         torque = np.linalg.norm(fast.torque_Nm - slow.torque_Nm) / scale
@@ -124,7 +128,7 @@ def test_a_convex_model_casts_nothing_and_both_methods_are_exact():
     seen = visibility(craft, 3, ShadowSampling(), ReflectionSettings("full"), beams=True)
     assert seen.rays == 0 and seen.shadow.nnz == 0 and seen.chains is None
     a = planet_radiation(craft, place, reflections="full")
-    b = planet_radiation(craft, place, reflections="full", method="cells")
+    b = planet_radiation(craft, place, reflections="full", cap=CapSampling(method="cells"))
     np.testing.assert_allclose(a.force_N, b.force_N, rtol=1e-12, atol=1e-20)
 
 
@@ -138,7 +142,7 @@ def test_the_visibility_is_kept_on_disk_checked_and_rebuilt_when_damaged(tmp_pat
         return build_spacecraft(primitives.box_wing(facet_size=0.5), uniform=WHITE)
 
     def run(model):
-        return planet_radiation(model, place, reflections=settings, cell_deg=20.0)
+        return planet_radiation(model, place, reflections=settings, cap=CapSampling(20.0))
 
     first = run(fresh())
     stored = sorted(tmp_path.glob("visibility-*.npz"))
@@ -164,9 +168,8 @@ def test_a_build_too_large_for_memory_is_refused_before_it_starts(monkeypatch):
 
 
 def test_a_method_not_known_is_refused():
-    craft = build_spacecraft(primitives.box_wing(), uniform=WHITE)
     with pytest.raises(InputError, match="method 'rays' is not one of visibility, cells"):
-        planet_radiation(craft, _places()[0], method="rays")
+        CapSampling(method="rays")
 
 
 def test_an_orbit_with_a_moving_hinge_takes_the_cells_and_a_fixed_one_the_visibility(tmp_path):
