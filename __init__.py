@@ -71,6 +71,7 @@ _PUBLIC = {
     "SrpResult": "sunwind.forces.results:SrpResult",
     "DragResult": "sunwind.forces.results:DragResult",
     "PlanetResult": "sunwind.forces.earth:PlanetResult",
+    "Sensitivities": "sunwind.forces.sensitivity:Sensitivities",
     "ResultBatch": "sunwind.forces.batches:ResultBatch",
     "SrpBatch": "sunwind.forces.batches:SrpBatch",
     "DragBatch": "sunwind.forces.batches:DragBatch",

@@ -58,6 +58,11 @@ class ExchangeSensitivity:
         Columns ``[material, (rho_d, rho_s, sigma), slot]`` flattened in that order.
     origin : str
         "computed", or the disk cache it was read from or stored in.
+
+    Examples
+    --------
+    >>> ExchangeSensitivity(np.zeros((4, 18))).responses.shape  # one material, four sides
+    (4, 18)
     """
 
     responses: NDArray[np.float64]
