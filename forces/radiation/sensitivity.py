@@ -84,8 +84,8 @@ def direct_optics_derivatives(
     >>> craft = sw.load(sw.meshes.box((1.0, 1.0, 1.0)), uniform=black, threads=1).craft
     >>> light = side_sampler(craft).illuminate(np.array([1.0, 0.0, 0.0]))
     >>> force, torque = direct_optics_derivatives(craft, light, 1.0, np.zeros(3))
-    >>> force[0, 0].round(6)  # d F / d rho with beta = 0: -(2/3) n P A
-    array([-0.666667,  0.      , -0.      ])
+    >>> force[0, 0].round(6) + 0.0  # d F / d rho with beta = 0: -(2/3) n P A
+    array([-0.666667,  0.      ,  0.      ])
     """
     sides, share = light.facing, light.facing_share
     u = light.direction
