@@ -14,17 +14,20 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.batches import DragBatch
 from sunwind.forces.gas.atmosphere import Atmosphere
+from sunwind.forces.gas.chain_tangents import ChainTangent, Derivatives, check_covered, exchange_slopes
 from sunwind.forces.gas.chains import ChainLaws, SpeciesStream, molecular_chains
 from sunwind.forces.gas.exchange import molecular_exchange, open_plate_recoil
 from sunwind.forces.gas.flow import flow_speed
 from sunwind.forces.gas.panel import GasGroups, closed_loads, gas_groups, species_streams, summed_laws
 from sunwind.forces.gas.sampling import GasSampling
+from sunwind.forces.gas.tangents import closed_tangent, stream_tangents
 from sunwind.forces.gas.visible import arrival, model_sky, stream_tables
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.reflection import (
@@ -35,6 +38,7 @@ from sunwind.forces.reflection import (
     resolved_mode,
 )
 from sunwind.forces.results import DragResult
+from sunwind.forces.sensitivity import Sensitivities
 from sunwind.geometry.directions import unit_vector, unit_vectors
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_items, using_threads
@@ -53,6 +57,7 @@ def drag(
     sampling: ShadowSampling | None = None,
     reflections: str | ReflectionSettings = "auto",
     gas_sampling: GasSampling | None = None,
+    sensitivities: bool = False,
 ) -> DragResult | DragBatch:
     """Free-molecular force and torque with the open-sky integral and molecular inter-reflection.
 
@@ -81,6 +86,12 @@ def drag(
         Sampling of the open-sky integral and the chains (:class:`~sunwind.forces.gas.sampling.
         GasSampling`): rays per side of each side's sky, sampled once per model; core rays and chain
         molecules per attitude. Default ``GasSampling()``.
+    sensitivities : bool
+        Also the derivatives of force and torque with respect to each material's accommodation
+        coefficients (:class:`~sunwind.forces.sensitivity.Sensitivities` in the result's
+        ``sensitivities``; zero where a material's law does not read a coefficient): those of the
+        function computed, its rays and samples held, forward mode on the same rays
+        (:mod:`sunwind.forces.gas.tangents`).
 
     Returns
     -------
@@ -91,7 +102,8 @@ def drag(
     ------
     InputError
         A velocity that is not three finite numbers of a flow speed, an atmosphere, sampling or
-        reflections of the wrong kind or out of range.
+        reflections of the wrong kind or out of range; sensitivities of a combination not covered
+        (:func:`~sunwind.forces.gas.chain_tangents.check_covered`).
 
     Examples
     --------
@@ -101,6 +113,10 @@ def drag(
     >>> fast = sw.GasSampling(sky_rays=16, core_rays=1024)
     >>> result = sw.drag(model, [7600.0, 0.0, 0.0], air, reflections="none", gas_sampling=fast)
     >>> bool(result.force_N[0] < 0)  # drag acts against v_rel
+    True
+    >>> with_sensitivities = sw.drag(model, [7600.0, 0.0, 0.0], air, reflections="none",
+    ...     gas_sampling=fast, sensitivities=True)
+    >>> bool(with_sensitivities.sensitivities.of("white.energy_accommodation").force_N[0] > 0)
     True
     """
     model = as_model(model)
@@ -113,7 +129,7 @@ def drag(
     gas = GasSampling.of(gas_sampling)
     with using_threads(model.threads):
         results = map_items(
-            lambda v: _one(model, v, atmosphere, reference, shadows, gas, settings),
+            lambda v: _one(model, v, atmosphere, reference, shadows, gas, settings, sensitivities),
             velocities.reshape(-1, 3),
         )
     return results[0] if velocities.ndim == 1 else DragBatch(tuple(results))
@@ -159,6 +175,7 @@ def _one(
     sampling: ShadowSampling,
     gas: GasSampling,
     settings: ReflectionSettings,
+    sensitivities: bool = False,
 ) -> DragResult:
     """One attitude, its arguments checked."""
     craft = model.craft
@@ -175,23 +192,54 @@ def _one(
     stream = stream_tables(craft, groups.surfaces, atmosphere, speed)
     laws = stream.laws
     closed = closed_loads(groups, gamma, summed_laws(groups, gamma, laws, atmosphere.temperature_K), u)
+    tangents, derivative = (), None
+    if sensitivities:
+        check_covered(groups.surfaces, mode)
+        tangents = stream_tangents(craft, groups.surfaces, atmosphere, speed, stream)
+        tangents = [(t, closed_tangent(groups, gamma, t, u)) for t in tangents]
+        derivative = Derivatives.zeros(craft, ref)
     if mode == "plates":
-        return _plate_result(model, velocity, atmosphere, reference, groups, closed, settings)
+        for t, closed_t in tangents:
+            side_force = closed_t[groups.side, :3] * craft.side_areas[:, None]
+            side_torque = np.cross(craft.side_centroids - ref, side_force)
+            derivative.add_sides(t.coefficient[groups.law[groups.side]], side_force, side_torque)
+        result = _plate_result(model, velocity, atmosphere, reference, groups, closed, settings)
+        return result if derivative is None else replace(result, sensitivities=_record(craft, derivative))
     sky = model_sky(craft, gas.sky_rays, settings.cache_dir)
     flow = side_sampler(craft).illuminate(u, sampling.samples, sampling.tolerance)
-    panel = arrival(craft, groups, (closed, stream), flow, ref, sky, gas.core_rays)
+    panel_tangents = [t.panel(closed_t) for t, closed_t in tangents]
+    panel = arrival(craft, groups, (closed, stream), flow, ref, sky, gas.core_rays, panel_tangents)
+    for (t, _), (side_force, side_torque, _) in zip(tangents, panel.tangents, strict=True):
+        derivative.add_sides(t.coefficient[groups.law[groups.side]], side_force, side_torque)
     if mode in ("specular", "full"):
         masses, densities = species_streams(atmosphere)
+        chain_tangent = None if derivative is None else ChainTangent.of(craft, groups)
         chains = molecular_chains(
-            craft, groups, laws, SpeciesStream(masses, densities, speed), u, ref, gas.chain_molecules
+            craft,
+            groups,
+            laws,
+            SpeciesStream(masses, densities, speed),
+            u,
+            ref,
+            gas.chain_molecules,
+            chain_tangent,
         )
         if mode == "full":
             mirrored = ChainLaws.of(groups.surfaces).mirrored[groups.law[groups.side]]
-            exchange = molecular_exchange(craft, settings, mirrored).totals(
-                panel.emitted[0], panel.emitted[1], ref, chains.deposit
-            )
+            molecular = molecular_exchange(craft, settings, mirrored)
+            exchange = molecular.totals(panel.emitted[0], panel.emitted[1], ref, chains.deposit)
+            if derivative is not None:
+                slopes = exchange_slopes(craft, molecular, mirrored, settings.view_key)
+                molecular = (molecular, slopes, panel.emitted + chains.deposit)
         else:  # what the chains land leaves as from an open plate, as the first re-emission does
+            molecular = None
             exchange = open_plate_recoil(craft, chains.deposit[0], ref)
+        if derivative is not None:
+            sources = {
+                t.direction: (emitted, t.coefficient[groups.law[groups.side]])
+                for (t, _), (_, _, emitted) in zip(tangents, panel.tangents, strict=True)
+            }
+            derivative.add_reflections(chain_tangent, sources, molecular)
         force, torque = exchange.force_N + chains.force_N, exchange.torque_Nm + chains.torque_Nm
         reflected = Reflected(
             mode=mode, force_N=force, torque_Nm=torque, power=None, chains=chains, view=view, k_is=k_is
@@ -232,7 +280,15 @@ def _one(
         open_sky=sky,
         core_half_angle_rad=panel.core_half_angle,
         shadow_error=shadow_error,
+        sensitivities=None if derivative is None else _record(craft, derivative),
     )
+
+
+def _record(craft: Spacecraft, derivative: Derivatives) -> Sensitivities:
+    """The :class:`~sunwind.forces.sensitivity.Sensitivities` of the accommodations' derivatives."""
+    record = Sensitivities.zeros(craft.materials.names, derivative.reference_m)
+    record.force_N[:, 4:7], record.torque_Nm[:, 4:7] = derivative.force_N, derivative.torque_Nm
+    return record
 
 
 def _plate_result(

@@ -32,6 +32,7 @@ The CLL kernel's reflected normal momentum depends on the incident normal speed,
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -349,7 +350,9 @@ def mu_grid() -> NDArray[np.float64]:
     return np.linspace(0.0, 1.0, MU_POINTS) ** 2
 
 
-def cll_normal_table(alpha_n: float, tau_w: float, s_high: float) -> NDArray[np.float64]:
+def cll_normal_table(
+    alpha_n: float, tau_w: float, s_high: float, mean: Callable[..., NDArray] = rice_mean
+) -> NDArray[np.float64]:
     """Table of CLL's integral ``G(s, mu) exp(min(s, 0)^2)`` for one law and free-stream temperature.
 
     ``G(s, mu) = int_0^inf x^3 exp(-(x - s)^2) h(x mu) dx`` with ``h`` the mean reflected normal speed
@@ -364,6 +367,9 @@ def cll_normal_table(alpha_n: float, tau_w: float, s_high: float) -> NDArray[np.
         ``T_w / T``, wall over free-stream temperature [-].
     s_high : float
         Largest ``s`` the table must reach (the largest speed ratio ``S`` of the species).
+    mean : callable, optional
+        ``h(x, alpha_n, tau_w)``, default :func:`~sunwind.forces.gas.incident.rice_mean`;
+        :func:`~sunwind.forces.gas.incident.rice_mean_slope` tabulates ``d G / d alpha_n``.
 
     Returns
     -------
@@ -394,9 +400,7 @@ def cll_normal_table(alpha_n: float, tau_w: float, s_high: float) -> NDArray[np.
         shift = value if value >= 0.0 else 0.0
         log_weight = -((x - shift) ** 2) + (2.0 * value * x if value < 0.0 else 0.0)
         base = weight * x**3 * np.exp(log_weight)
-        h = rice_mean(
-            x[:, None] * mu[None, :], np.full((1, MU_POINTS), alpha_n), np.full((1, MU_POINTS), tau_w)
-        )
+        h = mean(x[:, None] * mu[None, :], np.full((1, MU_POINTS), alpha_n), np.full((1, MU_POINTS), tau_w))
         out[row] = base @ h
     return out
 

@@ -468,3 +468,122 @@ def land(
             deposit[1, s] += rate * math.sqrt(m)
         goes_on[i] = share < 1.0
     return goes_on
+
+
+@numba.njit(cache=True, nogil=True)
+def cll_tangents(
+    molecules: tuple,
+    depth: int,
+    side_law: NDArray[np.int64],
+    normals: NDArray[np.float64],
+    mass: NDArray[np.float64],
+    laws: tuple,
+    seed: np.uint64,
+    d_velocity: NDArray[np.float64],
+    column: NDArray[np.int64],
+    d_out: NDArray[np.float64],
+) -> None:
+    """Derivatives of the velocities :func:`bounce` draws from CLL's kernel, its random numbers held.
+
+    By the arriving velocities (their derivatives ``d_velocity``) and by the law's ``alpha_n`` and
+    ``sigma_t`` (columns ``column[side]`` and ``column[side] + 1``).
+
+    Parameters
+    ----------
+    molecules : Molecules
+        The molecules arriving, as for :func:`bounce`.
+    depth : int
+        Bounces so far.
+    side_law : (n_sides,) int64
+        Law of each side.
+    normals : (n_sides, 3) float64
+        Outward unit normal of each side.
+    mass : (k,) float64
+        Mass of each species [kg].
+    laws : ChainLaws
+        :class:`~sunwind.forces.gas.chains.ChainLaws`.
+    seed : uint64
+        Seed of the random numbers (as for :func:`bounce`).
+    d_velocity : (n, 3, p) float64
+        Derivatives of the arriving velocities by ``p`` parameters [m/s].
+    column : (n_sides,) int64
+        Each side's column of ``alpha_n`` (``sigma_t`` the next).
+    d_out : (n, 3, p) float64
+        Derivatives of the velocities sent on; rows of CLL molecules written.
+
+    Examples
+    --------
+    A CLL wall that accommodates more sends molecules off more slowly along the flow:
+
+    >>> import numpy as np
+    >>> from sunwind.forces.gas.chains import ChainLaws, Molecules
+    >>> from sunwind.forces.gas.laws import MODEL_CODES, GasSurfaces
+    >>> wall = ChainLaws.of(GasSurfaces.of({"code": [MODEL_CODES["cll"]], "energy_accommodation": 1.0,
+    ...     "normal_accommodation": 0.5, "tangential_accommodation": 0.5, "wall_temperature_K": 300.0}))
+    >>> one = Molecules(np.zeros(1, np.int64), np.zeros(1, np.int64), np.zeros((1, 3)),
+    ...     np.array([[7000.0, 0.0, -1000.0]]), np.ones(1), np.zeros(1, np.int64))
+    >>> d_out = np.zeros((1, 3, 2))
+    >>> cll_tangents(one, 0, np.zeros(1, np.int64), np.array([[0.0, 0.0, 1.0]]), np.array([2.66e-26]),
+    ...     wall, np.uint64(1), np.zeros((1, 3, 2)), np.zeros(1, np.int64), d_out)
+    >>> bool(d_out[0, 0, 1] < 0.0)
+    True
+    """
+    side, species, velocity, packet = molecules.side, molecules.species, molecules.velocity, molecules.packet
+    is_cll, alpha_n, sigma_t, wall = laws.cll, laws.alpha_n, laws.sigma_t, laws.wall_temperature_K
+    n_par = d_velocity.shape[2]
+    for i in range(side.shape[0]):
+        s = side[i]
+        law = side_law[s]
+        if not is_cll[law]:
+            continue
+        normal, v = normals[s], velocity[i]
+        vn = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2]
+        key = side_key(seed, packet[i])
+        c_w = math.sqrt(2.0 * _BOLTZMANN * wall[law] / mass[species[i]])
+        a_n, s_t = alpha_n[law], sigma_t[law]
+        a_t = s_t * (2.0 - s_t)
+        r = math.sqrt(-a_n * math.log(1.0 - _random(key, 0, depth, 40)))
+        cos_theta = math.cos(2.0 * math.pi * _random(key, 0, depth, 41))
+        root = math.sqrt(1.0 - a_n)
+        u_m = root * (-vn / c_w)
+        u_n = math.sqrt(max(r * r + u_m * u_m + 2.0 * r * u_m * cos_theta, 0.0))
+        e1, e2 = _tangents(normal, v)
+        tangential = v[0] * e1[0] + v[1] * e1[1] + v[2] * e1[2]
+        r_t = math.sqrt(-a_t * math.log(1.0 - _random(key, 0, depth, 42)))
+        theta_t = 2.0 * math.pi * _random(key, 0, depth, 43)
+        u_1 = (1.0 - s_t) * tangential / c_w + r_t * math.cos(theta_t)
+        u_2 = r_t * math.sin(theta_t)
+        size = math.sqrt(max(v[0] ** 2 + v[1] ** 2 + v[2] ** 2 - vn * vn, 0.0))
+        for p in range(n_par):
+            dv = (d_velocity[i, 0, p], d_velocity[i, 1, p], d_velocity[i, 2, p])
+            if dv[0] == 0.0 and dv[1] == 0.0 and dv[2] == 0.0:
+                continue
+            dvn = dv[0] * normal[0] + dv[1] * normal[1] + dv[2] * normal[2]
+            d_tangential = dv[0] * e1[0] + dv[1] * e1[1] + dv[2] * e1[2]
+            d_u_m = -root * dvn / c_w
+            d_u_n = (u_m + r * cos_theta) * d_u_m / u_n if u_n > 0.0 else 0.0
+            d_u_1 = (1.0 - s_t) * d_tangential / c_w
+            a0 = a1 = a2 = 0.0  # d e1: the turn of the tangential part of v
+            if size > 1e-12 * max(1.0, abs(vn)):
+                a0 = (dv[0] - dvn * normal[0] - d_tangential * e1[0]) / size
+                a1 = (dv[1] - dvn * normal[1] - d_tangential * e1[1]) / size
+                a2 = (dv[2] - dvn * normal[2] - d_tangential * e1[2]) / size
+            b0 = normal[1] * a2 - normal[2] * a1  # d e2 = n x d e1
+            b1 = normal[2] * a0 - normal[0] * a2
+            b2 = normal[0] * a1 - normal[1] * a0
+            d_out[i, 0, p] = c_w * (d_u_n * normal[0] + d_u_1 * e1[0] + u_1 * a0 + u_2 * b0)
+            d_out[i, 1, p] = c_w * (d_u_n * normal[1] + d_u_1 * e1[1] + u_1 * a1 + u_2 * b1)
+            d_out[i, 2, p] = c_w * (d_u_n * normal[2] + d_u_1 * e1[2] + u_1 * a2 + u_2 * b2)
+        first = column[s]
+        if a_n > 0.0 and u_n > 0.0:
+            d_r = r / (2.0 * a_n)
+            d_u_m = (vn / c_w) / (2.0 * root) if root > 0.0 else 0.0
+            d_u_n = (r * d_r + u_m * d_u_m + cos_theta * (d_r * u_m + r * d_u_m)) / u_n
+            for d in range(3):
+                d_out[i, d, first] += c_w * d_u_n * normal[d]
+        if a_t > 0.0:
+            d_r_t = r_t / (2.0 * a_t) * (2.0 - 2.0 * s_t)
+            d_u_1 = -tangential / c_w + d_r_t * math.cos(theta_t)
+            d_u_2 = d_r_t * math.sin(theta_t)
+            for d in range(3):
+                d_out[i, d, first + 1] += c_w * (d_u_1 * e1[d] + d_u_2 * e2[d])

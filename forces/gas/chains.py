@@ -285,6 +285,7 @@ def molecular_chains(
     u: NDArray[np.float64],
     reference_m: NDArray[np.float64],
     budget: int,
+    tangent=None,
 ) -> MoleculeChainTotals:
     """Follow the unaccommodated molecules of one attitude (module docstring).
 
@@ -304,6 +305,9 @@ def molecular_chains(
         Torque reference point [m].
     budget : int
         Molecules drawn in all (at least one per sending side, at most :data:`MAX_PER_SIDE`).
+    tangent : ChainTangent, optional
+        Where to sum the derivatives by the accommodations on the same molecules
+        (:class:`~sunwind.forces.gas.chain_tangents.ChainTangent`).
 
     Returns
     -------
@@ -349,7 +353,7 @@ def molecular_chains(
             truncated=0.0,
         )
     drawn, molecules = arrived
-    followed = _follow(craft, molecules, chain_laws, side_law, stream.mass_kg, reference_m)
+    followed = _follow(craft, molecules, chain_laws, side_law, stream.mass_kg, reference_m, tangent)
     first = float(np.sum(molecules.weight))
     return MoleculeChainTotals(
         force_N=followed.totals[:3].copy(),
@@ -424,18 +428,23 @@ def _follow(
     side_law: NDArray[np.int64],
     mass: NDArray[np.float64],
     reference_m: NDArray[np.float64],
+    tangent=None,
 ) -> _Followed:
     """Send ``molecules`` on from bounce to bounce (``side_law`` the law of each side, ``mass`` of each
-    species [kg]), booking momentum and diffuse re-emission."""
+    species [kg]), booking momentum and diffuse re-emission (and their derivatives into ``tangent``)."""
     totals, deposit = np.zeros(6), np.zeros((2, craft.n_sides))
     start, rays, truncated = molecules.weight.copy(), 0, 0.0
     scene, model = craft.scene, chain_model(craft)
     seed = np.uint64(CHAIN_SEED)
+    state = None if tangent is None else tangent.start(len(molecules.weight))
     for depth in range(DEPTH + 1):
         out_velocity, out_weight, sends = kernels.bounce(
             molecules, depth, side_law, craft.side_normals, mass, chain_laws, seed, reference_m, totals,
             depth > 0,
         )  # fmt: skip
+        if tangent is not None:
+            booking = (reference_m, depth > 0, depth)
+            state = tangent.bounce(molecules, state, side_law, out_velocity, mass, booking)
         keep = sends & (out_weight >= CUTOFF * start)
         truncated += float(np.sum(out_weight[sends & ~keep]))
         if depth == DEPTH:
@@ -458,6 +467,12 @@ def _follow(
             struck, leg_point, leaving.species, leg_velocity, leg_weight, side_law, mass, chain_laws,
             reference_m, totals, deposit,
         )  # fmt: skip
+        if tangent is not None:
+            legs = leaving._replace(velocity=leg_velocity, weight=leg_weight)
+            kept = tuple(None if a is None else a[keep] for a in state)
+            landed = (landing, leg_point + scene.offset_m * lift)
+            state = tangent.land(struck, (legs, kept, landed), side_law, mass, reference_m)
+            state = tuple(None if a is None else a[goes_on] for a in state)
         molecules = Molecules(
             side=struck[goes_on],
             species=leaving.species[goes_on],

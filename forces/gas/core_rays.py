@@ -14,6 +14,7 @@ are not cast; the rest go to Embree in one batch.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -71,6 +72,7 @@ class CoreCorrections:
     moment: NDArray[np.float64]
     emitted: NDArray[np.float64]
     rays: int
+    tangents: tuple = ()
 
 
 def core_sampling(n_sides: int, budget: int) -> tuple[int, tuple[int, int]]:
@@ -111,6 +113,7 @@ def core_corrections(
     flow_law: FlowLaw,
     tables: LawTables,
     budget: int,
+    tangents: Sequence[LawTables] = (),
 ) -> CoreCorrections:
     """The :class:`CoreCorrections` of one attitude (module docstring).
 
@@ -128,6 +131,10 @@ def core_corrections(
         Each law's kernels per direction, its ``a`` and ``c``, and the side normals.
     budget : int
         Most core rays (:func:`core_sampling`).
+    tangents : sequence of LawTables, optional
+        Derivatives of ``tables`` with respect to a parameter of the laws: the same rays give the
+        derivatives of ``force``, ``moment`` and ``emitted`` (the sums are linear in the laws), in
+        :attr:`CoreCorrections.tangents`, one ``(force, moment, emitted)`` per tangent.
 
     Returns
     -------
@@ -167,16 +174,23 @@ def core_corrections(
     n, u = craft.n_sides, flow.direction
     gamma = craft.side_normals @ u
     at_lit, at_centroid = flow.lit_fraction.copy(), 1.0 - flow.lit_fraction
-    force, moment, emitted = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((n, 2))
+    sums = [(np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((n, 2))) for _ in range(1 + len(tangents))]
     sides = _reached(craft, u, gamma, cone.half_angle)
     at_centroid[sides] = np.where(gamma[sides] > 0.0, 0.0, 1.0)
     rays = 0
     if len(sides):
         plan = (cone, core_sampling(n, budget))
-        sums = (force, moment, emitted)
-        rays = _sample_core(craft, sides, gamma[sides] > 0.0, plan, flow_law, tables, sums)
+        laws = list(zip([tables, *tangents], sums, strict=True))
+        rays = _sample_core(craft, sides, gamma[sides] > 0.0, plan, flow_law, laws)
+    force, moment, emitted = sums[0]
     return CoreCorrections(
-        at_lit=at_lit, at_centroid=at_centroid, force=force, moment=moment, emitted=emitted, rays=rays
+        at_lit=at_lit,
+        at_centroid=at_centroid,
+        force=force,
+        moment=moment,
+        emitted=emitted,
+        rays=rays,
+        tangents=tuple(sums[1:]),
     )
 
 
@@ -186,12 +200,11 @@ def _sample_core(
     facing: NDArray[np.bool_],
     plan: tuple[CoreCone, tuple[int, tuple[int, int]]],
     flow_law: FlowLaw,
-    tables: LawTables,
-    sums: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+    laws: list[tuple[LawTables, tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]]],
 ) -> int:
     """Cast the core rays of ``sides`` (those facing ``u``: ``facing``) at ``plan`` = (cone, (level,
-    strata)) and write their :func:`~sunwind.forces.gas.visible_kernels.core_sums` into ``sums`` (force,
-    moment, emitted); the rays cast."""
+    strata)) and write their :func:`~sunwind.forces.gas.visible_kernels.core_sums` of each ``(tables,
+    sums)`` of ``laws`` into its ``sums`` (force, moment, emitted); the rays cast."""
     cone, (level, strata) = plan
     u = flow_law.u
     points, per_point = level**2, strata[0] * strata[1]
@@ -232,24 +245,25 @@ def _sample_core(
     blocked, control_blocked, rays = _cast(scene, origins, directions, cast[:, :, 0] & (weights > 0.0),
                                            control_cast[:, 0, 0], along_u[0])  # fmt: skip
     samples = (directions, weights, levers)
-    map_ranges(
-        lambda lo, hi: core_sums(
-            points,
-            facing,
-            control_blocked,
-            blocked,
-            samples,
-            sides,
-            flow_law,
-            tables,
-            cone.normaliser,
-            *sums,
-            lo,
-            hi,
-        ),
-        len(sides),
-        MIN_SIDES_PER_CHUNK,
-    )
+    for tables, sums in laws:
+        map_ranges(
+            lambda lo, hi, tables=tables, sums=sums: core_sums(
+                points,
+                facing,
+                control_blocked,
+                blocked,
+                samples,
+                sides,
+                flow_law,
+                tables,
+                cone.normaliser,
+                *sums,
+                lo,
+                hi,
+            ),
+            len(sides),
+            MIN_SIDES_PER_CHUNK,
+        )
     return rays
 
 

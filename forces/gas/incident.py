@@ -28,6 +28,7 @@ The CLL kernel's reflected normal momentum is :func:`cll_reflected_normal`.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -236,12 +237,59 @@ def rice_mean(x: NDArray[np.float64], alpha_n: NDArray[np.float64], tau_w: NDArr
     return np.where(narrow, np.sqrt(nu_sq), mean)
 
 
+def rice_mean_slope(
+    x: NDArray[np.float64], alpha_n: NDArray[np.float64], tau_w: NDArray[np.float64]
+) -> NDArray:
+    """Derivative of :func:`rice_mean` with respect to ``alpha_n``.
+
+    With ``F(a) = (1 + a) i0e(a/2) + a i1e(a/2)``, ``dF/da = (i0e(a/2) + i1e(a/2)) / 2``, so ``dh/d alpha_n
+    = sqrt(pi sigma^2 / 2) [F / (2 alpha_n) - F'(a) x^2 / (tau_w alpha_n^2)]``; ``-x / (2 sqrt(1 -
+    alpha_n))`` where the mean is ``nu`` (``sigma -> 0``).
+
+    Parameters
+    ----------
+    x : ndarray of float64
+        Incident normal speed over ``sqrt(2 k T / m)`` [-], >= 0.
+    alpha_n : ndarray of float64
+        CLL's normal energy accommodation [-], in (0, 1].
+    tau_w : ndarray of float64
+        ``T_w / T`` [-].
+
+    Returns
+    -------
+    ndarray of float64
+        ``d h / d alpha_n``, broadcast over the arguments.
+
+    Examples
+    --------
+    >>> x, a, t = np.array([0.5, 2.0]), np.full(2, 0.6), np.full(2, 0.3)
+    >>> step = (rice_mean(x, a + 1e-6, t) - rice_mean(x, a - 1e-6, t)) / 2e-6
+    >>> bool(np.allclose(rice_mean_slope(x, a, t), step, rtol=1e-7))
+    True
+    """
+    sigma_sq = 0.5 * alpha_n * tau_w
+    nu_sq = (1.0 - alpha_n) * x * x
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        a = nu_sq / (2.0 * sigma_sq)
+        narrow = ~(a <= 1e30)
+        a = np.where(narrow, 0.0, a)
+        half = 0.5 * a
+        zeroth, first = i0e(half), i1e(half)
+        f = (1.0 + a) * zeroth + a * first
+        slope = 0.5 * (zeroth + first)
+        da = -(x * x) / (tau_w * alpha_n * alpha_n)
+        value = np.sqrt(sigma_sq * (0.5 * np.pi)) * (f / (2.0 * alpha_n) + slope * da)
+        narrow_value = -x / (2.0 * np.sqrt(np.maximum(1.0 - alpha_n, 1e-300)))
+    return np.where(narrow, narrow_value, value)
+
+
 def cll_reflected_normal(
     gamma: NDArray[np.float64],
     alpha_n: NDArray[np.float64],
     tau_w: NDArray[np.float64],
     speed_ratio: float,
     stream: str,
+    mean: Callable[..., NDArray] | None = None,
 ) -> NDArray[np.float64]:
     """Normal momentum of the CLL-reflected molecules over ``q``, per element.
 
@@ -275,6 +323,9 @@ def cll_reflected_normal(
         ``S`` of the species [-], > 0.
     stream : {"full", "directed", "thermal"}
         Which incident stream is reflected.
+    mean : callable, optional
+        ``h(x, alpha_n, tau_w)``; default :func:`rice_mean`. :func:`rice_mean_slope` gives the
+        derivative with respect to ``alpha_n`` by the same rule (its nodes held).
 
     Returns
     -------
@@ -297,20 +348,24 @@ def cll_reflected_normal(
     >>> incident(gamma, 7.0).c_n.round(4)
     array([2.0204, 0.5204])
     """
+    mean = rice_mean if mean is None else mean
     windward = np.maximum(gamma, 0.0)
-    directed = 2.0 * windward * rice_mean(speed_ratio * windward, alpha_n, tau_w) / speed_ratio
+    directed = 2.0 * windward * mean(speed_ratio * windward, alpha_n, tau_w) / speed_ratio
     if stream == "directed":
         return directed
     full = np.empty_like(gamma)
     for start in range(0, len(gamma), _CLL_CHUNK):
         part = slice(start, start + _CLL_CHUNK)
-        full[part] = _cll_full_integral(speed_ratio * gamma[part], alpha_n[part], tau_w[part])
+        full[part] = _cll_full_integral(speed_ratio * gamma[part], alpha_n[part], tau_w[part], mean)
     full *= 2.0 / (speed_ratio**2 * _SQRT_PI)
     return full - directed if stream == "thermal" else full
 
 
 def _cll_full_integral(
-    s: NDArray[np.float64], alpha_n: NDArray[np.float64], tau_w: NDArray[np.float64]
+    s: NDArray[np.float64],
+    alpha_n: NDArray[np.float64],
+    tau_w: NDArray[np.float64],
+    mean: Callable[..., NDArray] = rice_mean,
 ) -> NDArray[np.float64]:
     """``int_0^inf x exp(-(x - s)^2) h(x) dx`` per element by the rule of :func:`cll_reflected_normal`."""
     half_width = math.sqrt(_CLL_WINDOW_SQ)
@@ -327,7 +382,7 @@ def _cll_full_integral(
     left, right = left[:, used, None], right[:, used, None]
     x = 0.5 * (left + right) + 0.5 * (right - left) * _GL_X
     weight = 0.5 * (right - left) * _GL_W
-    h = rice_mean(x, alpha_n[:, None, None], tau_w[:, None, None])
+    h = mean(x, alpha_n[:, None, None], tau_w[:, None, None])
     return np.sum(weight * x * np.exp(-((x - s[:, None, None]) ** 2)) * h, axis=(1, 2))
 
 

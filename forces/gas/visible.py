@@ -20,7 +20,9 @@ nothing beyond the shadow pass. Rays that provably meet nothing are not cast
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,7 +30,7 @@ from numpy.typing import NDArray
 from sunwind.forces.gas.angular import DirectionTables, SpeciesLaws, cll_normal_table, direction_tables
 from sunwind.forces.gas.atmosphere import Atmosphere
 from sunwind.forces.gas.core_cone import CoreCone, core_cone
-from sunwind.forces.gas.core_rays import MIN_SIDES_PER_CHUNK, core_corrections
+from sunwind.forces.gas.core_rays import MIN_SIDES_PER_CHUNK, CoreCorrections, core_corrections
 from sunwind.forces.gas.laws import GasSurfaces
 from sunwind.forces.gas.panel import GasGroups, species_laws
 from sunwind.forces.gas.visible_kernels import (
@@ -67,6 +69,9 @@ class Arrival:
         Rays cast: the shadow pass's and the core's.
     core_half_angle : float
         ``psi_c`` [rad].
+    tangents : tuple of (force, torque, emitted)
+        Per :class:`PanelTangent` given to :func:`arrival`, the derivatives of ``force_N``,
+        ``torque_Nm`` and ``emitted``.
 
     Examples
     --------
@@ -83,6 +88,38 @@ class Arrival:
     lit_load: NDArray[np.float64]
     rays: int
     core_half_angle: float
+    tangents: tuple = ()
+
+
+class PanelTangent(NamedTuple):
+    """Derivatives of one free stream's laws with respect to one parameter, as :func:`arrival` reads
+    them (:mod:`sunwind.forces.gas.tangents` makes them).
+
+    Attributes
+    ----------
+    closed : (n_groups, 5) float64
+        Derivative of the closed-form loads of each group (:func:`~sunwind.forces.gas.panel.closed_loads`).
+    channels : (n_laws, X_POINTS, N_CHANNELS) float64
+        Direction tables: ``k_P`` itself in the momentum channel, the derivatives in the others.
+    cll : (n_laws, X_POINTS, MU_POINTS) float64 or None
+        Derivative of CLL's reflected normal momentum; None where no law is CLL.
+    pressure_scale, shear_scale : (n_laws,) float64
+        Derivatives of ``a`` and ``c``.
+    gamma_table : (n_laws, 4, GAMMA_POINTS) float64
+        Derivative of the core cone's table.
+
+    Examples
+    --------
+    >>> zero = np.zeros(1)
+    >>> PanelTangent(np.zeros((1, 5)), np.zeros((1, 4097, 4)), None, zero, zero, np.zeros((1, 4, 513))).cll
+    """
+
+    closed: NDArray[np.float64]
+    channels: NDArray[np.float64]
+    cll: NDArray[np.float64] | None
+    pressure_scale: NDArray[np.float64]
+    shear_scale: NDArray[np.float64]
+    gamma_table: NDArray[np.float64]
 
 
 def model_sky(craft: Spacecraft, rays_per_side: int | None = None, cache_dir=None) -> OpenSky:
@@ -257,6 +294,7 @@ def arrival(
     reference_m: NDArray[np.float64],
     sky: OpenSky,
     core_rays: int,
+    tangents: Sequence[PanelTangent] = (),
 ) -> Arrival:
     """What the incident stream of one attitude does on every side (module docstring).
 
@@ -278,6 +316,9 @@ def arrival(
     core_rays : int
         Most rays of the core per attitude
         (:func:`~sunwind.forces.gas.core_rays.core_sampling`).
+    tangents : sequence of PanelTangent, optional
+        Derivatives of the laws with respect to a parameter; the same rays give the derivatives of
+        force, torque and first re-emission of every side (:attr:`Arrival.tangents`).
 
     Returns
     -------
@@ -310,7 +351,6 @@ def arrival(
     closed, tables = stream
     u = flow.direction
     laws, directions, cone = tables.laws, tables.directions, tables.cone
-    n = craft.n_sides
     side_law = groups.law[groups.side]
     law_tables = LawTables(
         channels=directions.channels,
@@ -319,8 +359,44 @@ def arrival(
         shear_scale=laws.shear_scale,
         normals=craft.side_normals,
     )
+    tangent_tables = [
+        LawTables(
+            channels=t.channels,
+            cll=t.cll,
+            pressure_scale=t.pressure_scale,
+            shear_scale=t.shear_scale,
+            normals=craft.side_normals,
+        )
+        for t in tangents
+    ]
     flow_law = FlowLaw(side_law=side_law, u=u, cos_core=math.cos(cone.half_angle))
-    core = core_corrections(craft, flow, cone, flow_law, law_tables, core_rays)
+    core = core_corrections(craft, flow, cone, flow_law, law_tables, core_rays, tangent_tables)
+    plan = (craft, groups, flow, flow_law, sky, reference_m)
+    core_sums = (core.force, core.moment, core.emitted)
+    force, torque, emitted = _side_totals(plan, law_tables, closed, cone.gamma_table, core, core_sums)
+    derivatives = tuple(
+        _side_totals(plan, law, t.closed, t.gamma_table, core, sums)
+        for t, law, sums in zip(tangents, tangent_tables, core.tangents, strict=True)
+    )
+    lit_load = np.empty((craft.n_sides, 3))
+    core_loads(groups.side, groups.law, groups.normals, cone.gamma_table, u, lit_load)
+    rays = flow.rays + core.rays
+    return Arrival(force, torque, emitted, lit_load, rays, cone.half_angle, tangents=derivatives)
+
+
+def _side_totals(
+    plan: tuple,
+    law_tables: LawTables,
+    closed: NDArray[np.float64],
+    gamma_table: NDArray[np.float64],
+    core: CoreCorrections,
+    core_sums: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Force (n, 3), torque (n, 3) and first re-emission (2, n) of every side for one set of laws
+    (or their derivatives): the sky sums and the sides' loads; ``plan`` = (craft, groups, flow,
+    flow_law, sky, reference)."""
+    craft, groups, flow, flow_law, sky, reference_m = plan
+    n, u = craft.n_sides, flow.direction
     sky_force, sky_moment, sky_emitted = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((n, 2))
     with_rays = np.flatnonzero(np.diff(sky.start) > 0)
     map_ranges(
@@ -341,20 +417,21 @@ def arrival(
         256,
     )
     force, torque, emitted = np.empty((3, n)), np.empty((3, n)), np.empty((2, n))
+    core_force, core_moment, core_emitted = core_sums
     core_parts = CoreParts(
         at_lit=core.at_lit,
         at_centroid=core.at_centroid,
         lit_centroid=flow.lit_centroid,
-        force=core.force,
-        moment=core.moment,
-        emitted=core.emitted,
+        force=core_force,
+        moment=core_moment,
+        emitted=core_emitted,
     )
     sky_parts = SkyParts(keeps_open=sky.keeps_open, force=sky_force, moment=sky_moment, emitted=sky_emitted)
     map_ranges(
         lambda lo, hi: side_loads(
             groups.side,
             GroupLoads(law=groups.law, normals=groups.normals, closed=closed),
-            cone.gamma_table,
+            gamma_table,
             u,
             SideGeometry(areas=craft.side_areas, centroids=craft.side_centroids),
             core_parts,
@@ -369,6 +446,4 @@ def arrival(
         n,
         MIN_SIDES_PER_CHUNK,
     )
-    lit_load = np.empty((n, 3))
-    core_loads(groups.side, groups.law, groups.normals, cone.gamma_table, u, lit_load)
-    return Arrival(force.T, torque.T, emitted, lit_load, flow.rays + core.rays, cone.half_angle)
+    return force.T, torque.T, emitted
