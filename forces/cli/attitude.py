@@ -89,6 +89,7 @@ def srp(
 @reference_options(sizes=True)
 @sampling_options
 @reflection_options("gas")
+@sensitivities_option
 @json_option
 def drag(
     source: ModelSource,
@@ -96,16 +97,19 @@ def drag(
     references: dict,
     sampling: ShadowSampling,
     reflections: ReflectionSettings,
+    sensitivities: bool,
     as_json: bool,
 ) -> None:
     """Free-molecular force and torque for one flow direction: gas-surface law, shadowing, re-emission."""
     model = posed(loaded(drag_only(source), **references), None, "drag")
-    result = _drag(model, flow, reflections, sampling)
+    result = _drag(model, flow, reflections, sampling, sensitivities)
     craft = model.craft
     if as_json:
         print_json(craft, result.to_json())
     else:
         print_drag(result, f"sunwind drag: {craft.source} ({craft.n_facets} triangles, unit {craft.unit})")
+        if result.sensitivities is not None:
+            print_sensitivities(result.sensitivities)
     warn_results({"drag": result.error_estimate}, sampling.tolerance)
 
 
@@ -173,7 +177,11 @@ def forces(
 
 
 def _drag(
-    model: Model, flow: FreeStream, reflections: ReflectionSettings, sampling: ShadowSampling
+    model: Model,
+    flow: FreeStream,
+    reflections: ReflectionSettings,
+    sampling: ShadowSampling,
+    sensitivities: bool = False,
 ) -> DragResult:
     """Drag of ``model`` in the command's ``flow``, with its reflection and shadow sampling settings."""
     return drag_of(
@@ -183,4 +191,5 @@ def _drag(
         reflections=reflections,
         gas_sampling=flow.sampling,
         sampling=sampling,
+        sensitivities=sensitivities,
     )
