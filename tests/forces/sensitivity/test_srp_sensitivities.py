@@ -157,3 +157,64 @@ def test_sensitivities_in_json_and_dataset(craft):
     assert dataset["force_N"].sel(material="bus", coefficient="transmissivity").values.tolist() == (
         result.sensitivities.of("bus.transmissivity").force_N.tolist()
     )
+
+
+def test_specular_chains_at_their_bounds_match_forward_differences():
+    """beta = 0 and sigma = 0 on an open box of sheets over a mirror plate, beside a closed box, with
+    mirror beams landing: the beam a small mirror share or transmission would start (a derivative-only
+    beam, first or after a landing) is in the derivative, checked by second-order forward differences.
+    No cutoff (a fixed depth): at h > 0 the cutoff would end a continuation by its power ~ h; the walls
+    do not touch, so that no edge joins a side with a zero share to another material's (the model at
+    h > 0 would compare their adaptive first beams)."""
+    from helpers import quad_sheet
+    from sunwind.geometry.mesh_data import MeshData
+    from sunwind.meshes import primitives
+
+    walls = np.array(
+        [
+            [[0, 0, 0], [0, 1, 0], [1, 1, 0], [1, 0, 0]],
+            [[0, 0, 0], [1, 0, 0], [1, 0, 1], [0, 0, 1]],
+            [[1, 1, 0], [0, 1, 0], [0, 1, 1], [1, 1, 1]],
+            [[0, 1, 0], [0, 0, 0], [0, 0, 1], [0, 1, 1]],
+            [[1, 0, 0], [1, 1, 0], [1, 1, 1], [1, 0, 1]],
+        ],
+        dtype=float,
+    )
+    parts = [quad_sheet(w.mean(0) + 0.96 * (w - w.mean(0)), f"wall{k}", 3) for k, w in enumerate(walls)]
+    plate = np.array([[-1, -1, -0.6], [2.5, -1, -0.6], [2.5, 2, -0.6], [-1, 2, -0.6]])
+    parts.append(quad_sheet(plate, "plate", 4))
+    parts.append(primitives.transform(primitives.box((0.5, 0.5, 0.5), 2), translation=(1.8, 0.5, -0.2)))
+    spec = parse_materials(
+        {
+            "materials": {
+                "paint": {"reflectivity": 0.6, "specular_fraction": 0.0, "transmissivity": 0.1},
+                "foil": {"reflectivity": 0.85, "specular_fraction": 0.9, "transmissivity": 0.0},
+                "glass": {"reflectivity": 0.3, "specular_fraction": 0.7, "transmissivity": 0.4},
+            },
+            "parts": {
+                "wall0": {"front": "foil", "back": "paint"},
+                "wall1": {"front": "glass", "back": "glass"},
+                "wall2": {"front": "paint", "back": "foil"},
+                "wall3": {"front": "glass", "back": "foil"},
+                "wall4": {"front": "foil", "back": "paint"},
+                "plate": {"front": "foil"},
+                "box": "paint",
+            },
+        }
+    )
+    craft = build_spacecraft(MeshData.concatenate(parts), spec)
+    settings = sw.ReflectionSettings("specular", cutoff=0.0, depth=12, cache_dir=False)
+    sun = np.array([0.35, 0.2, 0.9])
+    found = sw.srp(craft, sun, reflections=settings, sensitivities=True).sensitivities
+    for material, coefficient in (("paint", "specular_fraction"), ("foil", "transmissivity")):
+        f0, f1, f2 = (
+            sw.srp(perturbed(craft, material, coefficient, s), sun, reflections=settings)
+            for s in (0.0, STEP, 2 * STEP)
+        )
+        mine = found.of(f"{material}.{coefficient}")
+        floor = 0.01 * np.abs(mine.force_N).max() * craft.diagonal_m
+        for field in ("force_N", "torque_Nm"):
+            values = [getattr(f, field) for f in (f0, f1, f2)]
+            difference = (-3 * values[0] + 4 * values[1] - values[2]) / (2 * STEP)
+            scale = max(np.abs(difference).max(), floor if field == "torque_Nm" else 0.0)
+            assert np.abs(getattr(mine, field) - difference).max() < TOLERANCE * scale, (material, field)
