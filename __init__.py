@@ -38,6 +38,7 @@ _PUBLIC = {
     "meshes": "sunwind.meshes",
     # one attitude or a batch
     "srp": "sunwind.forces.srp:srp",
+    "fit": "sunwind.forces.fit:fit",
     "drag": "sunwind.forces.drag:drag",
     "planet_radiation": "sunwind.forces.earth:planet_radiation",
     "Place": "sunwind.forces.earth:Place",
@@ -72,6 +73,7 @@ _PUBLIC = {
     "DragResult": "sunwind.forces.results:DragResult",
     "PlanetResult": "sunwind.forces.earth:PlanetResult",
     "Sensitivities": "sunwind.forces.sensitivity:Sensitivities",
+    "FitResult": "sunwind.forces.fit:FitResult",
     "ResultBatch": "sunwind.forces.batches:ResultBatch",
     "SrpBatch": "sunwind.forces.batches:SrpBatch",
     "DragBatch": "sunwind.forces.batches:DragBatch",

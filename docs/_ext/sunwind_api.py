@@ -31,7 +31,7 @@ from sphinx.util import logging
 logger = logging.getLogger(__name__)
 
 GENERATED = "generated"
-SUBPACKAGES = ("sunwind.forces.orbit", "sunwind.meshes", "sunwind.forces.export")
+SUBPACKAGES = ("sunwind.forces.orbit", "sunwind.meshes", "sunwind.forces.export", "sunwind.forces.fit")
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,7 @@ import click
 
 from sunwind.forces.cli.attitude import drag, forces, srp
 from sunwind.forces.cli.earth import earth
+from sunwind.forces.cli.fit import fit
 from sunwind.forces.cli.mesh import info, mesh
 from sunwind.forces.cli.options import FLAGS
 from sunwind.forces.cli.orbit import orbit
@@ -50,8 +51,9 @@ JOBS = {
     "mesh": "Write a parametric mesh or the sample spacecraft.",
     "bench": "Time every setting on a model, each with its error.",
     "validate": "Run the validation cases against closed forms and tracers.",
+    "fit": "Fit surface coefficients to flight telemetry.",
 }
-for command in (srp, drag, forces, earth, sweep_command, orbit, plot, info, mesh, bench, validate):
+for command in (srp, drag, forces, earth, sweep_command, orbit, plot, info, mesh, bench, validate, fit):
     command.short_help = JOBS[command.name]
     app.add_command(command)
 

@@ -10,7 +10,7 @@ import pytest
 
 from helpers import quad_sheet
 from sunwind.forces.drag import drag
-from sunwind.forces.earth import Place, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, planet_radiation
 from sunwind.forces.error_estimate import ErrorEstimate, scaled, summed
 from sunwind.forces.gas.atmosphere import BOLTZMANN, SPECIES_MASS_KG, Atmosphere
 from sunwind.forces.gas.laws import GasSurfaces, panel_coefficients
@@ -135,13 +135,13 @@ def test_drag_estimate_takes_the_stream_one_lit_unit_of_area_takes(loads_seen):
 def test_earth_estimate_adds_the_cells_passes_of_albedo_and_infrared(loads_seen):
     craft = build_spacecraft(sample_spacecraft(2000), uniform=BLACK)
     place = Place([0.3, -0.2, -1.0], 500.0, [1.0, 0.4, 0.2])
-    result = planet_radiation(craft, place, reflections="none", cell_deg=30.0)
+    result = planet_radiation(craft, place, reflections="none", cap=CapSampling(30.0))
     assert len(loads_seen) > 2  # a pass per cell, each handed the albedo's and the infrared's loads
     bands = (result.albedo.shadow_error, result.infrared.shadow_error)
     assert result.shadow_error == summed(bands)
     assert result.to_json()["error_estimate"] == result.error_estimate.to_json()
     assert planet_radiation(craft, place, reflections="plates").error_estimate is None
     fixed = planet_radiation(
-        craft, place, reflections="none", cell_deg=30.0, sampling=ShadowSampling(samples=1)
+        craft, place, reflections="none", cap=CapSampling(30.0), sampling=ShadowSampling(samples=1)
     )
     assert fixed.error_estimate is None and fixed.to_json()["error_estimate"] is None

@@ -22,7 +22,7 @@ from helpers.planet import (
 from helpers.runs import stopped_then_resumed
 from helpers.shapes import HINGED_MATERIALS, hinged_box_wing
 from sunwind.forces import export
-from sunwind.forces.earth import Place, planet_radiation
+from sunwind.forces.earth import CapSampling, Place, planet_radiation
 from sunwind.forces.model import load
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.planet.shadow import sphere_visible
@@ -82,7 +82,7 @@ def test_every_node_is_earth_radiation_at_its_earth_direction(painted, thermal_t
             fraction = _node_fraction(u, 500.0, SUN)
             fractions.add(fraction)
             place = Place(u, 500.0, np.array(setup.sun_vector), None, fraction)
-            result = planet_radiation(painted, place, light, reflections="none", cell_deg=15.0)
+            result = planet_radiation(painted, place, light, reflections="none", cap=CapSampling(15.0))
             state = nodes.equilibrium(sum(result.absorbed_side_W().values()), result.reference_point_m)
             at = {"earth_azimuth": a, "earth_elevation": e}
             expected = {
@@ -154,7 +154,7 @@ def test_a_tracking_hinge_is_turned_to_the_fixed_sun_and_listed_angles_are_poses
     place = Place(u, 500.0, np.array(SUN), None, _node_fraction(u, 500.0, SUN))
     posed = model.posed(model.angles_at(np.array(SUN)))
     light = PlanetLight.of(planet("earth"), 1361.0)
-    direct = planet_radiation(posed, place, light, reflections="none", cell_deg=30.0)
+    direct = planet_radiation(posed, place, light, reflections="none", cap=CapSampling(30.0))
     np.testing.assert_allclose(table["earth_force_N"].values[1, 1], direct.force_N, rtol=1e-12, atol=0)
     poses = sweep(model, earth=setup, step_deg=90.0, hinge_angles={"wing_*": [0.0, 60.0]})
     assert poses["earth_force_N"].dims == (
@@ -163,7 +163,9 @@ def test_a_tracking_hinge_is_turned_to_the_fixed_sun_and_listed_angles_are_poses
         "earth_elevation",
         "component",
     )
-    held = planet_radiation(model.held({"wing_*": 60.0}), place, light, reflections="none", cell_deg=30.0)
+    held = planet_radiation(
+        model.held({"wing_*": 60.0}), place, light, reflections="none", cap=CapSampling(30.0)
+    )
     entry = poses["earth_force_N"].sel({"hinge_deg[wing_*]": 60.0}).values[1, 1]
     np.testing.assert_allclose(entry, held.force_N, rtol=1e-12, atol=0)
 
