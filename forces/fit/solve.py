@@ -179,6 +179,12 @@ def fit(
     before = problem.residuals(problem.x0)
     sigmas = {kind: options.sigmas.get(kind) for kind in telemetry.kinds}
     x, runs, converged, notices = problem.x0, 1, linear, []
+    if len(geometry) < len(telemetry):
+        notices.append(
+            f"{len(telemetry)} rows share {len(geometry)} model runs: rows whose Sun directions (and hinge "
+            f"angles) agree within {options.resolution_deg:g} deg are taken at their mean "
+            "(--resolution-deg 0: one run per row)"
+        )
     while True:
         weights = {k: s if s is not None else _rms_or_one(before[k]) for k, s in sigmas.items()}
         x_new = problem.solve(x, weights, options.loss)
@@ -209,7 +215,7 @@ def fit(
         problem.initial_physical(),
         jacobian,
         residual,
-        scaled=bool(notices),
+        scaled=any(value is None for value in sigmas.values()),
     )
     if not converged:
         report["warnings"] += (
