@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from sunwind.forces.planet.lit_law import SHARES, lit_share_torques, share_forces
 from sunwind.forces.planet.loads import Source
 from sunwind.forces.planet.visibility import Visibility
+from sunwind.forces.radiation.sensitivity import per_material
 from sunwind.forces.sensitivity import COEFFICIENTS, OPTICS, Sensitivities, optics_partials
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
@@ -369,32 +370,3 @@ def planet_sensitivities(
     for force, torque in parts:
         total = total + Sensitivities(total.materials, force, torque, total.reference_point_m)
     return total
-
-
-def per_material(
-    material: NDArray[np.integer], values: NDArray[np.float64], count: int
-) -> NDArray[np.float64]:
-    """Sum the rows of ``values`` by material.
-
-    Parameters
-    ----------
-    material : (n,) int
-        Material index of each row.
-    values : (n, ...) float64
-        The rows.
-    count : int
-        Number of materials.
-
-    Returns
-    -------
-    (count, ...) float64
-
-    Examples
-    --------
-    >>> per_material(np.array([1, 0, 1]), np.array([[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]]), 2)
-    array([[3., 4.],
-           [6., 8.]])
-    """
-    flat = values.reshape(len(values), -1)
-    out = np.stack([np.bincount(material, flat[:, c], count) for c in range(flat.shape[1])], axis=1)
-    return out.reshape((count, *values.shape[1:]))
