@@ -34,6 +34,7 @@ from sunwind.forces.planet.sensitivity import (
     band_derivatives,
     grid_share_loads,
     planet_sensitivities,
+    reflected_derivatives,
 )
 from sunwind.forces.planet.visibility import Visibility, direction_grid, level_for, visibility
 from sunwind.forces.radiation.law import solar_flux
@@ -526,7 +527,7 @@ def planet_radiation(
     reference, reference_name = model.reference(reference_point_m)
     settings = ReflectionSettings.of(reflections)
     if sensitivities:
-        _check_sensitivities(settings.mode)
+        _check_sensitivities(settings.mode, cap.method)
     body = light.planet
     distance = body.radius_m + place.altitude_km * 1e3
     caps = [
@@ -536,7 +537,7 @@ def planet_radiation(
     with using_threads(model.threads):
         plan = reflection_plan(craft, settings)
         if sensitivities:
-            _check_sensitivities(plan.mode)  # "auto" resolved
+            _check_sensitivities(plan.mode, method)  # "auto" resolved
         check_cells(caps[0].half_angle, cell_deg)
         seen = None
         if method == "visibility" and plan.mode != PLATES:
@@ -566,7 +567,10 @@ def planet_radiation(
         )  # the passes' shares
         if seen is None:
             observe = None if observed is None else observed.observe
-            loads, rays = band_loads(craft, sources, directions, reference, shadows, settings, observe)
+            traced = sensitivities and plan.mode in BEAM_MODES
+            loads, rays = band_loads(
+                craft, sources, directions, reference, shadows, settings, observe, traced
+            )
         else:
             loads, rays = _visible_loads(craft, sources, seen, (points, values), reference, shadows), 0
         derivatives = None
@@ -577,6 +581,8 @@ def planet_radiation(
                 else observed.share_loads(reference)
             )
             parts = [band_derivatives(craft, s.name, share) for s, share in zip(sources, shares, strict=True)]
+            if plan.mode in BEAM_MODES:
+                parts += reflected_derivatives(craft, plan.mode, sources, loads, reference)
             derivatives = planet_sensitivities(craft, parts, reference)
         flux = light.solar_flux_W_m2 * place.solar_fraction
         sun = _sunlight(craft, place.sun_vector, flux, plan, settings)
@@ -598,13 +604,14 @@ def planet_radiation(
     )
 
 
-def _check_sensitivities(mode: str) -> None:
-    """Refuse sensitivities with reflections whose beams or diffuse balance are followed: their
-    derivatives are not available yet."""
-    if mode in BEAM_MODES:
+def _check_sensitivities(mode: str, method: str) -> None:
+    """Refuse sensitivities with reflections whose beams or diffuse balance are followed by the
+    visibility: its per-node chains are kept without their derivatives."""
+    if mode in BEAM_MODES and method == "visibility":
         raise InputError(
-            f"sensitivities of the planet's radiation with reflections '{mode}' are not available yet",
-            hint='use reflections="none" or "plates"',
+            f"sensitivities of the planet's radiation with reflections '{mode}' need the cap's cells",
+            hint='use cap=CapSampling(method="cells") (--earth-cap-method cells), or reflections "none" or '
+            '"plates"',
             parameters=("sensitivities", "reflections"),
         )
 

@@ -260,6 +260,9 @@ class BandLoad:
         absorbs after one or more reflections [W]) and :attr:`lost_W` (reflected power absorbed where the
         model has no side, inside a closed body, in ``power.absorbed_W``, or dropped by a chain's cutoff,
         ``power.truncated_W`` [W]); the diffuse balance is solved forward on first use.
+    traced : tuple of BeamChainTotals
+        The cells' beam chains, when they were traced with derivatives (``band_loads(...,
+        derivatives=True)``); else empty.
 
     Examples
     --------
@@ -293,6 +296,7 @@ class BandLoad:
     rays: int
     shadow_error: LoadsError | None = None
     reflections: ReflectedPower = field(repr=False)
+    traced: tuple[BeamChainTotals, ...] = field(default=(), repr=False)
 
     @property
     def reflected_side_W(self) -> NDArray[np.float64]:
@@ -363,6 +367,7 @@ def band_loads(
     sampling: ShadowSampling,
     settings: ReflectionSettings,
     observe: Callable[[int, Illumination], None] | None = None,
+    derivatives: bool = False,
 ) -> tuple[list[BandLoad], int]:
     """The load of each band of light on the spacecraft, one shadow pass per cell serving every band.
 
@@ -390,6 +395,9 @@ def band_loads(
         ``observe(k, light)`` is given every shadow pass as it is cast (cell ``k``), so that what else
         depends on the cells' lit shares (the derivatives,
         :class:`~sunwind.forces.planet.sensitivity.CellShares`) needs no pass of its own.
+    derivatives : bool
+        Trace the beam chains with their derivatives in every material's optics, kept per cell in
+        :attr:`BandLoad.traced`.
 
     Returns
     -------
@@ -450,7 +458,9 @@ def band_loads(
                 error = cell_error(craft, source.optics, (direction, weight), light.check, reference_m)
                 sums.shadow_error = summed([sums.shadow_error, error])
             if source.beams and shadowing:
-                chains = follow_chains(craft, light, weight, reference_m, cutoff, depth, light.level)
+                chains = follow_chains(
+                    craft, light, weight, reference_m, cutoff, depth, light.level, derivatives=derivatives
+                )
                 rays += chains.rays
                 sums.chains.append(chains)
     return [_finish(craft, s, r, reference_m) for s, r in zip(sources, running, strict=True)], rays
@@ -696,6 +706,7 @@ def _finish(craft: Spacecraft, source: Source, sums: _Running, reference_m: NDAr
         rays=chains.rays,
         shadow_error=sums.shadow_error,
         reflections=reflections,
+        traced=tuple(c for c in sums.chains if c.derivatives is not None),
     )
 
 

@@ -26,9 +26,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.planet.lit_law import SHARES, lit_share_torques, share_forces
-from sunwind.forces.planet.loads import Source
+from sunwind.forces.planet.loads import BandLoad, Source
 from sunwind.forces.planet.visibility import Visibility
 from sunwind.forces.radiation.sensitivity import per_material
+from sunwind.forces.reflection.sensitivity import diffuse_emissivity_derivatives, diffuse_optics_derivatives
 from sunwind.forces.sensitivity import COEFFICIENTS, OPTICS, Sensitivities, optics_partials
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
@@ -370,3 +371,64 @@ def planet_sensitivities(
     for force, torque in parts:
         total = total + Sensitivities(total.materials, force, torque, total.reference_point_m)
     return total
+
+
+def reflected_derivatives(
+    craft: Spacecraft, mode: str, sources: Sequence[Source], loads: Sequence[BandLoad], reference_m: NDArray
+) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
+    """The derivatives of what inter-reflection adds to each band's load, as ``(force, torque)`` pairs of
+    (n_materials, 7, 3) for :func:`planet_sensitivities`: the cells' beam chains (traced with their
+    derivatives) and, with ``full``, the diffuse balance of the albedo in the solar optics and of the
+    infrared in ``(1 - eps, 0, 0)`` (METHOD.md "Sensitivities").
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    mode : str
+        The reflections, ``"specular"`` or ``"full"``.
+    sources : sequence of Source
+        The bands, albedo then infrared, with their exchanges.
+    loads : sequence of BandLoad
+        Their loads from :func:`~sunwind.forces.planet.loads.band_loads` with ``derivatives=True``.
+    reference_m : (3,) array_like
+        Torque reference point [m].
+
+    Returns
+    -------
+    list of (force, torque)
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> white = sw.Material("white", 0.6, 0.5, emissivity=0.8)
+    >>> model = sw.load(sw.meshes.box_wing(facet_size=0.5), uniform=white, threads=1)
+    >>> place = sw.Place([0.0, 0.0, -1.0], 500.0, [0.6, 0.3, -0.2])
+    >>> cap = sw.CapSampling(30.0, "cells")
+    >>> d = sw.planet_radiation(model, place, reflections="full", cap=cap, sensitivities=True).sensitivities
+    >>> d.force_N.shape, bool(abs(d.of("white.specular_fraction").force_N).max() > 0)
+    ((1, 7, 3), True)
+    """
+    count, width = len(craft.materials), len(COEFFICIENTS)
+    parts = []
+    for source, load in zip(sources, loads, strict=True):
+        force, torque = np.zeros((count, width, 3)), np.zeros((count, width, 3))
+        traced = [c.derivatives for c in load.traced]
+        for d in traced:
+            force[:, : len(OPTICS)] += d.force_N + (d.open_sky_force_N if mode == "specular" else 0.0)
+            torque[:, : len(OPTICS)] += d.torque_Nm + (d.open_sky_torque_Nm if mode == "specular" else 0.0)
+        exchange = source.exchange
+        if exchange is not None and source.name == "infrared":
+            f, t = diffuse_emissivity_derivatives(craft, exchange, load.incident_side_W, reference_m)
+            force[:, EMISSIVITY] += f
+            torque[:, EMISSIVITY] += t
+        elif exchange is not None:
+            beams = sum((c.diffuse_source_W for c in load.traced), np.zeros(craft.n_sides))
+            derivative = sum((d.diffuse_source_W for d in traced), np.zeros((craft.n_sides, 3 * count)))
+            f, t = diffuse_optics_derivatives(
+                craft, exchange, load.incident_side_W, beams, derivative, reference_m
+            )
+            force[:, : len(OPTICS)] += f
+            torque[:, : len(OPTICS)] += t
+        parts.append((force, torque))
+    return parts

@@ -174,6 +174,8 @@ class DiffuseExchange:
             self.factors = exchange_factors(craft, view, cache_dir, optics)
             re_emitted = rho * (1 - beta)
             self.absorptance = 1.0 - rho - sigma
+        #: ``(rho, beta, sigma)`` of each side in this balance (molecules: ``(1, mirrored, 0)``)
+        self.optics = optics
         #: ``diag(rho_d) E^T``: the diffuse power each side re-emits per watt each side emits;
         #: ``M = I - coupling``
         self.coupling = (scipy.sparse.diags(re_emitted) @ self.factors.matrix.T).tocsr()

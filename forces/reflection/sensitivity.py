@@ -40,8 +40,11 @@ from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.disk_cache import CacheEntryError, cache_directory, geometry_key, kept_on_disk
 from sunwind.geometry.views.exchange_factors import compute_exchange_factors
 
-#: Step of the differenced exchange factors, in ``rho_s`` or ``sigma`` [-].
-EXCHANGE_STEP = 1e-4
+#: Steps of the differenced exchange factors, in ``rho_s`` or ``sigma`` [-]: central differences inside
+#: the bounds take a step small enough that no translucent mirror's random pick of a path flips; forward
+#: ones from a bound (a share of 0) a step large enough that the new paths are not cut by the chains'
+#: cutoff (1e-6 of their first weight) at their first surface.
+EXCHANGE_STEP, BOUND_STEP = 1e-7, 1e-4
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,7 +72,9 @@ class ExchangeSensitivity:
     origin: str = "computed"
 
 
-def exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange) -> ExchangeSensitivity:
+def exchange_sensitivity(
+    craft: Spacecraft, exchange: DiffuseExchange, onward: bool = True
+) -> ExchangeSensitivity:
     """The exchange's dependence on every material's optics, made once per model and material set and
     kept, in memory and on disk beside the exchange factors (``exchange_sensitivity-KEY.npz``, checked on
     read).
@@ -82,7 +87,11 @@ def exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange) -> Exchan
     craft : Spacecraft
         The model.
     exchange : DiffuseExchange
-        Its diffuse exchange for light.
+        Its diffuse exchange for light, in the band of the exchange's own optics.
+    onward : bool
+        Also the changes of the mirror shares and transmissions (the solar band's free optics); False:
+        the diffuse shares alone (the infrared, whose optics ``(1 - eps, 0, 0)`` move only them), their
+        columns left zero and no exchange chains run.
 
     Returns
     -------
@@ -98,23 +107,23 @@ def exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange) -> Exchan
     >>> exchange_sensitivity(craft, exchange).responses.shape
     (144, 18)
     """
-    key = ("exchange sensitivity", id(exchange))
-    return craft.cache.get(key, lambda: _kept(craft, exchange))
+    key = ("exchange sensitivity", id(exchange), onward)
+    return craft.cache.get(key, lambda: _kept(craft, exchange, onward))
 
 
-def _kept(craft: Spacecraft, exchange: DiffuseExchange) -> ExchangeSensitivity:
+def _kept(craft: Spacecraft, exchange: DiffuseExchange, onward: bool) -> ExchangeSensitivity:
     directory = cache_directory(exchange.cache_dir)
-    if directory is None:
-        return _exchange_sensitivity(craft, exchange)
+    if directory is None or not onward:  # without the chains' runs it is made in a moment
+        return _exchange_sensitivity(craft, exchange, onward)
     view = exchange.view
     settings = {
         "kind": "exchange sensitivity",
-        "step": EXCHANGE_STEP,
+        "step": [EXCHANGE_STEP, BOUND_STEP],
         "rays_per_side": view.rays_per_side,
         "seed": view.seed,
         "arrays": [
             hashlib.sha256(np.ascontiguousarray(array, dtype="<f8").tobytes()).hexdigest()
-            for array in (craft.side_optics, view.matrix.data, exchange.factors.matrix.data)
+            for array in (exchange.optics, view.matrix.data, exchange.factors.matrix.data)
         ]
         + [hashlib.sha256(np.ascontiguousarray(craft.side_material, dtype="<i4").tobytes()).hexdigest()],
     }
@@ -130,14 +139,14 @@ def _kept(craft: Spacecraft, exchange: DiffuseExchange) -> ExchangeSensitivity:
         directory,
         "exchange_sensitivity",
         geometry_key(craft, settings),
-        lambda: _exchange_sensitivity(craft, exchange),
+        lambda: _exchange_sensitivity(craft, exchange, onward),
         lambda value: {"responses": value.responses},
         decoded,
     )
 
 
-def _exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange) -> ExchangeSensitivity:
-    rho, beta, sigma = craft.side_optics.T
+def _exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange, onward: bool) -> ExchangeSensitivity:
+    rho, beta, sigma = exchange.optics.T
     g = exchange.responses[:, MOMENTA]
     weighted = (rho * (1.0 - beta))[:, None] * g  # diag(rho_d) g
     count = len(craft.materials)
@@ -147,7 +156,7 @@ def _exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange) -> Excha
         if not mine.any():
             continue
         columns[:, m, 0] = exchange.factors.matrix @ np.where(mine[:, None], g, 0.0)
-        for channel, base in enumerate((rho * beta, sigma)):
+        for channel, base in enumerate((rho * beta, sigma) if onward else ()):
             columns[:, m, 1 + channel] = _differenced(craft, exchange, mine, channel, base, weighted)
     flat = columns.reshape(craft.n_sides, -1)
     used = np.flatnonzero(np.abs(flat).max(axis=0) > 0)
@@ -166,8 +175,8 @@ def _differenced(
 ) -> NDArray[np.float64]:
     """``dw + dE diag(rho_d) g`` for a change of ``channel`` (0: ``rho_s``, 1: ``sigma``) on the sides
     ``mine``: central differences, or second-order forward ones from a bound."""
-    h = EXCHANGE_STEP
     value = float(base[mine][0])
+    h = EXCHANGE_STEP if value >= EXCHANGE_STEP else BOUND_STEP
     steps, weights = ((-h, h), (-0.5, 0.5)) if value >= h else ((0.0, h, 2 * h), (-1.5, 2.0, -0.5))
     # only rows whose light reaches these sides change (first arrivals and later ones alike)
     rows = np.flatnonzero(exchange.factors.matrix @ mine.astype(np.float64) > 0)
@@ -175,7 +184,7 @@ def _differenced(
     if not len(rows):
         return out
     for step, weight in zip(steps, weights, strict=True):
-        optics = _shifted(craft.side_optics, mine, channel, step)
+        optics = _shifted(exchange.optics, mine, channel, step)
         factors = (
             exchange.factors
             if step == 0.0
@@ -246,7 +255,7 @@ def diffuse_optics_derivatives(
     >>> bool(np.abs(force).max() < 1e-20)  # a convex box: diffuse light leaves as from an open plate
     True
     """
-    rho, beta, _ = craft.side_optics.T
+    rho, beta, _ = exchange.optics.T
     count = len(craft.materials)
     g = exchange.responses[:, MOMENTA]
     net = g - exchange.open_sky_functionals[:, MOMENTA]
@@ -268,6 +277,58 @@ def diffuse_optics_derivatives(
     force = np.array([[t.force_N for t in row] for row in totals]).reshape(count, 3, 3)
     torque = np.array([[t.torque_Nm for t in row] for row in totals]).reshape(count, 3, 3)
     return force, torque
+
+
+def diffuse_emissivity_derivatives(
+    craft: Spacecraft,
+    exchange: DiffuseExchange,
+    direct_W: NDArray[np.float64],
+    reference_m: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """d force and d torque of diffuse infrared light, beyond eq. (4)'s open-plate share, per material
+    emissivity: the infrared optics ``(1 - eps, 0, 0)`` move only the diffuse share, by ``-1``.
+
+    Parameters
+    ----------
+    craft : Spacecraft
+        The model.
+    exchange : DiffuseExchange
+        Its diffuse exchange in the infrared.
+    direct_W : (n_sides,) float64
+        Infrared power arriving on each side [W].
+    reference_m : (3,) float64
+        Torque reference point [m].
+
+    Returns
+    -------
+    force, torque : (n_materials, 3) float64
+        Per unit emissivity.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import sunwind as sw
+    >>> from sunwind.forces.thermal import infrared_exchange
+    >>> grey = sw.Material("grey", reflectivity=0.5, specular_fraction=0.0, emissivity=0.6)
+    >>> craft = sw.load(sw.meshes.box(), uniform=grey, threads=1).craft
+    >>> exchange = infrared_exchange(craft, sw.ReflectionSettings("full", cache_dir=False))
+    >>> power = np.where(craft.side_normals[:, 2] > 0.5, 1.0, 0.0)
+    >>> force, _ = diffuse_emissivity_derivatives(craft, exchange, power, np.zeros(3))
+    >>> bool(np.abs(force).max() < 1e-20)  # a convex box: as eq. (4) says
+    True
+    """
+    rho, beta, _ = exchange.optics.T
+    count = len(craft.materials)
+    g = exchange.responses[:, MOMENTA]
+    net = g - exchange.open_sky_functionals[:, MOMENTA]
+    sums = -per_material(craft.side_material, direct_W[:, None] * net, count)  # (count, 6)
+    source = rho * (1.0 - beta) * direct_W
+    response = weighted_sum(exchange_sensitivity(craft, exchange, onward=False).responses, source)
+    sums -= response.reshape(count, 3, 6)[:, 0]
+    values = np.zeros((count, 8))
+    values[:, MOMENTA] = sums
+    totals = [DiffuseTotals.from_sums(values[m], reference_m) for m in range(count)]
+    return np.array([t.force_N for t in totals]), np.array([t.torque_Nm for t in totals])
 
 
 def _material_column(craft: Spacecraft, side_values: NDArray[np.float64]) -> NDArray[np.float64]:
