@@ -26,6 +26,7 @@ import scipy.sparse
 from numpy.typing import NDArray
 
 from sunwind.forces.earth import (
+    BEAM_MODES,
     DEFAULT_CELL_DEG,
     METHODS,
     CapSampling,
@@ -35,6 +36,7 @@ from sunwind.forces.earth import (
 )
 from sunwind.forces.model import Model
 from sunwind.forces.planet.bodies import PlanetLight, planet
+from sunwind.forces.reflection import reflection_plan
 from sunwind.forces.tables.jobs import Records, SrpSetup
 from sunwind.forces.thermal import thermal_model, thermal_nodes
 from sunwind.forces.thermal.transient import DEFAULT_TOLERANCE_K, integrate
@@ -90,7 +92,8 @@ class EarthTerms:
     cap_method : {"auto", "visibility", "cells"}
         How the shadowed cap is integrated (``method`` of :func:`~sunwind.forces.earth.planet_radiation`);
         ``"auto"``: the model's directional visibility, built once, unless a hinge moves (tracks or follows
-        a schedule), which poses the model anew at every step: then a shadow pass per cell.
+        a schedule), which poses the model anew at every step, or sensitivities are asked with reflections
+        followed (the visibility keeps no derivatives of its chains): then a shadow pass per cell.
     thermal : {None, "equilibrium", "transient"}
         The parts' temperatures and thermal recoil (:data:`THERMAL_MODES`; True is ``"equilibrium"``):
         each step's equilibrium, or the lumped transient integrated along the steps (the module
@@ -396,7 +399,11 @@ class EarthTerms:
             place = replace(place, solar_fraction=1.0)
         method = self.cap_method
         if method == "auto":
-            method = "cells" if any(hinge.law != "fixed" for hinge in model.hinges) else "visibility"
+            moving = any(hinge.law != "fixed" for hinge in model.hinges)
+            followed = (
+                sensitivities and reflection_plan(model.craft, self.surface.settings).mode in BEAM_MODES
+            )
+            method = "cells" if moving or followed else "visibility"
         result = planet_radiation(
             model,
             place,

@@ -123,6 +123,36 @@ def test_drag_and_the_earth_add_their_derivatives_to_the_sum(model, path):
     assert result.attributes["settings"]["sensitivities"] == ["foil", "cell"]
 
 
+def test_earth_terms_with_reflections_followed_take_the_cells(model, path):
+    """With sensitivities and specular reflections the Earth terms' automatic method is the cells (the
+    visibility keeps no derivatives of its chains): each step's derivatives are planet_radiation's by the
+    cells, plus the SRP's."""
+    times = path.time_s[:2]
+    short = propagate(Elements.circular(450.0, 51.6, 20.0), EPOCH, times, "kepler")
+    light = SrpSetup(reflections="specular", sampling=SAMPLING)
+    loads = OrbitLoads(light, None, AIR, 0.0, EarthTerms(light, cell_deg=30.0), sensitivities=True)
+    result = fly(model, short, LAW, loads)
+    steps = step_inputs(short, LAW, loads)
+    for i in range(len(times)):
+        total = np.zeros((2, len(COEFFICIENTS), 3))
+        if steps.flux_W_m2[i] > 0:
+            total += srp(
+                model, steps.sun_body[i], flux_W_m2=steps.flux_W_m2[i], **light.options(), sensitivities=True
+            ).sensitivities.force_N
+        place = Place(
+            steps.nadir_body[i],
+            float(steps.height_km[i]),
+            steps.sun_body[i],
+            steps.pole_body[i],
+            float(steps.solar_fraction[i]),
+        )
+        radiation = PlanetLight.of(planet("earth"), float(steps.sunlight_W_m2[i]))
+        cap = CapSampling(30.0, "cells")
+        earthly = planet_radiation(model, place, radiation, cap=cap, **light.options(), sensitivities=True)
+        total += earthly.sensitivities.force_N
+        np.testing.assert_allclose(result.series["sensitivity_force_N"][i], total, rtol=1e-12, atol=1e-24)
+
+
 def test_the_outputs_hold_the_derivatives_on_material_and_coefficient(model, path, tmp_path):
     result = fly(model, path, LAW, _srp_only())
     table = result.to_dataset()
