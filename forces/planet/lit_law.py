@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
+from sunwind.forces.radiation.sensitivity import share_forces
 from sunwind.geometry.rays.certificate import LoadsError, ShadowCheck
 from sunwind.geometry.spacecraft import Spacecraft
 
@@ -152,64 +153,6 @@ def open_force(
     along = (1.0 - sigma - rho_s)[:, None] * i1
     normal = 2.0 * rho_s * i2 + LAMBERT_FACTOR * rho_d * i0
     return -(areas / SPEED_OF_LIGHT)[:, None] * (along + normal[:, None] * normals)
-
-
-#: The shares of a side's light, in the order of :func:`share_forces` (and of
-#: :func:`~sunwind.forces.sensitivity.optics_partials`).
-SHARES = ("absorbed", "specular", "diffuse", "transmitted")
-
-
-def share_forces(
-    normals: NDArray[np.float64],
-    areas: NDArray[np.float64],
-    i0: NDArray[np.float64],
-    i1: NDArray[np.float64],
-    i2: NDArray[np.float64],
-) -> NDArray[np.float64]:
-    """:func:`open_force` per unit share: the force on each side were all its light absorbed, mirrored,
-    diffused or transmitted [N].
-
-    The law is linear in the shares ``(alpha, rho_s, rho_d, sigma)`` (:data:`SHARES`; ``1 - sigma - rho_s =
-    alpha + rho_d``), so :func:`open_force` is the sum of these times the shares, and its derivative with
-    respect to any coefficient the sum times the shares' partials
-    (:func:`~sunwind.forces.sensitivity.optics_partials`):
-
-    ``-(A / c) [I_1,  2 I_2 n,  I_1 + (2/3) I_0 n,  0]``.
-
-    Parameters
-    ----------
-    normals : (m, 3) float64
-        Unit outward normals.
-    areas : (m,) float64
-        Areas [m^2].
-    i0, i1, i2 : (m,), (m, 3), (m,) float64
-        ``I_0, I_1, I_2`` of each side [W/m^2].
-
-    Returns
-    -------
-    (m, 4, 3) float64
-        ``[side, share, component]`` [N per unit share].
-
-    Examples
-    --------
-    The shares of a grey plate weight the four forces into :func:`open_force`:
-
-    >>> import numpy as np
-    >>> up = np.array([[0.0, 0.0, 1.0]])
-    >>> i0 = np.array([1361.0])
-    >>> basis = share_forces(up, np.ones(1), i0, i0[:, None] * up, i0)
-    >>> rho, beta, sigma = 0.4, 0.25, 0.1
-    >>> shares = np.array([1 - rho - sigma, rho * beta, rho * (1 - beta), sigma])
-    >>> optics = np.array([[rho, beta, sigma]])
-    >>> bool(np.allclose(shares @ basis[0], open_force(up, np.ones(1), optics, i0, i0[:, None] * up, i0)))
-    True
-    """
-    scale = -(areas / SPEED_OF_LIGHT)[:, None]
-    out = np.zeros((len(areas), len(SHARES), 3))
-    out[:, 0] = scale * i1
-    out[:, 1] = scale * (2.0 * i2)[:, None] * normals
-    out[:, 2] = scale * (i1 + LAMBERT_FACTOR * i0[:, None] * normals)
-    return out
 
 
 def lit_share_torques(

@@ -5,7 +5,7 @@ the albedo's through the solar optics ``(rho, beta, sigma)``, the infrared's thr
 A band's direct load (every reflected photon escaping: reflections ``none`` and ``plates``) is, side by
 side, eq. (4) over the side's shadowed integrals plus the couple of moving its lit force to its lit
 centroid, and both are linear in the side's shares ``(alpha, rho_s, rho_d, sigma)``
-(:func:`~sunwind.forces.planet.lit_law.share_forces`). Summed per material and unit share
+(:func:`~sunwind.forces.radiation.sensitivity.share_forces`). Summed per material and unit share
 (:class:`ShareLoads`: the same cap integrals and shadow losses, the share weights replaced by one), the
 load is ``sum_m sum_s share_ms L_ms`` and its derivative with respect to a coefficient of material ``m``
 is ``sum_s (d share_s / d coefficient) L_ms``: exact, and from the very shadow passes of the load (the
@@ -25,10 +25,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.planet.lit_law import SHARES, lit_share_torques, share_forces
+from sunwind.forces.planet.lit_law import lit_share_torques
 from sunwind.forces.planet.loads import BandLoad, Source
 from sunwind.forces.planet.visibility import Visibility
-from sunwind.forces.radiation.sensitivity import per_material
+from sunwind.forces.radiation.sensitivity import SHARES, per_material, share_forces
 from sunwind.forces.reflection.sensitivity import diffuse_emissivity_derivatives, diffuse_optics_derivatives
 from sunwind.forces.sensitivity import COEFFICIENTS, OPTICS, Sensitivities, optics_partials
 from sunwind.geometry.rays.shadows import Illumination
@@ -48,7 +48,7 @@ class ShareLoads:
     ----------
     force_N : (n_materials, 4, 3) float64
         Force on the sides of each material were all their light of the band to leave by one share
-        (:data:`~sunwind.forces.planet.lit_law.SHARES`) [N].
+        (:data:`~sunwind.forces.radiation.sensitivity.SHARES`) [N].
     torque_Nm : (n_materials, 4, 3) float64
         Its torque about the reference point, the lit-centroid couples included [N m].
 

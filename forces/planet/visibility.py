@@ -40,7 +40,8 @@ import trimesh
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
-from sunwind.forces.planet.lit_law import SHARES, cell_error, law, lit_share_torques
+from sunwind.forces.planet.lit_law import cell_error, law, lit_share_torques
+from sunwind.forces.radiation.sensitivity import SHARES
 from sunwind.forces.reflection import BeamChainTotals, ReflectionSettings, follow_chains
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.memory import require
@@ -274,7 +275,7 @@ class Visibility:
     chains : NodeChains or None
         The nodes' beam chains (solar optics), when beams were asked for and some side can be shadowed.
     lit_torque_Nm : (n, n_materials, 4, 3) float64
-        Per node, material and share of :data:`~sunwind.forces.planet.lit_law.SHARES`, the torque of
+        Per node, material and share of :data:`~sunwind.forces.radiation.sensitivity.SHARES`, the torque of
         moving the lit forces of the material's sides to their lit centroids per unit irradiance and unit
         share; ``shift_torque_Nm`` of a band is its sum weighted by the band's shares.
     rays : int

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.radiation.law import LAMBERT_FACTOR
+from sunwind.forces.radiation.law import LAMBERT_FACTOR, SPEED_OF_LIGHT
 from sunwind.forces.sensitivity import optics_partials
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
@@ -50,6 +50,65 @@ def per_material(
     for column in range(flat.shape[1]):
         out[:, column] = np.bincount(material, weights=flat[:, column], minlength=count)
     return out.reshape((count, *values.shape[1:]))
+
+
+#: The shares of a side's light, in the order of :func:`share_forces` (and of
+#: :func:`~sunwind.forces.sensitivity.optics_partials`).
+SHARES = ("absorbed", "specular", "diffuse", "transmitted")
+
+
+def share_forces(
+    normals: NDArray[np.float64],
+    areas: NDArray[np.float64],
+    i0: NDArray[np.float64],
+    i1: NDArray[np.float64],
+    i2: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Find eq. (4) over an extended source (:func:`~sunwind.forces.planet.lit_law.open_force`) per unit
+    share: the force on each side were all its light absorbed, mirrored, diffused or transmitted [N].
+
+    The law is linear in the shares ``(alpha, rho_s, rho_d, sigma)`` (:data:`SHARES`; ``1 - sigma - rho_s =
+    alpha + rho_d``), so the law is the sum of these times the shares, and its derivative with
+    respect to any coefficient the sum times the shares' partials
+    (:func:`~sunwind.forces.sensitivity.optics_partials`):
+
+    ``-(A / c) [I_1,  2 I_2 n,  I_1 + (2/3) I_0 n,  0]``.
+
+    Parameters
+    ----------
+    normals : (m, 3) float64
+        Unit outward normals.
+    areas : (m,) float64
+        Areas [m^2].
+    i0, i1, i2 : (m,), (m, 3), (m,) float64
+        ``I_0, I_1, I_2`` of each side [W/m^2].
+
+    Returns
+    -------
+    (m, 4, 3) float64
+        ``[side, share, component]`` [N per unit share].
+
+    Examples
+    --------
+    The shares of a grey plate weight the four forces into eq. (4)'s (:func:`surface_forces`):
+
+    >>> from sunwind.forces.radiation.law import surface_forces
+    >>> up = np.array([[0.0, 0.0, 1.0]])
+    >>> i0 = np.array([1361.0])
+    >>> basis = share_forces(up, np.ones(1), i0, i0[:, None] * up, i0)
+    >>> rho, beta, sigma = 0.4, 0.25, 0.1
+    >>> shares = np.array([1 - rho - sigma, rho * beta, rho * (1 - beta), sigma])
+    >>> optics = [np.array([v]) for v in (rho, beta, sigma)]
+    >>> law = surface_forces(up, np.ones(1), np.ones(1), *optics, up[0], 1361 / 299792458)
+    >>> bool(np.allclose(shares @ basis[0], law, rtol=1e-14, atol=0))
+    True
+    """
+    scale = -(areas / SPEED_OF_LIGHT)[:, None]
+    out = np.zeros((len(areas), len(SHARES), 3))
+    out[:, 0] = scale * i1
+    out[:, 1] = scale * (2.0 * i2)[:, None] * normals
+    out[:, 2] = scale * (i1 + LAMBERT_FACTOR * i0[:, None] * normals)
+    return out
 
 
 def direct_optics_derivatives(
@@ -91,12 +150,9 @@ def direct_optics_derivatives(
     u = light.direction
     normals = craft.side_normals[sides]
     cos = normals @ u
-    rate = pressure_Pa * craft.side_areas[sides] * share * cos  # P A f c [N]
-    # per-share force directions, [side, share, component]: absorbed, specular, diffuse, transmitted
-    per_share = np.zeros((len(sides), 4, 3))
-    per_share[:, 0] = -rate[:, None] * u
-    per_share[:, 1] = -rate[:, None] * (2.0 * cos[:, None] * normals)
-    per_share[:, 2] = -rate[:, None] * (u + LAMBERT_FACTOR * normals)
+    irradiance = pressure_Pa * SPEED_OF_LIGHT * cos  # on each side's plane [W/m^2]
+    lit_area = craft.side_areas[sides] * share
+    per_share = share_forces(normals, lit_area, irradiance, irradiance[:, None] * u, irradiance * cos)
     rho, beta, _ = craft.side_optics[sides].T
     partials = optics_partials(rho, beta)  # [side, coefficient, share]
     force = np.einsum("ikq,iqc->ikc", partials, per_share)
