@@ -107,6 +107,8 @@ def exchange_sensitivity(
     >>> exchange_sensitivity(craft, exchange).responses.shape
     (144, 18)
     """
+    # the model's exchanges are kept in this same cache (diffuse_exchange, infrared_exchange): while this
+    # entry lives, so does the exchange whose id it names, and clear() drops them together
     key = ("exchange sensitivity", id(exchange), onward)
     return craft.cache.get(key, lambda: _kept(craft, exchange, onward))
 
@@ -271,12 +273,7 @@ def diffuse_optics_derivatives(
     sums[:, 0] += (1.0 - beta_m) * response[:, 0] + beta_m * response[:, 1]  # rho moves rho_d and rho_s
     sums[:, 1] += rho_m * (response[:, 1] - response[:, 0])  # beta moves rho_s against rho_d
     sums[:, 2] += response[:, 2]
-    values = np.zeros((count, 3, 8))
-    values[:, :, MOMENTA] = sums
-    totals = [[DiffuseTotals.from_sums(values[m, k], reference_m) for k in range(3)] for m in range(count)]
-    force = np.array([[t.force_N for t in row] for row in totals]).reshape(count, 3, 3)
-    torque = np.array([[t.torque_Nm for t in row] for row in totals]).reshape(count, 3, 3)
-    return force, torque
+    return _loads(sums, reference_m)
 
 
 def diffuse_emissivity_derivatives(
@@ -325,10 +322,22 @@ def diffuse_emissivity_derivatives(
     source = rho * (1.0 - beta) * direct_W
     response = weighted_sum(exchange_sensitivity(craft, exchange, onward=False).responses, source)
     sums -= response.reshape(count, 3, 6)[:, 0]
-    values = np.zeros((count, 8))
-    values[:, MOMENTA] = sums
-    totals = [DiffuseTotals.from_sums(values[m], reference_m) for m in range(count)]
-    return np.array([t.force_N for t in totals]), np.array([t.torque_Nm for t in totals])
+    return _loads(sums, reference_m)
+
+
+def _loads(
+    sums: NDArray[np.float64], reference_m: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Force and torque about ``reference_m`` of escaping-momentum sums ``(..., 6)`` (momentum rate and
+    its moment about the origin, :data:`~sunwind.forces.reflection.diffuse.MOMENTA`), each ``(..., 3)``."""
+    values = np.zeros((sums[..., 0].size, 8))
+    values[:, MOMENTA] = sums.reshape(-1, 6)
+    totals = [DiffuseTotals.from_sums(row, reference_m) for row in values]
+    shape = (*sums.shape[:-1], 3)
+    return (
+        np.array([t.force_N for t in totals]).reshape(shape),
+        np.array([t.torque_Nm for t in totals]).reshape(shape),
+    )
 
 
 def _material_column(craft: Spacecraft, side_values: NDArray[np.float64]) -> NDArray[np.float64]:
