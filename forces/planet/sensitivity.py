@@ -424,7 +424,9 @@ def reflected_derivatives(
             torque[:, EMISSIVITY] += t
         elif exchange is not None:
             beams = sum((c.diffuse_source_W for c in load.traced), np.zeros(craft.n_sides))
-            derivative = sum((d.diffuse_source_W for d in traced), np.zeros((craft.n_sides, 3 * count)))
+            derivative = np.zeros((craft.n_sides, 3 * count))
+            for d in traced:  # from the compact rows: a dense array per cell, kept by the cell, would add up
+                derivative[d.sides] += d.source_rows
             f, t = diffuse_optics_derivatives(
                 craft, exchange, load.incident_side_W, beams, derivative, reference_m
             )
