@@ -3,8 +3,8 @@ their derivatives with respect to the free coefficients, for any values of those
 
 Rows whose body-frame Sun directions and hinge angles agree to within a resolution share one
 evaluation (at their mean direction and angles); the flux and the solar fraction scale the result
-(SRP is proportional to both), so the model runs at :data:`~.telemetry.FLUX_1AU_W_M2` once per
-geometry.
+(SRP is proportional to both), so the model runs at the flux at 1 au
+(:data:`~sunwind.forces.radiation.law.SOLAR_FLUX_1AU`) once per geometry.
 
 With ``reflections`` ``none`` or ``plates`` (or ``auto`` resolved to ``none``) the result is exactly
 linear in each material's shares ``(absorbed, specular, diffuse, transmitted) = (1 - rho - sigma,
@@ -29,8 +29,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.fit.telemetry import FLUX_1AU_W_M2, Telemetry
+from sunwind.forces.fit.telemetry import Telemetry
 from sunwind.forces.model import Model
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.forces.reflection import ReflectionSettings, reflection_plan
 from sunwind.forces.sensitivity import optics_partials
 from sunwind.forces.srp import srp
@@ -77,7 +78,8 @@ class Geometry:
     angles : tuple of dict
         Hinge angles [deg] of each geometry (empty dicts without hinges).
     scale : (n,) float64
-        Each row's flux times its solar fraction over :data:`~.telemetry.FLUX_1AU_W_M2`.
+        Each row's flux times its solar fraction over the flux at 1 au
+        (:data:`~sunwind.forces.radiation.law.SOLAR_FLUX_1AU`).
 
     Examples
     --------
@@ -162,7 +164,7 @@ class Geometry:
         np.add.at(mean_angles, row_group, angles)
         mean_angles /= count[:, None]
         poses = tuple({name: float(a) for name, a in zip(names, row, strict=True)} for row in mean_angles)
-        scale = telemetry.flux_W_m2 * telemetry.solar_fraction / FLUX_1AU_W_M2
+        scale = telemetry.flux_W_m2 * telemetry.solar_fraction / SOLAR_FLUX_1AU
         return cls(row_group.astype(np.int64), sun, poses, scale)
 
     def __len__(self) -> int:
@@ -233,7 +235,7 @@ def evaluator(settings: ReflectionSettings, sampling: ShadowSampling | None = No
             batch = srp(
                 posed,
                 geometry.sun_body[groups],
-                flux_W_m2=FLUX_1AU_W_M2,
+                flux_W_m2=SOLAR_FLUX_1AU,
                 reflections=settings,
                 sampling=sampling,
                 sensitivities=True,

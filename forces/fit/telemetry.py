@@ -8,7 +8,8 @@ Columns (a header line first; lines starting ``#`` are skipped):
   ``epoch``, the Sun then from the ephemeris (its direction from the Earth's centre; the flux scaled to
   its distance unless ``flux_W_m2`` is given). With both, the ``sun_*`` columns give the Sun and the
   quaternions the inertial frame of the momentum;
-- optional ``flux_W_m2`` (default :data:`FLUX_1AU_W_M2`), ``solar_fraction`` (0 to 1; eclipse) and
+- optional ``flux_W_m2`` (default the flux at 1 au, :data:`~sunwind.forces.radiation.law.SOLAR_FLUX_1AU`),
+  ``solar_fraction`` (0 to 1; eclipse) and
   ``hinge:GLOB`` [deg], the angle of the materials file's hinge ``GLOB``;
 - for drag, optional: ``vel_x, vel_y, vel_z`` [m/s], the spacecraft's velocity relative to the
   atmosphere, body frame, with ``density_kg_m3`` [kg/m^3] and optionally ``temperature_K`` (default
@@ -41,12 +42,11 @@ from numpy.typing import NDArray
 from sunwind.forces.orbit.attitude import quaternion_matrix
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.sun import AU_M, sun_position
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 from sunwind.geometry.errors import InputError
 
 #: Largest ``| |q| - 1 |`` of a quaternion accepted.
 UNIT_TOLERANCE = 1e-6
-#: Solar flux at 1 au [W/m^2], the default of ``flux_W_m2``.
-FLUX_1AU_W_M2 = 1361.0
 #: Measurement kinds: their column prefix, unit, and the name of their sigma.
 KINDS = {
     "torque": ("torque", "N m", "sigma_torque"),
@@ -171,7 +171,7 @@ def read_telemetry(path: str | Path, epoch: str | None = None) -> Telemetry:
     if flux_given:
         flux = columns.numbers("flux_W_m2", "give the solar flux [W/m^2]", 0.0)
     else:
-        flux = distance_flux if distance_flux is not None else np.full(len(time), FLUX_1AU_W_M2)
+        flux = distance_flux if distance_flux is not None else np.full(len(time), SOLAR_FLUX_1AU)
     fraction = np.ones(len(time))
     if "solar_fraction" in header:
         fraction = columns.numbers("solar_fraction", "give the lit share of the Sun, 0 to 1", 0.0, 1.0)
@@ -326,4 +326,4 @@ def _ephemeris_sun(
     sun = sun_position(Epoch.of(epoch), time)
     distance = np.linalg.norm(sun, axis=1)
     body = np.einsum("nji,nj->ni", rotation, sun / distance[:, None])
-    return body, FLUX_1AU_W_M2 * (AU_M / distance) ** 2
+    return body, SOLAR_FLUX_1AU * (AU_M / distance) ** 2

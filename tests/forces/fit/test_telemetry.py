@@ -8,10 +8,11 @@ import pytest
 
 import sunwind as sw
 from sunwind.forces.fit.forward import Geometry
-from sunwind.forces.fit.telemetry import FLUX_1AU_W_M2, Telemetry, read_telemetry
+from sunwind.forces.fit.telemetry import Telemetry, read_telemetry
 from sunwind.forces.orbit.attitude import quaternion_matrix
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.sun import AU_M, sun_position
+from sunwind.forces.radiation.law import SOLAR_FLUX_1AU
 
 EPOCH = "2024-06-21T00:00:00Z"
 
@@ -28,8 +29,8 @@ def test_quaternions_and_an_epoch_give_the_body_sun_and_the_flux_at_its_distance
     distance = np.linalg.norm(sun, axis=1)
     expected = np.einsum("nji,nj->ni", quaternion_matrix(q), sun / distance[:, None])
     assert np.allclose(telemetry.sun_body, expected, atol=1e-12)
-    assert np.allclose(telemetry.flux_W_m2, FLUX_1AU_W_M2 * (AU_M / distance) ** 2)
-    assert telemetry.flux_W_m2[0] < FLUX_1AU_W_M2  # the Earth is near aphelion in June
+    assert np.allclose(telemetry.flux_W_m2, SOLAR_FLUX_1AU * (AU_M / distance) ** 2)
+    assert telemetry.flux_W_m2[0] < SOLAR_FLUX_1AU  # the Earth is near aphelion in June
     assert telemetry.kinds == ("momentum",) and telemetry.rotation.shape == (3, 3, 3)
     assert np.all(telemetry.solar_fraction == 0.5)
 
