@@ -35,6 +35,7 @@ from sunwind.forces.reflection.diffuse import (
 )
 from sunwind.forces.reflection.plan import ReflectionPlan
 from sunwind.forces.sensitivity import OPTICS, Sensitivities, optics_partials
+from sunwind.geometry.memory import count, require
 from sunwind.geometry.rays.shadows import Illumination
 from sunwind.geometry.spacecraft import Spacecraft
 from sunwind.geometry.views.disk_cache import CacheEntryError, cache_directory, geometry_key, kept_on_disk
@@ -151,9 +152,16 @@ def _exchange_sensitivity(craft: Spacecraft, exchange: DiffuseExchange, onward: 
     rho, beta, sigma = exchange.optics.T
     g = exchange.responses[:, MOMENTA]
     weighted = (rho * (1.0 - beta))[:, None] * g  # diag(rho_d) g
-    count = len(craft.materials)
-    columns = np.zeros((craft.n_sides, count, 3, 6))
-    for m in range(count):
+    n_materials = len(craft.materials)
+    # the columns, the responses and the solver's working copies of them
+    require(
+        4 * craft.n_sides * n_materials * 3 * 6 * 8,
+        f"the diffuse balance's sensitivities: {count(craft.n_sides)} sides x {n_materials} materials x 18"
+        " columns",
+        'reflections "specular" (no diffuse balance), or fewer materials in the materials file',
+    )
+    columns = np.zeros((craft.n_sides, n_materials, 3, 6))
+    for m in range(n_materials):
         mine = craft.side_material == m
         if not mine.any():
             continue

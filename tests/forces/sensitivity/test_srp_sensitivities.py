@@ -218,3 +218,15 @@ def test_specular_chains_at_their_bounds_match_forward_differences():
             difference = (-3 * values[0] + 4 * values[1] - values[2]) / (2 * STEP)
             scale = max(np.abs(difference).max(), floor if field == "torque_Nm" else 0.0)
             assert np.abs(getattr(mine, field) - difference).max() < TOLERANCE * scale, (material, field)
+
+
+def test_the_diffuse_balances_sensitivities_are_sized_before_they_are_made(craft, monkeypatch):
+    """Their columns grow with sides times materials: over SUNWIND_MAX_MEMORY they are refused, naming
+    the fix, before any array is made."""
+    settings = sw.ReflectionSettings("full", cache_dir=False, rays_per_side=64)
+    sw.srp(craft, SUNS[0], reflections=settings)  # the plan and its exchange, within any limit
+    monkeypatch.setenv("SUNWIND_MAX_MEMORY", "64K")
+    refused = r"not enough memory.*diffuse balance's sensitivities"
+    with pytest.raises(sw.SunwindError, match=refused) as raised:
+        sw.srp(craft, SUNS[0], reflections=settings, sensitivities=True)
+    assert "specular" in str(raised.value)
