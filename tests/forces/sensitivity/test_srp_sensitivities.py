@@ -223,6 +223,7 @@ def test_specular_chains_at_their_bounds_match_forward_differences():
 def test_the_diffuse_balances_sensitivities_are_sized_before_they_are_made(craft, monkeypatch):
     """Their columns grow with sides times materials: over SUNWIND_MAX_MEMORY they are refused, naming
     the fix, before any array is made."""
+    craft = dataclasses.replace(craft)  # an empty cache: the sensitivities not yet made
     settings = sw.ReflectionSettings("full", cache_dir=False, rays_per_side=64)
     sw.srp(craft, SUNS[0], reflections=settings)  # the plan and its exchange, within any limit
     monkeypatch.setenv("SUNWIND_MAX_MEMORY", "64K")
