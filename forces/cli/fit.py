@@ -17,6 +17,7 @@ from sunwind.forces.cli.options import (
     reflection_options,
     sampling_options,
 )
+from sunwind.forces.cli.outputs import check_distinct, check_image, check_writable
 from sunwind.forces.fit import FitOptions, read_telemetry, write_materials
 from sunwind.forces.fit import fit as fit_telemetry
 from sunwind.forces.fit.forward import RESOLUTION_DEG
@@ -86,6 +87,13 @@ def fit(source: ModelSource, data: Path, free: tuple[str, ...], **flags: object)
     sensitivities; estimates with one-sigma uncertainties, correlations, and a warning for each
     combination the data cannot separate."""
     references = flags.pop("references")
+    materials_out, plot_out = flags["write_materials"], flags["plot_path"]
+    inputs = (source.mesh, source.materials, data)
+    if materials_out is not None:  # before any work: an output over an input, or one that cannot be written
+        check_distinct(Path(materials_out), *inputs, plot_out)  # type: ignore[arg-type]
+        check_writable(Path(materials_out))  # type: ignore[arg-type]
+    if plot_out is not None:
+        check_image(Path(plot_out), *inputs, materials_out)  # type: ignore[arg-type]
     model = loaded(source, **references)  # type: ignore[arg-type]
     telemetry = read_telemetry(data, flags["epoch"])  # type: ignore[arg-type]
     sigmas = {

@@ -189,6 +189,21 @@ def test_a_missing_file_is_one_line(run_cli, files, tmp_path):
     )
 
 
+def test_an_output_over_an_input_or_a_plot_not_a_picture_is_one_line_before_any_work(run_cli, files):
+    """--write-materials over the materials file it was read from (or the telemetry), --plot that is no
+    picture: refused before the model is loaded, and the input is left as it was."""
+    _, _, materials, data = files
+    before = materials.read_text()
+    for more, expected in (
+        (("--write-materials", materials), "the output is also another file of this run"),
+        (("--write-materials", data), "the output is also another file of this run"),
+        (("--plot", data), "a plot is written as a picture"),
+    ):
+        code, out, err = run_cli(*args(files, None, *more))
+        assert code == 1 and err.count("\n") == 1 and expected in err and out == "", err
+    assert materials.read_text() == before
+
+
 def test_a_combination_the_data_cannot_separate_is_a_warning_and_a_null_sigma(run_cli, tmp_path):
     from sunwind.meshes import plate
 
