@@ -66,6 +66,14 @@ _PUBLIC = {
     "orbit": "sunwind.forces.orbit",
     "fly": "sunwind.forces.orbit.flight:fly",
     "OrbitLoads": "sunwind.forces.orbit.steps:OrbitLoads",
+    # attitude from heat fluxes
+    "attitude_from_fluxes": "sunwind.forces.sensing:attitude_from_fluxes",
+    "FluxRows": "sunwind.forces.sensing:FluxRows",
+    "AttitudeFit": "sunwind.forces.sensing:AttitudeFit",
+    # lines of sight
+    "lines_of_sight": "sunwind.forces.sight:lines_of_sight",
+    "SightPoints": "sunwind.forces.sight:SightPoints",
+    "LinesOfSight": "sunwind.forces.sight:LinesOfSight",
     # results
     "Result": "sunwind.forces.result_base:Result",
     "LoadResult": "sunwind.forces.result_base:LoadResult",

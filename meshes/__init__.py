@@ -3,7 +3,18 @@
 from typing import Any
 
 from sunwind.meshes.assembly import label, rotation_matrix, transform
-from sunwind.meshes.primitives import PRIMITIVES, box, box_wing, build, cone, cylinder, dish, plate, sphere
+from sunwind.meshes.primitives import (
+    PRIMITIVES,
+    box,
+    box_wing,
+    build,
+    cone,
+    cylinder,
+    dish,
+    plate,
+    sensor_cube,
+    sphere,
+)
 
 #: Names of :mod:`sunwind.meshes.samples`, imported on first use so ``python -m sunwind.meshes.samples`` runs
 # the
@@ -29,6 +40,7 @@ __all__ = [
     "label",
     "plate",
     "rotation_matrix",
+    "sensor_cube",
     "sphere",
     "transform",
     *_SAMPLE_NAMES,

@@ -66,6 +66,7 @@ __all__ = [
     "cylinder",
     "dish",
     "plate",
+    "sensor_cube",
     "sphere",
 ]
 
@@ -504,6 +505,65 @@ def box_wing(
     return replace(mesh, two_sided_parts=frozenset({"wing_left", "wing_right"}), metadata=metadata)
 
 
+def sensor_cube(size: float = 0.1, panel: bool = False, panel_length: float = 0.2) -> MeshData:
+    """A cube with a heat-flux sensor on every face, and optionally a deployed panel that shades one.
+
+    The closed cube of edge ``size`` is centred at the origin; each face is its own part,
+    ``sensor_px``, ``sensor_mx``, ``sensor_py``, ``sensor_my``, ``sensor_pz``, ``sensor_mz`` (the face
+    whose outward normal is +x, -x, ...), the case of the heat-flux dissertation (six plates on a small
+    satellite's faces). With ``panel``, a closed 2 mm thick panel ``size`` wide is hinged at the top
+    edge of the +y face (1 mm from it) and stands out along +y for ``panel_length``, in the plane of
+    the top face: it shades ``sensor_py`` from light that comes from above and in front of it.
+
+    Parameters
+    ----------
+    size : float
+        Cube edge [m].
+    panel : bool
+        Add the deployed panel (part ``"panel"``).
+    panel_length : float
+        How far the panel stands out [m].
+
+    Returns
+    -------
+    MeshData
+        Six sensor parts (and ``"panel"``), 12 triangles per box.
+
+    Raises
+    ------
+    InputError
+        A size that is not a finite length > 0.
+
+    Examples
+    --------
+    >>> mesh = sensor_cube()
+    >>> mesh.part_names
+    ('sensor_px', 'sensor_mx', 'sensor_py', 'sensor_my', 'sensor_pz', 'sensor_mz')
+    >>> sensor_cube(panel=True).part_names[-1], float(sensor_cube(panel=True).vertices[:, 1].max())
+    ('panel', 0.251)
+    """
+    check_lengths(size=size, panel_length=panel_length)
+    cube = box((size, size, size))
+    corners = cube.vertices[cube.faces]
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    axis = np.argmax(np.abs(normals), axis=1)
+    negative = normals[np.arange(len(normals)), axis] < 0
+    names = ("sensor_px", "sensor_mx", "sensor_py", "sensor_my", "sensor_pz", "sensor_mz")
+    cube = replace(cube, face_part=(2 * axis + negative).astype(np.int32), part_names=names)
+    metadata = {
+        "shape": "sensor_cube",
+        "size": float(size),
+        "panel": bool(panel),
+        "panel_length": float(panel_length),
+    }
+    if not panel:
+        return replace(cube, metadata=metadata, source="<sensor_cube>")
+    thickness, gap = 0.002, 0.001  # the hinge's gap keeps the two bodies apart
+    centre = (0.0, size / 2 + gap + panel_length / 2, size / 2 - thickness / 2)
+    wing = label(transform(box((size, panel_length, thickness)), translation=centre), "panel")
+    return replace(MeshData.concatenate([cube, wing], source="<sensor_cube>"), metadata=metadata)
+
+
 # ----------------------------------------------------------------------------------- registry
 
 #: Builders by name, for :func:`build` and the validation case table.
@@ -515,6 +575,7 @@ PRIMITIVES: dict[str, Callable[..., MeshData]] = {
     "dish": dish,
     "box": box,
     "box_wing": box_wing,
+    "sensor_cube": sensor_cube,
 }
 
 

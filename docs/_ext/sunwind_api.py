@@ -31,7 +31,14 @@ from sphinx.util import logging
 logger = logging.getLogger(__name__)
 
 GENERATED = "generated"
-SUBPACKAGES = ("sunwind.forces.orbit", "sunwind.meshes", "sunwind.forces.export", "sunwind.forces.fit")
+SUBPACKAGES = (
+    "sunwind.forces.orbit",
+    "sunwind.meshes",
+    "sunwind.forces.export",
+    "sunwind.forces.fit",
+    "sunwind.forces.sensing",
+    "sunwind.forces.sight",
+)
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,8 @@ from sunwind.forces.cli.mesh import info, mesh
 from sunwind.forces.cli.options import FLAGS
 from sunwind.forces.cli.orbit import orbit
 from sunwind.forces.cli.progress import StepLines, compile_notices
+from sunwind.forces.cli.sensing import attitude
+from sunwind.forces.cli.sight import visibility
 from sunwind.forces.cli.tables import plot, sweep_command
 from sunwind.forces.cli.tools import bench, validate
 from sunwind.geometry.errors import SunwindError, renamed_parameters
@@ -52,8 +54,25 @@ JOBS = {
     "bench": "Time every setting on a model, each with its error.",
     "validate": "Run the validation cases against closed forms and tracers.",
     "fit": "Fit surface coefficients to flight telemetry.",
+    "attitude": "Attitude from measured heat fluxes of sensor parts.",
+    "visibility": "Lines of sight from points: blocked or clear, maps, along an orbit.",
 }
-for command in (srp, drag, forces, earth, sweep_command, orbit, plot, info, mesh, bench, validate, fit):
+for command in (
+    srp,
+    drag,
+    forces,
+    earth,
+    sweep_command,
+    orbit,
+    plot,
+    info,
+    mesh,
+    bench,
+    validate,
+    fit,
+    attitude,
+    visibility,
+):
     command.short_help = JOBS[command.name]
     app.add_command(command)
 

@@ -159,7 +159,8 @@ def _environment(values: dict) -> Environment:
     )
 
 
-_ATTITUDE_OPTIONS = [
+#: The attitude law's options, shared by `sunwind orbit` and `sunwind visibility --target`.
+ATTITUDE_OPTIONS = [
     click.option(
         "--attitude",
         "law",
@@ -232,7 +233,7 @@ def _output(values: dict) -> dict:
 @model_options(gas=True)
 @group("path", PATH_OPTIONS, path_request)
 @group("environment", _ENVIRONMENT_OPTIONS, _environment)
-@group("attitude", _ATTITUDE_OPTIONS, lambda v: AttitudeLaw.parse(v["law"], v["interpolation"]))
+@group("attitude", ATTITUDE_OPTIONS, lambda v: AttitudeLaw.parse(v["law"], v["interpolation"]))
 @reference_options(sizes=True)
 @sampling_options
 @reflection_options("light")

@@ -30,8 +30,6 @@ Columns (a header line first; lines starting ``#`` are skipped):
 
 from __future__ import annotations
 
-import csv
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -39,6 +37,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.columns import Columns, check_times, read_rows
 from sunwind.forces.orbit.attitude import quaternion_matrix
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.sun import AU_M, sun_position
@@ -146,10 +145,12 @@ def read_telemetry(path: str | Path, epoch: str | None = None) -> Telemetry:
     >>> folder.cleanup()
     """
     where = str(path)
-    header, lines, rows = _rows(Path(path))
-    columns = _Columns(header, lines, rows, where)
+    header, lines, rows = read_rows(
+        Path(path), "telemetry", "columns time_s, sun_x, sun_y, sun_z (or qw, qx, qy, qz) and measurements"
+    )
+    columns = Columns(header, lines, rows, where)
     time = columns.numbers("time_s", "give each row's time [s]")
-    _check_times(time, lines, where)
+    check_times(time, lines, where)
     rotation = None
     if all(name in header for name in QUATERNION):
         rotation = _rotations(columns.block(QUATERNION), lines, where)
@@ -195,7 +196,7 @@ def read_telemetry(path: str | Path, epoch: str | None = None) -> Telemetry:
     return Telemetry(time, sun, flux, fraction, measured, hinges, rotation, _flow(columns, header), where)
 
 
-def _flow(columns: _Columns, header: list[str]) -> dict[str, NDArray] | None:
+def _flow(columns: Columns, header: list[str]) -> dict[str, NDArray] | None:
     """The drag columns, or None."""
     if not any(name in header for name in VELOCITY):
         return None
@@ -208,84 +209,6 @@ def _flow(columns: _Columns, header: list[str]) -> dict[str, NDArray] | None:
         "density_kg_m3": columns.numbers("density_kg_m3", "give the air density [kg/m^3] with vel_x..z", 0.0),
         "temperature_K": temperature,
     }
-
-
-def _rows(path: Path) -> tuple[list[str], list[int], list[list[str]]]:
-    """The header, the file line of each data row, and the rows' fields."""
-    try:
-        with path.open(newline="", encoding="utf-8-sig") as handle:
-            numbered = [(k + 1, line) for k, line in enumerate(handle) if not line.lstrip().startswith("#")]
-    except FileNotFoundError:
-        raise InputError("file not found", path=str(path), hint="check the path and its spelling") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"cannot read the telemetry ({error})", path=str(path)) from None
-    numbered = [(k, line) for k, line in numbered if line.strip()]
-    if len(numbered) < 2:
-        raise InputError(
-            "the telemetry needs a header line and at least one row",
-            path=str(path),
-            hint="columns time_s, sun_x, sun_y, sun_z (or qw, qx, qy, qz) and measurements",
-        )
-    parsed = list(csv.reader(line for _, line in numbered))
-    header = [name.strip() for name in parsed[0]]
-    repeated = sorted({name for name in header if header.count(name) > 1})
-    if repeated:
-        raise InputError(f"column {repeated[0]} appears twice", path=str(path), hint="keep one")
-    return header, [k for k, _ in numbered[1:]], parsed[1:]
-
-
-class _Columns:
-    """Columns of the rows, read as numbers with messages naming the line and column."""
-
-    def __init__(self, header: list[str], lines: list[int], rows: list[list[str]], where: str) -> None:
-        self.header, self.lines, self.rows, self.where = header, lines, rows, where
-
-    def numbers(self, name: str, fix: str, low: float = -math.inf, high: float = math.inf) -> NDArray:
-        if name not in self.header:
-            raise InputError(f"no column {name}", path=self.where, hint=f"add it: {fix}")
-        column = self.header.index(name)
-        out = np.empty(len(self.rows))
-        for k, row in enumerate(self.rows):
-            text = row[column].strip() if column < len(row) else ""
-            try:
-                value = float(text)
-            except ValueError:
-                value = math.nan
-            if not math.isfinite(value) or not low <= value <= high:
-                bounds = "" if math.isinf(low) else f" in [{low:g}, {high:g}]"
-                raise InputError(
-                    f"line {self.lines[k]}: column {name} is {text or 'empty'!r}, "
-                    f"not a finite number{bounds}",
-                    path=self.where,
-                    hint=f"{fix}, or drop the row",
-                )
-            out[k] = value
-        return out
-
-    def block(self, names: tuple[str, ...]) -> NDArray:
-        return np.stack([self.numbers(name, f"give {name}") for name in names], axis=1)
-
-    def whole(self, names: tuple[str, ...], fix: str) -> None:
-        """Refuse a group of columns given in part."""
-        present = [name for name in names if name in self.header]
-        if present and len(present) < len(names):
-            missing = [name for name in names if name not in self.header]
-            raise InputError(
-                f"column {missing[0]} missing (the file has {present[0]})", path=self.where, hint=fix
-            )
-
-
-def _check_times(time: NDArray, lines: list[int], where: str) -> None:
-    steps = np.diff(time)
-    bad = np.flatnonzero(steps <= 0)
-    if len(bad):
-        k = int(bad[0]) + 1
-        how = "repeats" if steps[k - 1] == 0 else "comes before"
-        raise InputError(
-            f"line {lines[k]}: time_s {time[k]:g} {how} the previous row's {time[k - 1]:g}",
-            path=where,
-            hint="sort the rows by time_s and drop repeated rows",
-        )
 
 
 def _unit_rows(vectors: NDArray, lines: list[int], where: str) -> NDArray:

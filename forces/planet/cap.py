@@ -25,6 +25,7 @@ an arc smooth. The integrand is smooth inside every piece, so the rule converges
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -33,7 +34,6 @@ from functools import cached_property
 import numba
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 from sunwind.geometry.errors import InputError
 from sunwind.geometry.parallel import map_ranges
@@ -41,8 +41,6 @@ from sunwind.geometry.parallel import map_ranges
 #: Gauss-Legendre points per ``theta`` piece and per azimuth arc of :meth:`Cap.side_integrals`.
 THETA_POINTS = 12
 AZIMUTH_POINTS = 12
-#: Rings on which the terminator's cut points are looked for before they are refined.
-_SCAN_RINGS = 2048
 #: Sides per parallel block of the side integrals.
 _BLOCK_SIDES = 2048
 #: Rings and points per ring of :meth:`Cap.quadrature` (the rings split among the ``theta`` pieces).
@@ -283,8 +281,12 @@ class Cap:
     def theta_breaks(self) -> NDArray[np.float64]:
         """The polar angles where the integrand of :meth:`side_integrals` changes form (k,) [rad].
 
-        ``0``, each ``theta`` at which the terminator starts or stops cutting a ring (found by a scan and
-        Brent's method), and ``theta_0``, sorted. A source without an ``insolation`` term has only
+        ``0``, each ``theta`` at which the terminator starts or stops cutting a ring, and ``theta_0``,
+        sorted. A ring at central angle ``beta`` from the sub-spacecraft point is lit where
+        ``cos(phi - phi_s) > t = e_s cot(beta) / s_perp`` (``e_s``, ``s_perp``: the Sun along and across
+        the nadir); ``t`` is monotone in ``beta``, so each of ``t = -1`` and ``t = +1`` is crossed once at
+        most, at ``tan(beta) = e_s / (t s_perp)``, seen from the spacecraft at
+        ``theta = atan2(R sin(beta), r - R cos(beta))``. A source without an ``insolation`` term has only
         ``0`` and ``theta_0``.
 
         Examples
@@ -293,31 +295,26 @@ class Cap:
         ...           2.0, 1.0, Radiance(uniform_W_m2=1.0))
         >>> np.degrees(cap.theta_breaks).round(6)
         array([ 0., 30.])
+
+        The Sun on the horizon of the sub-spacecraft point: the terminator crosses every ring from the
+        first, and stops cutting none before the cap's edge.
+
+        >>> cap = Cap(np.array([0.0, 0.0, -1.0]), np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]),
+        ...           2.0, 1.0, Radiance(insolation_W_m2=1.0))
+        >>> np.degrees(cap.theta_breaks).round(6)
+        array([ 0., 30.])
         """
         breaks = [0.0, self.half_angle]
-        if self.radiance.insolation_W_m2 != 0.0:
-            rings = np.linspace(0.0, self.half_angle, _SCAN_RINGS + 1)[1:]
-            for level in (-1.0, 1.0):
-                values = self._terminator_cut(rings) - level
-                finite = np.isfinite(values)
-                change = finite[:-1] & finite[1:] & (np.sign(values[:-1]) != np.sign(values[1:]))
-                for k in np.nonzero(change)[0]:
-                    breaks.append(brentq(self._cut_offset, rings[k], rings[k + 1], args=(level,)))
-        return np.unique(np.clip(breaks, 0.0, self.half_angle))
-
-    def _cut_offset(self, theta: float, level: float) -> float:
-        return float(self._terminator_cut(np.array([theta]))[0]) - level
-
-    def _terminator_cut(self, theta: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``t`` with the ring's lit azimuths ``cos(phi - phi_s) > t`` (inf where the Sun is on the
-        nadir line and nothing is cut)."""
-        r, big_r = self.distance_m, self.radius_m
         e_s = float(self.sun @ self.nadir)
         s_perp = float(np.linalg.norm(self.sun - e_s * self.nadir))
-        d = r * np.cos(theta) - np.sqrt(np.maximum(big_r**2 - r**2 * np.sin(theta) ** 2, 0.0))
-        across = np.sin(theta) * s_perp
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(across > 1e-12, (r * e_s / d - np.cos(theta) * e_s) / across, np.inf)
+        if self.radiance.insolation_W_m2 != 0.0 and s_perp > 1e-12:
+            r, big_r = self.distance_m, self.radius_m
+            beta_edge = math.acos(big_r / r)
+            for level in (-1.0, 1.0):
+                beta = math.atan2(e_s, level * s_perp) % math.pi  # the root in [0, pi)
+                if 0.0 < beta < beta_edge:
+                    breaks.append(math.atan2(big_r * math.sin(beta), r - big_r * math.cos(beta)))
+        return np.unique(np.clip(breaks, 0.0, self.half_angle))
 
     def side_integrals(
         self, normals: NDArray[np.float64]
@@ -358,7 +355,7 @@ class Cap:
         out = np.zeros((len(unique), 5))
         if len(unique) and not self.radiance.dark:
             v, wv = _mapped_rule(THETA_POINTS)
-            u, wu = np.polynomial.legendre.leggauss(AZIMUTH_POINTS)
+            u, wu = _legendre(AZIMUTH_POINTS)
             rad = self.radiance
             coefficients = np.array([rad.uniform_W_m2, rad.insolation_W_m2, *rad.latitude])
             geometry = np.array([self.distance_m, self.radius_m])
@@ -460,7 +457,7 @@ class Cap:
         check_cells(theta0, cell_deg)
         rings = max(1, math.ceil(math.degrees(theta0) / cell_deg))
         edges = np.linspace(0.0, theta0, rings + 1)
-        v, wv = np.polynomial.legendre.leggauss(8)
+        v, wv = _legendre(8)
         directions, weights = [], []
         for lo, hi in itertools.pairwise(edges):
             middle = 0.5 * (lo + hi)
@@ -487,11 +484,25 @@ def _radiance(
     return (radiance.uniform_W_m2 + radiance.insolation_W_m2 * lit) * factor / math.pi
 
 
+@functools.lru_cache(maxsize=64)
+def _legendre(points: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Gauss-Legendre nodes and weights on [-1, 1], made once per size (read-only)."""
+    rule = np.polynomial.legendre.leggauss(points)
+    for array in rule:
+        array.flags.writeable = False
+    return rule
+
+
+@functools.lru_cache(maxsize=64)
 def _mapped_rule(points: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Gauss-Legendre on [0, 1] under ``x = sin^2(pi v / 2)``: nodes ``x`` and weights ``dx``."""
-    v, w = np.polynomial.legendre.leggauss(points)
+    """Gauss-Legendre on [0, 1] under ``x = sin^2(pi v / 2)``: nodes ``x`` and weights ``dx``, made once
+    per size (read-only)."""
+    v, w = _legendre(points)
     v = (v + 1) / 2
-    return np.sin(np.pi * v / 2) ** 2, w / 2 * (np.pi / 2) * np.sin(np.pi * v)
+    rule = np.sin(np.pi * v / 2) ** 2, w / 2 * (np.pi / 2) * np.sin(np.pi * v)
+    for array in rule:
+        array.flags.writeable = False
+    return rule
 
 
 @numba.njit(cache=True, nogil=True)

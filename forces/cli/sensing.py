@@ -1,0 +1,123 @@
+"""``sunwind attitude``: the Sun and nadir directions (and the attitude) that reproduce measured
+heat fluxes of sensor parts, row by row (METHOD.md "Attitude from heat fluxes")."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import click
+import numpy as np
+
+from sunwind.forces.cli.options import json_option, loaded, model_options, reflection_options
+from sunwind.forces.model import ModelSource
+from sunwind.forces.planet.bodies import PlanetLight, planet
+from sunwind.forces.radiation.law import solar_flux
+from sunwind.forces.reflection import ReflectionSettings
+from sunwind.forces.sensing import AttitudeFit, attitude_from_fluxes, read_flux_rows
+
+
+@click.command()
+@model_options()
+@click.option(
+    "--fluxes",
+    "fluxes_path",
+    required=True,
+    type=click.Path(path_type=Path),
+    help="CSV: time_s, one column per sensor part (absorbed W/m^2 of its area); optional sun_eci_x..z and "
+    "nadir_eci_x..z (for the quaternion), velocity_eci_x..z (for pitch, yaw, roll).",
+)
+@click.option("--altitude", type=float, required=True, metavar="KM", help="Height above the Earth [km].")
+@click.option(
+    "--sensors", multiple=True, metavar="GLOB", help="Use only these sensor columns (repeat; default all)."
+)
+@click.option(
+    "--sigma",
+    type=float,
+    default=0.01,
+    show_default=True,
+    metavar="REL",
+    help="Relative flux error, 1 sigma.",
+)
+@click.option(
+    "--floor",
+    type=float,
+    default=1.0,
+    show_default=True,
+    metavar="W_M2",
+    help="Smallest flux error, 1 sigma [W/m^2] (a sensor's resolution).",
+)
+@click.option("--albedo", type=float, metavar="A", help="Earth's Bond albedo instead of 0.30.")
+@click.option("--solar-flux", type=float, metavar="W_M2", help="Solar flux instead of 1361 W/m^2.")
+@reflection_options("light")
+@json_option
+def attitude(source: ModelSource, fluxes_path: Path, altitude: float, **flags: object) -> None:
+    """Attitude from measured heat fluxes: for each row, the body-frame Sun and nadir directions that
+    reproduce the sensors' fluxes through the full forward model (self-shadowing, reflections, albedo
+    with its terminator, infrared), found over the whole sphere; every minimum within the noise is
+    reported, and a row in eclipse gives the nadir alone."""
+    model = loaded(source)
+    rows = read_flux_rows(fluxes_path)
+    patterns = tuple(flags["sensors"])  # type: ignore[arg-type]
+    if patterns:
+        rows = rows.selected(patterns)
+    flux = solar_flux() if flags["solar_flux"] is None else float(flags["solar_flux"])  # type: ignore[arg-type]
+    light = PlanetLight.of(planet("earth"), flux, albedo=flags["albedo"])  # type: ignore[arg-type]
+    reflections: ReflectionSettings = flags["reflections"]  # type: ignore[assignment]
+    found = attitude_from_fluxes(
+        model,
+        rows,
+        altitude,
+        sigma=float(flags["sigma"]),  # type: ignore[arg-type]
+        floor_W_m2=float(flags["floor"]),  # type: ignore[arg-type]
+        light=light,
+        reflections=reflections,
+    )
+    if flags["as_json"]:
+        print(json.dumps({"mesh": str(source.mesh), "fluxes": str(fluxes_path), **found.to_json()}, indent=2))
+    else:
+        _print(found, str(fluxes_path))
+    for row in found.rows:
+        if row.eclipse:
+            print(
+                f"sunwind: notice: t = {row.time_s:g} s: in eclipse: only the nadir is found", file=sys.stderr
+            )
+        elif row.ambiguous:
+            print(
+                f"sunwind: warning: t = {row.time_s:g} s: {len(row.alternatives) + 1} attitudes fit within "
+                "the noise (the others are listed as alternatives); add sensors or the inertial directions",
+                file=sys.stderr,
+            )
+
+
+def _print(found: AttitudeFit, source: str) -> None:
+    """The text report: one block per row."""
+    print(f"sunwind attitude: {source}, {len(found.rows)} rows, sensors {', '.join(found.sensors)}")
+    print(f"  body frame of the mesh, unit vectors from the spacecraft; altitude {found.altitude_km:g} km")
+    error = found.model_error_W_m2
+    if error is not None:
+        print(f"  flux model against the full forward model: {error:.3g} W/m^2 at worst")
+    for row in found.rows:
+        best = row.best
+        flag = " (eclipse)" if row.eclipse else " (ambiguous)" if row.ambiguous else ""
+        print(f"t = {row.time_s:g} s{flag}: misfit {best.misfit:.3g}")
+        if best.sun is not None:
+            print(f"  sun   {_vector(best.sun)}  1-sigma {_degrees(best.sigma_sun_deg)}")
+        print(f"  nadir {_vector(best.nadir)}  1-sigma {_degrees(best.sigma_nadir_deg)}")
+        if row.quaternion is not None:
+            print(f"  quaternion (w, x, y, z; body to inertial) {_vector(row.quaternion)}")
+        if row.pitch_yaw_roll_deg is not None:
+            pitch, yaw, roll = row.pitch_yaw_roll_deg
+            print(f"  pitch {pitch:.2f}, yaw {yaw:.2f}, roll {roll:.2f} deg (orbital frame)")
+        for other in row.alternatives:
+            sun = "-" if other.sun is None else _vector(other.sun)
+            print(f"  also: sun {sun}, nadir {_vector(other.nadir)}, misfit {other.misfit:.3g}")
+
+
+def _vector(values: np.ndarray) -> str:
+    return "(" + ", ".join(f"{v:+.4f}" for v in values) + ")"
+
+
+def _degrees(value: float | None) -> str:
+    return "not observable" if value is None else f"{value:.2f} deg"

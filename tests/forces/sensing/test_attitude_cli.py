@@ -1,0 +1,91 @@
+"""``sunwind attitude`` from the command line: text and JSON on the bundled example, and one error line
+for each bad input (METHOD.md "Attitude from heat fluxes")."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import sunwind as sw
+
+DATA = sw.meshes.sample_path().parent
+OPTICS = ["--reflectivity", "0.07", "--specular-fraction", "0", "--emissivity", "0.82"]
+HEADER = "time_s,sensor_px,sensor_mx,sensor_py,sensor_my,sensor_pz,sensor_mz"
+
+
+def command(fluxes, *extra):
+    return ["attitude", DATA / "sensor_cube.obj", *OPTICS, "--fluxes", fluxes, "--altitude", "500", *extra]
+
+
+def test_the_example_gives_every_row_with_its_frame_and_the_eclipses(run_cli):
+    """Text: the frame and the model's error said, twelve rows, the last two in eclipse (nadir only, a
+    notice each); JSON: the issue's keys, quaternions and angles where the Sun is seen."""
+    code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv"))
+    assert code == 0, err
+    assert "body frame of the mesh" in out and "flux model against the full forward model" in out
+    assert out.count("t = ") == 12 and out.count("(eclipse)") == 2
+    assert err.count("sunwind: notice:") == 2 and "in eclipse" in err and "Traceback" not in err
+    code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--json"))
+    assert code == 0, err
+    document = json.loads(out)
+    rows = document["rows"]
+    assert document["frame"].startswith("body frame") and len(rows) == 12
+    keys = {"time_s", "sun_body", "nadir_body", "pitch_yaw_roll_deg", "quaternion", "sigma_deg", "misfit"}
+    assert keys | {"ambiguous", "eclipse", "alternatives"} <= set(rows[0])
+    assert all(row["quaternion"] is not None and len(row["pitch_yaw_roll_deg"]) == 3 for row in rows[:10])
+    assert all(row["eclipse"] and row["sun_body"] is None and row["quaternion"] is None for row in rows[10:])
+    assert all(row["misfit"] < 3.0 for row in rows)
+    assert np.allclose([np.linalg.norm(row["nadir_body"]) for row in rows], 1.0)
+
+
+def test_a_subset_of_sensors(run_cli):
+    """``--sensors`` keeps the matching columns (the model's parts of the same names)."""
+    code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--sensors", "sensor_p*", "--json"))
+    assert code == 0, err
+    assert json.loads(out)["sensors"] == ["sensor_px", "sensor_py", "sensor_pz"]
+
+
+BAD = [
+    ("missing", None, "file not found"),
+    ("no_time", "sensor_px,sensor_mx\n1,2\n", "no column time_s"),
+    ("nan", f"{HEADER}\n0,1,2,3,nan,5,6\n", "line 2: column sensor_my is 'nan'"),
+    ("unsorted", f"{HEADER}\n10,1,2,3,4,5,6\n5,1,2,3,4,5,6\n", "comes before"),
+    ("stranger", "time_s,sensor_px,lens\n0,1,2\n", "column lens is not a part of the model"),
+    ("half_group", f"{HEADER},sun_eci_x,sun_eci_y\n0,1,2,3,4,5,6,1,0\n", "column sun_eci_z missing"),
+    ("sun_only", f"{HEADER},sun_eci_x,sun_eci_y,sun_eci_z\n0,1,2,3,4,5,6,1,0,0\n", "without nadir_eci"),
+    (
+        "zero_sun",
+        f"{HEADER},sun_eci_x,sun_eci_y,sun_eci_z,nadir_eci_x,nadir_eci_y,nadir_eci_z\n"
+        "0,1,2,3,4,5,6,0,0,0,0,0,-1\n",
+        "sun_eci_* is zero",
+    ),
+]
+
+
+@pytest.mark.parametrize(("name", "text", "words"), BAD, ids=[b[0] for b in BAD])
+def test_a_bad_fluxes_file_is_one_error_line(run_cli, tmp_path, name, text, words):
+    path = tmp_path / f"{name}.csv"
+    if text is not None:
+        path.write_text(text)
+    code, out, err = run_cli(*command(path))
+    assert code == 1 and out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("sunwind: error:") and words in lines[0], err
+    assert str(path) in lines[0]
+
+
+@pytest.mark.parametrize(
+    ("extra", "words"),
+    [
+        (["--sigma", "0"], "sigma"),
+        (["--floor", "-1"], "floor"),
+        (["--altitude", "-3"], "altitude"),
+        (["--sensors", "lens*"], "matches no sensor column"),
+    ],
+)
+def test_bad_settings_are_one_error_line(run_cli, extra, words):
+    code, _, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", *extra))
+    lines = err.strip().splitlines()
+    assert code == 1 and len(lines) == 1 and lines[0].startswith("sunwind: error:") and words in lines[0], err
