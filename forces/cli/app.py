@@ -55,7 +55,7 @@ JOBS = {
     "validate": "Run the validation cases against closed forms and tracers.",
     "fit": "Fit surface coefficients to flight telemetry.",
     "attitude": "Attitude from measured heat fluxes of sensor parts.",
-    "visibility": "Lines of sight from points: blocked or clear, maps, along an orbit.",
+    "visibility": "Lines of sight from points: blocked or clear, maps, orbits.",
 }
 for command in (
     srp,

@@ -182,7 +182,11 @@ class FluxModel:
         nadir = np.asarray(nadir, dtype=np.float64)
         response, light = self.response, self.light
         fraction = float(np.interp(sun @ nadir, *self._fraction_table))
-        solar = fraction * light.solar_flux_W_m2 * response.collimated("solar", sun[None, :])[0]
+        solar = np.zeros(len(response.sensors))
+        if (
+            fraction > 0.0
+        ):  # traced exactly: the interpolated correction is first order across a shadow's kink
+            solar = fraction * light.solar_flux_W_m2 * response.traced("solar", sun)
         pole = np.array([1.0, 0.0, 0.0]) if abs(nadir[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
         caps = [
             Cap(nadir, sun, pole, self.distance_m, light.planet.radius_m, law)

@@ -64,6 +64,8 @@ class SensorResponse:
         The inter-reflection mode the correction follows.
     origin : str
         "computed", or the disk-cache entry it was read from.
+    tracer : BeamTracer or None
+        Traces one beam exactly (sunlight at a call, the correction's nodes); None with no correction.
 
     Examples
     --------
@@ -86,6 +88,7 @@ class SensorResponse:
     correction_m2: dict[str, NDArray[np.float64]] | None
     reflections: str
     origin: str = field(default="computed", compare=False)
+    tracer: BeamTracer | None = field(default=None, compare=False, repr=False)
 
     BANDS: ClassVar[tuple[str, ...]] = BANDS
 
@@ -142,6 +145,33 @@ class SensorResponse:
         face, share = self.grid.locate(directions)
         corners = self.correction_m2[band][self.grid.faces[face]]  # (k, 3 corners, p)
         return np.einsum("kc,kcp->kp", share, corners)
+
+    def traced(self, band: str, direction: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Absorbed power per unit flux of one parallel beam, traced exactly where the model has a
+        correction (:class:`BeamTracer`), else the plate law [m^2], (p,).
+
+        Parameters
+        ----------
+        band : str
+            "solar" or "infrared".
+        direction : (3,) float64
+            Unit beam direction (toward the source), body frame.
+
+        Returns
+        -------
+        (p,) float64
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> grey = sw.Material("grey", 0.5, 0.0, emissivity=0.8)
+        >>> cube = sw.load(sw.meshes.sensor_cube(), uniform=grey, threads=1)
+        >>> round(float(sensor_response(cube).traced("solar", np.array([0.0, 0.0, 1.0]))[4]), 12)
+        0.005
+        """
+        if self.tracer is None:
+            return self.plate(band, direction[None, :])[0]
+        return self.tracer.absorbed(band, direction)
 
     def collimated(self, band: str, directions: NDArray[np.float64]) -> NDArray[np.float64]:
         """Absorbed power per unit flux of a parallel beam along each direction [m^2], (k, p): the plate
@@ -272,9 +302,11 @@ def sensor_response(
     with using_threads(model.threads):
         mode = reflection_plan(craft, settings).mode
         needed = mode not in ("none", "plates") or not bool(np.all(clearance(craft).open_sky))
-        correction, origin = None, "computed"
+        correction, origin, tracer = None, "computed", None
         if needed and mode != "plates":
-            made = _kept_correction(craft, names, settings, shadows, level)
+            index = np.array([craft.part_names.index(name) for name in names])
+            tracer = BeamTracer(craft, index, settings, shadows)
+            made = _kept_correction(tracer, names, level)
             correction, origin = made.values, made.origin
     return SensorResponse(
         sensors=names,
@@ -285,6 +317,7 @@ def sensor_response(
         correction_m2=correction,
         reflections=mode,
         origin=origin,
+        tracer=tracer,
     )
 
 
@@ -298,15 +331,10 @@ def _band_optics(craft: Spacecraft) -> tuple[NDArray[np.float64], NDArray[np.flo
     return craft.side_optics, infrared_optics(craft)
 
 
-def _kept_correction(
-    craft: Spacecraft,
-    names: tuple[str, ...],
-    settings: ReflectionSettings,
-    sampling: ShadowSampling,
-    level: int,
-) -> _Correction:
+def _kept_correction(tracer: BeamTracer, names: tuple[str, ...], level: int) -> _Correction:
     """The correction tables, from the disk cache or made (and stored)."""
-    build = functools.partial(_correction, craft, names, settings, sampling, level)
+    craft, settings, sampling = tracer.craft, tracer.settings, tracer.sampling
+    build = functools.partial(_correction, tracer, names, level)
     directory = cache_directory(settings.cache_dir)
     if directory is None:
         return build()
@@ -333,47 +361,94 @@ def _kept_correction(
     )
 
 
-def _correction(
-    craft: Spacecraft,
-    names: tuple[str, ...],
-    settings: ReflectionSettings,
-    sampling: ShadowSampling,
-    level: int,
-) -> _Correction:
-    """One shadow pass and trace per node and band: the sensors' absorbed power per unit flux minus
-    their plate law."""
+@dataclass(frozen=True, eq=False)
+class BeamTracer:
+    """The sensors' absorbed power per unit flux of one parallel beam, traced as
+    :func:`~sunwind.forces.earth.planet_radiation` traces sunlight: one shadow pass, the beam chains and
+    the diffuse balance.
+
+    Attributes
+    ----------
+    craft : Spacecraft
+    index : (p,) int64
+        The sensors' part indices.
+    settings : ReflectionSettings
+    sampling : ShadowSampling
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> grey = sw.Material("grey", 0.2, 0.0, emissivity=0.8)
+    >>> craft = sw.load(sw.meshes.sensor_cube(), uniform=grey, threads=1).craft
+    >>> tracer = BeamTracer(craft, np.arange(6), sw.ReflectionSettings("none"), sw.ShadowSampling())
+    >>> tracer.absorbed("solar", np.array([0.0, 0.0, 1.0])).round(6)  # the top face: 0.8 x 0.01 m^2
+    array([0.   , 0.   , 0.   , 0.   , 0.008, 0.   ])
+    """
+
+    craft: Spacecraft
+    index: NDArray[np.int64]
+    settings: ReflectionSettings
+    sampling: ShadowSampling
+
+    @functools.cached_property
+    def _plan(self) -> tuple[str, dict]:
+        plan = reflection_plan(self.craft, self.settings)
+        full = plan.mode == "full"
+        exchanges = {
+            "solar": plan.exchange if full else None,
+            "infrared": infrared_exchange(self.craft, self.settings) if full else None,
+        }
+        return plan.mode, exchanges
+
+    def absorbed(self, band: str, direction: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Each sensor's absorbed power per unit flux of a beam from ``direction`` [m^2], (p,).
+
+        Parameters
+        ----------
+        band : str
+            "solar" or "infrared" (the optics used).
+        direction : (3,) float64
+            Unit vector toward the source, body frame.
+
+        Returns
+        -------
+        (p,) float64
+        """
+        craft = self.craft
+        mode, exchanges = self._plan
+        optics = dict(zip(BANDS, _band_optics(craft), strict=True))[band]
+        cos = np.maximum(craft.side_normals @ direction, 0.0)
+        source = Source(
+            name=band,
+            integrals=(cos, cos[:, None] * direction, cos * cos),
+            weights=np.ones(1),
+            optics=optics,
+            beams=mode in ("specular", "full") and band == "solar",
+            exchange=exchanges[band],
+        )
+        (load,), _ = band_loads(
+            craft, [source], direction[None, :], np.zeros(3), self.sampling, self.settings
+        )
+        part, count = craft.facet_part[craft.side_facet], len(craft.part_names)
+        total = np.bincount(part, load.absorbed_side_W, count) + load.reflections.absorbed_by_group(
+            part, count
+        )
+        return total[self.index]
+
+
+def _correction(tracer: BeamTracer, names: tuple[str, ...], level: int) -> _Correction:
+    """One trace per node and band: the sensors' absorbed power per unit flux minus their plate law."""
     grid = direction_grid(level)
-    plan = reflection_plan(craft, settings)
-    part = craft.facet_part[craft.side_facet]
-    count = len(craft.part_names)
-    index = np.array([craft.part_names.index(name) for name in names])
-    exchanges = {
-        "solar": plan.exchange if plan.mode == "full" else None,
-        "infrared": infrared_exchange(craft, settings) if plan.mode == "full" else None,
-    }
-    beams = plan.mode in ("specular", "full")
+    plate = SensorResponse(names, np.ones(len(names)), *_plates(tracer.craft, names), grid, None, "none")
     values = {}
     with step("sensor response"):
-        for k, (band, optics) in enumerate(zip(BANDS, _band_optics(craft), strict=True)):
+        for k, band in enumerate(BANDS):
             absorbed = np.zeros((len(grid.nodes), len(names)))
             for j, direction in enumerate(grid.nodes):
-                cos = np.maximum(craft.side_normals @ direction, 0.0)
-                source = Source(
-                    name=band,
-                    integrals=(cos, cos[:, None] * direction, cos * cos),
-                    weights=np.ones(1),
-                    optics=optics,
-                    beams=beams and band == "solar",
-                    exchange=exchanges[band],
-                )
-                (load,), _ = band_loads(craft, [source], direction[None, :], np.zeros(3), sampling, settings)
-                total = np.bincount(part, load.absorbed_side_W, count)
-                total += load.reflections.absorbed_by_group(part, count)
-                absorbed[j] = total[index]
+                absorbed[j] = tracer.absorbed(band, direction)
                 advance(1, 2 * len(grid.nodes)) if (k * len(grid.nodes) + j) % 64 == 63 else None
-            values[band] = absorbed
-    plate = SensorResponse(names, np.ones(len(names)), *_plates(craft, names), grid, None, plan.mode)
-    return _Correction({band: values[band] - plate.plate(band, grid.nodes) for band in BANDS})
+            values[band] = absorbed - plate.plate(band, grid.nodes)
+    return _Correction(values)
 
 
 def _plates(craft: Spacecraft, names: tuple[str, ...]) -> tuple[NDArray[np.float64], dict]:

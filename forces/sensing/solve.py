@@ -38,6 +38,7 @@ from sunwind.forces.sensing.search import (
     within_noise,
 )
 from sunwind.geometry.errors import InputError
+from sunwind.geometry.progress import advance, step
 from sunwind.geometry.spacecraft import Spacecraft
 
 #: Rows whose best attitude is checked against the full forward model.
@@ -254,10 +255,13 @@ def attitude_from_fluxes(
     if fluxes.response.sensors != tuple(rows.sensors):  # the model's order
         rows = rows.reordered(fluxes.response.sensors)
     table = coarse_table(fluxes)
-    solved = tuple(
-        _solve_row(fluxes, table, rows, k, np.maximum(sigma * np.abs(rows.fluxes_W_m2[k]), floor_W_m2))
-        for k in range(len(rows.time_s))
-    )
+    solved = []
+    with step("attitude of each row"):
+        for k in range(len(rows.time_s)):
+            noise = np.maximum(sigma * np.abs(rows.fluxes_W_m2[k]), floor_W_m2)
+            solved.append(_solve_row(fluxes, table, rows, k, noise))
+            advance(1, len(rows.time_s))
+    solved = tuple(solved)
     error = _model_error(model, fluxes, solved)
     return AttitudeFit(solved, fluxes.response.sensors, float(altitude_km), sigma, floor_W_m2, error)
 

@@ -436,19 +436,11 @@ def test_the_panel_reference_sunlight_is_exact_on_the_symmetry_plane(panel_model
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="known shortfall: the shadow correction is interpolated linearly on the 4.3-degree icosphere "
-    "across the kink (in |s_x|) of the panel's shadow at its symmetry plane: sensor_py's sunlight 20.9 "
-    "W/m^2 for 4.8 at 30 deg elevation (1.2 % of S)",
-)
 def test_panel_shadow_on_its_symmetry_plane(panel_models):
     """The flux model's sunlight on sensor_py with the Sun low in the panel's symmetry plane (30 to 75 deg
-    high) within :data:`PANEL_TOLERANCE` of ``S`` of the closed form :func:`gap_sunlight`. Fails today at
-    30 and 37 deg (1.19e-2 and 9.0e-3 of ``S``: 20.9 and 17.9 W/m^2 for 4.8 and 5.7): the lit share
-    grows as ``|s_x|`` off the plane, and the correction's linear interpolation over a grid cell of
-    4.3 deg fills in the V."""
+    high) within :data:`PANEL_TOLERANCE` of ``S`` of the closed form :func:`gap_sunlight`. The lit share
+    grows as ``|s_x|`` off the plane, a V that the correction's linear interpolation over a grid cell of
+    4.3 deg filled in (1.19e-2 and 9.0e-3 of ``S`` at 30 and 37 deg): sunlight is traced exactly."""
     _, fm = panel_models
     flux = fm.light.solar_flux_W_m2
     py = fm.response.sensors.index("sensor_py")
