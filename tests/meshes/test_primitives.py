@@ -285,6 +285,7 @@ def test_metadata_records_every_parameter_and_rebuilds(kind):
         "plate": {"divisions": 3},
         "box": {"divisions": 2},
         "box_wing": {"facet_size": 0.5},
+        "sensor_cube": {"panel": True},
     }[kind]
     mesh = build(kind, **small)
     meta = dict(mesh.metadata)
@@ -299,7 +300,8 @@ def test_build_names_the_valid_kinds_and_parameters():
     with pytest.raises(InputError) as unknown_kind:
         build("torus")
     assert str(unknown_kind.value) == (
-        "unknown primitive 'torus'; choose one of: plate, sphere, cylinder, cone, dish, box, box_wing"
+        "unknown primitive 'torus'; choose one of: "
+        "plate, sphere, cylinder, cone, dish, box, box_wing, sensor_cube"
     )
     with pytest.raises(InputError) as unknown_parameter:
         build("box", radius=1.0)

@@ -131,7 +131,7 @@ def test_bad_arguments():
     assert str(missing.value) == (
         "no sample file 'missing.stl'; shipped: "
         "sample_spacecraft.obj, sample_spacecraft.toml, sample_spacecraft.usda, "
-        "sample_spacecraft_tracking.toml, sample_telemetry.csv"
+        "sample_spacecraft_tracking.toml, sample_telemetry.csv, sensor_cube.obj, sensor_cube_fluxes.csv"
     )
 
 
