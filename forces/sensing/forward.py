@@ -157,13 +157,19 @@ class FluxModel:
             -self.distance_m * nadir, sun_m, np.zeros_like(sun_m), self.light.planet.radius_m, "conical"
         )
 
-    def fluxes(self, sun: NDArray[np.float64], nadir: NDArray[np.float64]) -> SensorFluxes:
+    def fluxes(
+        self, sun: NDArray[np.float64], nadir: NDArray[np.float64], traced: bool = True
+    ) -> SensorFluxes:
         """Each sensor's absorbed flux by source [W/m^2 of its area].
 
         Parameters
         ----------
         sun, nadir : (3,) array_like of float
             Unit directions toward the Sun and the planet's centre, body frame.
+        traced : bool
+            Trace sunlight (where the model has a correction: one shadow pass and trace); else take it
+            from the interpolated correction, first order across a shadow's kink but faster on a large
+            model (the search's first pass).
 
         Returns
         -------
@@ -183,10 +189,9 @@ class FluxModel:
         response, light = self.response, self.light
         fraction = float(np.interp(sun @ nadir, *self._fraction_table))
         solar = np.zeros(len(response.sensors))
-        if (
-            fraction > 0.0
-        ):  # traced exactly: the interpolated correction is first order across a shadow's kink
-            solar = fraction * light.solar_flux_W_m2 * response.traced("solar", sun)
+        if fraction > 0.0:
+            along = response.traced("solar", sun) if traced else response.collimated("solar", sun[None, :])[0]
+            solar = fraction * light.solar_flux_W_m2 * along
         pole = np.array([1.0, 0.0, 0.0]) if abs(nadir[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
         caps = [
             Cap(nadir, sun, pole, self.distance_m, light.planet.radius_m, law)

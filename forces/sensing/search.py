@@ -198,7 +198,12 @@ def dark_chart(nadir: NDArray[np.float64]) -> _Chart:
 
 
 def refine(
-    model: FluxModel, chart: _Chart, measured: NDArray[np.float64], sigma: NDArray[np.float64], dark: bool
+    model: FluxModel,
+    chart: _Chart,
+    measured: NDArray[np.float64],
+    sigma: NDArray[np.float64],
+    dark: bool,
+    traced: bool = True,
 ) -> Minimum:
     """The minimum of the misfit nearest the chart's start, with its directions' 1-sigma errors.
 
@@ -210,6 +215,8 @@ def refine(
         The row's fluxes and their 1-sigma errors [W/m^2].
     dark : bool
         An eclipse chart: the Sun is not reported.
+    traced : bool
+        Sunlight traced at every evaluation (:meth:`~sunwind.forces.sensing.forward.FluxModel.fluxes`).
 
     Returns
     -------
@@ -229,7 +236,7 @@ def refine(
     """
 
     def residuals(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        return (model.fluxes(*chart.at(x)).total - measured) / sigma
+        return (model.fluxes(*chart.at(x), traced=traced).total - measured) / sigma
 
     method = "lm" if len(measured) >= chart.size else "trf"  # MINPACK's needs no more unknowns than data
     fit = scipy.optimize.least_squares(
@@ -250,6 +257,38 @@ def refine(
     if dark:
         return Minimum(None, nadir, chi2, None, sigma_nadir, modelled, chart.size)
     return Minimum(sun, nadir, chi2, sigma_sun, sigma_nadir, modelled, chart.size)
+
+
+def polished(
+    model: FluxModel, minimum: Minimum, measured: NDArray[np.float64], sigma: NDArray[np.float64]
+) -> Minimum:
+    """A minimum found with sunlight from the interpolated correction, refined again with sunlight
+    traced (unchanged when the model has no correction: the two are the same).
+
+    Parameters
+    ----------
+    model : FluxModel
+    minimum : Minimum
+        Found with ``traced=False``: free (4 unknowns) or at a known angle (3).
+    measured, sigma : (p,) float64
+
+    Returns
+    -------
+    Minimum
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> from sunwind.forces.sensing.forward import flux_model
+    >>> cube = sw.load(sw.meshes.sensor_cube(), uniform=sw.Material("b", 0.1, 0.0, emissivity=0.8), threads=1)
+    >>> m = Minimum(np.array([0.0, 0, 1]), np.array([0.0, 0, -1]), 1.0, 0.1, 0.1, np.zeros(6), 4)
+    >>> polished(flux_model(cube, 500.0), m, np.zeros(6), np.ones(6)) is m
+    True
+    """
+    if model.response.tracer is None or minimum.sun is None:
+        return minimum
+    chart = free_chart if minimum.parameters == 4 else turned_chart
+    return refine(model, chart(minimum.sun, minimum.nadir), measured, sigma, False)
 
 
 def _covariance(jacobian: NDArray[np.float64], chi2: float, dof: int) -> NDArray[np.float64] | None:
