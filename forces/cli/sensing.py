@@ -97,7 +97,8 @@ def _print(found: AttitudeFit, source: str) -> None:
     print(f"  body frame of the mesh, unit vectors from the spacecraft; altitude {found.altitude_km:g} km")
     error = found.model_error_W_m2
     if error is not None:
-        print(f"  flux model against the full forward model: {error:.3g} W/m^2 at worst")
+        shown = f"{error:.3g} W/m^2" if error >= 1e-3 else "below 0.001 W/m^2"  # below: rounding's
+        print(f"  flux model against the full forward model: {shown} at worst")
     for row in found.rows:
         best = row.best
         flag = " (eclipse)" if row.eclipse else " (ambiguous)" if row.ambiguous else ""
