@@ -135,13 +135,14 @@ def test_drag_estimate_takes_the_stream_one_lit_unit_of_area_takes(loads_seen):
 def test_earth_estimate_adds_the_cells_passes_of_albedo_and_infrared(loads_seen):
     craft = build_spacecraft(sample_spacecraft(2000), uniform=BLACK)
     place = Place([0.3, -0.2, -1.0], 500.0, [1.0, 0.4, 0.2])
-    result = planet_radiation(craft, place, reflections="none", cap=CapSampling(30.0))
+    # the cells' method: a pass per cell at every call (the visibility's passes may come from the disk cache)
+    result = planet_radiation(craft, place, reflections="none", cap=CapSampling(30.0, "cells"))
     assert len(loads_seen) > 2  # a pass per cell, each handed the albedo's and the infrared's loads
     bands = (result.albedo.shadow_error, result.infrared.shadow_error)
     assert result.shadow_error == summed(bands)
     assert result.to_json()["error_estimate"] == result.error_estimate.to_json()
     assert planet_radiation(craft, place, reflections="plates").error_estimate is None
     fixed = planet_radiation(
-        craft, place, reflections="none", cap=CapSampling(30.0), sampling=ShadowSampling(samples=1)
+        craft, place, reflections="none", cap=CapSampling(30.0, "cells"), sampling=ShadowSampling(samples=1)
     )
     assert fixed.error_estimate is None and fixed.to_json()["error_estimate"] is None
