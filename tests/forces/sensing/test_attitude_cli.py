@@ -40,6 +40,7 @@ def test_the_example_gives_every_row_with_its_frame_and_the_eclipses(run_cli):
     assert np.allclose([np.linalg.norm(row["nadir_body"]) for row in rows], 1.0)
 
 
+@pytest.mark.slow
 def test_a_subset_of_sensors(run_cli):
     """``--sensors`` keeps the matching columns (the model's parts of the same names)."""
     code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--sensors", "sensor_p*", "--json"))
