@@ -79,6 +79,13 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, **flags: o
     else:
         _print(found, str(fluxes_path))
     for row in found.rows:
+        if not row.explained:
+            print(
+                f"sunwind: warning: t = {row.time_s:g} s: the best attitude does not explain the fluxes "
+                f"within the noise (misfit {row.best.misfit:.3g}): it may be a wrong basin, or the model or "
+                "--sigma may be wrong",
+                file=sys.stderr,
+            )
         if row.eclipse:
             print(
                 f"sunwind: notice: t = {row.time_s:g} s: in eclipse: only the nadir is found", file=sys.stderr

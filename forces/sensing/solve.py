@@ -86,7 +86,7 @@ class AttitudeSolution:
     >>> best = Minimum(np.array([0.0, 0, 1]), np.array([0.0, 0, -1]), 1.5, 0.2, 0.3, np.zeros(6), 4)
     >>> row = AttitudeSolution(10.0, best, (), False, None, None, np.zeros(6), 0.01)
     >>> sorted(row.to_json())[:4]
-    ['alternatives', 'ambiguous', 'eclipse', 'measured_W_m2']
+    ['alternatives', 'ambiguous', 'eclipse', 'explained']
     """
 
     time_s: float
@@ -102,6 +102,15 @@ class AttitudeSolution:
     def ambiguous(self) -> bool:
         """Whether another distinct attitude fits within the noise."""
         return bool(self.alternatives)
+
+    @property
+    def explained(self) -> bool:
+        """Whether the best attitude explains the fluxes within the noise: its chi2 below the
+        :data:`~sunwind.forces.sensing.search.CONFIDENCE` quantile of chi-squared in the measurements
+        less the unknowns (else the answer may be a wrong basin, or the model or the sigmas wrong)."""
+        best = self.best
+        dof = max(len(self.measured) - best.parameters, 1)
+        return bool(best.chi2 <= scipy.stats.chi2.ppf(CONFIDENCE, dof))
 
     def to_json(self) -> dict:
         """Plain-JSON record; keys carry their units, directions are body-frame unit vectors.
@@ -126,6 +135,7 @@ class AttitudeSolution:
             "sigma_deg": {"sun": best.sigma_sun_deg, "nadir": best.sigma_nadir_deg},
             "misfit": best.misfit,
             "ambiguous": self.ambiguous,
+            "explained": self.explained,
             "eclipse": self.eclipse,
             "alternatives": [
                 {"sun_body": _listed(m.sun), "nadir_body": _listed(m.nadir), "misfit": m.misfit}

@@ -27,17 +27,32 @@ def test_the_example_gives_every_row_with_its_frame_and_the_eclipses(run_cli):
     assert "body frame of the mesh" in out and "flux model against the full forward model" in out
     assert out.count("t = ") == 12 and out.count("(eclipse)") == 2
     assert err.count("sunwind: notice:") == 2 and "in eclipse" in err and "Traceback" not in err
+    assert "warning" not in err  # every row explained within the noise, none ambiguous
     code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--json"))
     assert code == 0, err
     document = json.loads(out)
     rows = document["rows"]
     assert document["frame"].startswith("body frame") and len(rows) == 12
     keys = {"time_s", "sun_body", "nadir_body", "pitch_yaw_roll_deg", "quaternion", "sigma_deg", "misfit"}
-    assert keys | {"ambiguous", "eclipse", "alternatives"} <= set(rows[0])
+    assert keys | {"ambiguous", "eclipse", "alternatives", "explained"} <= set(rows[0])
+    assert all(row["explained"] for row in rows)
     assert all(row["quaternion"] is not None and len(row["pitch_yaw_roll_deg"]) == 3 for row in rows[:10])
     assert all(row["eclipse"] and row["sun_body"] is None and row["quaternion"] is None for row in rows[10:])
     assert all(row["misfit"] < 3.0 for row in rows)
     assert np.allclose([np.linalg.norm(row["nadir_body"]) for row in rows], 1.0)
+
+
+@pytest.mark.slow
+def test_noise_smaller_than_the_data_warns_that_rows_are_not_explained(run_cli):
+    """--sigma 0.002 on fluxes with 1 % noise: the rows' misfits are well above 1, and each row the best
+    attitude cannot explain gets a warning naming its time."""
+    code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--sigma", "0.002", "--json"))
+    assert code == 0, err
+    rows = json.loads(out)["rows"]
+    unexplained = [row["time_s"] for row in rows if not row["explained"]]
+    assert len(unexplained) >= 6
+    for time in unexplained:
+        assert f"t = {time:g} s: the best attitude does not explain the fluxes" in err
 
 
 @pytest.mark.slow
