@@ -167,3 +167,41 @@ def check_times(time: NDArray, lines: list[int], where: str) -> None:
             path=where,
             hint="sort the rows by time_s and drop repeated rows",
         )
+
+
+def unit_rows(vectors: NDArray, lines: list[int], where: str, shown: str, hint: str) -> NDArray:
+    """Each row of ``vectors`` normalised; a zero row refused, naming its line.
+
+    Parameters
+    ----------
+    vectors : (n, 3) float64
+        Directions read from the file, any length.
+    lines : list of int
+        The file line of each row.
+    where : str
+        The file.
+    shown : str
+        What the columns hold, for the message ("the Sun direction sun_x, sun_y, sun_z").
+    hint : str
+        The fix.
+
+    Returns
+    -------
+    (n, 3) float64
+        Unit vectors.
+
+    Raises
+    ------
+    InputError
+        A zero row.
+
+    Examples
+    --------
+    >>> unit_rows(np.array([[3.0, 0.0, 4.0]]), [2], "f.csv", "d_x, d_y, d_z", "give a direction")
+    array([[0.6, 0. , 0.8]])
+    """
+    norms = np.linalg.norm(vectors, axis=1)
+    if np.any(norms == 0):
+        k = int(np.flatnonzero(norms == 0)[0])
+        raise InputError(f"line {lines[k]}: {shown} is zero", path=where, hint=hint)
+    return vectors / norms[:, None]

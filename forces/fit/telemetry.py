@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.columns import Columns, check_times, read_rows
+from sunwind.forces.columns import Columns, check_times, read_rows, unit_rows
 from sunwind.forces.orbit.attitude import quaternion_matrix
 from sunwind.forces.orbit.clock import Epoch
 from sunwind.forces.orbit.sun import AU_M, sun_position
@@ -158,7 +158,13 @@ def read_telemetry(path: str | Path, epoch: str | None = None) -> Telemetry:
         columns.whole(QUATERNION, "give all of qw, qx, qy, qz (body to ECI, scalar first)")
     flux_given = "flux_W_m2" in header
     if all(name in header for name in SUN):
-        sun = _unit_rows(columns.block(SUN), lines, where)
+        sun = unit_rows(
+            columns.block(SUN),
+            lines,
+            where,
+            "the Sun direction sun_x, sun_y, sun_z",
+            "give the body-frame direction toward the Sun",
+        )
         distance_flux = None
     elif rotation is not None:
         sun, distance_flux = _ephemeris_sun(time, rotation, epoch, where)
@@ -209,18 +215,6 @@ def _flow(columns: Columns, header: list[str]) -> dict[str, NDArray] | None:
         "density_kg_m3": columns.numbers("density_kg_m3", "give the air density [kg/m^3] with vel_x..z", 0.0),
         "temperature_K": temperature,
     }
-
-
-def _unit_rows(vectors: NDArray, lines: list[int], where: str) -> NDArray:
-    norms = np.linalg.norm(vectors, axis=1)
-    if np.any(norms == 0):
-        k = int(np.flatnonzero(norms == 0)[0])
-        raise InputError(
-            f"line {lines[k]}: the Sun direction sun_x, sun_y, sun_z is zero",
-            path=where,
-            hint="give the body-frame direction toward the Sun",
-        )
-    return vectors / norms[:, None]
 
 
 def _rotations(q: NDArray, lines: list[int], where: str) -> NDArray:

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from sunwind.forces.columns import Columns, check_times, read_rows
+from sunwind.forces.columns import Columns, check_times, read_rows, unit_rows
 from sunwind.geometry.errors import InputError
 
 #: The optional groups of inertial columns, in their file names.
@@ -215,7 +215,9 @@ def read_flux_rows(path: str | Path) -> FluxRows:
     for group, names in GROUPS.items():
         columns.whole(names, f"give all three of {', '.join(names)}")
         if names[0] in header:
-            vectors[group] = _unit(columns.block(names), lines, where, group)
+            vectors[group] = unit_rows(
+                columns.block(names), lines, where, f"{group}_eci_*", "give a direction"
+            )
     if "velocity" in vectors and "nadir" not in vectors:
         raise InputError(
             "velocity_eci_* without nadir_eci_*", path=where, hint="give nadir_eci_* and sun_eci_* too"
@@ -230,11 +232,3 @@ def read_flux_rows(path: str | Path) -> FluxRows:
     return FluxRows(
         time, sensors, fluxes, vectors.get("sun"), vectors.get("nadir"), vectors.get("velocity"), where
     )
-
-
-def _unit(vectors: NDArray[np.float64], lines: list[int], where: str, group: str) -> NDArray[np.float64]:
-    norms = np.linalg.norm(vectors, axis=1)
-    if np.any(norms == 0):
-        k = int(np.flatnonzero(norms == 0)[0])
-        raise InputError(f"line {lines[k]}: {group}_eci_* is zero", path=where, hint="give a direction")
-    return vectors / norms[:, None]
