@@ -16,7 +16,7 @@ from __future__ import annotations
 import fnmatch
 import functools
 import hashlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
@@ -293,32 +293,16 @@ def sensor_response(
     names = sensor_parts(craft, sensors)
     settings = ReflectionSettings.of(reflections)
     shadows = ShadowSampling.of(sampling)
-    normals, plate = _plates(craft, names)
-    part = craft.facet_part[craft.side_facet]
-    sensor_of = np.full(len(craft.part_names), -1)
-    sensor_of[[craft.part_names.index(name) for name in names]] = np.arange(len(names))
-    mine = sensor_of[part] >= 0
-    areas = np.bincount(sensor_of[part[mine]], craft.side_areas[mine], len(names))
+    plain = SensorResponse(names, *_plates(craft, names), direction_grid(level), None, "plates")
     with using_threads(model.threads):
         mode = reflection_plan(craft, settings).mode
         needed = mode not in ("none", "plates") or not bool(np.all(clearance(craft).open_sky))
-        correction, origin, tracer = None, "computed", None
-        if needed and mode != "plates":
-            index = np.array([craft.part_names.index(name) for name in names])
-            tracer = BeamTracer(craft, index, settings, shadows)
-            made = _kept_correction(tracer, names, level)
-            correction, origin = made.values, made.origin
-    return SensorResponse(
-        sensors=names,
-        areas_m2=areas,
-        normals=normals,
-        plate_m2=plate,
-        grid=direction_grid(level),
-        correction_m2=correction,
-        reflections=mode,
-        origin=origin,
-        tracer=tracer,
-    )
+        if not needed or mode == "plates":
+            return replace(plain, reflections=mode)
+        index = np.array([craft.part_names.index(name) for name in names])
+        tracer = BeamTracer(craft, index, settings, shadows)
+        made = _kept_correction(tracer, plain)
+    return replace(plain, correction_m2=made.values, reflections=mode, origin=made.origin, tracer=tracer)
 
 
 @dataclass
@@ -331,10 +315,12 @@ def _band_optics(craft: Spacecraft) -> tuple[NDArray[np.float64], NDArray[np.flo
     return craft.side_optics, infrared_optics(craft)
 
 
-def _kept_correction(tracer: BeamTracer, names: tuple[str, ...], level: int) -> _Correction:
-    """The correction tables, from the disk cache or made (and stored)."""
+def _kept_correction(tracer: BeamTracer, plain: SensorResponse) -> _Correction:
+    """The correction tables of ``plain`` (its plate law and grid), from the disk cache or made (and
+    stored)."""
     craft, settings, sampling = tracer.craft, tracer.settings, tracer.sampling
-    build = functools.partial(_correction, tracer, names, level)
+    names, level = plain.sensors, plain.grid.level
+    build = functools.partial(_correction, tracer, plain)
     directory = cache_directory(settings.cache_dir)
     if directory is None:
         return build()
@@ -391,14 +377,15 @@ class BeamTracer:
     sampling: ShadowSampling
 
     @functools.cached_property
-    def _plan(self) -> tuple[str, dict]:
+    def _plan(self) -> tuple[str, dict, dict]:
+        """The reflection mode, and each band's diffuse exchange and optics: made on the first trace."""
         plan = reflection_plan(self.craft, self.settings)
         full = plan.mode == "full"
         exchanges = {
             "solar": plan.exchange if full else None,
             "infrared": infrared_exchange(self.craft, self.settings) if full else None,
         }
-        return plan.mode, exchanges
+        return plan.mode, exchanges, dict(zip(BANDS, _band_optics(self.craft), strict=True))
 
     def absorbed(self, band: str, direction: NDArray[np.float64]) -> NDArray[np.float64]:
         """Each sensor's absorbed power per unit flux of a beam from ``direction`` [m^2], (p,).
@@ -415,14 +402,13 @@ class BeamTracer:
         (p,) float64
         """
         craft = self.craft
-        mode, exchanges = self._plan
-        optics = dict(zip(BANDS, _band_optics(craft), strict=True))[band]
+        mode, exchanges, optics = self._plan
         cos = np.maximum(craft.side_normals @ direction, 0.0)
         source = Source(
             name=band,
             integrals=(cos, cos[:, None] * direction, cos * cos),
             weights=np.ones(1),
-            optics=optics,
+            optics=optics[band],
             beams=mode in ("specular", "full") and band == "solar",
             exchange=exchanges[band],
         )
@@ -436,27 +422,30 @@ class BeamTracer:
         return total[self.index]
 
 
-def _correction(tracer: BeamTracer, names: tuple[str, ...], level: int) -> _Correction:
+def _correction(tracer: BeamTracer, plain: SensorResponse) -> _Correction:
     """One trace per node and band: the sensors' absorbed power per unit flux minus their plate law."""
-    grid = direction_grid(level)
-    plate = SensorResponse(names, np.ones(len(names)), *_plates(tracer.craft, names), grid, None, "none")
+    nodes = plain.grid.nodes
     values = {}
     with step("sensor response"):
         for k, band in enumerate(BANDS):
-            absorbed = np.zeros((len(grid.nodes), len(names)))
-            for j, direction in enumerate(grid.nodes):
+            absorbed = np.zeros((len(nodes), len(plain.sensors)))
+            for j, direction in enumerate(nodes):
                 absorbed[j] = tracer.absorbed(band, direction)
-                advance(1, 2 * len(grid.nodes)) if (k * len(grid.nodes) + j) % 64 == 63 else None
-            values[band] = absorbed - plate.plate(band, grid.nodes)
+                advance(1, 2 * len(nodes)) if (k * len(nodes) + j) % 64 == 63 else None
+            values[band] = absorbed - plain.plate(band, nodes)
     return _Correction(values)
 
 
-def _plates(craft: Spacecraft, names: tuple[str, ...]) -> tuple[NDArray[np.float64], dict]:
-    """The distinct normals of the sensors' sides and each band's plate table (as in the response)."""
+def _plates(
+    craft: Spacecraft, names: tuple[str, ...]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], dict[str, NDArray[np.float64]]]:
+    """Each sensor's area, the distinct normals of the sensors' sides and each band's plate table (the
+    fields of :class:`SensorResponse` of those names)."""
     part = craft.facet_part[craft.side_facet]
     sensor_of = np.full(len(craft.part_names), -1)
     sensor_of[[craft.part_names.index(name) for name in names]] = np.arange(len(names))
     mine = np.flatnonzero(sensor_of[part] >= 0)
+    areas = np.bincount(sensor_of[part[mine]], craft.side_areas[mine], len(names))
     normals, which = np.unique(craft.side_normals[mine], axis=0, return_inverse=True)
     plate = {}
     for band, optics in zip(BANDS, _band_optics(craft), strict=True):
@@ -464,4 +453,4 @@ def _plates(craft: Spacecraft, names: tuple[str, ...]) -> tuple[NDArray[np.float
         table = np.zeros((len(names), len(normals)))
         np.add.at(table, (sensor_of[part[mine]], which.reshape(-1)), absorbed)
         plate[band] = table
-    return np.ascontiguousarray(normals), plate
+    return areas, np.ascontiguousarray(normals), plate
