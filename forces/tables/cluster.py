@@ -113,21 +113,19 @@ def connect(scheduler: str, workers: int | None):
     True
     """
     require_dask()
-    import dask
     from dask.distributed import Client, LocalCluster
 
     if scheduler == "local":
         cluster = LocalCluster(  # the dashboard on a free port: two local clusters may run at once
             n_workers=workers or CORES, threads_per_worker=1, processes=True, dashboard_address=":0"
         )
-        return Client(cluster)
-    before = dict(dask.config.config)
+        return Client(cluster, set_as_default=False)
     try:
-        return Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
+        # never dask's default client: a default one sets dask's global scheduler, and its close puts
+        # it back only when no other client in the process is open (a failed one waiting for the
+        # garbage collector counts), which left every later netCDF write asking for a closed cluster
+        return Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False)
     except (OSError, TimeoutError, ValueError) as error:
-        # a Client that fails to start leaves dask's global scheduler set to itself: put it back
-        dask.config.config.clear()
-        dask.config.config.update(before)
         reason = str(error).splitlines()[0] if str(error) else type(error).__name__
         raise InputError(
             f"cannot reach the Dask scheduler at {scheduler}: {reason}",
@@ -219,7 +217,7 @@ def run_on_dask(
             )
             for job, lo, hi in pending
         }
-        for future in as_completed(futures):
+        for future in as_completed(futures, loop=client.loop):  # not the default client: it has none
             job, lo, hi = futures[future]
             finished(job, lo, hi, future.result())
     finally:
@@ -281,8 +279,6 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
     """
     source, references = _source_of(model), _references(model)
     client = connect("local", workers)
-    from dask.distributed import wait  # importable: connect checked it
-
     try:
         firsts: dict[int, tuple[Job, int]] = {}
         for job, lo, _ in pending:
@@ -300,7 +296,7 @@ def timed_on_local_cluster(model: Model, pending: list[Pending], workers: int) -
             for w in client.scheduler_info()["workers"]
             for job, lo in firsts.values()
         ]
-        wait(warm)
+        client.gather(warm)  # waited for; the one-attitude results are dropped
         start = time.perf_counter()
         futures = [
             client.submit(_remote_chunk, source, references, job.setup, job.inputs[lo:hi], pure=False)

@@ -216,6 +216,38 @@ def test_a_failed_scheduler_start_leaves_no_checkpoint(box, run_cli, monkeypatch
     assert code == 0 and "wrote s.nc" in out, err
 
 
+def test_a_failed_client_left_for_the_garbage_collector_does_not_leave_dask_asking_for_a_cluster(
+    box, run_cli, monkeypatch
+):
+    """A client that failed to connect lives until the garbage collector runs; a default client closed
+    meanwhile kept dask's global scheduler set to a closed cluster, and every later netCDF write in the
+    process failed (CI, 28 tests). sunwind's clients are never dask's default."""
+    import gc
+
+    import dask
+    from dask.distributed import LocalCluster
+
+    from sunwind.forces.tables.cluster import connect
+
+    gc.disable()
+    try:
+        with pytest.raises(InputError, match="cannot reach the Dask scheduler at nowhere://scheduler"):
+            connect("nowhere://scheduler", None)
+        cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0")
+        try:
+            client = connect(cluster.scheduler_address, None)
+            assert len(client.scheduler_info()["workers"]) == 1
+            client.close()
+        finally:
+            cluster.close()
+        assert dask.config.get("scheduler", None) is None
+    finally:
+        gc.enable()
+    monkeypatch.chdir(box.parent)
+    code, out, err = run_cli("sweep", box, *OPTICS, "--srp", "--step", "90", "-o", "after.nc")
+    assert code == 0 and "wrote after.nc" in out, err
+
+
 def test_resume_says_what_it_kept_and_recomputes_a_damaged_chunk(box, run_cli, monkeypatch):
     monkeypatch.chdir(box.parent)
     (box.parent / "r.nc.checkpoint").mkdir()
