@@ -220,8 +220,6 @@ def _output(values: dict) -> dict:
         check_image(values["plot"], out)
     if values["plot_thermal"] is not None:
         check_image(values["plot_thermal"], out, values["plot"])
-    if values["resume"] and out is None:
-        raise InputError("--resume takes up the checkpoint of an output: give -o as before")
     check_run(values)
     step = values["hinge_step"]
     if not (math.isfinite(step) and 0 <= step <= 30):

@@ -15,9 +15,10 @@ from rich.progress import Progress
 from sunwind.forces.tables import DEFAULT_CHUNK, SweepRun
 from sunwind.forces.tables.checkpoint import Checkpoint
 from sunwind.forces.tables.cluster import require_dask
+from sunwind.geometry.errors import InputError
 
 
-def run_options(entry: str, run: str) -> list[Callable]:
+def run_options(entry: str, run: str, chunk: int = DEFAULT_CHUNK) -> list[Callable]:
     """Make the flags of a checkpointed run of many entries.
 
     The flags are ``--resume``, ``--scheduler [ADDRESS]``, ``--workers`` and ``--chunk``; their help
@@ -29,6 +30,8 @@ def run_options(entry: str, run: str) -> list[Callable]:
         What one entry of the run is, singular (``"attitude"``, ``"step"``).
     run : str
         The run's name in the help texts (``"sweep (-o)"``).
+    chunk : int, optional
+        Entries per checkpoint chunk by default.
 
     Returns
     -------
@@ -63,7 +66,7 @@ def run_options(entry: str, run: str) -> list[Callable]:
         click.option(
             "--chunk",
             type=int,
-            default=DEFAULT_CHUNK,
+            default=chunk,
             show_default=True,
             help=f"{entry.capitalize()}s per checkpoint chunk.",
         ),
@@ -77,7 +80,7 @@ def check_run(values: dict) -> dict:
     ----------
     values : dict
         The values of the :func:`run_options` flags, by keyword (``resume``, ``scheduler``,
-        ``workers``, ``chunk``).
+        ``workers``, ``chunk``), and ``output`` (``-o``) when the command may run without one.
 
     Returns
     -------
@@ -87,13 +90,20 @@ def check_run(values: dict) -> dict:
     Raises
     ------
     InputError
-        A ``--scheduler`` is given and Dask distributed cannot be imported.
+        A ``--scheduler`` is given and Dask distributed cannot be imported, or ``--resume`` without
+        the output whose checkpoint it takes up.
 
     Examples
     --------
     >>> check_run({"resume": False, "scheduler": None, "workers": None, "chunk": 64})
     {'resume': False, 'scheduler': None, 'workers': None, 'chunk': 64}
+    >>> check_run({"resume": True, "scheduler": None, "workers": None, "chunk": 64, "output": None})
+    Traceback (most recent call last):
+    ...
+    sunwind.geometry.errors.InputError: --resume takes up the checkpoint of an output: give -o as before
     """
+    if values["resume"] and "output" in values and values["output"] is None:
+        raise InputError("--resume takes up the checkpoint of an output: give -o as before")
     if values["scheduler"] is not None:
         require_dask()
     return values

@@ -3,19 +3,40 @@ heat fluxes of sensor parts, row by row (METHOD.md "Attitude from heat fluxes").
 
 from __future__ import annotations
 
+import csv
 import json
 import sys
 from pathlib import Path
 
 import click
 import numpy as np
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from sunwind.forces.cli.options import json_option, loaded, model_options, reflection_options
+from sunwind.forces.cli.options import group, json_option, loaded, model_options, reflection_options
+from sunwind.forces.cli.outputs import check_writable
+from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
+from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.model import ModelSource
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
 from sunwind.forces.sensing import AttitudeFit, attitude_from_fluxes, read_flux_rows
+from sunwind.forces.tables.checkpoint import check_place
+from sunwind.geometry.errors import InputError
+
+#: Rows per checkpoint chunk by default (a row takes 0.1 s on a CubeSat, seconds on a large model).
+ROWS_PER_CHUNK = 16
+
+
+def _output(values: dict) -> dict:
+    """Check ``-o`` and the run flags before the mesh is loaded."""
+    out = values["output"]
+    if out is not None:
+        if out.suffix not in (".json", ".csv"):
+            raise InputError("the rows are written as .json or .csv", path=str(out), hint="name it so")
+        check_writable(out)
+    return check_run(values)
 
 
 @click.command()
@@ -51,8 +72,23 @@ from sunwind.forces.sensing import AttitudeFit, attitude_from_fluxes, read_flux_
 @click.option("--albedo", type=float, metavar="A", help="Earth's Bond albedo instead of 0.30.")
 @click.option("--solar-flux", type=float, metavar="W_M2", help="Solar flux instead of 1361 W/m^2.")
 @reflection_options("light")
+@group(
+    "output",
+    [
+        click.option(
+            "-o",
+            "--output",
+            type=click.Path(path_type=Path),
+            metavar="FILE",
+            help="Write the rows to FILE: .json (as --json prints) or .csv (one line per row); finished rows "
+            "are kept in FILE.checkpoint until it is written.",
+        ),
+        *run_options("row", "attitude run (-o)", ROWS_PER_CHUNK),
+    ],
+    _output,
+)
 @json_option
-def attitude(source: ModelSource, fluxes_path: Path, altitude: float, **flags: object) -> None:
+def attitude(source: ModelSource, fluxes_path: Path, altitude: float, output: dict, **flags: object) -> None:
     """Attitude from measured heat fluxes: for each row, the body-frame Sun and nadir directions that
     reproduce the sensors' fluxes through the full forward model (self-shadowing, reflections, albedo
     with its terminator, infrared), found over the whole sphere; every minimum within the noise is
@@ -65,18 +101,32 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, **flags: o
     flux = solar_flux() if flags["solar_flux"] is None else float(flags["solar_flux"])  # type: ignore[arg-type]
     light = PlanetLight.of(planet("earth"), flux, albedo=flags["albedo"])  # type: ignore[arg-type]
     reflections: ReflectionSettings = flags["reflections"]  # type: ignore[assignment]
-    found = attitude_from_fluxes(
-        model,
-        rows,
-        altitude,
-        sigma=float(flags["sigma"]),  # type: ignore[arg-type]
-        floor_W_m2=float(flags["floor"]),  # type: ignore[arg-type]
-        light=light,
-        reflections=reflections,
-    )
+    out: Path | None = output["output"]
+    checkpoint = None if out is None else out.with_name(out.name + ".checkpoint")
+    if checkpoint is not None:
+        check_place(checkpoint)
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
+    with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
+        task = bar.add_task("attitude", total=len(rows))
+        run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
+        with interruptible(bar, checkpoint):
+            found = attitude_from_fluxes(
+                model,
+                rows,
+                altitude,
+                sigma=float(flags["sigma"]),  # type: ignore[arg-type]
+                floor_W_m2=float(flags["floor"]),  # type: ignore[arg-type]
+                light=light,
+                reflections=reflections,
+                run=run,
+            )
+    document = {"mesh": str(source.mesh), "fluxes": str(fluxes_path), **found.to_json()}
+    if out is not None:
+        _write(found, document, out)
+        print(f"wrote {out}: {len(found.rows)} rows", file=sys.stderr if flags["as_json"] else sys.stdout)
     if flags["as_json"]:
-        print(json.dumps({"mesh": str(source.mesh), "fluxes": str(fluxes_path), **found.to_json()}, indent=2))
-    else:
+        print(json.dumps(document, indent=2))
+    elif out is None:
         _print(found, str(fluxes_path))
     for row in found.rows:
         if not row.explained:
@@ -96,6 +146,64 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, **flags: o
                 "the noise (the others are listed as alternatives); add sensors or the inertial directions",
                 file=sys.stderr,
             )
+
+
+def _write(found: AttitudeFit, document: dict, path: Path) -> None:
+    """Write the rows: the JSON document, or CSV with the settings as ``#`` lines above the header."""
+    with atomic_text(path) as stream:
+        if path.suffix == ".json":
+            json.dump(document, stream, indent=2)
+            stream.write("\n")
+            return
+        for key in ("mesh", "fluxes", "frame", "orbital_frame", "sensors", "altitude_km", "relative_sigma"):
+            value = document[key]
+            stream.write(f"# {key}: {', '.join(value) if isinstance(value, list) else value}\n")
+        stream.write(f"# floor_W_m2: {found.floor_W_m2}\n# model_error_W_m2: {found.model_error_W_m2}\n")
+        writer = csv.writer(stream, lineterminator="\n")
+        writer.writerow(CSV_COLUMNS)
+        writer.writerows(_csv_row(row) for row in document["rows"])
+
+
+#: The columns of the CSV: one line per row, a direction as three, empty where there is none.
+CSV_COLUMNS = (
+    "time_s",
+    *(f"sun_body_{axis}" for axis in "xyz"),
+    *(f"nadir_body_{axis}" for axis in "xyz"),
+    "sigma_sun_deg",
+    "sigma_nadir_deg",
+    "misfit",
+    "ambiguous",
+    "explained",
+    "eclipse",
+    "alternatives",
+    *(f"quaternion_{axis}" for axis in "wxyz"),
+    "pitch_deg",
+    "yaw_deg",
+    "roll_deg",
+)
+
+
+def _csv_row(row: dict) -> list:
+    def cells(values: list[float] | None, n: int) -> list:
+        return [""] * n if values is None else values
+
+    def cell(value: float | None) -> float | str:
+        return "" if value is None else value
+
+    return [
+        row["time_s"],
+        *cells(row["sun_body"], 3),
+        *cells(row["nadir_body"], 3),
+        cell(row["sigma_deg"]["sun"]),
+        cell(row["sigma_deg"]["nadir"]),
+        row["misfit"],
+        int(row["ambiguous"]),
+        int(row["explained"]),
+        int(row["eclipse"]),
+        len(row["alternatives"]),
+        *cells(row["quaternion"], 4),
+        *cells(row["pitch_yaw_roll_deg"], 3),
+    ]
 
 
 def _print(found: AttitudeFit, source: str) -> None:

@@ -63,6 +63,40 @@ class FluxRows:
     velocity_eci: NDArray[np.float64] | None = None
     source: str = "<fluxes>"
 
+    def __len__(self) -> int:
+        """The number of rows."""
+        return len(self.time_s)
+
+    def __getitem__(self, rows: slice) -> FluxRows:
+        """The rows of a slice (a chunk of a run), with their inertial directions.
+
+        Parameters
+        ----------
+        rows : slice
+
+        Returns
+        -------
+        FluxRows
+
+        Examples
+        --------
+        >>> rows = FluxRows(np.array([0.0, 10.0, 20.0]), ("a",), np.ones((3, 1)))
+        >>> len(rows), rows[1:].time_s.tolist()
+        (3, [10.0, 20.0])
+        """
+
+        def cut(values: NDArray[np.float64] | None) -> NDArray[np.float64] | None:
+            return None if values is None else values[rows]
+
+        return replace(
+            self,
+            time_s=self.time_s[rows],
+            fluxes_W_m2=self.fluxes_W_m2[rows],
+            sun_eci=cut(self.sun_eci),
+            nadir_eci=cut(self.nadir_eci),
+            velocity_eci=cut(self.velocity_eci),
+        )
+
     def inertial(self, k: int) -> tuple[NDArray, NDArray, NDArray | None] | None:
         """Row ``k``'s inertial (Sun, nadir, velocity or None), or None without them.
 

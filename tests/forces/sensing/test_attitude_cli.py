@@ -99,6 +99,9 @@ def test_a_bad_fluxes_file_is_one_error_line(run_cli, tmp_path, name, text, word
         (["--floor", "-1"], "floor"),
         (["--altitude", "-3"], "altitude"),
         (["--sensors", "lens*"], "matches no sensor column"),
+        (["-o", "rows.txt"], "written as .json or .csv"),
+        (["--resume"], "--resume takes up the checkpoint of an output"),
+        (["-o", "rows.csv", "--chunk", "0"], "chunk"),
     ],
 )
 def test_bad_settings_are_one_error_line(run_cli, extra, words):
