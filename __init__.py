@@ -68,6 +68,7 @@ _PUBLIC = {
     "OrbitLoads": "sunwind.forces.orbit.steps:OrbitLoads",
     # attitude from heat fluxes
     "attitude_from_fluxes": "sunwind.forces.sensing:attitude_from_fluxes",
+    "smoothed_attitudes": "sunwind.forces.sensing:smoothed_attitudes",
     "FluxRows": "sunwind.forces.sensing:FluxRows",
     "AttitudeFit": "sunwind.forces.sensing:AttitudeFit",
     # lines of sight

@@ -21,10 +21,14 @@ from sunwind.forces.model import ModelSource
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.reflection import ReflectionSettings
-from sunwind.forces.sensing import AttitudeFit, attitude_from_fluxes, read_flux_rows
+from sunwind.forces.sensing import AttitudeFit, attitude_from_fluxes, read_flux_rows, smoothed_attitudes
+from sunwind.forces.sensing.smoothing import LEAST_ROWS
+from sunwind.forces.sensing.solve import mean_motion
 from sunwind.forces.tables.checkpoint import check_place
 from sunwind.geometry.errors import InputError
 
+#: The flag of each keyword of :func:`~sunwind.forces.sensing.attitude_from_fluxes` its errors name.
+FLAGS = {"sigma": "--sigma", "floor_W_m2": "--floor", "smooth_s": "--smooth"}
 #: Rows per checkpoint chunk by default (a row takes 0.1 s on a CubeSat, seconds on a large model).
 ROWS_PER_CHUNK = 16
 
@@ -71,6 +75,13 @@ def _output(values: dict) -> dict:
 )
 @click.option("--albedo", type=float, metavar="A", help="Earth's Bond albedo instead of 0.30.")
 @click.option("--solar-flux", type=float, metavar="W_M2", help="Solar flux instead of 1361 W/m^2.")
+@click.option(
+    "--smooth",
+    type=float,
+    metavar="SECONDS",
+    help="Also fit each sunlit row with the rows within SECONDS/2 of it, the body turning at a constant rate "
+    "over that window: smoothed directions and the body's rate.",
+)
 @reflection_options("light")
 @group(
     "output",
@@ -106,20 +117,28 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, output: di
     if checkpoint is not None:
         check_place(checkpoint)
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
-    with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
-        task = bar.add_task("attitude", total=len(rows))
-        run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
-        with interruptible(bar, checkpoint):
-            found = attitude_from_fluxes(
-                model,
-                rows,
-                altitude,
-                sigma=float(flags["sigma"]),  # type: ignore[arg-type]
-                floor_W_m2=float(flags["floor"]),  # type: ignore[arg-type]
-                light=light,
-                reflections=reflections,
-                run=run,
-            )
+    smooth: float | None = flags["smooth"]  # type: ignore[assignment]
+    try:
+        if smooth is not None:
+            mean_motion(smooth, light, altitude)  # a bad window said before the rows are solved
+        with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
+            task = bar.add_task("attitude", total=len(rows))
+            run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
+            with interruptible(bar, checkpoint):
+                found = attitude_from_fluxes(
+                    model,
+                    rows,
+                    altitude,
+                    sigma=float(flags["sigma"]),  # type: ignore[arg-type]
+                    floor_W_m2=float(flags["floor"]),  # type: ignore[arg-type]
+                    light=light,
+                    reflections=reflections,
+                    run=run,
+                )
+        if smooth is not None:
+            found = smoothed_attitudes(found, rows, smooth, light)
+    except InputError as error:
+        raise error.renamed(FLAGS) from None
     document = {"mesh": str(source.mesh), "fluxes": str(fluxes_path), **found.to_json()}
     if out is not None:
         _write(found, document, out)
@@ -128,6 +147,7 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, output: di
         print(json.dumps(document, indent=2))
     elif out is None:
         _print(found, str(fluxes_path))
+    _say_smoothing(found)
     for row in found.rows:
         if not row.explained:
             print(
@@ -160,8 +180,9 @@ def _write(found: AttitudeFit, document: dict, path: Path) -> None:
             stream.write(f"# {key}: {', '.join(value) if isinstance(value, list) else value}\n")
         stream.write(f"# floor_W_m2: {found.floor_W_m2}\n# model_error_W_m2: {found.model_error_W_m2}\n")
         writer = csv.writer(stream, lineterminator="\n")
-        writer.writerow(CSV_COLUMNS)
-        writer.writerows(_csv_row(row) for row in document["rows"])
+        smoothing = found.smooth_window_s is not None
+        writer.writerow(CSV_COLUMNS + (SMOOTHED_COLUMNS if smoothing else ()))
+        writer.writerows(_csv_row(row, smoothing) for row in document["rows"])
 
 
 #: The columns of the CSV: one line per row, a direction as three, empty where there is none.
@@ -183,14 +204,32 @@ CSV_COLUMNS = (
 )
 
 
-def _csv_row(row: dict) -> list:
+#: The columns the smoothing adds.
+SMOOTHED_COLUMNS = (
+    *(f"smoothed_sun_body_{axis}" for axis in "xyz"),
+    *(f"smoothed_nadir_body_{axis}" for axis in "xyz"),
+    "smoothed_sigma_sun_deg",
+    "smoothed_sigma_nadir_deg",
+    *(f"rate_deg_s_{axis}" for axis in "xyz"),
+    "sigma_rate_deg_s",
+    "smoothed_rows",
+    "smoothed_misfit",
+    "smoothed_explained",
+    *(f"smoothed_quaternion_{axis}" for axis in "wxyz"),
+    "smoothed_pitch_deg",
+    "smoothed_yaw_deg",
+    "smoothed_roll_deg",
+)
+
+
+def _csv_row(row: dict, smoothing: bool) -> list:
     def cells(values: list[float] | None, n: int) -> list:
         return [""] * n if values is None else values
 
     def cell(value: float | None) -> float | str:
         return "" if value is None else value
 
-    return [
+    out = [
         row["time_s"],
         *cells(row["sun_body"], 3),
         *cells(row["nadir_body"], 3),
@@ -204,6 +243,51 @@ def _csv_row(row: dict) -> list:
         *cells(row["quaternion"], 4),
         *cells(row["pitch_yaw_roll_deg"], 3),
     ]
+    if not smoothing:
+        return out
+    smoothed = row["smoothed"]
+    if smoothed is None:
+        return out + [""] * len(SMOOTHED_COLUMNS)
+    return [
+        *out,
+        *smoothed["sun_body"],
+        *smoothed["nadir_body"],
+        cell(smoothed["sigma_deg"]["sun"]),
+        cell(smoothed["sigma_deg"]["nadir"]),
+        *smoothed["rate_deg_s"],
+        cell(smoothed["sigma_rate_deg_s"]),
+        smoothed["rows"],
+        smoothed["misfit"],
+        int(smoothed["explained"]),
+        *cells(smoothed["quaternion"], 4),
+        *cells(smoothed["pitch_yaw_roll_deg"], 3),
+    ]
+
+
+def _say_smoothing(found: AttitudeFit) -> None:
+    """The smoothing's notice (rows it could not smooth) and warnings (windows one rate cannot explain)."""
+    if found.smooth_window_s is None:
+        return
+    window = found.smooth_window_s
+    alone = [
+        row.time_s
+        for row, smoothed in zip(found.rows, found.smoothed, strict=True)
+        if smoothed is None and not row.eclipse
+    ]
+    if alone:
+        print(
+            f"sunwind: notice: {len(alone)} sunlit rows (the first at t = {alone[0]:g} s) have fewer than "
+            f"{LEAST_ROWS} sunlit rows within --smooth {window:g} s: not smoothed",
+            file=sys.stderr,
+        )
+    for smoothed in found.smoothed:
+        if smoothed is not None and not smoothed.explained:
+            print(
+                f"sunwind: warning: t = {smoothed.time_s:g} s: the {smoothed.rows} rows within "
+                f"--smooth {window:g} s do not fit one constant rate (misfit {smoothed.misfit:.3g}): "
+                "shorten the window",
+                file=sys.stderr,
+            )
 
 
 def _print(found: AttitudeFit, source: str) -> None:
@@ -214,7 +298,7 @@ def _print(found: AttitudeFit, source: str) -> None:
     if error is not None:
         shown = f"{error:.3g} W/m^2" if error >= 1e-3 else "below 0.001 W/m^2"  # below: rounding's
         print(f"  flux model against the full forward model: {shown} at worst")
-    for row in found.rows:
+    for k, row in enumerate(found.rows):
         best = row.best
         flag = " (eclipse)" if row.eclipse else " (ambiguous)" if row.ambiguous else ""
         print(f"t = {row.time_s:g} s{flag}: misfit {best.misfit:.3g}")
@@ -229,6 +313,17 @@ def _print(found: AttitudeFit, source: str) -> None:
         for other in row.alternatives:
             sun = "-" if other.sun is None else _vector(other.sun)
             print(f"  also: sun {sun}, nadir {_vector(other.nadir)}, misfit {other.misfit:.3g}")
+        smoothed = found.smoothed[k] if found.smoothed else None
+        if smoothed is not None:
+            print(f"  smoothed over {smoothed.rows} rows (misfit {smoothed.misfit:.3g}):")
+            print(f"    sun   {_vector(smoothed.sun)}  1-sigma {_degrees(smoothed.sigma_sun_deg)}")
+            print(f"    nadir {_vector(smoothed.nadir)}  1-sigma {_degrees(smoothed.sigma_nadir_deg)}")
+            spread = (
+                ""
+                if smoothed.sigma_rate_deg_s is None
+                else f"  1-sigma {smoothed.sigma_rate_deg_s:.3g} deg/s"
+            )
+            print(f"    body rate {_vector(smoothed.rate_deg_s)} deg/s (body axes){spread}")
 
 
 def _vector(values: np.ndarray) -> str:

@@ -11,7 +11,13 @@ from sunwind.forces.sensing.flux_rows import FluxRows, read_flux_rows
 from sunwind.forces.sensing.forward import FluxModel, SensorFluxes, flux_model
 from sunwind.forces.sensing.response import SensorResponse, sensor_response
 from sunwind.forces.sensing.search import Minimum
-from sunwind.forces.sensing.solve import AttitudeFit, AttitudeSolution, attitude_from_fluxes
+from sunwind.forces.sensing.smoothing import SmoothedRow
+from sunwind.forces.sensing.solve import (
+    AttitudeFit,
+    AttitudeSolution,
+    attitude_from_fluxes,
+    smoothed_attitudes,
+)
 
 __all__ = [
     "AttitudeFit",
@@ -21,8 +27,10 @@ __all__ = [
     "Minimum",
     "SensorFluxes",
     "SensorResponse",
+    "SmoothedRow",
     "attitude_from_fluxes",
     "flux_model",
     "read_flux_rows",
     "sensor_response",
+    "smoothed_attitudes",
 ]

@@ -203,11 +203,7 @@ def solve_row(
     alternatives = tuple(m for m in ranked[1:] if m.chi2 <= limit)
     quaternion = angles = None
     if inertial is not None and not eclipse:
-        turn, _ = Rotation.align_vectors(np.stack(inertial[:2]), np.stack([best.sun, best.nadir]))
-        x, y, z, w = turn.as_quat()
-        quaternion = np.array([w, x, y, z]) * (1.0 if w >= 0 else -1.0)
-        if inertial[2] is not None:
-            angles = _pitch_yaw_roll(turn.as_matrix(), inertial[1], inertial[2])
+        quaternion, angles = attitude_of(best.sun, best.nadir, inertial)
     return AttitudeSolution(
         float(rows.time_s[k]),
         best,
@@ -266,6 +262,42 @@ def _distinct(minima: list[Minimum]) -> list[Minimum]:
         if not any(m.same_as(other) for other in kept):
             kept.append(m)
     return kept
+
+
+def attitude_of(
+    sun: NDArray[np.float64],
+    nadir: NDArray[np.float64],
+    inertial: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None],
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """The attitude that takes the body-frame directions onto their inertial ones.
+
+    Parameters
+    ----------
+    sun, nadir : (3,) float64
+        Unit directions to the Sun and the planet's centre, body frame.
+    inertial : (sun, nadir, velocity or None)
+        The same directions in an inertial frame, and the velocity (:meth:`FluxRows.inertial`).
+
+    Returns
+    -------
+    quaternion : (4,) float64
+        Scalar-first, body to inertial, ``w >= 0``.
+    pitch_yaw_roll_deg : (3,) float64 or None
+        In the orbital frame (:data:`ORBITAL_FRAME`), with the velocity.
+
+    Examples
+    --------
+    >>> z, x = np.array([0.0, 0, 1]), np.array([1.0, 0, 0])
+    >>> q, angles = attitude_of(z, x, (x, -z, None))  # a quarter turn about y
+    >>> np.round(q, 6) + 0.0, angles
+    (array([0.707107, 0.      , 0.707107, 0.      ]), None)
+    """
+    turn, _ = Rotation.align_vectors(np.stack(inertial[:2]), np.stack([sun, nadir]))
+    x, y, z, w = turn.as_quat()
+    quaternion = np.array([w, x, y, z]) * (1.0 if w >= 0 else -1.0)
+    if inertial[2] is None:
+        return quaternion, None
+    return quaternion, _pitch_yaw_roll(turn.as_matrix(), inertial[1], inertial[2])
 
 
 def _pitch_yaw_roll(

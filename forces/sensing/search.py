@@ -107,14 +107,51 @@ class _Chart:
     size: int
 
 
-def _tangent(u: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Two unit vectors perpendicular to ``u`` and each other, (2, 3)."""
+def tangent_basis(u: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Two unit vectors perpendicular to a unit vector and to each other: a chart's tangent plane.
+
+    Parameters
+    ----------
+    u : (3,) float64
+        A unit vector.
+
+    Returns
+    -------
+    (2, 3) float64
+
+    Examples
+    --------
+    >>> tangent_basis(np.array([0.0, 0.0, 1.0])) + 0.0
+    array([[ 0.,  1.,  0.],
+           [-1.,  0.,  0.]])
+    """
     e1 = np.cross(u, [1.0, 0.0, 0.0] if abs(u[0]) < 0.9 else [0.0, 1.0, 0.0])
     e1 /= np.linalg.norm(e1)
     return np.stack([e1, np.cross(u, e1)])
 
 
-def _moved(u: NDArray[np.float64], basis: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+def moved(u: NDArray[np.float64], basis: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A unit vector moved by tangent offsets, and made unit again.
+
+    Parameters
+    ----------
+    u : (3,) float64
+        The unit vector.
+    basis : (2, 3) float64
+        Its tangent plane (:func:`tangent_basis`).
+    x : (2,) float64
+        The offsets along the basis.
+
+    Returns
+    -------
+    (3,) float64
+
+    Examples
+    --------
+    >>> z = np.array([0.0, 0.0, 1.0])
+    >>> moved(z, tangent_basis(z), np.array([1.0, 0.0]))
+    array([0.        , 0.70710678, 0.70710678])
+    """
     v = u + x @ basis
     return v / np.linalg.norm(v)
 
@@ -138,8 +175,8 @@ def free_chart(sun: NDArray[np.float64], nadir: NDArray[np.float64]) -> _Chart:
     >>> chart.size, chart.at(np.zeros(4))[0]
     (4, array([0., 0., 1.]))
     """
-    s_basis, n_basis = _tangent(sun), _tangent(nadir)
-    return _Chart(lambda x: (_moved(sun, s_basis, x[:2]), _moved(nadir, n_basis, x[2:])), 4)
+    s_basis, n_basis = tangent_basis(sun), tangent_basis(nadir)
+    return _Chart(lambda x: (moved(sun, s_basis, x[:2]), moved(nadir, n_basis, x[2:])), 4)
 
 
 def turned_chart(sun: NDArray[np.float64], nadir: NDArray[np.float64]) -> _Chart:
@@ -188,10 +225,10 @@ def dark_chart(nadir: NDArray[np.float64]) -> _Chart:
     >>> dark_chart(np.array([0.0, 0, -1])).at(np.zeros(2))[0]
     array([ 0.,  0., -1.])
     """
-    basis = _tangent(nadir)
+    basis = tangent_basis(nadir)
 
     def at(x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        n = _moved(nadir, basis, x)
+        n = moved(nadir, basis, x)
         return n, n
 
     return _Chart(at, 2)
@@ -251,8 +288,17 @@ def refine(
     sun, nadir = chart.at(fit.x)
     r = fit.fun
     chi2 = float(r @ r)
-    covariance = _covariance(fit.jac, chi2, len(r) - chart.size)
-    sigma_sun, sigma_nadir = (_pointing(chart, fit.x, covariance, which) for which in (0, 1))
+    jacobian = fit.jac
+    if not np.any(jacobian):  # MINPACK stopped at its start (an exact fit) and kept no Jacobian
+        jacobian = np.stack(
+            [
+                (residuals(fit.x + _STEP * e) - residuals(fit.x - _STEP * e)) / (2 * _STEP)
+                for e in np.eye(chart.size)
+            ],
+            axis=1,
+        )
+    covariance = fit_covariance(jacobian, chi2, len(r) - chart.size)
+    sigma_sun, sigma_nadir = (pointing_sigma(chart, fit.x, covariance, which) for which in (0, 1))
     modelled = r * sigma + measured
     if dark:
         return Minimum(None, nadir, chi2, None, sigma_nadir, modelled, chart.size)
@@ -291,9 +337,32 @@ def polished(
     return refine(model, chart(minimum.sun, minimum.nadir), measured, sigma, False)
 
 
-def _covariance(jacobian: NDArray[np.float64], chi2: float, dof: int) -> NDArray[np.float64] | None:
-    """``(J^T J)^-1``, inflated by ``chi2 / dof`` when the fit is worse than the noise can make it (beyond
-    the :data:`CONFIDENCE` quantile); None when the unknowns are not all observable."""
+def fit_covariance(jacobian: NDArray[np.float64], chi2: float, dof: int) -> NDArray[np.float64] | None:
+    """The covariance of a least-squares fit's unknowns from its whitened residuals' Jacobian.
+
+    ``(J^T J)^-1``, inflated by ``chi2 / dof`` when the fit is worse than the noise can make it (beyond
+    the :data:`CONFIDENCE` quantile).
+
+    Parameters
+    ----------
+    jacobian : (m, k) float64
+        Of the whitened residuals.
+    chi2 : float
+        The residuals' sum of squares.
+    dof : int
+        Residuals less unknowns.
+
+    Returns
+    -------
+    (k, k) float64 or None
+        None when the unknowns are not all observable (condition above 1e12).
+
+    Examples
+    --------
+    >>> fit_covariance(np.eye(3)[:, :2] * 2.0, 1.0, 1)
+    array([[0.25, 0.  ],
+           [0.  , 0.25]])
+    """
     normal = jacobian.T @ jacobian
     if not np.all(np.isfinite(normal)) or np.linalg.cond(normal) > 1e12:
         return None
@@ -301,9 +370,33 @@ def _covariance(jacobian: NDArray[np.float64], chi2: float, dof: int) -> NDArray
     return np.linalg.inv(normal) * (chi2 / dof if worse else 1.0)
 
 
-def _pointing(chart: _Chart, x: NDArray[np.float64], covariance: NDArray | None, which: int) -> float | None:
-    """1-sigma angle of direction ``which`` (0 Sun, 1 nadir) [deg]: ``sqrt(trace(D C D^T))``, ``D`` its
-    derivative in the chart."""
+def pointing_sigma(
+    chart: _Chart, x: NDArray[np.float64], covariance: NDArray | None, which: int
+) -> float | None:
+    """1-sigma angle of a fitted direction: ``sqrt(trace(D C D^T))``, ``D`` its derivative in the chart.
+
+    Parameters
+    ----------
+    chart : object
+        Its ``at(x)`` gives the (Sun, nadir) pair of the unknowns; ``size`` is their number.
+    x : (k,) float64
+        The fitted unknowns.
+    covariance : (k, k) float64 or None
+        Theirs (:func:`fit_covariance`).
+    which : int
+        0 the Sun, 1 the nadir.
+
+    Returns
+    -------
+    float or None
+        [deg]; None without a covariance.
+
+    Examples
+    --------
+    >>> chart = free_chart(np.array([0.0, 0, 1]), np.array([1.0, 0, 0]))
+    >>> round(pointing_sigma(chart, np.zeros(4), np.eye(4) * np.radians(0.1) ** 2, 0), 6)
+    0.141421
+    """
     if covariance is None:
         return None
     h = 1e-6

@@ -9,17 +9,19 @@ against the full forward model at the first sunlit row's answer.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from sunwind.forces.earth import CapSampling, Place, planet_radiation
+from sunwind.forces.gas.flow import EARTH_GM
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.radiation.law import solar_flux
 from sunwind.forces.sensing.flux_rows import FluxRows
 from sunwind.forces.sensing.forward import FluxModel
 from sunwind.forces.sensing.row import ORBITAL_FRAME, AttitudeSolution
+from sunwind.forces.sensing.smoothing import SmoothedRow, smoothed_rows
 from sunwind.forces.sensing.tabulation import AttitudeSearch
 from sunwind.forces.tables.engine import SweepRun, run_jobs
 from sunwind.forces.tables.jobs import Job
@@ -51,6 +53,11 @@ class AttitudeFit:
         The flux model's largest difference from the full forward model
         (:func:`~sunwind.forces.earth.planet_radiation`) at the rows' best attitudes [W/m^2], when checked;
         else None.
+    smooth_window_s : float or None
+        The window the rows were smoothed over with the attitude's rate [s]; None: not smoothed.
+    smoothed : tuple of SmoothedRow or None
+        With smoothing (:func:`smoothed_attitudes`), each row's; None where a row is in eclipse or its
+        window holds too few sunlit rows.
 
     Examples
     --------
@@ -64,6 +71,8 @@ class AttitudeFit:
     relative_sigma: float
     floor_W_m2: float
     model_error_W_m2: float | None
+    smooth_window_s: float | None = None
+    smoothed: tuple[SmoothedRow | None, ...] = ()
 
     def to_json(self) -> dict:
         """``{"rows": [...], ...}`` with the frame, units and settings.
@@ -85,8 +94,16 @@ class AttitudeFit:
             "relative_sigma": self.relative_sigma,
             "floor_W_m2": self.floor_W_m2,
             "model_error_W_m2": self.model_error_W_m2,
-            "rows": [row.to_json() for row in self.rows],
+            "smooth_window_s": self.smooth_window_s,
+            "rows": [self._row_json(k) for k in range(len(self.rows))],
         }
+
+    def _row_json(self, k: int) -> dict:
+        out = self.rows[k].to_json()
+        if self.smooth_window_s is not None:
+            smoothed = self.smoothed[k]
+            out["smoothed"] = None if smoothed is None else smoothed.to_json()
+        return out
 
 
 def attitude_from_fluxes(
@@ -153,9 +170,9 @@ def attitude_from_fluxes(
         raise InputError(f"sigma {sigma} is not a relative error in (0, 1)", parameters=("sigma",))
     if not (math.isfinite(floor_W_m2) and floor_W_m2 > 0.0):
         raise InputError(f"floor {floor_W_m2} W/m^2 is not > 0", parameters=("floor_W_m2",))
+    light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
     model = as_model(model)
     rows.check_parts(model.craft.part_names)
-    light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
     order = tuple(name for name in model.craft.part_names if name in rows.sensors)
     search = AttitudeSearch(order, float(altitude_km), sigma, floor_W_m2, light, reflections)
     fluxes, _ = search.prepared(model)
@@ -163,6 +180,98 @@ def attitude_from_fluxes(
     solved = search.solutions(records)
     error = _model_error(model, fluxes, solved)
     return AttitudeFit(solved, order, float(altitude_km), sigma, floor_W_m2, error)
+
+
+def smoothed_attitudes(
+    fit: AttitudeFit, rows: FluxRows, smooth_s: float, light: PlanetLight | None = None
+) -> AttitudeFit:
+    """The rows of a fit smoothed with the attitude's rate: each sunlit row fitted again with the sunlit
+    rows within ``smooth_s / 2`` of it, the body turning at a constant rate over the window and the
+    nadir at the orbit's mean motion (:func:`~sunwind.forces.sensing.smoothing.smoothed_rows`).
+
+    Parameters
+    ----------
+    fit : AttitudeFit
+        The rows solved alone (:func:`attitude_from_fluxes`).
+    rows : FluxRows
+        The rows it solved: their times and inertial directions (for the quaternions).
+    smooth_s : float
+        The window [s], > 0.
+    light : PlanetLight, optional
+        Default the Earth; only the Earth's GM is known (the orbit's mean motion).
+
+    Returns
+    -------
+    AttitudeFit
+        ``fit`` with :attr:`~AttitudeFit.smooth_window_s` and :attr:`~AttitudeFit.smoothed` set.
+
+    Raises
+    ------
+    InputError
+        A bad window, another planet, rows that are not the fit's.
+
+    Examples
+    --------
+    >>> import sunwind as sw
+    >>> from sunwind.forces.sensing import read_flux_rows
+    >>> black = sw.Material("black", 0.07, 0.0, emissivity=0.82)
+    >>> cube = sw.load(sw.meshes.sensor_cube(), uniform=black, threads=1)
+    >>> rows = read_flux_rows(sw.meshes.sample_path().parent / "sensor_cube_fluxes.csv")[:4]
+    >>> smoothed = smoothed_attitudes(attitude_from_fluxes(cube, rows, 500.0), rows, 900.0).smoothed
+    >>> [s is not None for s in smoothed], smoothed[1].rows, np.round(smoothed[1].rate_deg_s, 2) + 0.0
+    ([False, True, True, False], 3, array([ 0.1 , -0.07,  0.17]))
+    """
+    light = PlanetLight.of(planet("earth"), solar_flux()) if light is None else light
+    motion = mean_motion(smooth_s, light, fit.altitude_km)
+    if not np.array_equal(rows.time_s, [row.time_s for row in fit.rows]):
+        raise InputError("the rows to smooth are not the rows the fit solved: their times differ")
+    inertial = [rows.inertial(k) for k in range(len(rows))]
+    return replace(
+        fit,
+        smooth_window_s=float(smooth_s),
+        smoothed=smoothed_rows(fit.rows, float(smooth_s), motion, inertial),
+    )
+
+
+def mean_motion(window_s: float, light: PlanetLight, altitude_km: float) -> float:
+    """The mean motion of a circular orbit at ``altitude_km`` about the Earth [rad/s], for smoothing.
+
+    Parameters
+    ----------
+    window_s : float
+        The smoothing window [s], checked: > 0 and finite.
+    light : PlanetLight
+        Its planet must be the Earth (the one whose GM is known here).
+    altitude_km : float
+        Height above the planet [km].
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    InputError
+        A bad window, another planet.
+
+    Examples
+    --------
+    >>> light = PlanetLight.of(planet("earth"), 1361.0)
+    >>> round(360.0 / math.degrees(mean_motion(120.0, light, 500.0)) / 60.0, 1)  # the period [min]
+    94.6
+    """
+    if not (math.isfinite(window_s) and window_s > 0.0):
+        raise InputError(
+            f"smooth_s {window_s:g} is not a smoothing window > 0 [s]",
+            hint="the window is the time over which the attitude's rate is taken as constant, e.g. 120 s",
+            parameters=("smooth_s",),
+        )
+    if light.planet.name != "earth":
+        raise InputError(
+            f"smoothing needs the orbit's mean motion: the Earth's GM is known, {light.planet.name}'s not",
+            parameters=("smooth_s",),
+        )
+    return math.sqrt(EARTH_GM / (light.planet.radius_m + altitude_km * 1e3) ** 3)
 
 
 def _model_error(model: Model, fluxes: FluxModel, solved: tuple[AttitudeSolution, ...]) -> float | None:

@@ -102,9 +102,39 @@ def test_a_bad_fluxes_file_is_one_error_line(run_cli, tmp_path, name, text, word
         (["-o", "rows.txt"], "written as .json or .csv"),
         (["--resume"], "--resume takes up the checkpoint of an output"),
         (["-o", "rows.csv", "--chunk", "0"], "chunk"),
+        (["--smooth", "0"], "--smooth 0 is not a smoothing window > 0 [s]"),
+        (["--smooth", "nan"], "--smooth nan is not"),
     ],
 )
 def test_bad_settings_are_one_error_line(run_cli, extra, words):
     code, _, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", *extra))
     lines = err.strip().splitlines()
     assert code == 1 and len(lines) == 1 and lines[0].startswith("sunwind: error:") and words in lines[0], err
+
+
+def test_smoothing_the_example_finds_the_rate_it_was_made_with(run_cli, tmp_path):
+    """The bundled rows (300 s apart, the cube turning at a constant rate) with --smooth 900: every row
+    with two sunlit neighbours is smoothed, and the body rate is the one the rows were made with (the
+    inertial rate of ``test_sample_fluxes`` in body axes) within 3 sigma; the first and last sunlit rows
+    are said not smoothed, the eclipses are not, and the CSV gains the smoothed columns."""
+    from scipy.spatial.transform import Rotation
+
+    start = Rotation.from_euler("xyz", [20.0, -35.0, 60.0], degrees=True)
+    rate = np.degrees(start.inv().apply([0.002, -0.001, 0.003]))
+    code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--smooth", "900", "--json"))
+    assert code == 0, err
+    document = json.loads(out)
+    assert document["smooth_window_s"] == 900.0
+    smoothed = [row["smoothed"] for row in document["rows"]]
+    assert [s is not None for s in smoothed] == [False] + [True] * 8 + [False] * 3
+    for s in smoothed[1:9]:
+        assert s["rows"] == 3 and s["explained"] and len(s["quaternion"]) == 4
+        assert np.linalg.norm(np.subtract(s["rate_deg_s"], rate)) <= 3.0 * s["sigma_rate_deg_s"]
+    assert "2 sunlit rows (the first at t = 0 s) have fewer than 3 sunlit rows within --smooth 900 s" in err
+    output = tmp_path / "rows.csv"
+    code, out, err = run_cli(*command(DATA / "sensor_cube_fluxes.csv", "--smooth", "900", "-o", output))
+    assert code == 0, err
+    header = next(line for line in output.read_text().splitlines() if not line.startswith("#"))
+    assert (
+        header.endswith("smoothed_pitch_deg,smoothed_yaw_deg,smoothed_roll_deg") and "rate_deg_s_x" in header
+    )
