@@ -112,6 +112,7 @@ def test_bad_settings_are_one_error_line(run_cli, extra, words):
     assert code == 1 and len(lines) == 1 and lines[0].startswith("sunwind: error:") and words in lines[0], err
 
 
+@pytest.mark.slow
 def test_smoothing_the_example_finds_the_rate_it_was_made_with(run_cli, tmp_path):
     """The bundled rows (300 s apart, the cube turning at a constant rate) with --smooth 900: every row
     with two sunlit neighbours is smoothed, and the body rate is the one the rows were made with (the

@@ -75,6 +75,7 @@ def test_records_read_back_to_every_kind_of_row():
     assert back[0].seconds == 0.5 and len(back[0].alternatives) == MINIMA - 1
 
 
+@pytest.mark.slow
 def test_chunked_runs_give_the_rows_of_one_pass_exactly(tmp_path):
     """The bundled rows (ten sunlit, two in eclipse) in chunks of 5 with a checkpoint, then all at once:
     the same solutions, bit for bit, and the checkpoint gone once done."""
