@@ -215,6 +215,8 @@ SMOOTHED_COLUMNS = (
     "smoothed_rows",
     "smoothed_misfit",
     "smoothed_explained",
+    "smoothed_rejected",
+    "smoothed_outlier",
     *(f"smoothed_quaternion_{axis}" for axis in "wxyz"),
     "smoothed_pitch_deg",
     "smoothed_yaw_deg",
@@ -259,13 +261,16 @@ def _csv_row(row: dict, smoothing: bool) -> list:
         smoothed["rows"],
         smoothed["misfit"],
         int(smoothed["explained"]),
+        smoothed["rejected"],
+        int(smoothed["outlier"]),
         *cells(smoothed["quaternion"], 4),
         *cells(smoothed["pitch_yaw_roll_deg"], 3),
     ]
 
 
 def _say_smoothing(found: AttitudeFit) -> None:
-    """The smoothing's notice (rows it could not smooth) and warnings (windows one rate cannot explain)."""
+    """The smoothing's notice (rows it could not smooth) and warnings (windows one rate cannot explain, rows
+    whose own solution the motion of the rows around them leaves out)."""
     if found.smooth_window_s is None:
         return
     window = found.smooth_window_s
@@ -286,6 +291,13 @@ def _say_smoothing(found: AttitudeFit) -> None:
                 f"sunwind: warning: t = {smoothed.time_s:g} s: the {smoothed.rows} rows within "
                 f"--smooth {window:g} s do not fit one constant rate (misfit {smoothed.misfit:.3g}): "
                 "shorten the window",
+                file=sys.stderr,
+            )
+        elif smoothed is not None and smoothed.outlier:
+            print(
+                f"sunwind: warning: t = {smoothed.time_s:g} s: the row's own solution disagrees with the "
+                f"motion of the {smoothed.rows - smoothed.rejected} rows around it: its smoothed "
+                "directions come from them alone",
                 file=sys.stderr,
             )
 
@@ -315,7 +327,9 @@ def _print(found: AttitudeFit, source: str) -> None:
             print(f"  also: sun {sun}, nadir {_vector(other.nadir)}, misfit {other.misfit:.3g}")
         smoothed = found.smoothed[k] if found.smoothed else None
         if smoothed is not None:
-            print(f"  smoothed over {smoothed.rows} rows (misfit {smoothed.misfit:.3g}):")
+            left = f", {smoothed.rejected} left out" if smoothed.rejected else ""
+            own = "; the row's own solution left out" if smoothed.outlier else ""
+            print(f"  smoothed over {smoothed.rows} rows{left} (misfit {smoothed.misfit:.3g}){own}:")
             print(f"    sun   {_vector(smoothed.sun)}  1-sigma {_degrees(smoothed.sigma_sun_deg)}")
             print(f"    nadir {_vector(smoothed.nadir)}  1-sigma {_degrees(smoothed.sigma_nadir_deg)}")
             spread = (

@@ -3,7 +3,8 @@
 Each sunlit row's directions are fitted again from the rows around it: within a window of time, the
 body turns at a constant rate and the planet's centre moves at the orbit's mean motion, and the rows'
 own solutions, weighted by their 1-sigma errors, fix the directions at the row and the body's rate. An
-ambiguous row takes the alternative the motion agrees with.
+ambiguous row takes the alternative the motion agrees with; a row no minimum of which the motion of the
+others agrees with (a wrong solution without alternatives) is left out of the fit.
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ from sunwind.forces.sensing.search import (
 LEAST_ROWS = 3
 #: Rounds of choosing each row's minimum nearest the fitted motion and fitting again.
 ROUNDS = 3
+#: Confidence of a row's own chi2 beyond which the motion of the other rows leaves it out.
+OUTLIER_CONFIDENCE = 0.999
 #: Starts of the orbit normal's angle about the nadir [rad] of a window's first fit: the best is kept
 #: (the misfit goes once up and down around the circle: one of two opposite starts is on its way down).
 _NORMAL_STARTS = np.radians([0.0, 180.0])
@@ -65,6 +68,11 @@ class SmoothedRow:
         the rate is constant over the window as far as the rows can tell.
     switched : int
         Rows of the window whose alternative, not their best minimum, the motion took.
+    rejected : int
+        Rows of the window left out of the fit: no minimum of theirs agrees with the motion of the others
+        (their chi2 beyond its :data:`OUTLIER_CONFIDENCE` quantile).
+    outlier : bool
+        The row's own solution is one of them: its directions come from the other rows alone.
     quaternion : (4,) float64 or None
         As :attr:`AttitudeSolution.quaternion`, from the smoothed directions.
     pitch_yaw_roll_deg : (3,) float64 or None
@@ -73,7 +81,7 @@ class SmoothedRow:
     Examples
     --------
     >>> z = np.array([0.0, 0.0, 1.0])
-    >>> row = SmoothedRow(0.0, z, -z, 0.1, 0.2, np.zeros(3), 0.01, 5, 1.0, True, 0, None, None)
+    >>> row = SmoothedRow(0.0, z, -z, 0.1, 0.2, np.zeros(3), 0.01, 5, 1.0, True, 0, 0, False, None, None)
     >>> sorted(row.to_json())[:3]
     ['explained', 'misfit', 'nadir_body']
     """
@@ -89,6 +97,8 @@ class SmoothedRow:
     misfit: float
     explained: bool
     switched: int
+    rejected: int
+    outlier: bool
     quaternion: NDArray[np.float64] | None
     pitch_yaw_roll_deg: NDArray[np.float64] | None
 
@@ -115,6 +125,8 @@ class SmoothedRow:
             "misfit": self.misfit,
             "explained": self.explained,
             "switched": self.switched,
+            "rejected": self.rejected,
+            "outlier": self.outlier,
         }
 
 
@@ -199,10 +211,23 @@ class _Motion:
         body = -np.outer(tau, x[4:7])
         if self.size == 7:
             return _turned(body, sun), _turned(body, nadir)
+        normal = self._normal(x, nadir)
+        return _turned(body, sun), _turned(body, _turned(np.outer(tau * self.mean_motion, normal), nadir))
+
+    def carried(self, x: NDArray[np.float64], tau: float, there: _Motion) -> NDArray[np.float64]:
+        """The unknowns of ``there``, a chart at ``tau`` from the row, for this motion: no offsets, the
+        same body rate, the same orbit normal (turned with the body)."""
+        if there.size == 7:
+            return np.concatenate([np.zeros(4), x[4:7]])
+        normal = _turned(-tau * x[None, 4:7], self._normal(x, self.at(x)[1]))[0]
+        angle = math.atan2(normal @ there.nadir_basis[1], normal @ there.nadir_basis[0])
+        return np.concatenate([np.zeros(4), x[4:7], [angle]])
+
+    def _normal(self, x: NDArray[np.float64], nadir: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The orbit normal at the row, body axes: at angle ``x[7]`` about the nadir, across it."""
         normal = math.cos(x[7]) * self.nadir_basis[0] + math.sin(x[7]) * self.nadir_basis[1]
         normal = normal - (normal @ nadir) * nadir
-        normal /= np.linalg.norm(normal)
-        return _turned(body, sun), _turned(body, _turned(np.outer(tau * self.mean_motion, normal), nadir))
+        return normal / np.linalg.norm(normal)
 
 
 def _turned(rotvec: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -218,33 +243,82 @@ def _turned(rotvec: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.f
 
 
 def _window_fit(window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float) -> SmoothedRow:
-    """The motion fitted to a window's rows, each row's minimum chosen nearest the motion.
+    """The motion fitted to a window's rows (:func:`_motion_of`), rows that disagree with it left out.
+
+    While a row's chi2 about the fit is beyond the :data:`OUTLIER_CONFIDENCE` quantile, the row least
+    likely about a robust fit is left out (at most a quarter of the rows) and the motion fitted anew; the
+    rows left out stay out only if the rest is then explained."""
+    motion, fit, chosen = whole = _motion_of(window, row, mean_motion)
+    kept = list(window)
+    for _ in range(min(len(window) // 4, (len(window) - LEAST_ROWS) // 2)):
+        worst = _outlier(motion, fit, chosen, np.array([r.time_s for r in kept]) - row.time_s)
+        if worst is None:
+            break
+        kept = kept[:worst] + kept[worst + 1 :]
+        motion, fit, chosen = _motion_of(kept, row, mean_motion)
+    if len(kept) < len(window) and not _explained(fit, chosen):
+        kept, (motion, fit, chosen) = list(window), whole
+    return _smoothed(row, window, kept, motion, fit, chosen)
+
+
+def _motion_of(
+    rows: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float
+) -> tuple[_Motion, object, list[Minimum]]:
+    """The motion fitted to rows, each row's minimum chosen nearest it: (motion, fit, chosen).
 
     The motion is first fitted to the rows with one minimum (their best), when there are enough, anchored
     at the one nearest the row in time; every row then takes its minimum nearest that motion (an
-    ambiguous row, the alternative the others agree with), and the motion is fitted to those, anchored
-    at the row's own, until the choice stays."""
-    times = np.array([r.time_s for r in window])
-    sure = [r for r in window if not r.alternatives]
+    ambiguous row, the alternative the others agree with), and the motion is fitted to those, charted at
+    the row, until the choice stays (:func:`_choose`)."""
+    sure = [r for r in rows if not r.alternatives]
     if len(sure) < LEAST_ROWS:
-        sure = window
+        sure = rows
     anchor = min(sure, key=lambda r: abs(r.time_s - row.time_s))
-    chosen = [r.best for r in sure]
+    first = [r.best for r in sure]
     tau = np.array([r.time_s for r in sure]) - anchor.time_s
-    motion, fit = _fit(
-        _Motion(anchor.best.sun, anchor.best.nadir, mean_motion), chosen, tau, _rate_start(chosen, tau)
-    )
-    shift = anchor.time_s
-    at_row = next(i for i, r in enumerate(window) if r is row)
+    motion = _Motion(anchor.best.sun, anchor.best.nadir, mean_motion)
+    motion, fit = _fit(motion, first, tau, _rate_start(first, tau))
+    return _choose(motion, fit, anchor.time_s, row, rows)
+
+
+def _choose(
+    motion: _Motion, fit, shift: float, row: AttitudeSolution, rows: list[AttitudeSolution]
+) -> tuple[_Motion, object, list[Minimum]]:
+    """Each row's minimum nearest the motion (fitted at ``shift``), and the motion fitted to them charted
+    at the row (its own minimum when it is among ``rows``), until the choice stays: (motion, fit, chosen)."""
+    chosen: list[Minimum] | None = None
+    times = np.array([r.time_s for r in rows])
     for _ in range(ROUNDS):
-        nearest = [_nearest(motion, fit.x, r.time_s - shift, [r.best, *r.alternatives]) for r in window]
-        if shift == row.time_s and len(chosen) == len(window) and all(map(operator.is_, nearest, chosen)):
+        nearest = [_nearest(motion, fit.x, r.time_s - shift, [r.best, *r.alternatives]) for r in rows]
+        if chosen is not None and all(map(operator.is_, nearest, chosen)):
             break
-        chosen, shift = nearest, row.time_s
-        normal = fit.x[7:]
-        motion = _Motion(chosen[at_row].sun, chosen[at_row].nadir, mean_motion)
-        motion, fit = _fit(motion, chosen, times - shift, fit.x[4:7], normal)
-    return _smoothed(row, window, motion, fit, chosen)
+        chosen = nearest
+        own = [m for m, r in zip(chosen, rows, strict=True) if r is row]
+        at_row = motion.predict(fit.x, np.array([row.time_s - shift]))
+        sun, nadir = (own[0].sun, own[0].nadir) if own else (at_row[0][0], at_row[1][0])
+        there = _Motion(sun, nadir, motion.mean_motion)
+        start = motion.carried(fit.x, row.time_s - shift, there)
+        motion, fit = _fit(there, chosen, times - row.time_s, start[4:7], start[7:])
+        shift = row.time_s
+    return motion, fit, chosen
+
+
+def _outlier(motion: _Motion, fit, chosen: list[Minimum], tau: NDArray[np.float64]) -> int | None:
+    """The row least likely about a robust (soft L1) fit of the motion, if some row's chi2 about the
+    plain fit is beyond the :data:`OUTLIER_CONFIDENCE` quantile: a large error pulls a plain fit to
+    every row, not to its own."""
+    if _outlier_chance(fit, chosen).min() >= 1.0 - OUTLIER_CONFIDENCE:
+        return None
+    robust = _least_squares(motion, chosen, tau, fit.x, loss="soft_l1")
+    return int(np.argmin(_outlier_chance(robust, chosen)))
+
+
+def _outlier_chance(fit, chosen: list[Minimum]) -> NDArray[np.float64]:
+    """Per row, the chance of a chi2 as large as its own residuals' (1 for a row with no direction)."""
+    n = len(chosen)
+    per_row = np.sum(fit.fun[: 3 * n].reshape(n, 3) ** 2 + fit.fun[3 * n :].reshape(n, 3) ** 2, axis=1)
+    dof = np.array([2 * sum(int(w > 0) for w in _row_weights(m)) for m in chosen])
+    return np.where(dof > 0, scipy.stats.chi2.sf(per_row, np.maximum(dof, 1)), 1.0)
 
 
 def _angles(chosen: list[Minimum]) -> int:
@@ -258,9 +332,14 @@ def _explained(fit, chosen: list[Minimum]) -> bool:
 
 
 def _smoothed(
-    row: AttitudeSolution, window: list[AttitudeSolution], motion: _Motion, fit, chosen: list[Minimum]
+    row: AttitudeSolution,
+    window: list[AttitudeSolution],
+    kept: list[AttitudeSolution],
+    motion: _Motion,
+    fit,
+    chosen: list[Minimum],
 ) -> SmoothedRow:
-    """The row's record of a plain least-squares fit of the motion to the chosen minima."""
+    """The row's record of a plain least-squares fit of the motion to the minima chosen of the rows kept."""
     angles = _angles(chosen)
     chi2, dof = float(fit.fun @ fit.fun), angles - len(fit.x)
     covariance = fit_covariance(fit.jac, chi2, dof)
@@ -280,7 +359,9 @@ def _smoothed(
         len(window),
         math.sqrt(chi2 / angles),
         _explained(fit, chosen),
-        sum(m is not r.best for m, r in zip(chosen, window, strict=True)),
+        sum(m is not r.best for m, r in zip(chosen, kept, strict=True)),
+        len(window) - len(kept),
+        not any(r is row for r in kept),
         None,
         None,
     )
@@ -304,7 +385,11 @@ def _fit(
 
 
 def _least_squares(
-    motion: _Motion, chosen: list[Minimum], tau: NDArray[np.float64], start: NDArray[np.float64]
+    motion: _Motion,
+    chosen: list[Minimum],
+    tau: NDArray[np.float64],
+    start: NDArray[np.float64],
+    loss: str = "linear",
 ):
     measured_sun = np.stack([m.sun for m in chosen])
     measured_nadir = np.stack([m.nadir for m in chosen])
@@ -319,7 +404,10 @@ def _least_squares(
             ]
         )
 
-    return scipy.optimize.least_squares(residuals, start, method="lm", x_scale="jac", max_nfev=400)
+    method = "lm" if loss == "linear" else "trf"  # Levenberg-Marquardt takes no robust loss
+    return scipy.optimize.least_squares(
+        residuals, start, method=method, loss=loss, x_scale="jac", max_nfev=400
+    )
 
 
 def _row_weights(m: Minimum) -> tuple[float, float]:
