@@ -104,10 +104,9 @@ class Columns:
         """Column ``name`` as finite numbers in [``low``, ``high``]; ``fix`` ends the messages."""
         if name not in self.header:
             raise InputError(f"no column {name}", path=self.where, hint=f"add it: {fix}")
-        column = self.header.index(name)
         out = np.empty(len(self.rows))
-        for k, row in enumerate(self.rows):
-            text = row[column].strip() if column < len(row) else ""
+        for k in range(len(self.rows)):
+            text = self.text(k, name)
             try:
                 value = float(text)
             except ValueError:
@@ -122,6 +121,12 @@ class Columns:
                 )
             out[k] = value
         return out
+
+    def text(self, row: int, name: str) -> str:
+        """The stripped cell of column ``name`` in row ``row`` (empty past the row's end)."""
+        column = self.header.index(name)
+        cells = self.rows[row]
+        return cells[column].strip() if column < len(cells) else ""
 
     def block(self, names: tuple[str, ...]) -> NDArray:
         """Columns ``names`` side by side, (n, len(names))."""

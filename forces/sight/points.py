@@ -8,7 +8,6 @@ the mesh. It may have a cone: a unit ``boresight`` (body frame) and a ``half_ang
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,6 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from sunwind.forces.columns import Columns, read_rows
 from sunwind.geometry.errors import InputError
 
 #: The columns a points file must have, in metres, body frame of the mesh.
@@ -287,70 +287,46 @@ def read_points(path: str | Path) -> SightPoints:
     >>> read_points("bad.csv")
     Traceback (most recent call last):
     ...
-    sunwind.geometry.errors.InputError: bad.csv: line 1: no column 'z'; ...
+    sunwind.geometry.errors.InputError: bad.csv: no column 'z'; ...
     """
     path = Path(path)
-    if not path.is_file():
-        raise InputError("points file not found", path=str(path), hint="check the path and its spelling")
-    text = path.read_text(encoding="utf-8-sig", errors="replace")
-    rows = [
-        (number, row)
-        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-        if row and any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
-    ]
-    if not rows:
-        raise InputError("the points file is empty", path=str(path), hint=_EXAMPLE)
-    header_line, header = rows[0]
-    header = [cell.strip().lower() for cell in header]
-    column = {name: k for k, name in enumerate(header)}
+    header, lines, rows = read_rows(path, "points file", _EXAMPLE)
+    header = [name.lower() for name in header]
     for name in REQUIRED:
-        if name not in column:
-            raise InputError(f"line {header_line}: no column {name!r}", path=str(path), hint=_EXAMPLE)
-    cones = [name for name in CONE if name in column]
+        if name not in header:
+            raise InputError(f"no column {name!r}", path=str(path), hint=_EXAMPLE)
+    cones = [name for name in CONE if name in header]
     if cones and len(cones) != len(CONE):
-        missing = [name for name in CONE if name not in column]
+        missing = [name for name in CONE if name not in header]
         raise InputError(
-            f"line {header_line}: a cone needs the columns {', '.join(CONE)}; missing {', '.join(missing)}",
+            f"a cone needs the columns {', '.join(CONE)}; missing {', '.join(missing)}",
             path=str(path),
             hint="add them, or drop the cone columns",
         )
-    names, positions, axes, angles = [], [], [], []
-    for number, row in rows[1:]:
-        cells = {name: (row[k].strip() if k < len(row) else "") for name, k in column.items()}
-        where = f"line {number}"
+    columns = Columns(header, lines, rows, str(path))
+    position = np.stack([columns.numbers(axis, "give metres, body frame of the mesh") for axis in "xyz"], 1)
+    names = [row[header.index("name")].strip() for row in rows]
+    boresight, half = np.full((len(rows), 3), np.nan), np.full(len(rows), np.nan)
+    given = np.array([[columns.text(k, name) != "" for name in cones] for k in range(len(rows))])
+    for k, name in enumerate(names):
         try:
-            check_name(cells["name"], names, where)
-            positions.append([_number(cells, axis, where) for axis in "xyz"])
-            given = [cells[name] != "" for name in cones]
-            if any(given) and not all(given):
-                empty = [name for name, on in zip(cones, given, strict=True) if not on]
+            check_name(name, names[:k], f"line {lines[k]}")
+            if given[k].any() and not given[k].all():
+                empty = [c for c, on in zip(cones, given[k], strict=True) if not on]
                 raise InputError(
-                    f"{where}: the cone cells {', '.join(empty)} are empty",
+                    f"line {lines[k]}: the cone cells {', '.join(empty)} are empty",
                     hint="give all four cone cells, or leave all four empty for no cone",
                 )
-            axis = [_number(cells, n, where) for n in CONE[:3]] if cones and all(given) else None
-            angle = _number(cells, CONE[3], where) if axis is not None else None
-            axis, angle = check_cone(axis, angle, f"{where} ({cells['name']})")
         except InputError as error:
             raise InputError(error.message, path=str(path), hint=error.hint) from None
-        names.append(cells["name"])
-        axes.append(axis)
-        angles.append(angle)
-    if not names:
-        raise InputError("the points file has a header but no points", path=str(path), hint=_EXAMPLE)
-    return SightPoints(tuple(names), np.array(positions), np.array(axes), np.array(angles), str(path))
-
-
-def _number(cells: dict[str, str], name: str, where: str) -> float:
-    """The number in column ``name``, or an error naming its line and column."""
-    try:
-        value = float(cells[name])
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value):
-        shown = cells[name] or "an empty cell"
-        raise InputError(
-            f"{where}, column {name!r}: {shown!r} is not a finite number",
-            hint="give metres for x, y, z, a direction for the boresight, degrees for half_angle_deg",
-        )
-    return value
+    coned = np.flatnonzero(given.all(axis=1)) if cones else np.zeros(0, dtype=int)
+    if len(coned):
+        some = Columns(header, [lines[k] for k in coned], [rows[k] for k in coned], str(path))
+        axes = some.block(CONE[:3])
+        angles = some.numbers(CONE[3], "give the cone's half angle [deg]")
+        for j, k in enumerate(coned):
+            try:
+                boresight[k], half[k] = check_cone(axes[j], angles[j], f"line {lines[k]} ({names[k]})")
+            except InputError as error:
+                raise InputError(error.message, path=str(path), hint=error.hint) from None
+    return SightPoints(tuple(names), position, boresight, half, str(path))

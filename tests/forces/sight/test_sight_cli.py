@@ -81,8 +81,8 @@ def test_along_an_orbit_the_sun_earth_and_a_station(run_cli, files):
 
 
 BAD = [
-    ("name,x,y\na,1,2\n", [], "line 1: no column 'z'"),
-    ("name,x,y,z\na,1,two,3\n", [], "line 2, column 'y': 'two' is not a finite number"),
+    ("name,x,y\na,1,2\n", [], "p.csv: no column 'z'"),
+    ("name,x,y,z\na,1,two,3\n", [], "p.csv: line 2: column y is 'two', not a finite number"),
     ("name,x,y,z\na,1,2,3\na,0,0,0\n", [], "line 3: the name 'a' is given twice"),
     (POINTS.replace("0,0,1,80", "0,0,0,80"), [], "the boresight has zero length"),
     (POINTS.replace("0,0,1,80", "0,0,1,0"), [], "half_angle_deg 0 must be in (0, 180]"),
@@ -108,5 +108,5 @@ def test_a_bad_input_gets_one_line_and_exit_1(run_cli, files, tmp_path, text, ex
 def test_a_missing_points_file_is_named(run_cli, files):
     code, _, err = run_cli("visibility", files / "box.obj", "--points", "nowhere.csv", "--map")
     assert code == 1 and err.strip() == (
-        "sunwind: error: nowhere.csv: points file not found; check the path and its spelling"
+        "sunwind: error: nowhere.csv: file not found; check the path and its spelling"
     )
