@@ -10,8 +10,7 @@ from pathlib import Path
 
 import click
 import numpy as np
-from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.cli.earth import EarthRequest, check_earth_step, earth_request, earth_term_options
 from sunwind.forces.cli.free_stream import WEATHER_OPTIONS
@@ -27,7 +26,7 @@ from sunwind.forces.cli.options import (
 from sunwind.forces.cli.orbit_path import PATH_OPTIONS, PathRequest, path_request
 from sunwind.forces.cli.outputs import check_distinct, check_image, check_writable
 from sunwind.forces.cli.report import estimated, print_json, vector, warn_beyond
-from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
+from sunwind.forces.cli.runs import check_run, interruptible, progress_bar, run_options, sweep_run
 from sunwind.forces.cli.sensitivities import print_sensitivities, sensitivities_option
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.gas import explicit
@@ -317,7 +316,7 @@ def orbit(
     # transient, when its integration after the steps starts (progress past the steps)
     started: list[float] = []
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn())
-    with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
+    with progress_bar(*columns) as bar:
         task = bar.add_task("orbit", total=steps)
 
         def progress(done: int) -> None:

@@ -10,7 +10,8 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import click
-from rich.progress import Progress
+from rich.console import Console
+from rich.progress import Progress, ProgressColumn
 
 from sunwind.forces.tables import DEFAULT_CHUNK, SweepRun
 from sunwind.forces.tables.checkpoint import Checkpoint
@@ -144,6 +145,36 @@ def sweep_run(values: dict, checkpoint: Path | None, progress: Callable[[int], N
         progress,
         notice=lambda line: print(f"sunwind: notice: {checkpoint}: {line}", file=sys.stderr),
     )
+
+
+def progress_bar(*columns: ProgressColumn, hidden: bool = False) -> Progress:
+    """A run's progress bar on stderr, gone when it ends; drawn only on a terminal (in a log, rich would
+    leave an empty line and show nothing meanwhile).
+
+    Parameters
+    ----------
+    *columns : rich.progress.ProgressColumn
+        What it shows.
+    hidden : bool, optional
+        Never drawn (``--json`` runs of the benchmark).
+
+    Returns
+    -------
+    rich.progress.Progress
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> from rich.progress import BarColumn
+    >>> err = io.StringIO()
+    >>> with contextlib.redirect_stderr(err):
+    ...     with progress_bar(BarColumn()) as bar:
+    ...         bar.update(bar.add_task("rows", total=2), completed=2)
+    >>> err.getvalue()
+    ''
+    """
+    console = Console(stderr=True)
+    return Progress(*columns, transient=True, console=console, disable=hidden or not console.is_terminal)
 
 
 @contextmanager

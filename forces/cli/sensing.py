@@ -10,12 +10,11 @@ from pathlib import Path
 
 import click
 import numpy as np
-from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.cli.options import group, json_option, loaded, model_options, reflection_options
 from sunwind.forces.cli.outputs import check_writable
-from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
+from sunwind.forces.cli.runs import check_run, interruptible, progress_bar, run_options, sweep_run
 from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.model import ModelSource
 from sunwind.forces.planet.bodies import PlanetLight, planet
@@ -121,7 +120,7 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, output: di
     try:
         if smooth is not None:
             mean_motion(smooth, light, altitude)  # a bad window said before the rows are solved
-        with Progress(*columns, transient=True, console=Console(stderr=True)) as bar:
+        with progress_bar(*columns) as bar:
             task = bar.add_task("attitude", total=len(rows))
             run = sweep_run(output, checkpoint, lambda done: bar.update(task, completed=done))
             with interruptible(bar, checkpoint):

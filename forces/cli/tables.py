@@ -16,7 +16,6 @@ from numpy.typing import NDArray
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
-    Progress,
     ProgressColumn,
     TextColumn,
     TimeRemainingColumn,
@@ -39,7 +38,7 @@ from sunwind.forces.cli.options import (
 )
 from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.report import warn_beyond
-from sunwind.forces.cli.runs import check_run, interruptible, run_options, sweep_run
+from sunwind.forces.cli.runs import check_run, interruptible, progress_bar, run_options, sweep_run
 from sunwind.forces.cli.sensitivities import sensitivities_option
 from sunwind.forces.error_estimate import ErrorEstimate
 from sunwind.forces.export import FORMATS, check_request, output_target, write
@@ -321,7 +320,7 @@ def sweep_command(
         TimeRemainingColumn(),
     )
     start = time.perf_counter()
-    with Progress(*columns, transient=True, console=None) as bar:
+    with progress_bar(*columns) as bar:
         task = bar.add_task(f"sweep ({', '.join(table.kinds)})", total=total)
         progress = lambda done: bar.update(task, completed=done)  # noqa: E731
         with interruptible(bar, checkpoint):

@@ -12,6 +12,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.bench import REFERENCE_GAS_FACTORS, REFERENCE_TOLERANCE, benchmark
 from sunwind.forces.cli.options import given, group
+from sunwind.forces.cli.runs import progress_bar
 from sunwind.forces.sweep_bench import sweep_benchmark
 from sunwind.forces.tables import direction_grid
 from sunwind.geometry.errors import InputError
@@ -217,7 +218,7 @@ def _progress_bar(as_json: bool) -> Progress:
         TextColumn("{task.completed}/{task.total}"),
         TimeRemainingColumn(),
     )
-    return Progress(*columns, transient=True, disable=as_json)
+    return progress_bar(*columns, hidden=as_json)
 
 
 def _bench_orbit(craft, as_json: bool) -> None:

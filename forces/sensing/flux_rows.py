@@ -236,7 +236,7 @@ def read_flux_rows(path: str | Path) -> FluxRows:
     >>> folder.cleanup()
     """
     where = str(path)
-    header, lines, raw = read_rows(Path(path), "fluxes", COLUMNS_HINT)
+    header, lines, raw = read_rows(Path(path), "fluxes file", COLUMNS_HINT)
     columns = Columns(header, lines, raw, where)
     time = columns.numbers("time_s", "give each row's time in seconds")
     check_times(time, lines, where)
