@@ -18,6 +18,7 @@ from sunwind.forces.gas.flow import EARTH_GM
 from sunwind.forces.model import Model, as_model
 from sunwind.forces.planet.bodies import PlanetLight, planet
 from sunwind.forces.radiation.law import solar_flux
+from sunwind.forces.sensing.coarse import CoarseTable
 from sunwind.forces.sensing.flux_rows import FluxRows
 from sunwind.forces.sensing.forward import FluxModel
 from sunwind.forces.sensing.row import ORBITAL_FRAME, AttitudeSolution
@@ -33,6 +34,9 @@ from sunwind.geometry.spacecraft import Spacecraft
 CHECKED_ROWS = 1
 #: The cells of the cap in that check [deg].
 CHECK_CELL_DEG = 5.0
+#: A measured flux above this many times the most any attitude gives its sensor is refused: it is in
+#: other units (W, mW/m^2), or of another sensor.
+IMPLAUSIBLE = 3.0
 
 
 @dataclass(frozen=True)
@@ -148,7 +152,8 @@ def attitude_from_fluxes(
     Raises
     ------
     InputError
-        A bad ``sigma`` or ``floor_W_m2``, a sensor that is no part of the model, a bad altitude.
+        A bad ``sigma`` or ``floor_W_m2``, a sensor that is no part of the model, a bad altitude, a
+        flux more than :data:`IMPLAUSIBLE` times the most any attitude gives its sensor.
 
     Examples
     --------
@@ -175,8 +180,10 @@ def attitude_from_fluxes(
     rows.check_parts(model.craft.part_names)
     order = tuple(name for name in model.craft.part_names if name in rows.sensors)
     search = AttitudeSearch(order, float(altitude_km), sigma, floor_W_m2, light, reflections)
-    fluxes, _ = search.prepared(model)
-    records = run_jobs(model, [Job(search, rows.reordered(order))], run or SweepRun())[search.kind]
+    fluxes, table = search.prepared(model)
+    rows = rows.reordered(order)
+    _check_plausible(rows, table, floor_W_m2)
+    records = run_jobs(model, [Job(search, rows)], run or SweepRun())[search.kind]
     solved = search.solutions(records)
     error = _model_error(model, fluxes, solved)
     return AttitudeFit(solved, order, float(altitude_km), sigma, floor_W_m2, error)
@@ -272,6 +279,23 @@ def mean_motion(window_s: float, light: PlanetLight, altitude_km: float) -> floa
             parameters=("smooth_s",),
         )
     return math.sqrt(EARTH_GM / (light.planet.radius_m + altitude_km * 1e3) ** 3)
+
+
+def _check_plausible(rows: FluxRows, table: CoarseTable, floor_W_m2: float) -> None:
+    """Refuse a flux more than :data:`IMPLAUSIBLE` times the most its sensor can absorb (full sunlight
+    along the best of the table's directions plus the most of the planet) and the resolution."""
+    most = table.solar.max(axis=0) + table.planet.max(axis=(0, 1))
+    over = rows.fluxes_W_m2 > IMPLAUSIBLE * most + floor_W_m2
+    if over.any():
+        k, p = (int(i[0]) for i in np.nonzero(over))
+        raise InputError(
+            f"t = {rows.time_s[k]:g} s: {rows.sensors[p]} {rows.fluxes_W_m2[k, p]:g} W/m^2 is more than "
+            f"{IMPLAUSIBLE:g} times the most any attitude gives it ({most[p]:.4g} W/m^2; "
+            f"{int(over.sum())} of the {over.size} fluxes are above it)",
+            path=rows.source,
+            hint="give the absorbed flux in W/m^2 of the sensor's area (not W or mW/m^2), each in its "
+            "own sensor's column",
+        )
 
 
 def _model_error(model: Model, fluxes: FluxModel, solved: tuple[AttitudeSolution, ...]) -> float | None:

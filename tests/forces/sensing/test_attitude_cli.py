@@ -77,6 +77,11 @@ BAD = [
         "0,1,2,3,4,5,6,0,0,0,0,0,-1\n",
         "sun_eci_* is zero",
     ),
+    (
+        "milliwatts",  # the first row of the example in mW/m^2
+        f"{HEADER}\n0,681310,35670,174170,1183080,252090,8310\n",
+        "t = 0 s: sensor_px 681310 W/m^2 is more than 3 times the most any attitude gives it",
+    ),
 ]
 
 
