@@ -284,6 +284,13 @@ def _say_smoothing(found: AttitudeFit) -> None:
             f"{LEAST_ROWS} sunlit rows within --smooth {window:g} s: not smoothed",
             file=sys.stderr,
         )
+    leaving = [s for s in found.smoothed if s is not None and s.rejected]
+    if leaving:
+        print(
+            f"sunwind: notice: {len(leaving)} windows (the first at t = {leaving[0].time_s:g} s) leave out "
+            'rows that disagree with the motion most of their rows agree with ("rejected")',
+            file=sys.stderr,
+        )
     for smoothed in found.smoothed:
         if smoothed is not None and not smoothed.explained:
             print(

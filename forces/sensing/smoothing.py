@@ -33,8 +33,10 @@ from sunwind.forces.sensing.search import (
 LEAST_ROWS = 3
 #: Rounds of choosing each row's minimum nearest the fitted motion and fitting again.
 ROUNDS = 3
-#: Confidence of a row's own chi2 beyond which the motion of the other rows leaves it out.
+#: Confidence of a row's own chi2 beyond which it does not agree with a motion.
 OUTLIER_CONFIDENCE = 0.999
+#: Most runs of three neighbouring rows whose motions are tried for a window's consensus.
+SEEDS = 8
 #: Starts of the orbit normal's angle about the nadir [rad] of a window's first fit: the best is kept
 #: (the misfit goes once up and down around the circle: one of two opposite starts is on its way down).
 _NORMAL_STARTS = np.radians([0.0, 180.0])
@@ -243,22 +245,87 @@ def _turned(rotvec: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.f
 
 
 def _window_fit(window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float) -> SmoothedRow:
-    """The motion fitted to a window's rows (:func:`_motion_of`), rows that disagree with it left out.
+    """The motion fitted to a window's rows, rows that disagree with it left out.
 
-    While a row's chi2 about the fit is beyond the :data:`OUTLIER_CONFIDENCE` quantile, the row least
-    likely about a robust fit is left out (at most a quarter of the rows) and the motion fitted anew; the
-    rows left out stay out only if the rest is then explained."""
-    motion, fit, chosen = whole = _motion_of(window, row, mean_motion)
+    First the rows are left out one by one (:func:`_leaving_out`); if the rows kept are then not explained,
+    the motion most rows agree with is sought from runs of neighbouring rows (:func:`_consensus`), and
+    of the fits with a majority of the rows the explained one, else the one of least misfit, is kept."""
+    fits = _leaving_out(window, row, mean_motion)
+    if not _explained(*fits[-1][1:3]):
+        fits += _consensus(window, row, mean_motion)
+    fits = [f for f in fits if 2 * len(f[3]) > len(window)]
+    best = min(fits, key=lambda f: (not _explained(*f[1:3]), _misfit(*f[1:3]), -len(f[3])))
+    return _smoothed(row, window, best[3], *best[:3])
+
+
+def _leaving_out(
+    window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float
+) -> list[tuple[_Motion, object, list[Minimum], list[AttitudeSolution]]]:
+    """The motion of all the rows (:func:`_motion_of`), then, while a row's chi2 about the fit is beyond
+    the :data:`OUTLIER_CONFIDENCE` quantile, without the row least likely about a robust fit
+    (:func:`_outlier`; fewer than half the rows, at least :data:`LEAST_ROWS` kept): every fit made, as
+    (motion, fit, chosen, rows kept)."""
     kept = list(window)
-    for _ in range(min(len(window) // 4, (len(window) - LEAST_ROWS) // 2)):
+    fits = [(*_motion_of(kept, row, mean_motion), kept)]
+    for _ in range(min((len(window) - 1) // 2, len(window) - LEAST_ROWS)):
+        motion, fit, chosen, _ = fits[-1]
         worst = _outlier(motion, fit, chosen, np.array([r.time_s for r in kept]) - row.time_s)
         if worst is None:
             break
         kept = kept[:worst] + kept[worst + 1 :]
-        motion, fit, chosen = _motion_of(kept, row, mean_motion)
-    if len(kept) < len(window) and not _explained(fit, chosen):
-        kept, (motion, fit, chosen) = list(window), whole
-    return _smoothed(row, window, kept, motion, fit, chosen)
+        fits.append((*_motion_of(kept, row, mean_motion), kept))
+    return fits
+
+
+def _consensus(
+    window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float
+) -> list[tuple[_Motion, object, list[Minimum], list[AttitudeSolution]]]:
+    """The motion most rows agree with: the motions of up to :data:`SEEDS` runs of three neighbouring
+    rows (:func:`_seeds`) are tried, and the one most rows agree with (:func:`_agreeing`) fitted again to
+    those rows until they stay the same. Its fits, as (motion, fit, chosen, rows kept)."""
+    kept, current = [], None
+    for seed in _seeds(window):
+        tried = _motion_of(seed, row, mean_motion)
+        agreeing = _agreeing(tried, row, window)
+        if len(agreeing) > len(kept):
+            kept, current = agreeing, tried
+    fits = []
+    for _ in range(ROUNDS):
+        if len(kept) < LEAST_ROWS:
+            break
+        current = _choose(current[0], current[1], row.time_s, row, kept)
+        fits.append((*current, kept))
+        kept, before = _agreeing(current, row, window), kept
+        if [r.time_s for r in kept] == [r.time_s for r in before]:
+            break
+    return fits
+
+
+def _seeds(window: list[AttitudeSolution]) -> list[list[AttitudeSolution]]:
+    """Up to :data:`SEEDS` runs of three neighbouring rows, spread over the window."""
+    centres = np.unique(np.round(np.linspace(1, len(window) - 2, min(SEEDS, len(window) - 2))).astype(int))
+    return [window[c - 1 : c + 2] for c in centres]
+
+
+def _agreeing(
+    fitted: tuple[_Motion, object, list[Minimum]], row: AttitudeSolution, window: list[AttitudeSolution]
+) -> list[AttitudeSolution]:
+    """The rows one of whose minima is within the :data:`OUTLIER_CONFIDENCE` quantile of its chi2 about
+    the motion (charted at ``row``)."""
+    motion, fit, _ = fitted
+    sun, nadir = motion.predict(fit.x, np.array([r.time_s - row.time_s for r in window]))
+    agreeing = []
+    for k, r in enumerate(window):
+        for m in (m for m in (r.best, *r.alternatives) if m.sun is not None):
+            weights = _row_weights(m)
+            chi2 = weights[0] ** 2 * np.sum((sun[k] - m.sun) ** 2) + weights[1] ** 2 * np.sum(
+                (nadir[k] - m.nadir) ** 2
+            )
+            dof = 2 * sum(int(w > 0) for w in weights)
+            if dof == 0 or scipy.stats.chi2.sf(chi2, dof) >= 1.0 - OUTLIER_CONFIDENCE:
+                agreeing.append(r)
+                break
+    return agreeing
 
 
 def _motion_of(
@@ -324,6 +391,11 @@ def _outlier_chance(fit, chosen: list[Minimum]) -> NDArray[np.float64]:
 def _angles(chosen: list[Minimum]) -> int:
     """The measured angles: two per observed direction."""
     return 2 * sum(int(w > 0) for m in chosen for w in _row_weights(m))
+
+
+def _misfit(fit, chosen: list[Minimum]) -> float:
+    """RMS of the whitened angle residuals."""
+    return math.sqrt(float(fit.fun @ fit.fun) / max(_angles(chosen), 1))
 
 
 def _explained(fit, chosen: list[Minimum]) -> bool:
