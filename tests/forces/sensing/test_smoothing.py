@@ -147,10 +147,10 @@ def test_a_stop_inside_the_window_leaves_out_the_rows_past_it():
 
 @pytest.mark.slow
 def test_a_body_spinning_up_is_not_explained_by_one_rate():
-    """A body spun up at 0.005 deg/s^2 from rest, 0.02 deg of noise, a 100 s window: no majority of a
-    window's rows turns at one rate (over 50 s the spin-up is 1.6 deg from any constant rate), so the
-    windows are said not explained and their misfit is large."""
-    times = np.arange(0.0, 201.0, 10.0)
+    """A body spun up at 0.005 deg/s^2 from rest, rows every 20 s with 0.02 deg of noise, a 100 s window:
+    no majority of a window's rows turns at one rate (over 60 s the spin-up is 2 deg from any constant
+    rate), so the windows are said not explained and their misfit is large."""
+    times = np.arange(0.0, 201.0, 20.0)
     axis = np.array([0.36, -0.48, 0.8])
     start = Rotation.random(random_state=3)
     sun_eci = np.array([0.3, -0.8, 0.5]) / np.linalg.norm([0.3, -0.8, 0.5])
@@ -160,7 +160,7 @@ def test_a_body_spinning_up_is_not_explained_by_one_rate():
     sun = np.array([turn.apply(sun_eci) for turn in turns])
     nadir = np.array([turn.apply(n) for turn, n in zip(turns, nadir_eci, strict=True)])
     fitted = smoothed_rows(noisy_rows(times, sun, nadir, 0.02), 100.0, MEAN_MOTION)
-    assert all(not f.explained and f.misfit > 3.0 for f in fitted[5:16])
+    assert all(not f.explained and f.misfit > 3.0 for f in fitted[2:9])
 
 
 def test_windows_too_short_are_left_alone_and_eclipses_are_not_smoothed():
@@ -223,7 +223,8 @@ def test_a_row_with_two_sensor_channels_swapped_is_said_and_mended(run_cli, tmp_
     mesh = sw.meshes.sample_path().parent / "sensor_cube.obj"  # sensor_cube(), bundled
     base = ["attitude", mesh, "--reflectivity", "0.07", "--specular-fraction", "0", "--emissivity", "0.82"]
     base += ["--fluxes", path, "--altitude", str(ALTITUDE_KM), "--smooth", "80"]
-    code, out, err = run_cli(*base, "--json")
+    output = tmp_path / "rows.csv"
+    code, out, err = run_cli(*base, "--json", "-o", output)
     assert code == 0, err
     rows = json.loads(out)["rows"]
     assert angle_deg(np.array(rows[10]["sun_body"]), sun[10]) > 5.0
@@ -232,9 +233,6 @@ def test_a_row_with_two_sensor_channels_swapped_is_said_and_mended(run_cli, tmp_
     assert "t = 100 s: the row's own solution disagrees with the motion of the 8 rows around it" in err
     assert angle_deg(np.array(smoothed["sun_body"]), sun[10]) <= 4.0 * smoothed["sigma_deg"]["sun"]
     assert angle_deg(np.array(smoothed["nadir_body"]), nadir[10]) <= 4.0 * smoothed["sigma_deg"]["nadir"]
-    output = tmp_path / "rows.csv"
-    code, _, err = run_cli(*base, "-o", output)
-    assert code == 0, err
     table = [line.split(",") for line in output.read_text().splitlines() if not line.startswith("#")]
     rejected = [int(line[table[0].index("smoothed_rejected")]) for line in table[1:]]
     assert rejected == [int(abs(t - 100.0) <= 40.0) for t in times]
