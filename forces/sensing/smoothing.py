@@ -244,6 +244,44 @@ def _turned(rotvec: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.f
     return v + a[:, None] * across + b[:, None] * np.cross(rotvec, across)
 
 
+@dataclass(frozen=True)
+class _Fitted:
+    """A motion fitted to some of a window's rows: its chart and time, scipy's result, the rows and the
+    minimum of each that the fit took."""
+
+    motion: _Motion
+    result: scipy.optimize.OptimizeResult
+    time_s: float
+    rows: list[AttitudeSolution]
+    chosen: list[Minimum]
+
+    @property
+    def angles(self) -> int:
+        """The measured angles: two per observed direction."""
+        return 2 * sum(int(w > 0) for m in self.chosen for w in _row_weights(m))
+
+    @property
+    def misfit(self) -> float:
+        """RMS of the whitened angle residuals."""
+        return math.sqrt(float(self.result.fun @ self.result.fun) / max(self.angles, 1))
+
+    @property
+    def explained(self) -> bool:
+        """The chi2 is within its :data:`~sunwind.forces.sensing.search.CONFIDENCE` quantile."""
+        dof = self.angles - len(self.result.x)
+        return bool(dof <= 0 or 2.0 * self.result.cost <= scipy.stats.chi2.ppf(CONFIDENCE, dof))
+
+    def chances(self, rows: list[AttitudeSolution], minima: list[Minimum]) -> NDArray[np.float64]:
+        """Per row, the chance of a chi2 as large as that of its minimum about the motion (1 for a
+        minimum with no direction observed)."""
+        sun, nadir = self.motion.predict(self.result.x, np.array([r.time_s - self.time_s for r in rows]))
+        weights = np.array([_row_weights(m) for m in minima]).reshape(-1, 2)
+        chi2 = weights[:, 0] ** 2 * np.sum((sun - [m.sun for m in minima]) ** 2, axis=1)
+        chi2 += weights[:, 1] ** 2 * np.sum((nadir - [m.nadir for m in minima]) ** 2, axis=1)
+        dof = 2 * np.sum(weights > 0, axis=1)
+        return np.where(dof > 0, scipy.stats.chi2.sf(chi2, np.maximum(dof, 1)), 1.0)
+
+
 def _window_fit(window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float) -> SmoothedRow:
     """The motion fitted to a window's rows, rows that disagree with it left out.
 
@@ -251,52 +289,47 @@ def _window_fit(window: list[AttitudeSolution], row: AttitudeSolution, mean_moti
     the motion most rows agree with is sought from runs of neighbouring rows (:func:`_consensus`), and
     of the fits with a majority of the rows the explained one, else the one of least misfit, is kept."""
     fits = _leaving_out(window, row, mean_motion)
-    if not _explained(*fits[-1][1:3]):
+    if not fits[-1].explained:
         fits += _consensus(window, row, mean_motion)
-    fits = [f for f in fits if 2 * len(f[3]) > len(window)]
-    best = min(fits, key=lambda f: (not _explained(*f[1:3]), _misfit(*f[1:3]), -len(f[3])))
-    return _smoothed(row, window, best[3], *best[:3])
+    best = min(
+        (f for f in fits if 2 * len(f.rows) > len(window)),
+        key=lambda f: (not f.explained, f.misfit, -len(f.rows)),
+    )
+    return _smoothed(row, window, best)
 
 
-def _leaving_out(
-    window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float
-) -> list[tuple[_Motion, object, list[Minimum], list[AttitudeSolution]]]:
+def _leaving_out(window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float) -> list[_Fitted]:
     """The motion of all the rows (:func:`_motion_of`), then, while a row's chi2 about the fit is beyond
     the :data:`OUTLIER_CONFIDENCE` quantile, without the row least likely about a robust fit
-    (:func:`_outlier`; fewer than half the rows, at least :data:`LEAST_ROWS` kept): every fit made, as
-    (motion, fit, chosen, rows kept)."""
-    kept = list(window)
-    fits = [(*_motion_of(kept, row, mean_motion), kept)]
+    (:func:`_outlier`; fewer than half the rows, at least :data:`LEAST_ROWS` kept): every fit made."""
+    fits = [_motion_of(window, row, mean_motion)]
     for _ in range(min((len(window) - 1) // 2, len(window) - LEAST_ROWS)):
-        motion, fit, chosen, _ = fits[-1]
-        worst = _outlier(motion, fit, chosen, np.array([r.time_s for r in kept]) - row.time_s)
+        worst = _outlier(fits[-1])
         if worst is None:
             break
-        kept = kept[:worst] + kept[worst + 1 :]
-        fits.append((*_motion_of(kept, row, mean_motion), kept))
+        kept = fits[-1].rows[:worst] + fits[-1].rows[worst + 1 :]
+        fits.append(_motion_of(kept, row, mean_motion))
     return fits
 
 
-def _consensus(
-    window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float
-) -> list[tuple[_Motion, object, list[Minimum], list[AttitudeSolution]]]:
+def _consensus(window: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float) -> list[_Fitted]:
     """The motion most rows agree with: the motions of up to :data:`SEEDS` runs of three neighbouring
     rows (:func:`_seeds`) are tried, and the one most rows agree with (:func:`_agreeing`) fitted again to
-    those rows until they stay the same. Its fits, as (motion, fit, chosen, rows kept)."""
-    kept, current = [], None
+    those rows until they stay the same. Its fits."""
+    kept: list[AttitudeSolution] = []
     for seed in _seeds(window):
         tried = _motion_of(seed, row, mean_motion)
-        agreeing = _agreeing(tried, row, window)
+        agreeing = _agreeing(tried, window)
         if len(agreeing) > len(kept):
             kept, current = agreeing, tried
     fits = []
     for _ in range(ROUNDS):
         if len(kept) < LEAST_ROWS:
             break
-        current = _choose(current[0], current[1], row.time_s, row, kept)
-        fits.append((*current, kept))
-        kept, before = _agreeing(current, row, window), kept
-        if [r.time_s for r in kept] == [r.time_s for r in before]:
+        current = _choose(current, row, kept)
+        fits.append(current)
+        kept = _agreeing(current, window)
+        if [r.time_s for r in kept] == [r.time_s for r in current.rows]:
             break
     return fits
 
@@ -307,31 +340,19 @@ def _seeds(window: list[AttitudeSolution]) -> list[list[AttitudeSolution]]:
     return [window[c - 1 : c + 2] for c in centres]
 
 
-def _agreeing(
-    fitted: tuple[_Motion, object, list[Minimum]], row: AttitudeSolution, window: list[AttitudeSolution]
-) -> list[AttitudeSolution]:
+def _agreeing(fitted: _Fitted, window: list[AttitudeSolution]) -> list[AttitudeSolution]:
     """The rows one of whose minima is within the :data:`OUTLIER_CONFIDENCE` quantile of its chi2 about
-    the motion (charted at ``row``)."""
-    motion, fit, _ = fitted
-    sun, nadir = motion.predict(fit.x, np.array([r.time_s - row.time_s for r in window]))
-    agreeing = []
-    for k, r in enumerate(window):
-        for m in (m for m in (r.best, *r.alternatives) if m.sun is not None):
-            weights = _row_weights(m)
-            chi2 = weights[0] ** 2 * np.sum((sun[k] - m.sun) ** 2) + weights[1] ** 2 * np.sum(
-                (nadir[k] - m.nadir) ** 2
-            )
-            dof = 2 * sum(int(w > 0) for w in weights)
-            if dof == 0 or scipy.stats.chi2.sf(chi2, dof) >= 1.0 - OUTLIER_CONFIDENCE:
-                agreeing.append(r)
-                break
-    return agreeing
+    the motion."""
+    pairs = [(r, m) for r in window for m in (r.best, *r.alternatives) if m.sun is not None]
+    chances = fitted.chances([r for r, _ in pairs], [m for _, m in pairs])
+    agree = {
+        id(r) for (r, _), chance in zip(pairs, chances, strict=True) if chance >= 1.0 - OUTLIER_CONFIDENCE
+    }
+    return [r for r in window if id(r) in agree]
 
 
-def _motion_of(
-    rows: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float
-) -> tuple[_Motion, object, list[Minimum]]:
-    """The motion fitted to rows, each row's minimum chosen nearest it: (motion, fit, chosen).
+def _motion_of(rows: list[AttitudeSolution], row: AttitudeSolution, mean_motion: float) -> _Fitted:
+    """The motion fitted to rows, each row's minimum chosen nearest it.
 
     The motion is first fitted to the rows with one minimum (their best), when there are enough, anchored
     at the one nearest the row in time; every row then takes its minimum nearest that motion (an
@@ -344,76 +365,46 @@ def _motion_of(
     first = [r.best for r in sure]
     tau = np.array([r.time_s for r in sure]) - anchor.time_s
     motion = _Motion(anchor.best.sun, anchor.best.nadir, mean_motion)
-    motion, fit = _fit(motion, first, tau, _rate_start(first, tau))
-    return _choose(motion, fit, anchor.time_s, row, rows)
+    result = _fit(motion, first, tau, _rate_start(first, tau))
+    return _choose(_Fitted(motion, result, anchor.time_s, sure, first), row, rows)
 
 
-def _choose(
-    motion: _Motion, fit, shift: float, row: AttitudeSolution, rows: list[AttitudeSolution]
-) -> tuple[_Motion, object, list[Minimum]]:
-    """Each row's minimum nearest the motion (fitted at ``shift``), and the motion fitted to them charted
-    at the row (its own minimum when it is among ``rows``), until the choice stays: (motion, fit, chosen)."""
-    chosen: list[Minimum] | None = None
+def _choose(fitted: _Fitted, row: AttitudeSolution, rows: list[AttitudeSolution]) -> _Fitted:
+    """Each of ``rows`` takes its minimum nearest the motion, and the motion is fitted to them charted at
+    the row (its own minimum when it is among them), until the choice stays."""
     times = np.array([r.time_s for r in rows])
+    chosen: list[Minimum] | None = None
     for _ in range(ROUNDS):
-        nearest = [_nearest(motion, fit.x, r.time_s - shift, [r.best, *r.alternatives]) for r in rows]
+        motion, x, shift = fitted.motion, fitted.result.x, fitted.time_s
+        nearest = [_nearest(motion, x, r.time_s - shift, [r.best, *r.alternatives]) for r in rows]
         if chosen is not None and all(map(operator.is_, nearest, chosen)):
             break
         chosen = nearest
         own = [m for m, r in zip(chosen, rows, strict=True) if r is row]
-        at_row = motion.predict(fit.x, np.array([row.time_s - shift]))
+        at_row = motion.predict(x, np.array([row.time_s - shift]))
         sun, nadir = (own[0].sun, own[0].nadir) if own else (at_row[0][0], at_row[1][0])
         there = _Motion(sun, nadir, motion.mean_motion)
-        start = motion.carried(fit.x, row.time_s - shift, there)
-        motion, fit = _fit(there, chosen, times - row.time_s, start[4:7], start[7:])
-        shift = row.time_s
-    return motion, fit, chosen
+        start = motion.carried(x, row.time_s - shift, there)
+        result = _fit(there, chosen, times - row.time_s, start[4:7], start[7:])
+        fitted = _Fitted(there, result, row.time_s, rows, chosen)
+    return fitted
 
 
-def _outlier(motion: _Motion, fit, chosen: list[Minimum], tau: NDArray[np.float64]) -> int | None:
+def _outlier(fitted: _Fitted) -> int | None:
     """The row least likely about a robust (soft L1) fit of the motion, if some row's chi2 about the
     plain fit is beyond the :data:`OUTLIER_CONFIDENCE` quantile: a large error pulls a plain fit to
     every row, not to its own."""
-    if _outlier_chance(fit, chosen).min() >= 1.0 - OUTLIER_CONFIDENCE:
+    if fitted.chances(fitted.rows, fitted.chosen).min() >= 1.0 - OUTLIER_CONFIDENCE:
         return None
-    robust = _least_squares(motion, chosen, tau, fit.x, loss="soft_l1")
-    return int(np.argmin(_outlier_chance(robust, chosen)))
+    tau = np.array([r.time_s for r in fitted.rows]) - fitted.time_s
+    robust = _least_squares(fitted.motion, fitted.chosen, tau, fitted.result.x, loss="soft_l1")
+    return int(np.argmin(replace(fitted, result=robust).chances(fitted.rows, fitted.chosen)))
 
 
-def _outlier_chance(fit, chosen: list[Minimum]) -> NDArray[np.float64]:
-    """Per row, the chance of a chi2 as large as its own residuals' (1 for a row with no direction)."""
-    n = len(chosen)
-    per_row = np.sum(fit.fun[: 3 * n].reshape(n, 3) ** 2 + fit.fun[3 * n :].reshape(n, 3) ** 2, axis=1)
-    dof = np.array([2 * sum(int(w > 0) for w in _row_weights(m)) for m in chosen])
-    return np.where(dof > 0, scipy.stats.chi2.sf(per_row, np.maximum(dof, 1)), 1.0)
-
-
-def _angles(chosen: list[Minimum]) -> int:
-    """The measured angles: two per observed direction."""
-    return 2 * sum(int(w > 0) for m in chosen for w in _row_weights(m))
-
-
-def _misfit(fit, chosen: list[Minimum]) -> float:
-    """RMS of the whitened angle residuals."""
-    return math.sqrt(float(fit.fun @ fit.fun) / max(_angles(chosen), 1))
-
-
-def _explained(fit, chosen: list[Minimum]) -> bool:
-    dof = _angles(chosen) - len(fit.x)
-    return bool(dof <= 0 or 2.0 * fit.cost <= scipy.stats.chi2.ppf(CONFIDENCE, dof))
-
-
-def _smoothed(
-    row: AttitudeSolution,
-    window: list[AttitudeSolution],
-    kept: list[AttitudeSolution],
-    motion: _Motion,
-    fit,
-    chosen: list[Minimum],
-) -> SmoothedRow:
-    """The row's record of a plain least-squares fit of the motion to the minima chosen of the rows kept."""
-    angles = _angles(chosen)
-    chi2, dof = float(fit.fun @ fit.fun), angles - len(fit.x)
+def _smoothed(row: AttitudeSolution, window: list[AttitudeSolution], fitted: _Fitted) -> SmoothedRow:
+    """The row's record of a plain least-squares fit of the motion to some of the window's rows."""
+    fit, motion = fitted.result, fitted.motion
+    chi2, dof = float(fit.fun @ fit.fun), fitted.angles - len(fit.x)
     covariance = fit_covariance(fit.jac, chi2, dof)
     sun, nadir = motion.at(fit.x)
     sigma_sun, sigma_nadir = (pointing_sigma(motion, fit.x, covariance, which) for which in (0, 1))
@@ -429,11 +420,11 @@ def _smoothed(
         np.degrees(fit.x[4:7]),
         sigma_rate,
         len(window),
-        math.sqrt(chi2 / angles),
-        _explained(fit, chosen),
-        sum(m is not r.best for m, r in zip(chosen, kept, strict=True)),
-        len(window) - len(kept),
-        not any(r is row for r in kept),
+        fitted.misfit,
+        fitted.explained,
+        sum(m is not r.best for m, r in zip(fitted.chosen, fitted.rows, strict=True)),
+        len(window) - len(fitted.rows),
+        not any(r is row for r in fitted.rows),
         None,
         None,
     )
@@ -445,15 +436,15 @@ def _fit(
     tau: NDArray[np.float64],
     rate: NDArray[np.float64],
     normal: NDArray[np.float64] | None = None,
-):
+) -> scipy.optimize.OptimizeResult:
     """The motion's least-squares fit to the chosen minima from the rate and the orbit normal's angle
-    ``normal`` (default each of :data:`_NORMAL_STARTS`), the best kept: ``(motion, scipy's result)``."""
+    ``normal`` (default each of :data:`_NORMAL_STARTS`), the best kept."""
     starts = ([a] for a in _NORMAL_STARTS) if normal is None else [normal]
     fits = [
         _least_squares(motion, chosen, tau, np.concatenate([np.zeros(4), rate, angle])[: motion.size])
         for angle in (starts if motion.size == 8 else [[]])
     ]
-    return motion, min(fits, key=lambda f: float(f.cost))
+    return min(fits, key=lambda f: float(f.cost))
 
 
 def _least_squares(
