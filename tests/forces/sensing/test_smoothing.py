@@ -231,6 +231,7 @@ def test_a_row_with_two_sensor_channels_swapped_is_said_and_mended(run_cli, tmp_
     smoothed = rows[10]["smoothed"]
     assert smoothed["outlier"] and smoothed["explained"]
     assert "t = 100 s: the row's own solution disagrees with the motion of the 8 rows around it" in err
+    assert "sunwind: notice: 9 windows (the first at t = 60 s) leave out rows that disagree" in err
     assert angle_deg(np.array(smoothed["sun_body"]), sun[10]) <= 4.0 * smoothed["sigma_deg"]["sun"]
     assert angle_deg(np.array(smoothed["nadir_body"]), nadir[10]) <= 4.0 * smoothed["sigma_deg"]["nadir"]
     table = [line.split(",") for line in output.read_text().splitlines() if not line.startswith("#")]
