@@ -113,6 +113,23 @@ class CoarseTable:
         m = len(self.nodes)
         return self.planet[np.arange(m), np.arange(m)].max(axis=0)
 
+    @functools.cached_property
+    def brightest(self) -> NDArray[np.float64]:
+        """An upper bound of what each sensor takes at any attitude [W/m^2], (p,): its most sunlight at
+        full disc along the table's directions plus its most albedo and infrared at any pair.
+
+        Examples
+        --------
+        >>> import sunwind as sw
+        >>> from sunwind.forces.sensing.forward import flux_model
+        >>> cube = sw.load(sw.meshes.sensor_cube(), uniform=sw.Material("b", 0.1, 0.0, emissivity=0.8),
+        ...                threads=1)
+        >>> table = coarse_table(flux_model(cube, 500.0), level=1)
+        >>> bool(np.all(table.brightest >= table.fluxes.max(axis=(0, 1))))
+        True
+        """
+        return self.solar.max(axis=0) + self.planet.max(axis=(0, 1))
+
 
 def coarse_table(model: FluxModel, level: int = COARSE_LEVEL) -> CoarseTable:
     """The flux table of ``model`` on the icosphere of ``level``.

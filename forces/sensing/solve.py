@@ -282,9 +282,9 @@ def mean_motion(window_s: float, light: PlanetLight, altitude_km: float) -> floa
 
 
 def _check_plausible(rows: FluxRows, table: CoarseTable, floor_W_m2: float) -> None:
-    """Refuse a flux more than :data:`IMPLAUSIBLE` times the most its sensor can absorb (full sunlight
-    along the best of the table's directions plus the most of the planet) and the resolution."""
-    most = table.solar.max(axis=0) + table.planet.max(axis=(0, 1))
+    """Refuse a flux more than :data:`IMPLAUSIBLE` times the most its sensor can absorb
+    (:attr:`~sunwind.forces.sensing.coarse.CoarseTable.brightest`) and the resolution."""
+    most = table.brightest
     over = rows.fluxes_W_m2 > IMPLAUSIBLE * most + floor_W_m2
     if over.any():
         k, p = (int(i[0]) for i in np.nonzero(over))
