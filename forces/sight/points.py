@@ -305,11 +305,11 @@ def read_points(path: str | Path) -> SightPoints:
         )
     columns = Columns(header, lines, rows, str(path))
     position = np.stack([columns.numbers(axis, "give metres, body frame of the mesh") for axis in "xyz"], 1)
-    names = [row[header.index("name")].strip() for row in rows]
+    names = [columns.text(k, "name") for k in range(len(rows))]
     boresight, half = np.full((len(rows), 3), np.nan), np.full(len(rows), np.nan)
     given = np.array([[columns.text(k, name) != "" for name in cones] for k in range(len(rows))])
-    for k, name in enumerate(names):
-        try:
+    try:  # the checks of a name and a cone say the line; the file is added here
+        for k, name in enumerate(names):
             check_name(name, names[:k], f"line {lines[k]}")
             if given[k].any() and not given[k].all():
                 empty = [c for c, on in zip(cones, given[k], strict=True) if not on]
@@ -317,16 +317,13 @@ def read_points(path: str | Path) -> SightPoints:
                     f"line {lines[k]}: the cone cells {', '.join(empty)} are empty",
                     hint="give all four cone cells, or leave all four empty for no cone",
                 )
-        except InputError as error:
-            raise InputError(error.message, path=str(path), hint=error.hint) from None
-    coned = np.flatnonzero(given.all(axis=1)) if cones else np.zeros(0, dtype=int)
-    if len(coned):
-        some = Columns(header, [lines[k] for k in coned], [rows[k] for k in coned], str(path))
-        axes = some.block(CONE[:3])
-        angles = some.numbers(CONE[3], "give the cone's half angle [deg]")
-        for j, k in enumerate(coned):
-            try:
+        coned = np.flatnonzero(given.all(axis=1)) if cones else np.zeros(0, dtype=int)
+        if len(coned):
+            some = Columns(header, [lines[k] for k in coned], [rows[k] for k in coned], str(path))
+            axes = some.block(CONE[:3])
+            angles = some.numbers(CONE[3], "give the cone's half angle [deg]")
+            for j, k in enumerate(coned):
                 boresight[k], half[k] = check_cone(axes[j], angles[j], f"line {lines[k]} ({names[k]})")
-            except InputError as error:
-                raise InputError(error.message, path=str(path), hint=error.hint) from None
+    except InputError as error:
+        raise InputError(error.message, path=str(path), hint=error.hint) from None
     return SightPoints(tuple(names), position, boresight, half, str(path))
