@@ -84,6 +84,7 @@ BAD = [
     ("name,x,y\na,1,2\n", [], "p.csv: no column 'z'"),
     ("name,x,y,z\na,1,two,3\n", [], "p.csv: line 2: column y is 'two', not a finite number"),
     ("name,x,y,z\na,1,2,3\na,0,0,0\n", [], "line 3: the name 'a' is given twice"),
+    ("x,y,z,name\n1,2,3\n", [], "line 2: the name is empty"),
     (POINTS.replace("0,0,1,80", "0,0,0,80"), [], "the boresight has zero length"),
     (POINTS.replace("0,0,1,80", "0,0,1,0"), [], "half_angle_deg 0 must be in (0, 180]"),
     (POINTS.replace("0,0,1,80", "0,0,1,"), [], "the cone cells half_angle_deg are empty"),
