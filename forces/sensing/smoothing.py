@@ -274,11 +274,11 @@ class _Fitted:
     def chances(self, rows: list[AttitudeSolution], minima: list[Minimum]) -> NDArray[np.float64]:
         """Per row, the chance of a chi2 as large as that of its minimum about the motion (1 for a
         minimum with no direction observed)."""
-        sun, nadir = self.motion.predict(self.result.x, np.array([r.time_s - self.time_s for r in rows]))
-        weights = np.array([_row_weights(m) for m in minima]).reshape(-1, 2)
-        chi2 = weights[:, 0] ** 2 * np.sum((sun - [m.sun for m in minima]) ** 2, axis=1)
-        chi2 += weights[:, 1] ** 2 * np.sum((nadir - [m.nadir for m in minima]) ** 2, axis=1)
-        dof = 2 * np.sum(weights > 0, axis=1)
+        tau = np.array([r.time_s - self.time_s for r in rows])
+        measured = _Measured.of(minima)
+        sun, nadir = measured.whitened(self.motion, self.result.x, tau)
+        chi2 = np.sum(sun**2 + nadir**2, axis=1)
+        dof = 2 * np.sum(measured.weights > 0, axis=1)
         return np.where(dof > 0, scipy.stats.chi2.sf(chi2, np.maximum(dof, 1)), 1.0)
 
 
@@ -454,23 +454,40 @@ def _least_squares(
     start: NDArray[np.float64],
     loss: str = "linear",
 ):
-    measured_sun = np.stack([m.sun for m in chosen])
-    measured_nadir = np.stack([m.nadir for m in chosen])
-    weights = np.array([_row_weights(m) for m in chosen]).T  # (2, n): the Sun's, the nadir's
+    measured = _Measured.of(chosen)
 
     def residuals(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        sun, nadir = motion.predict(x, tau)
-        return np.concatenate(
-            [
-                ((sun - measured_sun) * weights[0][:, None]).ravel(),
-                ((nadir - measured_nadir) * weights[1][:, None]).ravel(),
-            ]
-        )
+        sun, nadir = measured.whitened(motion, x, tau)
+        return np.concatenate([sun.ravel(), nadir.ravel()])
 
     method = "lm" if loss == "linear" else "trf"  # Levenberg-Marquardt takes no robust loss
     return scipy.optimize.least_squares(
         residuals, start, method=method, loss=loss, x_scale="jac", max_nfev=400
     )
+
+
+@dataclass(frozen=True)
+class _Measured:
+    """Minima's directions, (n, 3) each, and 1 / sigma of one tangent component of each, (n, 2)
+    (:func:`_row_weights`)."""
+
+    sun: NDArray[np.float64]
+    nadir: NDArray[np.float64]
+    weights: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, minima: list[Minimum]) -> _Measured:
+        """The minima's arrays, made once per fit."""
+        weights = np.array([_row_weights(m) for m in minima]).reshape(-1, 2)
+        return cls(np.stack([m.sun for m in minima]), np.stack([m.nadir for m in minima]), weights)
+
+    def whitened(
+        self, motion: _Motion, x: NDArray[np.float64], tau: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The motion's Sun and nadir at times ``tau`` less the minima's, over their 1-sigma: (n, 3)
+        each; the sum of squares of a row's six is its chi2."""
+        sun, nadir = motion.predict(x, tau)
+        return (sun - self.sun) * self.weights[:, :1], (nadir - self.nadir) * self.weights[:, 1:]
 
 
 def _row_weights(m: Minimum) -> tuple[float, float]:
