@@ -104,9 +104,10 @@ class Columns:
         """Column ``name`` as finite numbers in [``low``, ``high``]; ``fix`` ends the messages."""
         if name not in self.header:
             raise InputError(f"no column {name}", path=self.where, hint=f"add it: {fix}")
+        column = self.header.index(name)
         out = np.empty(len(self.rows))
         for k in range(len(self.rows)):
-            text = self.text(k, name)
+            text = self._cell(k, column)
             try:
                 value = float(text)
             except ValueError:
@@ -124,7 +125,9 @@ class Columns:
 
     def text(self, row: int, name: str) -> str:
         """The stripped cell of column ``name`` in row ``row`` (empty past the row's end)."""
-        column = self.header.index(name)
+        return self._cell(row, self.header.index(name))
+
+    def _cell(self, row: int, column: int) -> str:
         cells = self.rows[row]
         return cells[column].strip() if column < len(cells) else ""
 
