@@ -13,7 +13,7 @@ import numpy as np
 from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeRemainingColumn
 
 from sunwind.forces.cli.options import group, json_option, loaded, model_options, reflection_options
-from sunwind.forces.cli.outputs import check_writable
+from sunwind.forces.cli.outputs import check_distinct, check_writable
 from sunwind.forces.cli.runs import check_run, interruptible, progress_bar, run_options, sweep_run
 from sunwind.forces.export.atomic import atomic_text
 from sunwind.forces.model import ModelSource
@@ -103,6 +103,8 @@ def attitude(source: ModelSource, fluxes_path: Path, altitude: float, output: di
     reproduce the sensors' fluxes through the full forward model (self-shadowing, reflections, albedo
     with its terminator, infrared), found over the whole sphere; every minimum within the noise is
     reported, and a row in eclipse gives the nadir alone."""
+    if output["output"] is not None:
+        check_distinct(output["output"], fluxes_path, source.mesh, source.materials)
     model = loaded(source)
     rows = read_flux_rows(fluxes_path)
     patterns = tuple(flags["sensors"])  # type: ignore[arg-type]

@@ -97,6 +97,15 @@ def test_a_bad_fluxes_file_is_one_error_line(run_cli, tmp_path, name, text, word
     assert str(path) in lines[0]
 
 
+def test_an_output_over_the_fluxes_file_is_refused_and_the_file_kept(run_cli, tmp_path):
+    fluxes = tmp_path / "fluxes.csv"
+    fluxes.write_text((DATA / "sensor_cube_fluxes.csv").read_text())
+    code, _, err = run_cli(*command(fluxes, "-o", fluxes))
+    lines = err.strip().splitlines()
+    assert code == 1 and len(lines) == 1 and "the output is also another file of this run" in lines[0], err
+    assert fluxes.read_text() == (DATA / "sensor_cube_fluxes.csv").read_text()
+
+
 @pytest.mark.parametrize(
     ("extra", "words"),
     [
