@@ -23,7 +23,7 @@ MERGE_TOLERANCE = 1e-9
 DEGENERATE_RATIO = 1e-10
 #: Cracks of a closed body narrower than this share of the model size (largest bounding-box extent)
 #: are closed on loading: boundary vertices this close are welded, and a boundary vertex this close
-#: to another boundary edge of its part splits that edge (a T-junction).
+#: to another boundary edge of a closed body splits that edge (a T-junction).
 CRACK_TOLERANCE = 1e-4
 #: A model whose largest extent [m] is outside this range is probably in another unit: the largest
 #: spacecraft flown (the ISS, 109 m across its trusses) and the smallest (3.5 cm chip satellites).
@@ -291,7 +291,8 @@ def _close_cracks(
     part_names: tuple[str, ...],
 ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64], list[str]]:
     """Close the hair-line cracks of closed bodies: weld boundary vertices closer than the tolerance and
-    split boundary edges at the boundary vertices of the same part lying on them (T-junctions).
+    split boundary edges at the boundary vertices lying on them (T-junctions), of any part: a closed body
+    may span parts, as the faces of a cube that are each a sensor.
 
     Returns the vertices, the faces (a split face becomes two), the input face of each face, and a
     notice per repair.
@@ -366,15 +367,12 @@ def _length(vertices: NDArray[np.float64], edges: NDArray[np.int64]) -> float:
     return float(np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).sum())
 
 
-def _junction_candidates(
-    edges: NDArray[np.int64], edge_part: NDArray[np.int32], n_vertices: int
-) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Pairs (open edge, boundary vertex of its part) where the vertex may lie on the edge: the far end
+def _junction_candidates(edges: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Pairs (open edge, boundary vertex) where the vertex may lie on the edge: the far end
     of an open edge that shares an end with it. A T-junction's vertex is found so (a chain of them one
     per pass), and the work is linear in the number of open edges."""
     n = len(edges)
-    ends = np.r_[edges[:, 0], edges[:, 1]] + n_vertices * np.r_[edge_part, edge_part].astype(np.int64)
-    _, key = np.unique(ends, return_inverse=True)
+    _, key = np.unique(np.r_[edges[:, 0], edges[:, 1]], return_inverse=True)
     incidence = scipy.sparse.csr_matrix((np.ones(2 * n), (key, np.r_[np.arange(n), np.arange(n)])))
     touching = (incidence.T @ incidence).tocoo()  # edges sharing an end (and each edge with itself)
     first, second = touching.row.astype(np.int64), touching.col.astype(np.int64)
@@ -394,12 +392,12 @@ def _split_t_junctions(
     solid: NDArray[np.bool_],
     tolerance: float,
 ) -> tuple[NDArray[np.int64], NDArray[np.int64], int]:
-    """One pass: split each open edge that a boundary vertex of its part lies on (within ``tolerance``,
+    """One pass: split each open edge that a boundary vertex lies on (within ``tolerance``,
     away from its ends) at that vertex; each face is split at most once. Returns faces, origin, count."""
     edges = _open_edges(faces, face_part, solid)
     if not len(edges):
         return faces, origin, 0
-    edge, vertex = _junction_candidates(edges, face_part[edges[:, 2]], len(vertices))
+    edge, vertex = _junction_candidates(edges)
     a, b = vertices[edges[:, 0]], vertices[edges[:, 1]]
     half = np.linalg.norm(b - a, axis=1) / 2
     p, ea, eb = vertices[vertex], a[edge], b[edge]

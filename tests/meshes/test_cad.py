@@ -135,6 +135,23 @@ def test_t_junctions_put_each_new_vertex_on_an_edge_of_an_unsplit_neighbour(samp
     assert any("T-junctions" in notice for notice in craft.notices)
 
 
+def test_t_junctions_between_parts_of_one_closed_body_are_closed():
+    """A cube whose faces are each their own part (the six sensors of sensor_cube), every shared edge
+    split on one side: the junction vertices belong to the neighbouring part, and the body closes with a
+    notice; its SRP force is the clean cube's to rounding (the same surface, cut differently)."""
+    import sunwind as sw
+    from sunwind.meshes.primitives import sensor_cube
+
+    clean = sensor_cube()
+    cracked = t_junctions(clean, share=1.0, seed=0)
+    assert cracked.n_faces > clean.n_faces
+    craft = build_spacecraft(cracked, uniform=UNIFORM)
+    assert any("T-junctions" in notice for notice in craft.notices)
+    sun = np.array([0.48, 0.6, 0.64])
+    take = [sw.srp(sw.load(mesh, uniform=UNIFORM, threads=1), sun).force_N for mesh in (clean, cracked)]
+    np.testing.assert_allclose(take[1], take[0], rtol=1e-12, atol=1e-20)
+
+
 @pytest.mark.parametrize("offset_m", [0.0, 0.005])
 def test_duplicate_layers_copy_a_share_of_the_bodies_faces_on_or_above_them(sample, offset_m):
     layered = duplicate_layers(sample, share=0.2, offset_m=offset_m, part="mli", seed=2)
